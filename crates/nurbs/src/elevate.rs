@@ -1,0 +1,1 @@
+//! Degree elevation (A5.9) for curves and surfaces.

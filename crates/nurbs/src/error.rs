@@ -1,0 +1,44 @@
+//! The kernel's one error type.
+
+use thiserror::Error;
+
+/// Everything that can go wrong in the NURBS kernel. Variants carry the offending values.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum NurbsError {
+    #[error("degree {degree} is not supported (1 to {max})")]
+    BadDegree { degree: usize, max: usize },
+    #[error("knot vector has {len} knots; degree {degree} needs at least {min}")]
+    TooFewKnots { len: usize, degree: usize, min: usize },
+    #[error("knot {index} is not finite ({value})")]
+    NonFiniteKnot { index: usize, value: f64 },
+    #[error("knots decrease at index {index}: {prev} then {value}")]
+    DecreasingKnots { index: usize, prev: f64, value: f64 },
+    #[error("knot vector is not clamped: the first and last {needed} knots must be equal")]
+    NotClamped { needed: usize },
+    #[error("interior knot {value} has multiplicity {multiplicity}, more than the degree {degree}")]
+    KnotMultiplicity { value: f64, multiplicity: usize, degree: usize },
+    #[error("knot vector has an empty domain [{start}, {end}]")]
+    EmptyDomain { start: f64, end: f64 },
+    #[error("expected {expected} control points, got {got}")]
+    ControlPointCount { expected: usize, got: usize },
+    #[error("expected {expected} weights, got {got}")]
+    WeightCount { expected: usize, got: usize },
+    #[error("weight {index} is {value}; weights must be finite and positive")]
+    BadWeight { index: usize, value: f64 },
+    #[error("control point {index} is not finite")]
+    NonFinitePoint { index: usize },
+    #[error("parameter {value} lies outside the domain [{start}, {end}]")]
+    ParameterOutOfDomain { value: f64, start: f64, end: f64 },
+    #[error("{what}: need at least {needed} points, got {got}")]
+    TooFewPoints { what: String, needed: usize, got: usize },
+    #[error("{what}: points {index} and {next} coincide")]
+    CoincidentPoints { what: String, index: usize, next: usize },
+    #[error("{what}: {count} control points requested, but {min} to {max} are possible here")]
+    BadControlPointCount { what: String, count: usize, min: usize, max: usize },
+    #[error("linear system is singular or too ill-conditioned ({what})")]
+    SingularSystem { what: String },
+    #[error("curves are not compatible: {what}")]
+    Incompatible { what: String },
+    #[error("result is not finite ({what})")]
+    NonFiniteResult { what: String },
+}

@@ -1,0 +1,1 @@
+//! Fitting: parameterization, knot vectors, interpolation, least squares, skinning.

@@ -1,0 +1,235 @@
+//! Clamped knot vectors, validated on construction, and the span search of The NURBS Book A2.1.
+
+use crate::NurbsError;
+
+/// Highest degree the kernel evaluates (fixed-size scratch arrays keep evaluation allocation-free).
+pub const MAX_DEGREE: usize = 15;
+
+/// A clamped (open) knot vector `U = {u_0, ..., u_m}` of a given degree `p`:
+/// non-decreasing, finite, the first and last `p + 1` knots equal, interior multiplicity at most
+/// `p`, and a non-empty domain `[u_p, u_{m-p}]`. It carries `n = m - p` basis functions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct KnotVector {
+    degree: usize,
+    knots: Vec<f64>,
+}
+
+impl KnotVector {
+    /// Validate and build a knot vector.
+    ///
+    /// # Errors
+    /// [`NurbsError::BadDegree`], [`NurbsError::TooFewKnots`], [`NurbsError::NonFiniteKnot`],
+    /// [`NurbsError::DecreasingKnots`], [`NurbsError::NotClamped`],
+    /// [`NurbsError::KnotMultiplicity`] or [`NurbsError::EmptyDomain`] when `knots` is not a
+    /// clamped knot vector of degree `degree`.
+    pub fn try_new(degree: usize, knots: Vec<f64>) -> Result<Self, NurbsError> {
+        if degree == 0 || degree > MAX_DEGREE {
+            return Err(NurbsError::BadDegree { degree, max: MAX_DEGREE });
+        }
+        let min = 2 * (degree + 1);
+        if knots.len() < min {
+            return Err(NurbsError::TooFewKnots { len: knots.len(), degree, min });
+        }
+        for (index, &value) in knots.iter().enumerate() {
+            if !value.is_finite() {
+                return Err(NurbsError::NonFiniteKnot { index, value });
+            }
+            if index > 0 && value < knots[index - 1] {
+                return Err(NurbsError::DecreasingKnots { index, prev: knots[index - 1], value });
+            }
+        }
+        let m = knots.len() - 1;
+        if knots[..=degree].iter().any(|&k| k != knots[0]) || knots[m - degree..].iter().any(|&k| k != knots[m]) {
+            return Err(NurbsError::NotClamped { needed: degree + 1 });
+        }
+        let (start, end) = (knots[degree], knots[m - degree]);
+        if end <= start {
+            return Err(NurbsError::EmptyDomain { start, end });
+        }
+        let mut i = degree + 1;
+        while i < m - degree {
+            let mult = knots[i..].iter().take_while(|&&k| k == knots[i]).count();
+            if mult > degree {
+                return Err(NurbsError::KnotMultiplicity { value: knots[i], multiplicity: mult, degree });
+            }
+            i += mult;
+        }
+        Ok(KnotVector { degree, knots })
+    }
+
+    /// Build without validation; the caller guarantees the invariants.
+    pub(crate) fn new_unchecked(degree: usize, knots: Vec<f64>) -> Self {
+        debug_assert!(KnotVector::try_new(degree, knots.clone()).is_ok(), "invalid knots {knots:?}");
+        KnotVector { degree, knots }
+    }
+
+    /// A uniform clamped knot vector on [0, 1] with `n` basis functions.
+    ///
+    /// # Errors
+    /// [`NurbsError::BadControlPointCount`] if `n <= degree`, or a degree error.
+    pub fn uniform(degree: usize, n: usize) -> Result<Self, NurbsError> {
+        if n <= degree {
+            return Err(NurbsError::BadControlPointCount {
+                what: "uniform knot vector".into(),
+                count: n,
+                min: degree + 1,
+                max: usize::MAX,
+            });
+        }
+        let mut k = vec![0.0; degree + 1];
+        let segs = n - degree;
+        for i in 1..segs {
+            k.push(i as f64 / segs as f64);
+        }
+        k.extend(std::iter::repeat_n(1.0, degree + 1));
+        KnotVector::try_new(degree, k)
+    }
+
+    #[inline]
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The knots `u_0 ..= u_m`.
+    #[inline]
+    pub fn as_slice(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// Number of basis functions (control points), `n + 1` in The NURBS Book's notation.
+    #[inline]
+    pub fn num_basis(&self) -> usize {
+        self.knots.len() - self.degree - 1
+    }
+
+    /// The parameter domain `[u_p, u_{m-p}]`.
+    #[inline]
+    pub fn domain(&self) -> (f64, f64) {
+        (self.knots[self.degree], self.knots[self.knots.len() - 1 - self.degree])
+    }
+
+    /// Clamp `u` into the domain (NaN maps to the start).
+    #[inline]
+    pub fn clamp(&self, u: f64) -> f64 {
+        let (a, b) = self.domain();
+        if u >= a {
+            if u <= b {
+                u
+            } else {
+                b
+            }
+        } else {
+            a
+        }
+    }
+
+    /// The knot span index `i` with `u_i <= u < u_{i+1}` (A2.1); `u` at the domain end maps to
+    /// the last non-empty span, `u` outside the domain to the first or last span.
+    #[inline]
+    pub fn find_span(&self, u: f64) -> usize {
+        let p = self.degree;
+        let n = self.num_basis() - 1;
+        let k = &self.knots;
+        if u >= k[n + 1] {
+            return n;
+        }
+        if u <= k[p] {
+            return p;
+        }
+        // Binary search in [p, n]: last index i with k[i] <= u.
+        let (mut lo, mut hi) = (p, n + 1);
+        while hi - lo > 1 {
+            let mid = (lo + hi) / 2;
+            if u < k[mid] {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        lo
+    }
+
+    /// Multiplicity of the knot value `u` (0 if `u` is not a knot).
+    pub fn multiplicity(&self, u: f64) -> usize {
+        self.knots.iter().filter(|&&k| k == u).count()
+    }
+
+    /// The distinct interior knot values with their multiplicities.
+    pub fn interior_breaks(&self) -> Vec<(f64, usize)> {
+        let p = self.degree;
+        let m = self.knots.len() - 1;
+        let mut out: Vec<(f64, usize)> = Vec::new();
+        for &k in &self.knots[p + 1..m - p] {
+            match out.last_mut() {
+                Some((v, c)) if *v == k => *c += 1,
+                _ => out.push((k, 1)),
+            }
+        }
+        out
+    }
+
+    /// The same knots mapped affinely onto `[a, b]`.
+    ///
+    /// # Errors
+    /// [`NurbsError::EmptyDomain`] if `b <= a`.
+    pub fn reparameterized(&self, a: f64, b: f64) -> Result<Self, NurbsError> {
+        if !(b > a) || !a.is_finite() || !b.is_finite() {
+            return Err(NurbsError::EmptyDomain { start: a, end: b });
+        }
+        let (s, e) = self.domain();
+        let k = self.knots.iter().map(|&u| if u == e { b } else { a + (u - s) * (b - a) / (e - s) }).collect();
+        KnotVector::try_new(self.degree, k)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rejects_invalid_vectors() {
+        assert!(matches!(KnotVector::try_new(0, vec![0.0, 1.0]), Err(NurbsError::BadDegree { .. })));
+        assert!(matches!(KnotVector::try_new(2, vec![0.0, 0.0, 1.0, 1.0]), Err(NurbsError::TooFewKnots { .. })));
+        assert!(matches!(
+            KnotVector::try_new(1, vec![0.0, 0.0, 0.5, 0.4, 1.0, 1.0]),
+            Err(NurbsError::DecreasingKnots { index: 3, .. })
+        ));
+        assert!(matches!(KnotVector::try_new(1, vec![0.0, 0.1, 1.0, 1.0]), Err(NurbsError::NotClamped { .. })));
+        assert!(matches!(
+            KnotVector::try_new(1, vec![0.0, 0.0, f64::NAN, 1.0, 1.0]),
+            Err(NurbsError::NonFiniteKnot { index: 2, .. })
+        ));
+        assert!(matches!(
+            KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 0.5, 0.5, 0.5, 1.0, 1.0, 1.0]),
+            Err(NurbsError::KnotMultiplicity { multiplicity: 3, .. })
+        ));
+        assert!(matches!(KnotVector::try_new(1, vec![1.0, 1.0, 1.0, 1.0]), Err(NurbsError::EmptyDomain { .. })));
+    }
+
+    #[test]
+    fn span_search_brackets_the_parameter() {
+        let kv = KnotVector::try_new(2, vec![0., 0., 0., 1., 2., 3., 4., 4., 5., 5., 5.]).expect("valid");
+        // The NURBS Book Ex. 2.3: u = 5/2 lies in span 4.
+        assert_eq!(kv.find_span(2.5), 4);
+        assert_eq!(kv.find_span(0.0), 2);
+        assert_eq!(kv.find_span(5.0), 7);
+        assert_eq!(kv.find_span(4.0), 7);
+        for t in 0..=500 {
+            let u = t as f64 / 100.0;
+            let s = kv.find_span(u);
+            let k = kv.as_slice();
+            assert!(k[s] <= u && (u < k[s + 1] || (u == 5.0 && s == 7)), "u {u} span {s}");
+        }
+    }
+
+    #[test]
+    fn uniform_vector_and_breaks() {
+        let kv = KnotVector::uniform(3, 7).expect("valid");
+        assert_eq!(kv.num_basis(), 7);
+        assert_eq!(kv.interior_breaks().len(), 3);
+        assert_eq!(kv.domain(), (0.0, 1.0));
+        let r = kv.reparameterized(2.0, 6.0).expect("valid");
+        assert_eq!(r.domain(), (2.0, 6.0));
+        assert_eq!(r.as_slice()[5], 4.0);
+    }
+}

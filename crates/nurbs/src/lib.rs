@@ -1,0 +1,24 @@
+//! The NURBS kernel of hullskin: knot vectors, B-spline basis functions, rational curves and
+//! surfaces with derivatives and curvature, knot insertion and refinement, degree elevation,
+//! closest-point projection, and fitting (parameterization, interpolation, least squares,
+//! skinning). `f64` and 3-D only; no I/O; every fallible call returns [`NurbsError`].
+
+pub mod basis;
+mod curve;
+mod elevate;
+mod error;
+pub mod fit;
+mod knots;
+mod project;
+mod refine;
+mod surface;
+#[macro_use]
+pub mod tolerance;
+mod vec3;
+
+pub use curve::{Homogeneous, NurbsCurve};
+pub use error::NurbsError;
+pub use knots::{KnotVector, MAX_DEGREE};
+pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
+pub use vec3::Vec3;
+// refine / elevate / project: their helpers add `pub use` lines below.

@@ -1,0 +1,382 @@
+//! Rational B-spline (NURBS) tensor-product surfaces in 3-D.
+//!
+//! `S(u,v) = sum_i sum_j N_{i,p}(u) N_{j,q}(v) w_ij P_ij / sum_i sum_j N_{i,p}(u) N_{j,q}(v) w_ij`
+//! (The NURBS Book eq. 4.15). Control points are stored u-major: index `i * n_v + j`, `i` along
+//! u (`0..n_u`), `j` along v (`0..n_v`), homogeneous `(w x, w y, w z, w)`.
+
+use crate::basis::{basis_funs, ders_basis_funs, BasisRow};
+use crate::curve::{from_homogeneous, pack, Homogeneous};
+use crate::knots::MAX_DEGREE;
+use crate::{KnotVector, NurbsError, Vec3};
+
+/// The point and partial derivatives up to second order at one `(u, v)`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SurfaceDerivatives {
+    pub point: Vec3,
+    pub su: Vec3,
+    pub sv: Vec3,
+    pub suu: Vec3,
+    pub suv: Vec3,
+    pub svv: Vec3,
+}
+
+/// Gaussian and mean curvature with the unit normal they refer to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Curvature {
+    /// `K = (L N - M^2) / (E G - F^2)`.
+    pub gaussian: f64,
+    /// `H = (E N - 2 F M + G L) / (2 (E G - F^2))`, positive when the surface bends toward the normal.
+    pub mean: f64,
+    /// `n = (S_u x S_v) / |S_u x S_v|`.
+    pub normal: Vec3,
+}
+
+impl SurfaceDerivatives {
+    /// The unit normal `S_u x S_v / |S_u x S_v|`, `None` at a degenerate point.
+    pub fn normal(&self) -> Option<Vec3> {
+        self.su.cross(self.sv).normalized()
+    }
+
+    /// Gaussian and mean curvature from the first and second fundamental forms;
+    /// `None` where the surface is degenerate (`S_u x S_v = 0`).
+    pub fn curvature(&self) -> Option<Curvature> {
+        let normal = self.normal()?;
+        let (e, f, g) = (self.su.dot(self.su), self.su.dot(self.sv), self.sv.dot(self.sv));
+        let (l, m, n) = (self.suu.dot(normal), self.suv.dot(normal), self.svv.dot(normal));
+        let det = e * g - f * f;
+        if !(det > 0.0) {
+            return None;
+        }
+        Some(Curvature { gaussian: (l * n - m * m) / det, mean: (e * n - 2.0 * f * m + g * l) / (2.0 * det), normal })
+    }
+}
+
+/// A NURBS surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsSurface {
+    ku: KnotVector,
+    kv: KnotVector,
+    cw: Vec<Homogeneous>,
+}
+
+impl NurbsSurface {
+    /// Build from knots, Euclidean control points (u-major, `n_u * n_v` of them) and optional
+    /// weights (all 1 if `None`).
+    ///
+    /// # Errors
+    /// [`NurbsError::ControlPointCount`], [`NurbsError::WeightCount`],
+    /// [`NurbsError::BadWeight`] or [`NurbsError::NonFinitePoint`].
+    pub fn try_new(
+        knots_u: KnotVector,
+        knots_v: KnotVector,
+        points: &[Vec3],
+        weights: Option<&[f64]>,
+    ) -> Result<Self, NurbsError> {
+        let cw = pack(points, weights, knots_u.num_basis() * knots_v.num_basis())?;
+        Ok(NurbsSurface { ku: knots_u, kv: knots_v, cw })
+    }
+
+    /// Build from homogeneous control points (u-major).
+    ///
+    /// # Errors
+    /// As [`NurbsSurface::try_new`].
+    pub fn try_from_homogeneous(
+        knots_u: KnotVector,
+        knots_v: KnotVector,
+        cw: Vec<Homogeneous>,
+    ) -> Result<Self, NurbsError> {
+        let expected = knots_u.num_basis() * knots_v.num_basis();
+        if cw.len() != expected {
+            return Err(NurbsError::ControlPointCount { expected, got: cw.len() });
+        }
+        for (index, h) in cw.iter().enumerate() {
+            if !(h[3].is_finite() && h[3] > 0.0) {
+                return Err(NurbsError::BadWeight { index, value: h[3] });
+            }
+            if !h.iter().all(|x| x.is_finite()) {
+                return Err(NurbsError::NonFinitePoint { index });
+            }
+        }
+        Ok(NurbsSurface { ku: knots_u, kv: knots_v, cw })
+    }
+
+    pub(crate) fn from_parts_unchecked(knots_u: KnotVector, knots_v: KnotVector, cw: Vec<Homogeneous>) -> Self {
+        debug_assert_eq!(cw.len(), knots_u.num_basis() * knots_v.num_basis());
+        NurbsSurface { ku: knots_u, kv: knots_v, cw }
+    }
+
+    #[inline]
+    pub fn degree_u(&self) -> usize {
+        self.ku.degree()
+    }
+    #[inline]
+    pub fn degree_v(&self) -> usize {
+        self.kv.degree()
+    }
+    #[inline]
+    pub fn knots_u(&self) -> &KnotVector {
+        &self.ku
+    }
+    #[inline]
+    pub fn knots_v(&self) -> &KnotVector {
+        &self.kv
+    }
+    #[inline]
+    pub fn n_u(&self) -> usize {
+        self.ku.num_basis()
+    }
+    #[inline]
+    pub fn n_v(&self) -> usize {
+        self.kv.num_basis()
+    }
+    #[inline]
+    pub fn domain_u(&self) -> (f64, f64) {
+        self.ku.domain()
+    }
+    #[inline]
+    pub fn domain_v(&self) -> (f64, f64) {
+        self.kv.domain()
+    }
+    /// Homogeneous control points, u-major.
+    #[inline]
+    pub fn homogeneous(&self) -> &[Homogeneous] {
+        &self.cw
+    }
+    /// The Euclidean control point `P_ij`.
+    pub fn control_point(&self, i: usize, j: usize) -> Vec3 {
+        from_homogeneous(self.cw[i * self.n_v() + j])
+    }
+    /// All Euclidean control points, u-major.
+    pub fn control_points(&self) -> Vec<Vec3> {
+        self.cw.iter().map(|&h| from_homogeneous(h)).collect()
+    }
+    pub fn weight(&self, i: usize, j: usize) -> f64 {
+        self.cw[i * self.n_v() + j][3]
+    }
+    /// All weights, u-major.
+    pub fn weights(&self) -> Vec<f64> {
+        self.cw.iter().map(|h| h[3]).collect()
+    }
+    /// True if the weights are not all equal.
+    pub fn is_rational(&self) -> bool {
+        self.cw.iter().any(|h| h[3] != self.cw[0][3])
+    }
+
+    /// The point `S(u, v)` (A4.3); parameters are clamped to the domain. Allocation-free.
+    #[inline]
+    pub fn point(&self, u: f64, v: f64) -> Vec3 {
+        let (u, v) = (self.ku.clamp(u), self.kv.clamp(v));
+        let (p, q) = (self.degree_u(), self.degree_v());
+        let su = self.ku.find_span(u);
+        let sv = self.kv.find_span(v);
+        let mut nu: BasisRow = [0.0; MAX_DEGREE + 1];
+        let mut nv: BasisRow = [0.0; MAX_DEGREE + 1];
+        basis_funs(self.ku.as_slice(), su, u, p, &mut nu);
+        basis_funs(self.kv.as_slice(), sv, v, q, &mut nv);
+        let nvn = self.n_v();
+        let mut h = [0.0f64; 4];
+        for k in 0..=p {
+            let row = &self.cw[(su - p + k) * nvn + sv - q..][..=q];
+            let mut t = [0.0f64; 4];
+            for (l, c) in row.iter().enumerate() {
+                let b = nv[l];
+                t[0] += b * c[0];
+                t[1] += b * c[1];
+                t[2] += b * c[2];
+                t[3] += b * c[3];
+            }
+            let a = nu[k];
+            h[0] += a * t[0];
+            h[1] += a * t[1];
+            h[2] += a * t[2];
+            h[3] += a * t[3];
+        }
+        Vec3::new(h[0] / h[3], h[1] / h[3], h[2] / h[3])
+    }
+
+    /// The point and partial derivatives up to second order (A3.6 on the homogeneous surface,
+    /// then A4.4): with `A^(k,l)` the homogeneous derivatives and `w` their weight part,
+    /// `S^(k,l) = (A^(k,l) - sum_{i=1..k} C(k,i) w^(i,0) S^(k-i,l)
+    ///   - sum_{j=1..l} C(l,j) (w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j))) / w`.
+    /// At an interior knot the derivatives are those of the span to the right.
+    pub fn derivatives(&self, u: f64, v: f64) -> SurfaceDerivatives {
+        let (u, v) = (self.ku.clamp(u), self.kv.clamp(v));
+        let (p, q) = (self.degree_u(), self.degree_v());
+        let su = self.ku.find_span(u);
+        let sv = self.kv.find_span(v);
+        let mut du = [[0.0; MAX_DEGREE + 1]; 3];
+        let mut dv = [[0.0; MAX_DEGREE + 1]; 3];
+        ders_basis_funs(self.ku.as_slice(), su, u, p, 2, &mut du);
+        ders_basis_funs(self.kv.as_slice(), sv, v, q, 2, &mut dv);
+        let nvn = self.n_v();
+        // a[k][l] homogeneous derivative d^(k+l)/du^k dv^l, k + l <= 2.
+        let mut a = [[[0.0f64; 4]; 3]; 3];
+        for r in 0..=p {
+            let row = &self.cw[(su - p + r) * nvn + sv - q..][..=q];
+            // t[l] = sum_s dv[l][s] * P_{r,s}
+            let mut t = [[0.0f64; 4]; 3];
+            for (s, c) in row.iter().enumerate() {
+                for l in 0..3 {
+                    let b = dv[l][s];
+                    for c4 in 0..4 {
+                        t[l][c4] += b * c[c4];
+                    }
+                }
+            }
+            for k in 0..3 {
+                for l in 0..3 - k {
+                    let b = du[k][r];
+                    for c4 in 0..4 {
+                        a[k][l][c4] += b * t[l][c4];
+                    }
+                }
+            }
+        }
+        let w = |k: usize, l: usize| a[k][l][3];
+        let av = |k: usize, l: usize| Vec3::new(a[k][l][0], a[k][l][1], a[k][l][2]);
+        let w0 = w(0, 0);
+        let s00 = av(0, 0) / w0;
+        let s10 = (av(1, 0) - s00 * w(1, 0)) / w0;
+        let s01 = (av(0, 1) - s00 * w(0, 1)) / w0;
+        let s20 = (av(2, 0) - s10 * (2.0 * w(1, 0)) - s00 * w(2, 0)) / w0;
+        let s02 = (av(0, 2) - s01 * (2.0 * w(0, 1)) - s00 * w(0, 2)) / w0;
+        let s11 = (av(1, 1) - s10 * w(0, 1) - s01 * w(1, 0) - s00 * w(1, 1)) / w0;
+        SurfaceDerivatives { point: s00, su: s10, sv: s01, suu: s20, suv: s11, svv: s02 }
+    }
+
+    /// The unit normal `S_u x S_v / |S_u x S_v|`. At a degenerate point (a collapsed edge, as at
+    /// a hull's stem) the normal is taken as the limit from slightly inside the domain.
+    pub fn normal(&self, u: f64, v: f64) -> Option<Vec3> {
+        if let Some(n) = self.derivatives(u, v).normal() {
+            return Some(n);
+        }
+        let ((u0, u1), (v0, v1)) = (self.domain_u(), self.domain_v());
+        let (eu, ev) = (1e-7 * (u1 - u0), 1e-7 * (v1 - v0));
+        let uu = (u.clamp(u0, u1)).clamp(u0 + eu, u1 - eu);
+        let vv = (v.clamp(v0, v1)).clamp(v0 + ev, v1 - ev);
+        self.derivatives(uu, vv).normal()
+    }
+
+    /// Gaussian and mean curvature at `(u, v)`, `None` at a degenerate point.
+    pub fn curvature(&self, u: f64, v: f64) -> Option<Curvature> {
+        self.derivatives(u, v).curvature()
+    }
+
+    /// The axis-aligned bounding box of the control net (contains the surface).
+    pub fn control_bounds(&self) -> (Vec3, Vec3) {
+        let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+        let mut hi = -lo;
+        for &h in &self.cw {
+            let p = from_homogeneous(h);
+            lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+            hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+        }
+        (lo, hi)
+    }
+
+    /// The iso-parametric curve at fixed `v` (a curve in u), exact.
+    pub fn iso_curve_u(&self, v: f64) -> crate::NurbsCurve {
+        let v = self.kv.clamp(v);
+        let q = self.degree_v();
+        let sv = self.kv.find_span(v);
+        let mut nv: BasisRow = [0.0; MAX_DEGREE + 1];
+        basis_funs(self.kv.as_slice(), sv, v, q, &mut nv);
+        let nvn = self.n_v();
+        let cw = (0..self.n_u())
+            .map(|i| {
+                let mut h = [0.0; 4];
+                for (l, b) in nv.iter().enumerate().take(q + 1) {
+                    let c = self.cw[i * nvn + sv - q + l];
+                    for k in 0..4 {
+                        h[k] += b * c[k];
+                    }
+                }
+                h
+            })
+            .collect();
+        crate::NurbsCurve::from_parts_unchecked(self.ku.clone(), cw)
+    }
+
+    /// Swap the roles of u and v (the same geometry, transposed net).
+    pub fn transposed(&self) -> Self {
+        let (nu, nv) = (self.n_u(), self.n_v());
+        let mut cw = Vec::with_capacity(self.cw.len());
+        for j in 0..nv {
+            for i in 0..nu {
+                cw.push(self.cw[i * nv + j]);
+            }
+        }
+        NurbsSurface { ku: self.kv.clone(), kv: self.ku.clone(), cw }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assert_near;
+
+    /// A quarter cylinder of radius r and length h: rational quadratic in u, linear in v.
+    pub(crate) fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
+        let ku = KnotVector::try_new(2, vec![0., 0., 0., 1., 1., 1.]).expect("valid");
+        let kv = KnotVector::try_new(1, vec![0., 0., 1., 1.]).expect("valid");
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let mut pts = Vec::new();
+        let mut w = Vec::new();
+        for (x, y, wi) in [(r, 0.0, 1.0), (r, r, s), (0.0, r, 1.0)] {
+            for z in [0.0, h] {
+                pts.push(Vec3::new(x, y, z));
+                w.push(wi);
+            }
+        }
+        NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+    }
+
+    #[test]
+    fn cylinder_points_normals_and_curvature() {
+        let r = 2.0;
+        let s = quarter_cylinder(r, 3.0);
+        for i in 0..=20 {
+            for j in 0..=5 {
+                let (u, v) = (i as f64 / 20.0, j as f64 / 5.0);
+                let d = s.derivatives(u, v);
+                assert_near!(d.point, s.point(u, v), 1e-15);
+                assert_near!((d.point.x.powi(2) + d.point.y.powi(2)).sqrt(), r, 1e-13);
+                assert_near!(d.point.z, 3.0 * v, 1e-14);
+                let c = d.curvature().expect("regular");
+                // A cylinder: K = 0, |H| = 1/(2r); the normal is radial.
+                assert_near!(c.gaussian, 0.0, 1e-12);
+                assert_near!(c.mean.abs(), 0.5 / r, 1e-12);
+                assert_near!(c.normal.z, 0.0, 1e-14);
+            }
+        }
+    }
+
+    #[test]
+    fn derivatives_match_central_differences() {
+        let s = quarter_cylinder(1.5, 2.0);
+        let h = 1e-5;
+        for (u, v) in [(0.3, 0.4), (0.71, 0.2), (0.5, 0.9)] {
+            let d = s.derivatives(u, v);
+            let du = (s.point(u + h, v) - s.point(u - h, v)) / (2.0 * h);
+            let dv = (s.point(u, v + h) - s.point(u, v - h)) / (2.0 * h);
+            assert_near!(d.su, du, 1e-8);
+            assert_near!(d.sv, dv, 1e-8);
+            let duu = (s.derivatives(u + h, v).su - s.derivatives(u - h, v).su) / (2.0 * h);
+            let duv = (s.derivatives(u, v + h).su - s.derivatives(u, v - h).su) / (2.0 * h);
+            assert_near!(d.suu, duu, 1e-7);
+            assert_near!(d.suv, duv, 1e-7);
+        }
+    }
+
+    #[test]
+    fn iso_curve_and_transpose_agree_with_surface() {
+        let s = quarter_cylinder(1.0, 2.0);
+        let c = s.iso_curve_u(0.37);
+        let t = s.transposed();
+        for i in 0..=10 {
+            let u = i as f64 / 10.0;
+            assert_near!(c.point(u), s.point(u, 0.37), 1e-15);
+            assert_near!(t.point(0.37, u), s.point(u, 0.37), 1e-15);
+        }
+    }
+}
