@@ -41,4 +41,6 @@ pub enum NurbsError {
     Incompatible { what: String },
     #[error("result is not finite ({what})")]
     NonFiniteResult { what: String },
+    #[error("{what}: parameters decrease at index {index}: {prev} then {value}")]
+    DecreasingParameters { what: String, index: usize, prev: f64, value: f64 },
 }

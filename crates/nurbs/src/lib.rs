@@ -22,3 +22,5 @@ pub use knots::{KnotVector, MAX_DEGREE};
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
 pub use vec3::Vec3;
 // refine / elevate / project: their helpers add `pub use` lines below.
+pub use refine::merge_knot_vectors;
+pub use project::{project_point_to_curve, CurveProjection, CurveProjector, ProjectionOptions, SurfaceProjection, SurfaceProjector};

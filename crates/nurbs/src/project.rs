@@ -1,1 +1,1238 @@
-//! Closest-point projection onto curves and surfaces (The NURBS Book 6.1).
+//! Closest-point projection onto NURBS curves and surfaces (The NURBS Book 6.1).
+//!
+//! The foot point of `P` on a surface minimises `f(u,v) = |S(u,v) - P|^2 / 2`; at an interior
+//! minimum the residual `r = S - P` is normal to the surface (eq. 6.6):
+//! `g(u,v) = (S_u . r, S_v . r) = 0`. Newton's method on `g` (eq. 6.7-6.8) solves
+//! `J d = -g` with
+//! `J = [[|S_u|^2 + r . S_uu, S_u . S_v + r . S_uv], [S_u . S_v + r . S_uv, |S_v|^2 + r . S_vv]]`.
+//!
+//! Newton only converges locally, so the projectors first sample the surface on a grid adapted
+//! to the knot spans (a few samples per span in each direction) and start Newton from the best
+//! few discrete local minima of the sampled distance. Each knot span carries a bounding sphere
+//! of the surface over it, which lets a query skip spans that cannot hold a closer point.
+//!
+//! The iteration is made robust for any input:
+//! - **clamping and boundaries**: iterates are clamped to the domain (as the Book does for open
+//!   surfaces); a parameter sitting on a bound whose gradient points out of the domain is fixed
+//!   (the Karush-Kuhn-Tucker condition of the bound) and Newton goes on in one dimension along
+//!   that boundary curve;
+//! - **singular or indefinite Jacobians** (a collapsed stem or stern edge where
+//!   `S_u x S_v = 0`, or a saddle of the distance): the step falls back to Gauss-Newton
+//!   `[[|S_u|^2, S_u . S_v], [S_u . S_v, |S_v|^2]] + mu I`, positive definite, so always a descent
+//!   direction;
+//! - **monotone decrease**: a step that does not reduce `|S - P|` is halved (backtracking).
+//!
+//! Convergence criteria of the Book, with `eps1 = tolerance * model size` (the diagonal of the
+//! control net's bounding box):
+//! - point coincidence `|S - P| <= eps1`;
+//! - zero cosine `|S_u . r| / (|S_u| |r|) <= eps2` (and the same for `S_v`), with
+//!   `eps2 = eps1 / |r|`, i.e. the tangential part of the residual is below `eps1`; a direction
+//!   fixed at a bound by the rule above counts as satisfied;
+//! - step size `|(u_{i+1} - u_i) S_u + (v_{i+1} - v_i) S_v| <= eps1`.
+
+use crate::basis::{ders_basis_funs, BasisRow};
+use crate::knots::MAX_DEGREE;
+use crate::tolerance::PROJECTION_REL;
+use crate::{KnotVector, NurbsCurve, NurbsSurface, SurfaceDerivatives, Vec3};
+
+/// Settings of curve and surface projection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProjectionOptions {
+    /// Sampling intervals per knot span in each parameter direction. The projector uses
+    /// `max(grid, degree, 1)` so that every polynomial piece is resolved: a bicubic surface with
+    /// 7 x 5 spans and `grid = 4` is sampled at `29 x 21` points.
+    pub grid: usize,
+    /// How many discrete local minima of the sampled distance are refined by Newton (the best
+    /// first); more guard against local minima on strongly curved shapes, at a cost in time.
+    pub candidates: usize,
+    /// Newton iterations per start point.
+    pub max_iterations: usize,
+    /// Geometric tolerance `eps1` relative to the model size (the diagonal of the control net's
+    /// bounding box). Non-finite or negative values are taken as 0 (iterate to the limit).
+    pub tolerance: f64,
+}
+
+impl Default for ProjectionOptions {
+    fn default() -> Self {
+        ProjectionOptions { grid: 4, candidates: 4, max_iterations: 30, tolerance: PROJECTION_REL }
+    }
+}
+
+/// The closest point of a surface to a query point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceProjection {
+    pub u: f64,
+    pub v: f64,
+    /// `S(u, v)`.
+    pub point: Vec3,
+    /// `|S(u, v) - q|`.
+    pub distance: f64,
+    /// Newton iterations of the winning start point.
+    pub iterations: usize,
+    /// True if a convergence criterion was met (not merely the iteration limit).
+    pub converged: bool,
+}
+
+/// The closest point of a curve to a query point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurveProjection {
+    pub u: f64,
+    /// `C(u)`.
+    pub point: Vec3,
+    /// `|C(u) - q|`.
+    pub distance: f64,
+    /// Newton iterations of the winning start point.
+    pub iterations: usize,
+    /// True if a convergence criterion was met (not merely the iteration limit).
+    pub converged: bool,
+}
+
+/// Distinct knot values bounding the non-empty spans of `k`, from domain start to end.
+fn breaks(k: &KnotVector) -> Vec<f64> {
+    let (a, b) = k.domain();
+    let mut out = vec![a];
+    out.extend(k.interior_breaks().into_iter().map(|(t, _)| t));
+    out.push(b);
+    out
+}
+
+/// Sample parameters: `g` equal intervals in every span of `br`, `g * spans + 1` values.
+fn sample_params(br: &[f64], g: usize) -> Vec<f64> {
+    let mut out = Vec::with_capacity(g * (br.len() - 1) + 1);
+    for w in br.windows(2) {
+        for k in 0..g {
+            out.push(w[0] + (w[1] - w[0]) * k as f64 / g as f64);
+        }
+    }
+    out.push(br[br.len() - 1]);
+    out
+}
+
+/// `eps1` of the options for a model whose control net has bounding-box diagonal `size`.
+fn abs_tolerance(opts: &ProjectionOptions, size: f64) -> f64 {
+    let t = if opts.tolerance.is_finite() && opts.tolerance > 0.0 { opts.tolerance } else { 0.0 };
+    let size = if size.is_finite() { size } else { 0.0 };
+    t * size
+}
+
+/// True if parameter `t` sits on a bound of `[a, b]` and the gradient `g = df/dt` points out
+/// of the domain (so the constrained minimum keeps `t` there).
+#[inline]
+fn held_at_bound(t: f64, a: f64, b: f64, g: f64) -> bool {
+    (t <= a && g >= 0.0) || (t >= b && g <= 0.0)
+}
+
+/// One-dimensional Newton step `-g / h`, or the Gauss-Newton step `-g / |S'|^2` when the second
+/// derivative `h` of `f` is not safely positive.
+#[inline]
+fn step_1d(h: f64, gg: f64, g: f64) -> f64 {
+    if h > 1e-10 * gg && h > 0.0 {
+        -g / h
+    } else if gg > 0.0 {
+        -g / gg
+    } else {
+        0.0
+    }
+}
+
+/// Relative pivot below which the 2x2 Newton matrix counts as singular (condition ~1e10).
+const SINGULAR_REL: f64 = 1e-10;
+/// Levenberg-Marquardt term of the Gauss-Newton fallback, relative to `|S_u|^2 + |S_v|^2`.
+const GN_DAMPING: f64 = 1e-9;
+/// Step halvings tried before a step is given up.
+const MAX_HALVINGS: usize = 64;
+
+/// The Newton (or safeguarded) step `(du, dv)` at a surface point, given which parameters are
+/// held at a bound.
+fn surface_step(d: &SurfaceDerivatives, r: Vec3, gu: f64, gv: f64, hold_u: bool, hold_v: bool) -> (f64, f64) {
+    let (uu, uv, vv) = (d.su.norm_squared(), d.su.dot(d.sv), d.sv.norm_squared());
+    let j11 = uu + r.dot(d.suu);
+    let j12 = uv + r.dot(d.suv);
+    let j22 = vv + r.dot(d.svv);
+    match (hold_u, hold_v) {
+        (false, false) => {
+            let det = j11 * j22 - j12 * j12;
+            if j11 > 0.0 && j22 > 0.0 && det > SINGULAR_REL * j11 * j22 {
+                ((-gu * j22 + gv * j12) / det, (-gv * j11 + gu * j12) / det)
+            } else {
+                // Gauss-Newton with a small Levenberg-Marquardt term: positive definite
+                // (det >= mu (uu + vv) + mu^2 by Cauchy-Schwarz) unless S_u = S_v = 0.
+                let mu = GN_DAMPING * (uu + vv);
+                let (g11, g22) = (uu + mu, vv + mu);
+                let det = g11 * g22 - uv * uv;
+                if det > 0.0 && det.is_finite() {
+                    ((-gu * g22 + gv * uv) / det, (-gv * g11 + gu * uv) / det)
+                } else {
+                    (0.0, 0.0)
+                }
+            }
+        }
+        (true, false) => (0.0, step_1d(j22, vv, gv)),
+        (false, true) => (step_1d(j11, uu, gu), 0.0),
+        (true, true) => (0.0, 0.0),
+    }
+}
+
+/// A bounding sphere of the surface over one knot span, and where its samples start in the grid.
+#[derive(Clone, Copy, Debug)]
+struct Block {
+    /// A grid node near the middle of the span (a point of the surface).
+    center: Vec3,
+    /// Every point of the surface over the span lies within this distance of `center`.
+    radius: f64,
+    /// First node row (u) and column (v) of the span; it spans `gu + 1` by `gv + 1` nodes.
+    a0: usize,
+    b0: usize,
+}
+
+/// A start point for Newton: a discrete local minimum of the sampled distance.
+#[derive(Clone, Copy, Debug)]
+struct Seed {
+    d2: f64,
+    node: usize,
+    /// Lower bound of the distance over the span the seed was found in.
+    lower: f64,
+}
+
+/// Reusable per-query buffers.
+#[derive(Default)]
+struct Scratch {
+    order: Vec<(f64, usize)>,
+    dist: Vec<f64>,
+    seeds: Vec<Seed>,
+}
+
+/// Projects points onto one surface; build it once, then project many points.
+///
+/// Construction samples the surface at `max(grid, degree)` intervals per knot span and
+/// direction and bounds each span by a sphere; a query then costs a sphere test per span, the
+/// samples of the spans that may hold the foot point, and a few Newton iterations.
+#[derive(Clone, Debug)]
+pub struct SurfaceProjector<'a> {
+    surface: &'a NurbsSurface,
+    options: ProjectionOptions,
+    eps: f64,
+    us: Vec<f64>,
+    vs: Vec<f64>,
+    /// `S(us[a], vs[b])` at index `a * vs.len() + b`.
+    nodes: Vec<Vec3>,
+    gu: usize,
+    gv: usize,
+    blocks: Vec<Block>,
+    /// Largest coordinate magnitude of the control net (scale of evaluation round-off).
+    magnitude: f64,
+    /// Edges `u = u0`, `u = u1`, `v = v0`, `v = v1` collapsed to a point (within `eps`).
+    collapsed: [bool; 4],
+}
+
+impl<'a> SurfaceProjector<'a> {
+    /// Sample `surface` and prepare the span bounds.
+    pub fn new(surface: &'a NurbsSurface, options: ProjectionOptions) -> Self {
+        let gu = options.grid.max(surface.degree_u()).max(1);
+        let gv = options.grid.max(surface.degree_v()).max(1);
+        let (bu, bv) = (breaks(surface.knots_u()), breaks(surface.knots_v()));
+        let (us, vs) = (sample_params(&bu, gu), sample_params(&bv, gv));
+        let nv = vs.len();
+        let mut nodes = Vec::with_capacity(us.len() * nv);
+        for &u in &us {
+            for &v in &vs {
+                nodes.push(surface.point(u, v));
+            }
+        }
+        let (lo, hi) = surface.control_bounds();
+        let eps = abs_tolerance(&options, (hi - lo).norm());
+        let mut blocks = Vec::with_capacity((bu.len() - 1) * (bv.len() - 1));
+        for (i, wu) in bu.windows(2).enumerate() {
+            for (j, wv) in bv.windows(2).enumerate() {
+                let (a0, b0) = (i * gu, j * gv);
+                let center = nodes[(a0 + gu / 2) * nv + b0 + gv / 2];
+                let radius = span_radius(surface, center, (wu[0], wu[1], gu), (wv[0], wv[1], gv)) + eps;
+                blocks.push(Block { center, radius, a0, b0 });
+            }
+        }
+        let magnitude = lo.norm().max(hi.norm());
+        let nu = us.len();
+        let collapsed_edge = |idx: &mut dyn Iterator<Item = usize>| {
+            let mut pts = idx.map(|k| nodes[k]);
+            let first = pts.next().unwrap_or(Vec3::ZERO);
+            pts.all(|p| (p - first).norm() <= eps.max(64.0 * f64::EPSILON * magnitude))
+        };
+        let collapsed = [
+            collapsed_edge(&mut (0..nv)),
+            collapsed_edge(&mut ((nu - 1) * nv..nu * nv)),
+            collapsed_edge(&mut (0..nu).map(|a| a * nv)),
+            collapsed_edge(&mut (0..nu).map(|a| a * nv + nv - 1)),
+        ];
+        SurfaceProjector { surface, options, eps, us, vs, nodes, gu, gv, blocks, magnitude, collapsed }
+    }
+
+    /// The surface projected onto.
+    pub fn surface(&self) -> &'a NurbsSurface {
+        self.surface
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &ProjectionOptions {
+        &self.options
+    }
+
+    /// The closest point of the surface to `q` (global minimum over the grid's basins).
+    ///
+    /// For a finite `q` every field of the result is finite. A non-finite `q` gives
+    /// `converged = false` at the domain's first corner, with a non-finite distance.
+    pub fn project(&self, q: Vec3) -> SurfaceProjection {
+        self.project_with(q, &mut Scratch::default())
+    }
+
+    /// [`SurfaceProjector::project`] for every point of `qs`, reusing buffers.
+    pub fn project_many(&self, qs: &[Vec3]) -> Vec<SurfaceProjection> {
+        let mut scratch = Scratch::default();
+        qs.iter().map(|&q| self.project_with(q, &mut scratch)).collect()
+    }
+
+    fn project_with(&self, q: Vec3, scratch: &mut Scratch) -> SurfaceProjection {
+        let (u0, v0) = (self.us[0], self.vs[0]);
+        if !q.is_finite() {
+            let point = self.surface.point(u0, v0);
+            return SurfaceProjection {
+                u: u0,
+                v: v0,
+                point,
+                distance: (point - q).norm(),
+                iterations: 0,
+                converged: false,
+            };
+        }
+        // 1. Sphere bounds of the spans; the closest span centre bounds the answer from above.
+        let mut upper = f64::INFINITY;
+        scratch.order.clear();
+        for b in &self.blocks {
+            upper = upper.min((q - b.center).norm());
+        }
+        for (k, b) in self.blocks.iter().enumerate() {
+            let lower = (q - b.center).norm() - b.radius;
+            if lower <= upper {
+                scratch.order.push((lower, k));
+            }
+        }
+        scratch.order.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+        // 2. Sample the spans that may hold a closer point; collect discrete local minima.
+        let mut best2 = upper * upper;
+        scratch.seeds.clear();
+        let nv = self.vs.len();
+        let (ru, rv) = (self.gu + 1, self.gv + 1);
+        for &(lower, k) in &scratch.order {
+            if lower > 0.0 && lower * lower > best2 {
+                break;
+            }
+            let b = self.blocks[k];
+            scratch.dist.clear();
+            for a in b.a0..b.a0 + ru {
+                let row = &self.nodes[a * nv + b.b0..][..rv];
+                scratch.dist.extend(row.iter().map(|&p| (p - q).norm_squared()));
+            }
+            for la in 0..ru {
+                for lb in 0..rv {
+                    let d2 = scratch.dist[la * rv + lb];
+                    best2 = best2.min(d2);
+                    let (a, bb) = (b.a0 + la, b.b0 + lb);
+                    let node = a * nv + bb;
+                    if self.is_local_min(q, &scratch.dist, &b, la, lb, d2, node)
+                        || self.is_edge_local_min(q, a, bb, d2, node)
+                    {
+                        push_seed(&mut scratch.seeds, Seed { d2, node, lower });
+                    }
+                }
+            }
+        }
+        scratch.seeds.sort_unstable_by(|x, y| x.d2.total_cmp(&y.d2));
+        // 3. Newton from the best few, skipping spans that cannot beat the best so far.
+        let mut best: Option<SurfaceProjection> = None;
+        for seed in scratch.seeds.iter().take(self.options.candidates.max(1)) {
+            if let Some(bp) = &best {
+                if seed.lower >= bp.distance {
+                    continue;
+                }
+            }
+            let (a, bb) = (seed.node / nv, seed.node % nv);
+            let res = self.refine(q, self.us[a], self.vs[bb]);
+            if !matches!(&best, Some(bp) if bp.distance <= res.distance) {
+                best = Some(res);
+            }
+        }
+        best.unwrap_or_else(|| self.refine(q, u0, v0))
+    }
+
+    /// Is node `(la, lb)` of block `b` (distance^2 `d2`) a discrete local minimum over its
+    /// 8 neighbours? Ties go to the lower node index so a plateau (a collapsed edge) gives one.
+    #[allow(clippy::too_many_arguments)]
+    fn is_local_min(&self, q: Vec3, dist: &[f64], b: &Block, la: usize, lb: usize, d2: f64, node: usize) -> bool {
+        let nv = self.vs.len();
+        let (nu_all, rv) = (self.us.len(), self.gv + 1);
+        let (a, bb) = (b.a0 + la, b.b0 + lb);
+        for da in -1i64..=1 {
+            for db in -1i64..=1 {
+                if da == 0 && db == 0 {
+                    continue;
+                }
+                let (na, nb) = (a as i64 + da, bb as i64 + db);
+                if na < 0 || nb < 0 || na >= nu_all as i64 || nb >= nv as i64 {
+                    continue;
+                }
+                let (na, nb) = (na as usize, nb as usize);
+                let other = na * nv + nb;
+                let od2 = if na >= b.a0 && na <= b.a0 + self.gu && nb >= b.b0 && nb <= b.b0 + self.gv {
+                    dist[(na - b.a0) * rv + nb - b.b0]
+                } else {
+                    (self.nodes[other] - q).norm_squared()
+                };
+                if od2 < d2 || (od2 == d2 && other < node) {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Is node `(a, b)`, on an edge of the domain, a discrete local minimum along that edge?
+    /// A minimum on an edge where the gradient points out of the domain is a constrained local
+    /// minimum that the 2-D test misses when a node inside is nearer.
+    fn is_edge_local_min(&self, q: Vec3, a: usize, b: usize, d2: f64, node: usize) -> bool {
+        let (nu, nv) = (self.us.len(), self.vs.len());
+        let wins = |other: usize| {
+            let od2 = (self.nodes[other] - q).norm_squared();
+            od2 > d2 || (od2 == d2 && other > node)
+        };
+        let along_v = || (b == 0 || wins(node - 1)) && (b + 1 == nv || wins(node + 1));
+        let along_u = || (a == 0 || wins(node - nv)) && (a + 1 == nu || wins(node + nv));
+        ((a == 0 || a + 1 == nu) && along_v()) || ((b == 0 || b + 1 == nv) && along_u())
+    }
+
+    /// Safeguarded Newton iteration from `(u, v)` (see the module documentation).
+    fn refine(&self, q: Vec3, u: f64, v: f64) -> SurfaceProjection {
+        let s = self.surface;
+        let ((ua, ub), (va, vb)) = (s.domain_u(), s.domain_v());
+        let eps = self.eps;
+        let (mut u, mut v) = (u.clamp(ua, ub), v.clamp(va, vb));
+        let mut d = s.derivatives(u, v);
+        let mut r = d.point - q;
+        let mut f = r.norm_squared();
+        let mut converged = false;
+        let mut iterations = 0;
+        let mut turned = false;
+        'newton: while iterations < self.options.max_iterations {
+            if f.sqrt() <= eps {
+                converged = true; // point coincidence
+                break;
+            }
+            let (gu, gv) = (d.su.dot(r), d.sv.dot(r));
+            let hold_u = held_at_bound(u, ua, ub, gu);
+            let hold_v = held_at_bound(v, va, vb, gv);
+            // Zero cosine, |S_k . r| / (|S_k| |r|) <= eps / |r|, for each free direction.
+            let ok_u = hold_u || gu * gu <= eps * eps * d.su.norm_squared();
+            let ok_v = hold_v || gv * gv <= eps * eps * d.sv.norm_squared();
+            // On a collapsed edge (all of it one point, as a hull's stem) every v (or u) gives
+            // the same point but its own direction into the surface: the bound holds only if it
+            // holds for all of them, and the direction along the edge means nothing.
+            let on_collapsed = self.on_collapsed_edge(u, v, hold_u, hold_v);
+            if on_collapsed && !turned {
+                turned = true;
+                if let Some((nu, nv)) = self.leave_collapsed_edge(q, u, v, hold_u, hold_v) {
+                    (u, v) = (nu, nv);
+                    d = s.derivatives(u, v);
+                    r = d.point - q;
+                    f = r.norm_squared();
+                    continue;
+                }
+            }
+            if (ok_u && ok_v) || on_collapsed {
+                converged = true;
+                break;
+            }
+            iterations += 1;
+            let (du, dv) = surface_step(&d, r, gu, gv, hold_u, hold_v);
+            if std::env::var("DBG").is_ok() {
+                eprintln!("it {iterations} u {u:e} v {v} f {f:e} g {gu:e} {gv:e} hold {hold_u} {hold_v} step {du:e} {dv:e} su {:e} sv {:e}", d.su.norm(), d.sv.norm());
+            }
+            let residual = |d: &SurfaceDerivatives, r: Vec3| tangential(d.su, r, hold_u) + tangential(d.sv, r, hold_v);
+            let res0 = residual(&d, r);
+            let mut alpha = 1.0;
+            for _ in 0..MAX_HALVINGS {
+                let nu = (u + alpha * du).clamp(ua, ub);
+                let nv = (v + alpha * dv).clamp(va, vb);
+                let moved = (d.su * (nu - u) + d.sv * (nv - v)).norm();
+                let nd = s.derivatives(nu, nv);
+                let nr = nd.point - q;
+                let nf = nr.norm_squared();
+                // Near the foot `f` is flat to round-off: a step that leaves it unchanged within
+                // its rounding noise is taken if it reduces the tangential residual instead.
+                let flat = nf <= f + self.noise(nf) && residual(&nd, nr) < res0;
+                if nf < f || flat {
+                    (u, v, d, r, f) = (nu, nv, nd, nr, nf);
+                    if moved <= eps {
+                        converged = true; // step size
+                        break 'newton;
+                    }
+                    continue 'newton;
+                }
+                if moved <= eps {
+                    converged = true; // no step longer than eps1 decreases the distance
+                    break 'newton;
+                }
+                alpha *= 0.5;
+            }
+            break; // no decrease found along a descent direction (round-off only)
+        }
+        SurfaceProjection { u, v, point: d.point, distance: f.sqrt(), iterations, converged }
+    }
+
+    /// Rounding noise of `f = |S - q|^2` near `f`: the coordinates of `S` carry errors of a few
+    /// ulps of the model's magnitude.
+    #[inline]
+    fn noise(&self, f: f64) -> f64 {
+        16.0 * f64::EPSILON * (f.sqrt() * self.magnitude + f)
+    }
+
+    /// Is `(u, v)` held on a bound whose edge is collapsed to a point?
+    fn on_collapsed_edge(&self, u: f64, v: f64, hold_u: bool, hold_v: bool) -> bool {
+        let ((ua, ub), (va, vb)) = (self.surface.domain_u(), self.surface.domain_v());
+        let [cu0, cu1, cv0, cv1] = self.collapsed;
+        (hold_u && ((u <= ua && cu0) || (u >= ub && cu1))) || (hold_v && ((v <= va && cv0) || (v >= vb && cv1)))
+    }
+
+    /// At a point held on a collapsed edge (all of it one point), the parameter along the edge
+    /// whose direction into the surface decreases the distance most, if one does.
+    fn leave_collapsed_edge(&self, q: Vec3, u: f64, v: f64, hold_u: bool, hold_v: bool) -> Option<(f64, f64)> {
+        let s = self.surface;
+        let ((ua, ub), (va, vb)) = (s.domain_u(), s.domain_v());
+        let [cu0, cu1, cv0, cv1] = self.collapsed;
+        let mut best: Option<(f64, f64, f64)> = None;
+        let mut consider = |nu: f64, nv: f64, inward: f64, along_u: bool| {
+            let d = s.derivatives(nu, nv);
+            let r = d.point - q;
+            let (t, g) = if along_u { (d.su, d.su.dot(r)) } else { (d.sv, d.sv.dot(r)) };
+            // Directional derivative into the surface per unit length.
+            let slope = inward * g / t.norm().max(f64::MIN_POSITIVE);
+            if std::env::var("DBG").is_ok() {
+                eprintln!("  collapsed probe {nu} {nv} slope {slope:e}");
+            }
+            if slope < -self.eps && best.map_or(true, |b| slope < b.2) {
+                best = Some((nu, nv, slope));
+            }
+        };
+        if hold_u && ((u <= ua && cu0) || (u >= ub && cu1)) {
+            let inward = if u <= ua { 1.0 } else { -1.0 };
+            for &nv in &self.vs {
+                consider(u, nv, inward, true);
+            }
+        }
+        if hold_v && ((v <= va && cv0) || (v >= vb && cv1)) {
+            let inward = if v <= va { 1.0 } else { -1.0 };
+            for &nu in &self.us {
+                consider(nu, v, inward, false);
+            }
+        }
+        best.map(|(nu, nv, _)| (nu, nv))
+    }
+}
+
+/// `(S_k . r)^2 / |S_k|^2`, the squared tangential residual along a free direction `S_k`.
+#[inline]
+fn tangential(sk: Vec3, r: Vec3, held: bool) -> f64 {
+    let n2 = sk.norm_squared();
+    if held || n2 == 0.0 {
+        0.0
+    } else {
+        sk.dot(r).powi(2) / n2
+    }
+}
+
+/// Keep one seed per node (the lowest span bound).
+fn push_seed(seeds: &mut Vec<Seed>, s: Seed) {
+    if let Some(old) = seeds.iter_mut().find(|o| o.node == s.node) {
+        old.lower = old.lower.min(s.lower);
+    } else {
+        seeds.push(s);
+    }
+}
+
+/// Radius about `center` of a sphere holding the surface over one span `[u0,u1] x [v0,v1]`
+/// sampled with `gu x gv` intervals: the farthest of the samples at half that spacing, plus
+/// the largest deviation of the half-spacing samples from the bilinear interpolation of the
+/// coarse ones. That deviation is a second-order sag, four times the sag left between the fine
+/// samples, so the bound holds wherever the second derivatives vary little over a cell.
+fn span_radius(
+    s: &NurbsSurface,
+    center: Vec3,
+    (u0, u1, gu): (f64, f64, usize),
+    (v0, v1, gv): (f64, f64, usize),
+) -> f64 {
+    let (fu, fv) = (2 * gu, 2 * gv);
+    let mut fine = Vec::with_capacity((fu + 1) * (fv + 1));
+    for a in 0..=fu {
+        let u = if a == fu { u1 } else { u0 + (u1 - u0) * a as f64 / fu as f64 };
+        for b in 0..=fv {
+            let v = if b == fv { v1 } else { v0 + (v1 - v0) * b as f64 / fv as f64 };
+            fine.push(s.point(u, v));
+        }
+    }
+    let at = |a: usize, b: usize| fine[a * (fv + 1) + b];
+    let mut far: f64 = 0.0;
+    let mut sag: f64 = 0.0;
+    for a in 0..=fu {
+        for b in 0..=fv {
+            let p = at(a, b);
+            far = far.max((p - center).norm());
+            let (a_odd, b_odd) = (a % 2 == 1, b % 2 == 1);
+            let interp = match (a_odd, b_odd) {
+                (false, false) => continue,
+                (true, false) => (at(a - 1, b) + at(a + 1, b)) * 0.5,
+                (false, true) => (at(a, b - 1) + at(a, b + 1)) * 0.5,
+                (true, true) => (at(a - 1, b - 1) + at(a + 1, b - 1) + at(a - 1, b + 1) + at(a + 1, b + 1)) * 0.25,
+            };
+            sag = sag.max((p - interp).norm());
+        }
+    }
+    far + sag
+}
+
+/// `C(u)`, `C'(u)`, `C''(u)` without allocation (A3.2 on the homogeneous curve, then A4.2).
+fn curve_ders2(c: &NurbsCurve, u: f64) -> [Vec3; 3] {
+    let k = c.knots();
+    let u = k.clamp(u);
+    let p = c.degree();
+    let span = k.find_span(u);
+    let mut ders: [BasisRow; 3] = [[0.0; MAX_DEGREE + 1]; 3];
+    ders_basis_funs(k.as_slice(), span, u, p, 2, &mut ders);
+    let cw = &c.homogeneous()[span - p..=span];
+    let mut a = [[0.0f64; 4]; 3];
+    for (k, row) in ders.iter().enumerate() {
+        for (j, h) in cw.iter().enumerate() {
+            for t in 0..4 {
+                a[k][t] += row[j] * h[t];
+            }
+        }
+    }
+    let xyz = |h: [f64; 4]| Vec3::new(h[0], h[1], h[2]);
+    let w0 = a[0][3];
+    let c0 = xyz(a[0]) / w0;
+    let c1 = (xyz(a[1]) - c0 * a[1][3]) / w0;
+    let c2 = (xyz(a[2]) - c1 * (2.0 * a[1][3]) - c0 * a[2][3]) / w0;
+    [c0, c1, c2]
+}
+
+/// Projects points onto one curve; the one-dimensional counterpart of [`SurfaceProjector`]:
+/// `max(grid, degree)` samples per knot span, a bounding sphere per span, Newton on
+/// `g(u) = C'(u) . (C(u) - P)` (The NURBS Book eq. 6.3-6.4) from the best few discrete local
+/// minima, with the same safeguards.
+#[derive(Clone, Debug)]
+pub struct CurveProjector<'a> {
+    curve: &'a NurbsCurve,
+    options: ProjectionOptions,
+    eps: f64,
+    us: Vec<f64>,
+    nodes: Vec<Vec3>,
+    g: usize,
+    /// Per span: centre node (a curve point) and radius of a sphere holding the span.
+    spans: Vec<(Vec3, f64)>,
+    /// Largest coordinate magnitude of the control polygon (scale of evaluation round-off).
+    magnitude: f64,
+}
+
+impl<'a> CurveProjector<'a> {
+    /// Sample `curve` and prepare the span bounds.
+    pub fn new(curve: &'a NurbsCurve, options: ProjectionOptions) -> Self {
+        let g = options.grid.max(curve.degree()).max(1);
+        let br = breaks(curve.knots());
+        let us = sample_params(&br, g);
+        let nodes: Vec<Vec3> = us.iter().map(|&u| curve.point(u)).collect();
+        let pts = curve.control_points();
+        let (mut lo, mut hi) = (pts[0], pts[0]);
+        for p in &pts {
+            lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+            hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+        }
+        let eps = abs_tolerance(&options, (hi - lo).norm());
+        let spans = br
+            .windows(2)
+            .enumerate()
+            .map(|(i, w)| {
+                let center = nodes[i * g + g / 2];
+                let f = 2 * g;
+                let fine: Vec<Vec3> = (0..=f)
+                    .map(|a| curve.point(if a == f { w[1] } else { w[0] + (w[1] - w[0]) * a as f64 / f as f64 }))
+                    .collect();
+                let far = fine.iter().map(|&p| (p - center).norm()).fold(0.0, f64::max);
+                let sag =
+                    (1..f).step_by(2).map(|a| (fine[a] - (fine[a - 1] + fine[a + 1]) * 0.5).norm()).fold(0.0, f64::max);
+                (center, far + sag + eps)
+            })
+            .collect();
+        let magnitude = lo.norm().max(hi.norm());
+        CurveProjector { curve, options, eps, us, nodes, g, spans, magnitude }
+    }
+
+    /// The closest point of the curve to `q`. For a finite `q` every field is finite.
+    pub fn project(&self, q: Vec3) -> CurveProjection {
+        let u0 = self.us[0];
+        if !q.is_finite() {
+            let point = self.curve.point(u0);
+            return CurveProjection { u: u0, point, distance: (point - q).norm(), iterations: 0, converged: false };
+        }
+        let upper = self.spans.iter().map(|(c, _)| (q - *c).norm()).fold(f64::INFINITY, f64::min);
+        let dist: Vec<f64> = self.nodes.iter().map(|&p| (p - q).norm_squared()).collect();
+        let n = dist.len();
+        let mut seeds: Vec<Seed> = Vec::new();
+        for (i, &d2) in dist.iter().enumerate() {
+            let left_ok = i == 0 || dist[i - 1] > d2;
+            let right_ok = i + 1 == n || dist[i + 1] >= d2;
+            if left_ok && right_ok {
+                // The span(s) the node belongs to; a node on a break takes the lower bound.
+                let s_hi = (i / self.g).min(self.spans.len() - 1);
+                let s_lo = if i % self.g == 0 && i > 0 { i / self.g - 1 } else { s_hi };
+                let bound = |s: usize| (q - self.spans[s].0).norm() - self.spans[s].1;
+                let lower = bound(s_lo).min(bound(s_hi));
+                if lower <= upper {
+                    seeds.push(Seed { d2, node: i, lower });
+                }
+            }
+        }
+        seeds.sort_unstable_by(|x, y| x.d2.total_cmp(&y.d2));
+        let mut best: Option<CurveProjection> = None;
+        for seed in seeds.iter().take(self.options.candidates.max(1)) {
+            if let Some(bp) = &best {
+                if seed.lower >= bp.distance {
+                    continue;
+                }
+            }
+            let res = self.refine(q, self.us[seed.node]);
+            if !matches!(&best, Some(bp) if bp.distance <= res.distance) {
+                best = Some(res);
+            }
+        }
+        best.unwrap_or_else(|| self.refine(q, u0))
+    }
+
+    /// Safeguarded one-dimensional Newton iteration from `u`.
+    fn refine(&self, q: Vec3, u: f64) -> CurveProjection {
+        let (ua, ub) = self.curve.domain();
+        let eps = self.eps;
+        let mut u = u.clamp(ua, ub);
+        let mut d = curve_ders2(self.curve, u);
+        let mut r = d[0] - q;
+        let mut f = r.norm_squared();
+        let mut converged = false;
+        let mut iterations = 0;
+        'newton: while iterations < self.options.max_iterations {
+            if f.sqrt() <= eps {
+                converged = true;
+                break;
+            }
+            let g = d[1].dot(r);
+            let gg = d[1].norm_squared();
+            if held_at_bound(u, ua, ub, g) || g * g <= eps * eps * gg {
+                converged = true;
+                break;
+            }
+            iterations += 1;
+            let du = step_1d(gg + r.dot(d[2]), gg, g);
+            let res0 = tangential(d[1], r, false);
+            let mut alpha = 1.0;
+            for _ in 0..MAX_HALVINGS {
+                let nu = (u + alpha * du).clamp(ua, ub);
+                let moved = (d[1] * (nu - u)).norm();
+                let nd = curve_ders2(self.curve, nu);
+                let nr = nd[0] - q;
+                let nf = nr.norm_squared();
+                // As for surfaces: within the rounding noise of f, the residual decides.
+                let noise = 16.0 * f64::EPSILON * (nf.sqrt() * self.magnitude + nf);
+                let flat = nf <= f + noise && tangential(nd[1], nr, false) < res0;
+                if nf < f || flat {
+                    (u, d, r, f) = (nu, nd, nr, nf);
+                    if moved <= eps {
+                        converged = true;
+                        break 'newton;
+                    }
+                    continue 'newton;
+                }
+                if moved <= eps {
+                    converged = true;
+                    break 'newton;
+                }
+                alpha *= 0.5;
+            }
+            break;
+        }
+        CurveProjection { u, point: d[0], distance: f.sqrt(), iterations, converged }
+    }
+}
+
+/// The closest point of `curve` to `q` (builds a [`CurveProjector`]; keep one instead when
+/// projecting many points onto the same curve).
+pub fn project_point_to_curve(curve: &NurbsCurve, q: Vec3, opts: &ProjectionOptions) -> CurveProjection {
+    CurveProjector::new(curve, *opts).project(q)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assert_near;
+    use proptest::prelude::*;
+    use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2};
+
+    /// Quarter cylinder `x^2 + y^2 = r^2`, `x, y >= 0`, `0 <= z <= h`: rational quadratic in u
+    /// (u = 0 at (r, 0), u = 1 at (0, r)), linear in v (z = h v).
+    fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
+        let ku = KnotVector::try_new(2, vec![0., 0., 0., 1., 1., 1.]).expect("valid");
+        let kv = KnotVector::try_new(1, vec![0., 0., 1., 1.]).expect("valid");
+        let mut pts = Vec::new();
+        let mut w = Vec::new();
+        for (x, y, wi) in [(r, 0.0, 1.0), (r, r, FRAC_1_SQRT_2), (0.0, r, 1.0)] {
+            for z in [0.0, h] {
+                pts.push(Vec3::new(x, y, z));
+                w.push(wi);
+            }
+        }
+        NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+    }
+
+    /// The octant `x, y, z >= 0` of the sphere of radius `r` about the origin, as the quarter
+    /// meridian (pole (0,0,r) to equator (r,0,0)) revolved by 90 degrees: biquadratic, weights
+    /// `w_i w_j`. The row `i = 0` collapses to the pole, where `S_v = 0`.
+    fn sphere_octant(r: f64) -> NurbsSurface {
+        let k = || KnotVector::try_new(2, vec![0., 0., 0., 1., 1., 1.]).expect("valid");
+        let s = FRAC_1_SQRT_2;
+        let meridian = [(0.0, r, 1.0), (r, r, s), (r, 0.0, 1.0)]; // (radius, z, w)
+        let turn = [(1.0, 0.0, 1.0), (1.0, 1.0, s), (0.0, 1.0, 1.0)]; // (cos, sin, w) of the net
+        let mut pts = Vec::new();
+        let mut w = Vec::new();
+        for &(rho, z, wi) in &meridian {
+            for &(c, sn, wj) in &turn {
+                pts.push(Vec3::new(rho * c, rho * sn, z));
+                w.push(wi * wj);
+            }
+        }
+        NurbsSurface::try_new(k(), k(), &pts, Some(&w)).expect("valid")
+    }
+
+    /// A full circle of radius r in the xy plane, 9-point rational quadratic (The NURBS Book
+    /// Ex. 7.2); u = 0 and u = 1 both at (r, 0, 0).
+    fn circle(r: f64) -> NurbsCurve {
+        let s = FRAC_1_SQRT_2;
+        let pts = [(1., 0.), (1., 1.), (0., 1.), (-1., 1.), (-1., 0.), (-1., -1.), (0., -1.), (1., -1.), (1., 0.)]
+            .map(|(x, y)| Vec3::new(r * x, r * y, 0.0));
+        let w = [1., s, 1., s, 1., s, 1., s, 1.];
+        let k = vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.];
+        NurbsCurve::try_new(KnotVector::try_new(2, k).expect("valid"), &pts, Some(&w)).expect("valid")
+    }
+
+    /// A wavy bicubic surface over `[0, n_u - 1] x [0, n_v - 1]` in x, y with heights `z(i, j)`,
+    /// optionally with the first row collapsed to one point (a hull's stem).
+    fn bicubic(
+        n_u: usize,
+        n_v: usize,
+        z: impl Fn(usize, usize) -> f64,
+        w: Option<&[f64]>,
+        collapse: bool,
+    ) -> NurbsSurface {
+        let ku = KnotVector::uniform(3, n_u).expect("valid");
+        let kv = KnotVector::uniform(3, n_v).expect("valid");
+        let mut pts = Vec::new();
+        for i in 0..n_u {
+            for j in 0..n_v {
+                pts.push(if collapse && i == 0 {
+                    Vec3::new(0.0, 0.5 * n_v as f64, 0.0)
+                } else {
+                    Vec3::new(i as f64, j as f64, z(i, j))
+                });
+            }
+        }
+        NurbsSurface::try_new(ku, kv, &pts, w).expect("valid")
+    }
+
+    fn size(s: &NurbsSurface) -> f64 {
+        let (lo, hi) = s.control_bounds();
+        (hi - lo).norm()
+    }
+
+    /// Brute force: the smallest distance from `q` to `n x n` samples of the surface.
+    fn brute_force(samples: &[Vec3], q: Vec3) -> f64 {
+        samples.iter().map(|&p| (p - q).norm()).fold(f64::INFINITY, f64::min)
+    }
+
+    fn sample_grid(s: &NurbsSurface, n: usize) -> Vec<Vec3> {
+        let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
+        let mut out = Vec::with_capacity((n + 1) * (n + 1));
+        for a in 0..=n {
+            for b in 0..=n {
+                let (ta, tb) = (a as f64 / n as f64, b as f64 / n as f64);
+                out.push(s.point(u0 + (u1 - u0) * ta, v0 + (v1 - v0) * tb));
+            }
+        }
+        out
+    }
+
+    /// Common checks of any surface projection: finite, inside the domain, `distance` and
+    /// `point` consistent with the surface.
+    fn check_consistent(s: &NurbsSurface, q: Vec3, r: &SurfaceProjection) {
+        assert!(r.u.is_finite() && r.v.is_finite() && r.point.is_finite() && r.distance.is_finite(), "{r:?}");
+        let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
+        assert!((u0..=u1).contains(&r.u) && (v0..=v1).contains(&r.v), "{r:?}");
+        assert_near!(r.point, s.point(r.u, r.v), 0.0);
+        assert_near!(r.distance, (r.point - q).norm(), 0.0);
+    }
+
+    #[test]
+    fn cylinder_feet_are_radial() {
+        let (rad, h) = (2.0, 3.0);
+        let s = quarter_cylinder(rad, h);
+        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
+        let size = size(&s);
+        for rho in [0.3 * rad, 0.9 * rad, 1.1 * rad, 3.0 * rad] {
+            for k in 0..=10 {
+                let theta = 0.02 + (FRAC_PI_2 - 0.04) * k as f64 / 10.0;
+                for z in [0.1, 1.3, 2.9] {
+                    let q = Vec3::new(rho * theta.cos(), rho * theta.sin(), z);
+                    let r = proj.project(q);
+                    check_consistent(&s, q, &r);
+                    assert!(r.converged);
+                    // The distance is stationary at the foot: round-off only (1e-15 * size
+                    // observed), 1e-12 * size is the default tolerance.
+                    assert_near!(r.distance, (rho - rad).abs(), 1e-12 * size);
+                    // The foot is first order in the tangential residual eps1 = 1e-12 * size,
+                    // amplified by 1 / (1 - kappa d) <= 1 / 0.3 inside the cylinder.
+                    let foot = Vec3::new(rad * theta.cos(), rad * theta.sin(), z);
+                    assert_near!(r.point, foot, 1e-11 * size);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn cylinder_boundary_and_corner_feet() {
+        let (rad, h) = (2.0, 3.0);
+        let s = quarter_cylinder(rad, h);
+        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
+        let size = size(&s);
+        // (query, expected foot, expected u or NaN, expected v or NaN)
+        let nan = f64::NAN;
+        let t: f64 = 0.7;
+        let cases = [
+            // beyond the u = 0 edge (angle -0.3): foot on the straight edge x = r, y = 0.
+            (Vec3::new(3.0 * (-0.3f64).cos(), 3.0 * (-0.3f64).sin(), 1.2), Vec3::new(rad, 0.0, 1.2), 0.0, nan),
+            // beyond the u = 1 edge.
+            (Vec3::new(-0.5, 2.5, 2.0), Vec3::new(0.0, rad, 2.0), 1.0, nan),
+            // above the top v = 1 edge: foot on the arc z = h.
+            (Vec3::new(2.5 * t.cos(), 2.5 * t.sin(), h + 1.0), Vec3::new(rad * t.cos(), rad * t.sin(), h), nan, 1.0),
+            // below the bottom edge, inside the cylinder.
+            (Vec3::new(1.0 * t.cos(), 1.0 * t.sin(), -0.4), Vec3::new(rad * t.cos(), rad * t.sin(), 0.0), nan, 0.0),
+            // corners (u, v) = (0, 0) and (1, 1).
+            (Vec3::new(3.0, -1.0, -2.0), Vec3::new(rad, 0.0, 0.0), 0.0, 0.0),
+            (Vec3::new(-1.0, 2.5, h + 0.5), Vec3::new(0.0, rad, h), 1.0, 1.0),
+        ];
+        for (q, foot, u, v) in cases {
+            let r = proj.project(q);
+            check_consistent(&s, q, &r);
+            assert!(r.converged, "{q:?}: {r:?}");
+            // Feet on an edge are found by 1-D Newton along the edge: same tolerances as above.
+            assert_near!(r.point, foot, 1e-11 * size, "q = {q:?}");
+            assert_near!(r.distance, (q - foot).norm(), 1e-12 * size, "q = {q:?}");
+            // A parameter held at its bound is exactly the bound (clamped, not approached).
+            if !u.is_nan() {
+                assert_eq!(r.u, u, "q = {q:?}");
+            }
+            if !v.is_nan() {
+                assert_eq!(r.v, v, "q = {q:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn points_on_the_surface_project_to_themselves() {
+        let s = bicubic(7, 6, |i, j| 0.4 * ((i * 3 + j * 5) % 7) as f64 / 7.0, None, false);
+        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
+        let size = size(&s);
+        for a in 0..=9 {
+            for b in 0..=9 {
+                let (u, v) = (a as f64 / 9.0, b as f64 / 9.0);
+                let q = s.point(u, v);
+                let r = proj.project(q);
+                check_consistent(&s, q, &r);
+                assert!(r.converged);
+                // Point coincidence criterion |S - q| <= eps1 = 1e-12 * size.
+                assert!(r.distance <= 1e-12 * size, "({u}, {v}): {r:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn sphere_octant_with_collapsed_pole() {
+        let rad = 1.5;
+        let s = sphere_octant(rad);
+        // The pole row is collapsed: S_v vanishes there (to round-off).
+        assert!(s.derivatives(0.0, 0.4).sv.norm() <= 1e-14, "{:?}", s.derivatives(0.0, 0.4));
+        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
+        let size = size(&s);
+        // Directions in the octant, down to the pole itself (polar angle 0, the degenerate edge).
+        for polar in [0.0f64, 1e-9, 1e-3, 0.2, 0.8, 1.5] {
+            for azimuth in [0.0, 0.3, 0.9, FRAC_PI_2] {
+                let dir = Vec3::new(polar.sin() * azimuth.cos(), polar.sin() * azimuth.sin(), polar.cos());
+                for c in [0.4, 0.999, 2.0] {
+                    let q = dir * (c * rad);
+                    let r = proj.project(q);
+                    check_consistent(&s, q, &r);
+                    // Along the collapsed edge Newton's matrix is singular; the safeguarded step
+                    // still gives the radial foot. Distance: as for the cylinder. The foot: near
+                    // the pole S_v ~ 0, the cosine criterion in v is void, and the distance is
+                    // flat to round-off (eps_machine * d^2) over foot moves of
+                    // d * sqrt(eps_machine) ~ 1e-8 d, the accuracy left to the step criterion.
+                    assert_near!(r.distance, (1.0 - c).abs() * rad, 1e-12 * size, "q = {q:?}");
+                    assert_near!(r.point, dir * rad, 1e-8 * size, "q = {q:?}: {r:?}");
+                }
+            }
+        }
+        // The centre is equidistant from every point; below the octant the equator is.
+        let r = proj.project(Vec3::ZERO);
+        check_consistent(&s, Vec3::ZERO, &r);
+        assert_near!(r.distance, rad, 1e-12 * size);
+        let q = Vec3::new(0.0, 0.0, -1.0);
+        let r = proj.project(q);
+        check_consistent(&s, q, &r);
+        assert_near!(r.distance, (rad * rad + 1.0).sqrt(), 1e-12 * size);
+    }
+
+    #[test]
+    fn collapsed_stem_gives_finite_global_results() {
+        let s = bicubic(8, 6, |i, j| 0.3 * (i as f64 * 0.7).sin() * (j as f64 * 0.9).cos(), None, true);
+        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
+        let samples = sample_grid(&s, 200);
+        let size = size(&s);
+        let stem = s.control_point(0, 0);
+        for k in 0..60 {
+            let t = k as f64;
+            // A spiral of queries about the stem and over the surface.
+            let q =
+                stem + Vec3::new(0.1 * t * (0.5 * t).cos(), 2.5 + 0.08 * t * (0.5 * t).sin(), 0.6 * (0.37 * t).sin());
+            let r = proj.project(q);
+            check_consistent(&s, q, &r);
+            // No worse than 200 x 200 samples (which lie on the surface): 1e-12 * size is the
+            // convergence tolerance.
+            assert!(r.distance <= brute_force(&samples, q) + 1e-12 * size, "q = {q:?}: {r:?}");
+        }
+        let r = proj.project(stem + Vec3::new(-1.0, 0.0, 0.0));
+        assert_near!(r.distance, 1.0, 1e-12 * size);
+        assert_eq!(r.u, 0.0);
+    }
+
+    #[test]
+    fn non_finite_query_is_reported_not_converged() {
+        let s = quarter_cylinder(1.0, 1.0);
+        let r = SurfaceProjector::new(&s, ProjectionOptions::default()).project(Vec3::new(f64::NAN, 0.0, 0.0));
+        assert!(!r.converged && r.u.is_finite() && r.v.is_finite());
+        let c = circle(1.0);
+        let r = project_point_to_curve(&c, Vec3::new(0.0, f64::INFINITY, 0.0), &ProjectionOptions::default());
+        assert!(!r.converged && r.u.is_finite());
+    }
+
+    #[test]
+    fn project_many_equals_project() {
+        let s = bicubic(6, 5, |i, j| 0.2 * ((i + 2 * j) % 3) as f64, None, false);
+        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
+        let qs: Vec<Vec3> =
+            (0..20).map(|k| Vec3::new(0.25 * k as f64, 0.2 * k as f64, 0.5 - 0.05 * k as f64)).collect();
+        for (q, r) in qs.iter().zip(proj.project_many(&qs)) {
+            assert_eq!(r, proj.project(*q));
+        }
+    }
+
+    #[test]
+    fn circle_feet_are_radial_across_the_seam() {
+        let rad = 2.0;
+        let c = circle(rad);
+        let opts = ProjectionOptions::default();
+        let size = 2.0 * rad * 2f64.sqrt();
+        for k in 0..40 {
+            // Angles on both sides of the seam at angle 0 (u = 0 and u = 1).
+            let theta = -0.3 + 0.16 * k as f64;
+            for rho in [0.2, 1.0, 1.7, 5.0] {
+                let q = Vec3::new(rho * theta.cos(), rho * theta.sin(), 0.3);
+                let r = project_point_to_curve(&c, q, &opts);
+                assert!(r.converged);
+                assert_near!(r.point, c.point(r.u), 0.0);
+                // Distance to a circle: sqrt((rho - r)^2 + z^2); tolerances as for surfaces.
+                assert_near!(r.distance, ((rho - rad).powi(2) + 0.09).sqrt(), 1e-12 * size);
+                let foot = Vec3::new(rad * theta.cos(), rad * theta.sin(), 0.0);
+                assert_near!(r.point, foot, 1e-10 * size, "theta = {theta}, rho = {rho}");
+            }
+        }
+        // The centre: every point is at distance r.
+        let r = project_point_to_curve(&c, Vec3::ZERO, &opts);
+        assert!(r.u.is_finite());
+        assert_near!(r.distance, rad, 1e-12 * size);
+    }
+
+    #[test]
+    fn segment_ends_hold_the_foot() {
+        let k = KnotVector::uniform(1, 2).expect("valid");
+        let c = NurbsCurve::try_new(k, &[Vec3::ZERO, Vec3::new(4.0, 0.0, 0.0)], None).expect("valid");
+        let opts = ProjectionOptions::default();
+        let r = project_point_to_curve(&c, Vec3::new(6.0, 1.0, 0.0), &opts);
+        assert!(r.converged);
+        assert_eq!(r.u, 1.0);
+        assert_near!(r.distance, 5f64.sqrt(), 1e-15);
+        let r = project_point_to_curve(&c, Vec3::new(-1.0, 0.0, 2.0), &opts);
+        assert_eq!(r.u, 0.0);
+        let r = project_point_to_curve(&c, Vec3::new(1.0, 3.0, 0.0), &opts);
+        assert_near!(r.u, 0.25, 1e-15);
+        assert_near!(r.distance, 3.0, 1e-15);
+    }
+
+    /// A random wavy rational bicubic surface: heights and weights from the strategy.
+    fn random_surface() -> impl Strategy<Value = NurbsSurface> {
+        (4usize..9, 4usize..8, any::<bool>()).prop_flat_map(|(nu, nv, collapse)| {
+            let n = nu * nv;
+            (prop::collection::vec(-0.6f64..0.6, n), prop::collection::vec(0.5f64..2.0, n), Just((nu, nv, collapse)))
+                .prop_map(|(z, w, (nu, nv, collapse))| bicubic(nu, nv, |i, j| z[i * nv + j], Some(&w), collapse))
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        #[test]
+        fn surface_projection_is_no_worse_than_brute_force(
+            s in random_surface(),
+            queries in prop::collection::vec((0.0f64..1.0, 0.0f64..1.0, -1.0f64..1.0, -0.3f64..0.3), 8),
+        ) {
+            let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
+            let samples = sample_grid(&s, 150);
+            let size = size(&s);
+            for (u, v, off, slide) in queries {
+                // A point off the surface along the normal (or straight up where it is degenerate),
+                // slid sideways, so that many feet lie on edges and corners.
+                let d = s.derivatives(u, v);
+                let n = d.normal().unwrap_or(Vec3::new(0.0, 0.0, 1.0));
+                let q = d.point + n * off + Vec3::new(slide * 3.0, -slide * 2.0, 0.0);
+                let r = proj.project(q);
+                check_consistent(&s, q, &r);
+                // Samples lie on the surface, so the global minimum is no larger than any of
+                // them; 1e-12 * size is the convergence tolerance.
+                let bf = brute_force(&samples, q);
+                prop_assert!(r.distance <= bf + 1e-12 * size, "q = {:?}: {:?}, brute force {}", q, r, bf);
+            }
+        }
+
+        #[test]
+        fn curve_projection_is_no_worse_than_brute_force(
+            ys in prop::collection::vec(-2.0f64..2.0, 4..12),
+            ws in prop::collection::vec(0.5f64..2.0, 12),
+            qs in prop::collection::vec((-1.0f64..12.0, -3.0f64..3.0, -1.0f64..1.0), 6),
+        ) {
+            let n = ys.len();
+            let pts: Vec<Vec3> = ys.iter().enumerate().map(|(i, &y)| Vec3::new(i as f64, y, 0.3 * y * y)).collect();
+            let c = NurbsCurve::try_new(KnotVector::uniform(3, n).expect("valid"), &pts, Some(&ws[..n])).expect("valid");
+            let proj = CurveProjector::new(&c, ProjectionOptions::default());
+            let samples: Vec<Vec3> = (0..=4000).map(|k| c.point(k as f64 / 4000.0)).collect();
+            for (x, y, z) in qs {
+                let q = Vec3::new(x, y, z);
+                let r = proj.project(q);
+                prop_assert!(r.u.is_finite() && r.distance.is_finite());
+                prop_assert!(r.distance <= brute_force(&samples, q) + 1e-12 * 20.0);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod debug_tmp {
+    use super::*;
+    #[test]
+    fn debug_case() {
+        let s = NurbsSurface::try_from_homogeneous(
+            KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]).expect("v"),
+            KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0, 1.0]).expect("v"),
+            vec![
+                [0.0, 2.8568809662507055, 0.0, 0.8162517046430587],
+                [0.0, 4.329796563613635, 0.0, 1.2370847324610386],
+                [0.0, 2.564221052783714, 0.0, 0.7326345865096326],
+                [0.0, 2.0664421370954527, 0.0, 0.5904120391701293],
+                [0.0, 4.687411776460035, 0.0, 1.33926050756001],
+                [0.0, 6.513608103908683, 0.0, 1.8610308868310523],
+                [0.0, 5.945293114946219, 0.0, 1.6986551756989197],
+                [1.7017005683541493, 0.0, -0.9367441916609275, 1.7017005683541493],
+                [1.265113856203456, 1.265113856203456, 0.2448773043930866, 1.265113856203456],
+                [1.6990951491606656, 3.3981902983213312, -0.33588658339589117, 1.6990951491606656],
+                [1.6312060781977737, 4.893618234593321, -0.3925952745185909, 1.6312060781977737],
+                [0.8013014135997268, 3.2052056543989074, -0.11840841798723149, 0.8013014135997268],
+                [1.885092159806714, 9.425460799033571, -0.7607750431504819, 1.885092159806714],
+                [1.9793193035350123, 11.875915821210073, 0.6831189961991389, 1.9793193035350123],
+                [3.509624485250898, 0.0, 0.905651240370138, 1.754812242625449],
+                [1.7148966945785804, 0.8574483472892902, -0.45606048331887056, 0.8574483472892902],
+                [2.2511391486854384, 2.2511391486854384, 0.612494695087117, 1.1255695743427192],
+                [1.5977912810978276, 2.3966869216467415, 0.4615675358287606, 0.7988956405489138],
+                [3.0940454850025456, 6.188090970005091, -0.6070676624206388, 1.5470227425012728],
+                [3.70178803875724, 9.254470096893101, 0.22385979269094206, 1.85089401937862],
+                [3.7701744757232083, 11.310523427169624, -0.5000676670251208, 1.8850872378616041],
+                [5.931689643358755, 0.0, 0.8388500208716483, 1.977229881119585],
+                [1.6725892049119397, 0.5575297349706466, 0.1400832500556098, 0.5575297349706466],
+                [5.77911604728065, 3.8527440315204333, -0.9705223284136937, 1.9263720157602167],
+                [1.7238408008942647, 1.7238408008942647, -0.18123167740902432, 0.5746136002980883],
+                [3.106683107793378, 4.142244143724504, 0.6159920746819693, 1.035561035931126],
+                [5.650467059609621, 9.417445099349369, 1.0448019985147063, 1.8834890198698737],
+                [2.460750649681733, 4.921501299363466, 0.06352336572486043, 0.8202502165605776],
+            ],
+        )
+        .expect("v");
+        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
+        for (u, v, off, slide) in [
+            (0.8110059531727208, 0.7427942014599608, 0.1611833121316828, 0.23474449374468373),
+            (0.23968316868134337, 0.0017022491985775373, -0.5747830598455705, 0.015695588357471164),
+            (0.6374061986927507, 0.928836440899705, 0.9671149490006606, -0.007936119915966522),
+            (0.0394302207860488, 0.5244385688441032, 0.9858217733687894, -0.19310639291704187),
+            (0.8910354152449176, 0.8849057878697534, -0.4907530533282729, 0.040466868541376176),
+            (0.39262818998260485, 0.10472555783491067, 0.7764070709509935, 0.2703935490014034),
+            (0.28857578352907437, 0.48771235192912243, 0.6701223160145012, 0.023930069000186883),
+            (0.39625695579784564, 0.7622624213473435, -0.508460062925725, 0.09609899544459793),
+        ] {
+            let d = s.derivatives(u, v);
+            let n = d.normal().unwrap_or(Vec3::new(0.0, 0.0, 1.0));
+            let q = d.point + n * off + Vec3::new(slide * 3.0, -slide * 2.0, 0.0);
+            let r = proj.project(q);
+            if std::env::var("DBG").is_ok() {
+                eprintln!("=== {q:?} {r:?}");
+            }
+            let mut best = (f64::INFINITY, 0.0, 0.0);
+            for a in 0..=300 {
+                for b in 0..=300 {
+                    let (uu, vv) = (a as f64 / 300.0, b as f64 / 300.0);
+                    let dd = (s.point(uu, vv) - q).norm();
+                    if dd < best.0 {
+                        best = (dd, uu, vv);
+                    }
+                }
+            }
+            if r.distance > best.0 + 1e-12 {
+                eprintln!("q {:?}\n  got {:?}\n  bf {:?}", q, r, best);
+            }
+        }
+    }
+}
+#[cfg(test)]
+mod debug_tmp2 {
+    use super::*;
+    #[test]
+    fn debug_curve() {
+        let ys = [0.0,0.0,0.0,0.0,0.0,0.0,1.2554339337908524,1.583669658418114,-0.4995056116931081,0.15128554364998026];
+        let ws = [0.5,0.5,0.5,0.5,0.5,0.5,1.8965673951785986,1.2280670388686241,0.5704612338229461,1.277322970218235];
+        let n = ys.len();
+        let pts: Vec<Vec3> = ys.iter().enumerate().map(|(i, &y)| Vec3::new(i as f64, y, 0.3 * y * y)).collect();
+        let c = NurbsCurve::try_new(KnotVector::uniform(3, n).expect("valid"), &pts, Some(&ws[..n])).expect("valid");
+        let proj = CurveProjector::new(&c, ProjectionOptions::default());
+        let q = Vec3::new(8.827509117339707,1.3314657741030063,0.8090320873138355);
+        let r = proj.project(q);
+        let mut best = (f64::INFINITY, 0.0);
+        for k in 0..=4000 { let u = k as f64 / 4000.0; let d = (c.point(u) - q).norm(); if d < best.0 { best = (d, u); } }
+        eprintln!("{r:?}\n{best:?}");
+        for (i, u) in proj.us.iter().enumerate() { eprintln!("{u} {}", (proj.nodes[i]-q).norm()); }
+    }
+}

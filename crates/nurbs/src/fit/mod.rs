@@ -1,1 +1,23 @@
 //! Fitting: parameterization, knot vectors, interpolation, least squares, skinning.
+//!
+//! The pipeline for one curve is: data parameters ([`parameterize`], The NURBS Book 9.2.1),
+//! a knot vector ([`averaging_knots`] for interpolation, [`approximation_knots`] for least
+//! squares, uniform with [`Parameterization::Universal`]), then a banded solve
+//! ([`InterpolationSolver`], A9.1, or [`LeastSquaresSolver`], 9.4.1) that is factored once and
+//! reused for every right-hand side sharing parameters and knots. Surfaces are skinned from
+//! sections ([`skin_interpolate`], [`skin_approximate`]; 9.2.5 and 10.3).
+
+mod banded;
+mod interp;
+mod knots;
+mod lsq;
+mod param;
+mod skin;
+
+pub use interp::{interpolate_curve, interpolate_curve_auto, InterpolationSolver};
+pub use knots::{
+    approximation_knots, averaging_knots, knots_for_approximation, knots_for_interpolation, schoenberg_whitney,
+};
+pub use lsq::{approximate_curve, approximate_curve_auto, LeastSquaresSolver};
+pub use param::{common_parameters, parameterize, Parameterization, UnknownParameterization};
+pub use skin::{skin_approximate, skin_interpolate, SkinOptions, SkinResult};

@@ -1,0 +1,345 @@
+//! The offset data model: a hull given as a list of sections, each a list of points.
+//!
+//! # Axes
+//!
+//! hullskin uses one right-handed convention everywhere:
+//!
+//! - **x forward**, along the length, from aft to fore (e.g. x = 0 at the aft perpendicular);
+//! - **y to starboard**, as the half-breadth: y >= 0 for the one side of a symmetric hull that
+//!   offsets describe;
+//! - **z up**, from the baseline.
+//!
+//! A section is normally a transverse station (all its points at one x), ordered from keel to
+//! deck; sections follow each other along the length. Coordinates stay in the user's
+//! [`Units`]; nothing is converted.
+
+use nurbs::Vec3;
+
+use crate::error::{HullError, InputErrorKind, Location};
+use crate::units::Units;
+
+/// Two consecutive points closer than `COINCIDENT_REL` times the model size (the diagonal of
+/// the bounding box) are the same point. 1e-9 is far below any drawing precision (a 100 m ship
+/// gives 0.1 µm) yet far above the rounding of a coordinate (1e-16 relative), so it only
+/// catches points that were typed twice.
+pub const COINCIDENT_REL: f64 = 1e-9;
+
+/// A section is planar in x when all its x lie within `PLANAR_REL` times the model size of
+/// their mean (same reasoning as [`COINCIDENT_REL`]).
+pub const PLANAR_REL: f64 = 1e-9;
+
+/// One section of the hull: its points in order along it (keel to deck).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Section {
+    /// The label from the input: a station number or name.
+    pub label: String,
+    /// The points, in order along the section.
+    pub points: Vec<Vec3>,
+    /// 1-based source line of each point, for error messages; empty for sections built in
+    /// code, otherwise as long as `points`.
+    pub lines: Vec<usize>,
+    /// 1-based source field column shared by all points (the station's column of an offset
+    /// table); `None` when each point is a row of its own (sections CSV) or unknown.
+    pub column: Option<usize>,
+}
+
+impl Section {
+    /// A section built in code, without source positions.
+    pub fn new(label: impl Into<String>, points: Vec<Vec3>) -> Self {
+        Section { label: label.into(), points, lines: Vec::new(), column: None }
+    }
+
+    /// Where point `index` came from in `source`.
+    pub fn location(&self, source: &str, index: usize) -> Location {
+        let line = self.lines.get(index).copied();
+        Location { file: source.to_string(), line, column: line.and(self.column) }
+    }
+
+    /// The mean x of the points, `None` for an empty section.
+    pub fn mean_x(&self) -> Option<f64> {
+        if self.points.is_empty() {
+            None
+        } else {
+            Some(self.points.iter().map(|p| p.x).sum::<f64>() / self.points.len() as f64)
+        }
+    }
+}
+
+/// A hull's offsets: sections in order along the length, in the user's units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Offsets {
+    /// Where the data came from: a file path, or `built-in sample: ...`.
+    pub source: String,
+    /// The length unit of every coordinate.
+    pub units: Units,
+    /// The sections, in order along the length.
+    pub sections: Vec<Section>,
+}
+
+impl Offsets {
+    /// Total number of points over all sections.
+    pub fn num_points(&self) -> usize {
+        self.sections.iter().map(|s| s.points.len()).sum()
+    }
+
+    /// The axis-aligned bounding box `(min, max)` of all points, `None` when there are none.
+    /// Non-finite coordinates are skipped.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let mut pts = self.sections.iter().flat_map(|s| s.points.iter()).filter(|p| p.is_finite());
+        let first = *pts.next()?;
+        Some(pts.fold((first, first), |(lo, hi), p| {
+            (
+                Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
+                Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
+            )
+        }))
+    }
+
+    /// The model size: the diagonal of [`Offsets::bounds`], 0 without points.
+    pub fn size(&self) -> f64 {
+        self.bounds().map_or(0.0, |(lo, hi)| (hi - lo).norm())
+    }
+
+    /// Checks that the offsets can be skinned, in this order:
+    ///
+    /// 1. every coordinate is finite;
+    /// 2. there are at least 2 sections;
+    /// 3. every section has at least `max(min_points_per_section, 1)` points (pass the fit's
+    ///    degree + 1);
+    /// 4. no two consecutive points of a section coincide (distance <= [`COINCIDENT_REL`] x
+    ///    model size), unless the whole section collapses to one point (a pointed stem or
+    ///    stern end, all its points equal);
+    /// 5. when every section is planar in x (see [`PLANAR_REL`]), the sections' x are strictly
+    ///    monotone (increasing or decreasing, as the first two set it; a difference within the
+    ///    tolerance counts as equal). Free-form sections whose x varies are not order-checked.
+    ///
+    /// # Errors
+    ///
+    /// The first failed check, as [`HullError::Input`] located at the offending point's source
+    /// line (and column for offset tables): [`InputErrorKind::NonFiniteCoordinate`],
+    /// [`InputErrorKind::TooFewSections`], [`InputErrorKind::TooFewPoints`],
+    /// [`InputErrorKind::RepeatedPoint`] or [`InputErrorKind::SectionOrder`].
+    pub fn validate(&self, min_points_per_section: usize) -> Result<(), HullError> {
+        let src = self.source.as_str();
+        for s in &self.sections {
+            if let Some(i) = s.points.iter().position(|p| !p.is_finite()) {
+                return Err(HullError::input(
+                    s.location(src, i),
+                    InputErrorKind::NonFiniteCoordinate {
+                        label: s.label.clone(),
+                        index: i,
+                        point: s.points[i].to_array(),
+                    },
+                ));
+            }
+        }
+        if self.sections.len() < 2 {
+            return Err(HullError::input(
+                Location::file(src),
+                InputErrorKind::TooFewSections { got: self.sections.len() },
+            ));
+        }
+        let needed = min_points_per_section.max(1);
+        for s in &self.sections {
+            if s.points.len() < needed {
+                return Err(HullError::input(
+                    s.location(src, 0),
+                    InputErrorKind::TooFewPoints { label: s.label.clone(), got: s.points.len(), needed },
+                ));
+            }
+        }
+        let tol = COINCIDENT_REL * self.size();
+        for s in &self.sections {
+            let first = s.points[0];
+            if s.points.iter().all(|p| p.distance(first) <= tol) {
+                continue; // a pointed end
+            }
+            for (i, w) in s.points.windows(2).enumerate() {
+                if w[0].distance(w[1]) <= tol {
+                    return Err(HullError::input(
+                        s.location(src, i + 1),
+                        InputErrorKind::RepeatedPoint {
+                            label: s.label.clone(),
+                            index: i + 1,
+                            line: s.lines.get(i + 1).copied(),
+                            previous_line: s.lines.get(i).copied(),
+                            point: w[1].to_array(),
+                        },
+                    ));
+                }
+            }
+        }
+        self.check_order(PLANAR_REL * self.size())
+    }
+
+    /// Step 5 of [`Offsets::validate`]; every section has a point by now.
+    fn check_order(&self, tol: f64) -> Result<(), HullError> {
+        let mut xs = Vec::with_capacity(self.sections.len());
+        for s in &self.sections {
+            let Some(x) = s.mean_x() else { return Ok(()) };
+            if s.points.iter().any(|p| (p.x - x).abs() > tol) {
+                return Ok(()); // free-form section: no order along x to check
+            }
+            xs.push(x);
+        }
+        let increasing = xs[1] >= xs[0];
+        for i in 1..xs.len() {
+            let step = if increasing { xs[i] - xs[i - 1] } else { xs[i - 1] - xs[i] };
+            if step <= tol {
+                let (s, prev) = (&self.sections[i], &self.sections[i - 1]);
+                return Err(HullError::input(
+                    s.location(&self.source, 0),
+                    InputErrorKind::SectionOrder {
+                        label: s.label.clone(),
+                        x: xs[i],
+                        previous_label: prev.label.clone(),
+                        previous_x: xs[i - 1],
+                        increasing,
+                    },
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A box-like hull: `n` stations at x = 0, 1, ..., each with 4 points keel to deck.
+    fn boxy(n: usize) -> Offsets {
+        let sections = (0..n)
+            .map(|i| {
+                let x = i as f64;
+                let pts = vec![
+                    Vec3::new(x, 0.0, 0.0),
+                    Vec3::new(x, 1.0, 0.0),
+                    Vec3::new(x, 1.0, 1.0),
+                    Vec3::new(x, 1.0, 2.0),
+                ];
+                let mut s = Section::new(format!("{i}"), pts);
+                s.lines = (0..4).map(|k| 2 + 4 * i + k).collect();
+                s
+            })
+            .collect();
+        Offsets { source: "box.csv".into(), units: Units::Metre, sections }
+    }
+
+    fn err(o: &Offsets, min: usize) -> String {
+        o.validate(min).err().map(|e| e.to_string()).unwrap_or_else(|| "no error".into())
+    }
+
+    #[test]
+    fn counts_and_bounds() {
+        let o = boxy(3);
+        assert_eq!(o.num_points(), 12);
+        assert_eq!(o.bounds(), Some((Vec3::new(0.0, 0.0, 0.0), Vec3::new(2.0, 1.0, 2.0))));
+        // Diagonal of a 2 x 1 x 2 box is 3 exactly; sqrt(9) is exact in f64.
+        assert_eq!(o.size(), 3.0);
+        let empty = Offsets { source: "e".into(), units: Units::Foot, sections: vec![] };
+        assert_eq!(empty.bounds(), None);
+        assert_eq!(empty.size(), 0.0);
+    }
+
+    #[test]
+    fn a_regular_hull_validates_in_either_direction() {
+        let mut o = boxy(4);
+        assert!(o.validate(4).is_ok());
+        o.sections.reverse();
+        assert!(o.validate(4).is_ok());
+    }
+
+    #[test]
+    fn too_few_sections() {
+        assert_eq!(err(&boxy(1), 2), "box.csv: 1 section(s) (expected at least 2 sections to skin a surface)");
+    }
+
+    #[test]
+    fn too_few_points_names_the_section_its_line_and_the_counts() {
+        let o = boxy(3);
+        let e = err(&o, 5);
+        assert!(e.starts_with("box.csv:2: section \"0\" has 4 point(s) (expected at least 5 points"), "{e}");
+        let mut o = boxy(3);
+        o.sections[1].column = Some(3);
+        o.sections[1].points.truncate(2);
+        let e = err(&o, 3);
+        assert!(e.starts_with("box.csv:6:3: section \"1\" has 2 point(s) (expected at least 3"), "{e}");
+    }
+
+    #[test]
+    fn repeated_consecutive_points_name_both_lines() {
+        let mut o = boxy(3);
+        // A distance of half the tolerance (1e-9 x size 3) still counts as the same point.
+        o.sections[2].points[2] = o.sections[2].points[1] + Vec3::new(0.0, 0.0, 1.5e-9);
+        let e = err(&o, 2);
+        assert!(e.starts_with("box.csv:12: section \"2\": point 3 (line 12) repeats point 2 (line 11)"), "{e}");
+        // Twice the tolerance is a distinct point.
+        o.sections[2].points[2] = o.sections[2].points[1] + Vec3::new(0.0, 0.0, 6e-9);
+        assert!(o.validate(2).is_ok());
+    }
+
+    #[test]
+    fn a_section_collapsed_to_one_point_is_a_legal_pointed_end() {
+        let mut o = boxy(3);
+        let tip = Vec3::new(2.0, 0.0, 1.0);
+        o.sections[2].points = vec![tip; 4];
+        assert!(o.validate(4).is_ok());
+        // ...but it still needs the minimum number of points.
+        o.sections[2].points = vec![tip];
+        o.sections[2].lines.truncate(1);
+        assert!(err(&o, 4).contains("has 1 point(s)"));
+    }
+
+    #[test]
+    fn non_finite_coordinates_are_rejected_first() {
+        let mut o = boxy(1); // also too few sections: the finiteness check comes first
+        o.sections[0].points[3].y = f64::NAN;
+        let e = err(&o, 2);
+        assert!(e.starts_with("box.csv:5: section \"0\": point 4 has a non-finite coordinate (0, NaN, 2)"), "{e}");
+    }
+
+    #[test]
+    fn planar_sections_out_of_order_are_named() {
+        let mut o = boxy(4);
+        o.sections.swap(2, 3);
+        let e = err(&o, 2);
+        assert!(e.starts_with("box.csv:10: section \"2\" at x = 2 is not forward of section \"3\" at x = 3"), "{e}");
+        assert!(e.contains("x strictly increasing"), "{e}");
+        let mut o = boxy(4);
+        o.sections.reverse(); // 3, 2, 1, 0: decreasing
+        o.sections.swap(2, 3); // 3, 2, 0, 1: section "1" breaks the order
+        let e = err(&o, 2);
+        assert!(e.starts_with("box.csv:6: section \"1\" at x = 1 is not aft of section \"0\" at x = 0"), "{e}");
+        assert!(e.contains("strictly decreasing"), "{e}");
+    }
+
+    #[test]
+    fn two_sections_at_the_same_x_are_out_of_order() {
+        let mut o = boxy(3);
+        for p in &mut o.sections[2].points {
+            p.x = 1.0;
+        }
+        assert!(err(&o, 2).contains("at x = 1 is not forward of section \"1\" at x = 1"));
+    }
+
+    #[test]
+    fn free_form_sections_skip_the_order_check() {
+        let mut o = boxy(3);
+        o.sections.swap(0, 2);
+        // Section "1" tilts in x: the data are not stations, so their order is not checked.
+        o.sections[1].points[3].x += 0.5;
+        assert!(o.validate(2).is_ok());
+    }
+
+    #[test]
+    fn locations_without_source_lines_print_the_file_only() {
+        let mut o = boxy(2);
+        for s in &mut o.sections {
+            s.lines.clear();
+            s.column = Some(4);
+        }
+        o.sections[1].points.truncate(1);
+        assert!(err(&o, 2).starts_with("box.csv: section \"1\" has 1 point(s)"));
+    }
+}

@@ -1,0 +1,519 @@
+//! Readers of offset data: a sections CSV or an offset table, told apart by the header.
+//!
+//! Both formats are comma-separated text, UTF-8 (a byte-order mark is skipped), with `\n`,
+//! `\r\n` or `\r` line ends. Fields are trimmed of spaces and tabs; a field may be quoted with
+//! `"` (a doubled `""` inside stands for one quote; a quoted field ends on its own line).
+//! Blank lines, lines of empty fields only (`,,,` as spreadsheets export them), and lines whose
+//! first non-blank character is `#` are skipped. Numbers use a decimal point; `nan` and `inf`
+//! are refused.
+//!
+//! Errors point at `file:line:column`, with 1-based line numbers of the file and 1-based
+//! field numbers as columns (see [`crate::Location`]).
+//!
+//! - [`sections_csv`]: header `section,x,y,z`, one row per point.
+//! - [`offset_table`]: station positions across the first row, waterline heights down the
+//!   first column, half-breadths in the cells.
+//!
+//! The readers parse; they do not check the data can be skinned: call
+//! [`Offsets::validate`] with the fit's degree + 1 for that.
+
+pub mod offset_table;
+pub mod sections_csv;
+
+use std::borrow::Cow;
+use std::path::Path;
+
+use crate::error::{HullError, InputErrorKind, Location};
+use crate::offsets::Offsets;
+use crate::units::Units;
+
+pub use offset_table::parse_offset_table;
+pub use sections_csv::parse_sections_csv;
+
+/// The two input formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InputFormat {
+    /// Header `section,x,y,z`, one row per point.
+    SectionsCsv,
+    /// Stations across, waterlines down, half-breadths in the cells.
+    OffsetTable,
+}
+
+/// Tells the format from the first data line: a first field `section` (case-insensitive,
+/// trimmed) means a sections CSV, anything else an offset table. Undecodable text is called
+/// an offset table; its reader reports the problem.
+pub fn detect_format(text: &str) -> InputFormat {
+    let text = text.strip_prefix('\u{FEFF}').unwrap_or(text);
+    for line in split_lines(text) {
+        let trimmed = line.trim();
+        if trimmed.is_empty() || trimmed.starts_with('#') {
+            continue;
+        }
+        let Ok(fields) = split_fields(line, "", 0) else { return InputFormat::OffsetTable };
+        match fields.first() {
+            _ if fields.iter().all(|f| f.text.is_empty()) => continue,
+            Some(f) if f.text.eq_ignore_ascii_case("section") => return InputFormat::SectionsCsv,
+            _ => return InputFormat::OffsetTable,
+        }
+    }
+    InputFormat::OffsetTable
+}
+
+/// Reads the offsets in `path`, either format (see [`detect_format`]), in `units`.
+/// The `source` of the result is `path` as given.
+///
+/// # Errors
+///
+/// [`HullError::Io`] when the file cannot be read; [`HullError::Input`] for a binary or
+/// UTF-16 file and for every parse error of [`parse_sections_csv`] and
+/// [`parse_offset_table`].
+pub fn read_offsets(path: &Path, units: Units) -> Result<Offsets, HullError> {
+    let bytes = std::fs::read(path).map_err(|error| HullError::Io { path: path.to_path_buf(), error })?;
+    let source = path.display().to_string();
+    let text = decode(&bytes, &source)?;
+    parse_offsets(text, &source, units)
+}
+
+/// Parses offsets held in a string, either format (see [`detect_format`]); `source` names
+/// the input in messages.
+///
+/// # Errors
+///
+/// Every error of [`parse_sections_csv`] or [`parse_offset_table`].
+pub fn parse_offsets(text: &str, source: &str, units: Units) -> Result<Offsets, HullError> {
+    match detect_format(text) {
+        InputFormat::SectionsCsv => parse_sections_csv(text, source, units),
+        InputFormat::OffsetTable => parse_offset_table(text, source, units),
+    }
+}
+
+/// Checks raw bytes are UTF-8 text and returns them as a `&str`.
+///
+/// # Errors
+///
+/// [`InputErrorKind::Utf16`] for a UTF-16 byte-order mark, [`InputErrorKind::Binary`] for
+/// invalid UTF-8 or a NUL byte, located at the line of the first bad byte.
+pub fn decode<'a>(bytes: &'a [u8], source: &str) -> Result<&'a str, HullError> {
+    if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
+        return Err(HullError::input(Location::line(source, 1), InputErrorKind::Utf16));
+    }
+    let line_of = |pos: usize| 1 + bytes[..pos].iter().filter(|&&b| b == b'\n').count();
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let pos = e.valid_up_to();
+        HullError::input(
+            Location::line(source, line_of(pos)),
+            InputErrorKind::Binary { detail: format!("invalid UTF-8 at byte offset {pos}") },
+        )
+    })?;
+    check_no_nul(text, source)?;
+    Ok(text)
+}
+
+/// A NUL character never occurs in a CSV text: its presence means a binary file.
+fn check_no_nul(text: &str, source: &str) -> Result<(), HullError> {
+    match text.find('\0') {
+        Some(pos) => Err(HullError::input(
+            Location::line(source, 1 + text[..pos].matches('\n').count()),
+            InputErrorKind::Binary { detail: format!("NUL byte at byte offset {pos}") },
+        )),
+        None => Ok(()),
+    }
+}
+
+/// One field of a record: its trimmed (and unquoted) text and 1-based column.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Field<'a> {
+    pub text: Cow<'a, str>,
+    pub column: usize,
+}
+
+/// One data line: its 1-based line number and all its fields (at least one not empty).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Record<'a> {
+    pub line: usize,
+    pub fields: Vec<Field<'a>>,
+}
+
+impl Record<'_> {
+    /// The number of fields up to the last non-empty one: spreadsheets often append empty
+    /// fields, which carry nothing.
+    pub fn significant_len(&self) -> usize {
+        self.fields.iter().rposition(|f| !f.text.is_empty()).map_or(0, |i| i + 1)
+    }
+
+    /// The place of field `column` (1-based).
+    pub fn at(&self, source: &str, column: usize) -> Location {
+        Location::new(source, self.line, column)
+    }
+}
+
+/// Splits a text into records (see the module docs for the rules).
+///
+/// # Errors
+///
+/// Binary text (NUL), an unterminated quote, text after a closing quote, or a line that uses
+/// `;` or tabs instead of commas.
+pub(crate) fn records<'a>(text: &'a str, source: &str) -> Result<Vec<Record<'a>>, HullError> {
+    check_no_nul(text, source)?;
+    let text = text.strip_prefix('\u{FEFF}').unwrap_or(text);
+    let mut out = Vec::new();
+    for (i, line) in split_lines(text).enumerate() {
+        let lineno = i + 1;
+        let trimmed = line.trim();
+        if trimmed.is_empty() || trimmed.starts_with('#') {
+            continue;
+        }
+        let fields = split_fields(line, source, lineno)?;
+        if fields.iter().all(|f| f.text.is_empty()) {
+            continue; // ",,,": an empty spreadsheet row
+        }
+        if fields.len() == 1 {
+            if let Some(separator) = [';', '\t'].into_iter().find(|&c| trimmed.contains(c)) {
+                return Err(HullError::input(Location::line(source, lineno), InputErrorKind::Separator { separator }));
+            }
+        }
+        out.push(Record { line: lineno, fields });
+    }
+    Ok(out)
+}
+
+/// Lines of `text`, ended by `\r\n`, `\n` or a lone `\r`; a final line end does not start
+/// one more (empty) line.
+fn split_lines(text: &str) -> impl Iterator<Item = &str> {
+    let mut rest = Some(text);
+    std::iter::from_fn(move || {
+        let s = rest?;
+        match s.find(['\r', '\n']) {
+            Some(i) => {
+                let skip = if s[i..].starts_with("\r\n") { 2 } else { 1 };
+                let after = &s[i + skip..];
+                rest = if after.is_empty() { None } else { Some(after) };
+                Some(&s[..i])
+            }
+            None => {
+                rest = None;
+                Some(s)
+            }
+        }
+    })
+}
+
+/// Splits one line into trimmed fields, unquoting `"..."` fields.
+fn split_fields<'a>(line: &'a str, source: &str, lineno: usize) -> Result<Vec<Field<'a>>, HullError> {
+    let is_blank = |c: char| c == ' ' || c == '\t';
+    let mut fields = Vec::new();
+    let mut rest = line;
+    loop {
+        let column = fields.len() + 1;
+        let start = rest.trim_start_matches(is_blank);
+        if let Some(quoted) = start.strip_prefix('"') {
+            // A quoted field: up to the first quote not doubled.
+            let mut value = String::new();
+            let mut chars = quoted.char_indices();
+            let end = loop {
+                match chars.next() {
+                    None => {
+                        return Err(HullError::input(
+                            Location::new(source, lineno, column),
+                            InputErrorKind::UnterminatedQuote,
+                        ))
+                    }
+                    Some((i, '"')) => {
+                        if quoted[i + 1..].starts_with('"') {
+                            value.push('"');
+                            chars.next();
+                        } else {
+                            break i + 1;
+                        }
+                    }
+                    Some((_, c)) => value.push(c),
+                }
+            };
+            let after = &quoted[end..];
+            let (stray, next) = match after.find(',') {
+                Some(i) => (&after[..i], Some(&after[i + 1..])),
+                None => (after, None),
+            };
+            if !stray.trim_matches(is_blank).is_empty() {
+                return Err(HullError::input(
+                    Location::new(source, lineno, column),
+                    InputErrorKind::TextAfterQuote { text: stray.trim_matches(is_blank).to_string() },
+                ));
+            }
+            fields.push(Field { text: Cow::Owned(value.trim_matches(is_blank).to_string()), column });
+            match next {
+                Some(n) => rest = n,
+                None => break,
+            }
+        } else {
+            match start.find(',') {
+                Some(i) => {
+                    fields.push(Field { text: Cow::Borrowed(start[..i].trim_matches(is_blank)), column });
+                    rest = &start[i + 1..];
+                }
+                None => {
+                    fields.push(Field { text: Cow::Borrowed(start.trim_matches(is_blank)), column });
+                    break;
+                }
+            }
+        }
+    }
+    Ok(fields)
+}
+
+/// Parses a finite decimal number from a field, saying what it should have been otherwise.
+///
+/// # Errors
+///
+/// [`InputErrorKind::EmptyField`], [`InputErrorKind::DecimalComma`],
+/// [`InputErrorKind::NotFinite`] (`nan`, `inf`, overflow) or [`InputErrorKind::NotANumber`].
+pub(crate) fn parse_number(
+    text: &str,
+    at: impl FnOnce() -> Location,
+    expected: impl FnOnce() -> String,
+) -> Result<f64, HullError> {
+    if text.is_empty() {
+        return Err(HullError::input(at(), InputErrorKind::EmptyField { expected: expected() }));
+    }
+    let text_ = text.to_string();
+    let kind = match text.parse::<f64>() {
+        Ok(v) if v.is_finite() => return Ok(v),
+        // Rust's parser takes "nan", "inf", "infinity" in any case, and overflows to inf.
+        Ok(_) => InputErrorKind::NotFinite { text: text_, expected: expected() },
+        Err(_) if text.contains(',') && text.replacen(',', ".", 1).parse::<f64>().is_ok_and(f64::is_finite) => {
+            InputErrorKind::DecimalComma { text: text_, expected: expected() }
+        }
+        Err(_) => InputErrorKind::NotANumber { text: text_, expected: expected() },
+    };
+    Err(HullError::input(at(), kind))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn texts(recs: &[Record<'_>]) -> Vec<(usize, Vec<String>)> {
+        recs.iter().map(|r| (r.line, r.fields.iter().map(|f| f.text.to_string()).collect())).collect()
+    }
+
+    fn err_of<T: std::fmt::Debug>(r: Result<T, HullError>) -> String {
+        r.err().map(|e| e.to_string()).unwrap_or_else(|| "no error".into())
+    }
+
+    #[test]
+    fn line_ends_bom_comments_and_blank_lines() {
+        let text = "\u{FEFF}a, b ,c\r\n\r\n# comment\n  \n, ,\r4,5\n";
+        let recs = records(text, "t").expect("valid text");
+        assert_eq!(
+            texts(&recs),
+            vec![(1, vec!["a".into(), "b".into(), "c".into()]), (6, vec!["4".into(), "5".into()])]
+        );
+    }
+
+    #[test]
+    fn line_numbers_count_every_line_whatever_the_line_ends() {
+        for nl in ["\n", "\r\n", "\r"] {
+            let text = ["x", "", "y", "", "", "z"].join(nl) + nl;
+            let lines: Vec<usize> = records(&text, "t").expect("valid").iter().map(|r| r.line).collect();
+            assert_eq!(lines, vec![1, 3, 6], "line end {nl:?}");
+        }
+    }
+
+    #[test]
+    fn quoted_fields() {
+        let recs = records("\"a,b\", \"say \"\"hi\"\"\" ,\"\"\n", "t").expect("valid");
+        assert_eq!(texts(&recs), vec![(1, vec!["a,b".into(), "say \"hi\"".into(), "".into()])]);
+        assert_eq!(
+            err_of(records("a,\"open\n", "q.csv")),
+            "q.csv:1:2: quoted field has no closing quote (expected a closing \" on the same line)"
+        );
+        assert!(
+            err_of(records("x\na,\"b\"c,d\n", "q.csv")).starts_with("q.csv:2:2: text \"c\" follows the closing quote")
+        );
+    }
+
+    #[test]
+    fn trailing_empty_fields_are_kept_but_not_significant() {
+        let recs = records("1,,3,,\n", "t").expect("valid");
+        assert_eq!(texts(&recs), vec![(1, vec!["1".into(), "".into(), "3".into(), "".into(), "".into()])]);
+        assert_eq!(recs[0].fields[2].column, 3);
+        assert_eq!(recs[0].significant_len(), 3);
+    }
+
+    #[test]
+    fn other_separators_are_named() {
+        assert_eq!(
+            err_of(records("# c\nsection;x;y;z\n", "s.csv")),
+            "s.csv:2: fields are separated by semicolons (expected commas: hullskin reads comma-separated values with decimal points)"
+        );
+        assert!(err_of(records("a\tb\n", "s.csv")).contains("separated by tabs"));
+    }
+
+    #[test]
+    fn binary_input_is_recognised() {
+        assert_eq!(
+            err_of(decode(b"ab\ncd\0", "b.bin")),
+            "b.bin:2: binary file, NUL byte at byte offset 5 (expected a CSV text)"
+        );
+        assert_eq!(
+            err_of(decode(b"a\nb\nc\xff", "b.bin")),
+            "b.bin:3: binary file, invalid UTF-8 at byte offset 5 (expected a CSV text)"
+        );
+        assert!(err_of(decode(b"\xff\xfes\0e\0", "u.csv")).contains("UTF-16"));
+        assert!(err_of(records("a\0", "s")).contains("binary file"));
+        assert_eq!(decode(b"ok", "s").ok(), Some("ok"));
+    }
+
+    #[test]
+    fn numbers() {
+        let at = || Location::new("n.csv", 3, 2);
+        let what = || "the x coordinate in metres".to_string();
+        for (t, v) in [("1", 1.0), ("-2.5", -2.5), ("+.5", 0.5), ("1e3", 1000.0), ("7.", 7.0), ("-0", 0.0)] {
+            assert_eq!(parse_number(t, at, what).ok(), Some(v), "{t}");
+        }
+        for t in ["nan", "NaN", "inf", "-Infinity", "1e999"] {
+            assert_eq!(
+                err_of(parse_number(t, at, what)),
+                format!("n.csv:3:2: \"{t}\" is not a finite number (expected the x coordinate in metres)")
+            );
+        }
+        assert_eq!(
+            err_of(parse_number("abc", at, what)),
+            "n.csv:3:2: \"abc\" is not a number (expected the x coordinate in metres)"
+        );
+        assert_eq!(
+            err_of(parse_number("1,5", at, what)),
+            "n.csv:3:2: \"1,5\" has a decimal comma (expected the x coordinate in metres, written with a decimal point)"
+        );
+        assert_eq!(err_of(parse_number("", at, what)), "n.csv:3:2: empty field (expected the x coordinate in metres)");
+        assert!(err_of(parse_number("0x10", at, what)).contains("is not a number"));
+    }
+
+    #[test]
+    fn format_detection() {
+        assert_eq!(detect_format("\u{FEFF}# c\n Section , X,y,z\n"), InputFormat::SectionsCsv);
+        assert_eq!(detect_format("z\\x,0,1\n0,1,2\n"), InputFormat::OffsetTable);
+        assert_eq!(detect_format(""), InputFormat::OffsetTable);
+        assert_eq!(detect_format(",,\n\n# section,x,y,z\nsection,x,y,z\n"), InputFormat::SectionsCsv);
+        assert_eq!(detect_format("sections,x,y,z\n"), InputFormat::OffsetTable);
+    }
+
+    fn testdata(name: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
+    }
+
+    #[test]
+    fn read_offsets_sniffs_both_example_files() {
+        let s = read_offsets(&testdata("sections_example.csv"), Units::Metre).expect("sections example");
+        assert_eq!((s.sections.len(), s.num_points()), (3, 12));
+        assert!(s.source.ends_with("sections_example.csv"));
+        let t = read_offsets(&testdata("offsets_example.csv"), Units::Foot).expect("offsets example");
+        assert_eq!((t.sections.len(), t.num_points(), t.units), (4, 15, Units::Foot));
+    }
+
+    #[test]
+    fn an_offset_table_rewritten_as_a_sections_csv_reads_back_the_same() {
+        let table = read_offsets(&testdata("offsets_example.csv"), Units::Metre).expect("offsets example");
+        let mut text = String::from("section,x,y,z\n");
+        for s in &table.sections {
+            for p in &s.points {
+                // `{}` prints the shortest decimal that parses back to the same f64.
+                text.push_str(&format!("{},{},{},{}\n", s.label, p.x, p.y, p.z));
+            }
+        }
+        let csv = parse_offsets(&text, "rewritten.csv", Units::Metre).expect("rewritten");
+        assert_eq!(csv.sections.len(), table.sections.len());
+        for (a, b) in csv.sections.iter().zip(&table.sections) {
+            assert_eq!((&a.label, &a.points), (&b.label, &b.points));
+        }
+    }
+
+    #[test]
+    fn read_offsets_reports_a_missing_file_with_its_path() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("missing.csv");
+        let e = err_of(read_offsets(&path, Units::Metre));
+        assert!(e.starts_with(&format!("{}: ", path.display())), "{e}");
+    }
+
+    #[test]
+    fn read_offsets_reports_a_binary_file() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("hull.png");
+        std::fs::write(&path, b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR").expect("write");
+        let e = err_of(read_offsets(&path, Units::Metre));
+        assert_eq!(
+            e,
+            format!("{}:1: binary file, invalid UTF-8 at byte offset 0 (expected a CSV text)", path.display())
+        );
+    }
+}
+
+#[cfg(test)]
+mod fuzz {
+    //! The readers never panic: any input gives `Ok` or `Err`.
+
+    use super::*;
+    use proptest::prelude::*;
+
+    fn all_readers(text: &str) {
+        for units in Units::ALL {
+            let _ = parse_sections_csv(text, "f", units);
+            let _ = parse_offset_table(text, "f", units);
+            let _ = parse_offsets(text, "f", units);
+        }
+        if let Ok(o) = parse_offsets(text, "f", Units::Metre) {
+            let _ = o.validate(4);
+            let _ = o.validate(0);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+        #[test]
+        fn arbitrary_strings_never_panic(text in any::<String>()) {
+            all_readers(&text);
+        }
+
+        #[test]
+        fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..300)) {
+            if let Ok(text) = decode(&bytes, "f") {
+                all_readers(text);
+            }
+            all_readers(&String::from_utf8_lossy(&bytes));
+        }
+
+        /// CSV-like text reaches the deeper paths (numbers, order checks, validation).
+        #[test]
+        fn csv_like_text_never_panics(
+            head in prop_oneof![Just("section,x,y,z\n"), Just("z\\x,0,1,2\n"), Just("")],
+            body in "([0-9a-z\\.,\"# \\-+e]{0,12}(\n|\r\n|\r)){0,12}",
+        ) {
+            all_readers(&format!("{head}{body}"));
+            all_readers(&format!("\u{FEFF}{head}{body}"));
+        }
+
+        /// Well-formed sections CSVs parse, keep every point, and report lines that exist.
+        #[test]
+        fn generated_sections_csv_round_trips(
+            sections in proptest::collection::vec(proptest::collection::vec((-1e3f64..1e3, 0f64..1e3, -1e3f64..1e3), 1..6), 1..6),
+        ) {
+            let mut text = String::from("section,x,y,z\n");
+            for (i, s) in sections.iter().enumerate() {
+                for (x, y, z) in s {
+                    text.push_str(&format!("s{i},{x},{y},{z}\n"));
+                }
+            }
+            let o = parse_sections_csv(&text, "f", Units::Metre).map_err(|e| TestCaseError::fail(e.to_string()))?;
+            prop_assert_eq!(o.sections.len(), sections.len());
+            let n_lines = text.lines().count();
+            for (s, want) in o.sections.iter().zip(&sections) {
+                // `{}` of an f64 prints the shortest text that parses back to the same value.
+                let pts: Vec<(f64, f64, f64)> = s.points.iter().map(|p| (p.x, p.y, p.z)).collect();
+                prop_assert_eq!(&pts, want);
+                prop_assert!(s.lines.iter().all(|&l| (2..=n_lines).contains(&l)));
+            }
+        }
+    }
+}

@@ -1,0 +1,257 @@
+//! The IGES export read back by a real CAD kernel (Open CASCADE through `tools/occt_check.py`),
+//! and the golden IGES text of a tiny surface.
+//!
+//! The OCCT tests need a Python with the `cadquery-ocp-novtk` package; `.ci/run` makes one in
+//! `.venv` and sets `HULLSKIN_PYTHON`. Without it these tests fail (so the check cannot vanish
+//! silently) unless `HULLSKIN_SKIP_OCCT=1` says to skip them.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use hull::export::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
+use nurbs::{KnotVector, NurbsSurface, Vec3};
+use serde_json::{json, Value};
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The Python that has OCP, or `None` if the OCCT checks are explicitly skipped.
+fn occt_python() -> Option<String> {
+    match std::env::var("HULLSKIN_PYTHON") {
+        Ok(p) if !p.is_empty() => Some(p),
+        _ if std::env::var("HULLSKIN_SKIP_OCCT").as_deref() == Ok("1") => {
+            eprintln!("SKIPPED: OCCT check of the IGES export (HULLSKIN_SKIP_OCCT=1)");
+            None
+        }
+        _ => panic!(
+            "HULLSKIN_PYTHON is not set. The IGES export is checked with Open CASCADE; set up a \
+             Python with it and point HULLSKIN_PYTHON at it:\n  \
+             python3 -m venv .venv && .venv/bin/pip install -r tools/requirements.txt\n  \
+             HULLSKIN_PYTHON=$PWD/.venv/bin/python cargo test -p hullskin-hull --test occt_iges\n\
+             (.ci/run does all of this), or set HULLSKIN_SKIP_OCCT=1 to skip the check."
+        ),
+    }
+}
+
+/// (a) Rational bicubic, non-uniform knots with a double knot in v, v domain not [0, 1],
+/// weights from 0.55 to 1.85: a hull-like half section swept along x.
+fn rational_bicubic() -> NurbsSurface {
+    let ku = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.15, 0.4, 0.42, 1.0, 1.0, 1.0, 1.0]).expect("valid");
+    let kv = KnotVector::try_new(3, vec![-1.0, -1.0, -1.0, -1.0, 0.3, 0.3, 2.0, 4.5, 4.5, 4.5, 4.5]).expect("valid");
+    let (nu, nv) = (ku.num_basis(), kv.num_basis());
+    let mut pts = Vec::new();
+    let mut w = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            let (a, b) = (i as f64 / (nu - 1) as f64, j as f64 / (nv - 1) as f64);
+            let beam = 8.0 * (1.0 - (2.0 * a - 1.0).powi(4));
+            pts.push(Vec3::new(120.0 * a, beam * (b * 1.3).sin().min(1.0) + 0.01 * i as f64, 6.5 * b - 0.2 * a));
+            w.push(0.55 + 1.3 * ((i * 7 + j * 3) % 11) as f64 / 10.0);
+        }
+    }
+    NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+}
+
+/// (b) Polynomial, degree 2 in u and 3 in v, uniform knots, weights all 1.
+fn polynomial() -> NurbsSurface {
+    let ku = KnotVector::uniform(2, 6).expect("valid");
+    let kv = KnotVector::uniform(3, 5).expect("valid");
+    let (nu, nv) = (ku.num_basis(), kv.num_basis());
+    let mut pts = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            let (x, y) = (i as f64 * 2.5, j as f64 * 1.25);
+            pts.push(Vec3::new(x, y, 0.1 * x * x - 0.3 * x * y + 0.05 * y * y * y));
+        }
+    }
+    NurbsSurface::try_new(ku, kv, &pts, None).expect("valid")
+}
+
+/// (c) The exact quarter cylinder of radius `r` and length `h`: rational quadratic in u
+/// (middle weight 1/sqrt 2), linear in v.
+fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
+    let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
+    let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let mut pts = Vec::new();
+    let mut w = Vec::new();
+    for (x, y, wi) in [(r, 0.0, 1.0), (r, r, s), (0.0, r, 1.0)] {
+        for z in [0.0, h] {
+            pts.push(Vec3::new(x, y, z));
+            w.push(wi);
+        }
+    }
+    NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+}
+
+/// The same surface with every control point multiplied by `k` (a change of length unit).
+fn scaled(s: &NurbsSurface, k: f64) -> NurbsSurface {
+    let pts: Vec<Vec3> = s.control_points().iter().map(|&p| p * k).collect();
+    NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &pts, Some(&s.weights())).expect("valid")
+}
+
+/// A 9 x 9 grid over the domain, boundaries included, plus a few irregular interior points.
+fn samples(s: &NurbsSurface) -> Vec<[f64; 5]> {
+    let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
+    let mut uv: Vec<(f64, f64)> = Vec::new();
+    for a in 0..=8 {
+        for b in 0..=8 {
+            uv.push((u0 + (u1 - u0) * a as f64 / 8.0, v0 + (v1 - v0) * b as f64 / 8.0));
+        }
+    }
+    for k in 1..=7 {
+        let (a, b) = ((k as f64 * 0.618_034).fract(), (k as f64 * 0.414_214).fract());
+        uv.push((u0 + (u1 - u0) * a, v0 + (v1 - v0) * b));
+    }
+    uv.into_iter()
+        .map(|(u, v)| {
+            let p = s.point(u, v);
+            [u, v, p.x, p.y, p.z]
+        })
+        .collect()
+}
+
+fn meta(units: IgesUnits, name: &str) -> IgesMeta {
+    let mut m = IgesMeta::new(units, name, "20240102.030405");
+    m.author = "hullskin test".into();
+    m
+}
+
+fn write_case(dir: &Path, name: &str, s: &NurbsSurface, units: IgesUnits, samples: &[[f64; 5]]) -> (PathBuf, PathBuf) {
+    let igs = dir.join(format!("{name}.igs"));
+    let mut out = Vec::new();
+    write_iges(&mut out, s, &meta(units, &format!("{name}.igs"))).expect("writes to memory");
+    std::fs::write(&igs, out).expect("write IGES");
+    let expected = json!({
+        "surface": SurfaceFile::from_surface(s, &units.name.to_lowercase()),
+        "iges_units": {"flag": units.flag, "name": units.name},
+        "samples": samples,
+    });
+    let exp = dir.join(format!("{name}.expected.json"));
+    std::fs::write(&exp, serde_json::to_string_pretty(&expected).expect("serializes")).expect("write JSON");
+    (igs, exp)
+}
+
+/// Run the checker; returns (exit code, parsed summary).
+fn run_check(python: &str, igs: &Path, exp: &Path) -> (i32, Value) {
+    let script = workspace_root().join("tools/occt_check.py");
+    let out = Command::new(python)
+        .arg(&script)
+        .arg(igs)
+        .arg(exp)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {python} {}: {e}", script.display()));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let summary: Value = serde_json::from_str(&stdout).unwrap_or_else(|e| {
+        panic!(
+            "occt_check.py did not print a JSON summary ({e}); status {:?}\nstdout:\n{stdout}\nstderr:\n{stderr}",
+            out.status
+        )
+    });
+    (out.status.code().unwrap_or(-1), summary)
+}
+
+#[test]
+fn occt_reads_the_iges_export_exactly() {
+    let Some(python) = occt_python() else { return };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let cases = [
+        ("rational_bicubic", rational_bicubic()),
+        ("polynomial", polynomial()),
+        ("quarter_cylinder", quarter_cylinder(2.0, 3.0)),
+    ];
+    for (name, s) in &cases {
+        // Also feet and inches once, to check the other unit names OCCT must recognise.
+        let mut unit_cases = vec![(IgesUnits::METRE, 1.0), (IgesUnits::MILLIMETRE, 1000.0)];
+        if *name == "quarter_cylinder" {
+            unit_cases.extend([(IgesUnits::FOOT, 1.0 / 0.3048), (IgesUnits::INCH, 1.0 / 0.0254)]);
+        }
+        for (units, k) in unit_cases {
+            let s = scaled(s, k);
+            let case = format!("{name}_{}", units.name.to_lowercase());
+            let (igs, exp) = write_case(dir.path(), &case, &s, units, &samples(&s));
+            let (code, summary) = run_check(&python, &igs, &exp);
+            assert!(
+                code == 0 && summary["ok"] == true,
+                "{case}: OCCT disagrees with the export (exit {code}):\n{}",
+                serde_json::to_string_pretty(&summary["failed"]).unwrap_or_default()
+            );
+            let r = &summary["reads"];
+            eprintln!(
+                "{case}: OCP {} native err {:.1e}, default-mm scale {} (expected {}) err {:.1e}",
+                summary["ocp_version"],
+                r["native"]["max_point_error_rel"].as_f64().unwrap_or(f64::NAN),
+                r["default_mm"]["measured_scale"],
+                r["default_mm"]["expected_scale"],
+                r["default_mm"]["max_point_error_rel"].as_f64().unwrap_or(f64::NAN),
+            );
+            // The checker really compared something: every sample, in both reads.
+            for read in ["native", "default_mm"] {
+                assert_eq!(r[read]["samples"].as_u64(), Some(samples(&s).len() as u64), "{case} {read}");
+            }
+        }
+    }
+}
+
+/// The checker must fail when the file and our evaluator disagree: samples of the quarter
+/// cylinder with the middle weight changed, and a surface labelled in the wrong unit.
+#[test]
+fn occt_check_detects_a_mismatch() {
+    let Some(python) = occt_python() else { return };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let s = quarter_cylinder(2.0, 3.0);
+    let mut w = s.weights();
+    w[2] = 0.9;
+    w[3] = 0.9;
+    let wrong =
+        NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &s.control_points(), Some(&w)).expect("valid");
+    let (igs, exp) = write_case(dir.path(), "wrong_weight", &s, IgesUnits::METRE, &samples(&wrong));
+    let (code, summary) = run_check(&python, &igs, &exp);
+    assert_eq!(code, 1, "{summary}");
+    let failed = summary["failed"].to_string();
+    assert!(failed.contains("points at"), "{failed}");
+
+    // Written in metres but the expectation (and so the default-mm scale) says millimetres.
+    let (igs, _) = write_case(dir.path(), "unit_m", &s, IgesUnits::METRE, &samples(&s));
+    let (_, exp) = write_case(dir.path(), "unit_mm", &s, IgesUnits::MILLIMETRE, &samples(&s));
+    let (code, summary) = run_check(&python, &igs, &exp);
+    assert_eq!(code, 1, "{summary}");
+    let failed = summary["failed"].to_string();
+    assert!(failed.contains("global units") && failed.contains("default_mm: poles"), "{failed}");
+}
+
+/// The IGES text of a tiny surface (the quarter cylinder of radius 1 and length 1) against
+/// `testdata/golden/tiny.igs`. Refresh with `UPDATE_GOLDEN=1`. Compared exactly: the writer
+/// is deterministic and its numbers are shortest round-trip strings, identical on every
+/// platform.
+#[test]
+fn golden_tiny_iges() {
+    let s = quarter_cylinder(1.0, 1.0);
+    let mut m = IgesMeta::new(IgesUnits::METRE, "tiny.igs", "20000101.000000");
+    m.preprocessor_version = "golden".into();
+    m.author = "hullskin test".into();
+    m.organization = "hullskin".into();
+    let mut out = Vec::new();
+    write_iges(&mut out, &s, &m).expect("writes to memory");
+    let text = String::from_utf8(out).expect("ASCII");
+    let path = workspace_root().join("testdata/golden/tiny.igs");
+    if std::env::var("UPDATE_GOLDEN").as_deref() == Ok("1") {
+        std::fs::create_dir_all(path.parent().expect("has a parent")).expect("create testdata/golden");
+        std::fs::write(&path, &text).expect("write golden file");
+        eprintln!("updated {}", path.display());
+        return;
+    }
+    let golden = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{}: {e}; run with UPDATE_GOLDEN=1 to create it", path.display()));
+    if let Some((k, (a, b))) = text.lines().zip(golden.lines()).enumerate().find(|(_, (a, b))| a != b) {
+        panic!(
+            "line {} differs from {}:\n  now:    {a}\n  golden: {b}\n(UPDATE_GOLDEN=1 refreshes)",
+            k + 1,
+            path.display()
+        );
+    }
+    assert_eq!(text.lines().count(), golden.lines().count(), "line count differs from {}", path.display());
+    assert_eq!(text, golden, "line endings differ from {}", path.display());
+}

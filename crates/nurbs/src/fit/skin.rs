@@ -1,0 +1,745 @@
+//! Skinning: one tensor-product surface through (or near) a family of sections
+//! (The NURBS Book 9.2.5 and 10.3).
+//!
+//! The input is `K >= 2` sections, each an ordered list of points; `u` runs along a section
+//! and `v` across the sections. A section whose points all coincide (within
+//! [`COINCIDENT_REL`] of the data's size; a single point counts too) is *degenerate*: a
+//! pointed stem or stern. It becomes a curve whose control points all sit at that point, so
+//! the surface edge collapses there. The surface is non-rational (all weights 1) and its
+//! control net is stored u-major: index `i * n_v + j`, `i` along the sections, `j` across them.
+
+use super::interp::InterpolationSolver;
+use super::knots::{approximation_knots, check_ctrl_count, knots_for_approximation, knots_for_interpolation};
+use super::lsq::LeastSquaresSolver;
+use super::param::{chord_lengths, parameterize_labelled, uniform_params, universal_params};
+use super::{common_parameters, Parameterization};
+use crate::curve::to_homogeneous;
+use crate::tolerance::COINCIDENT_REL;
+use crate::{merge_knot_vectors, KnotVector, NurbsCurve, NurbsError, NurbsSurface, Vec3, MAX_DEGREE};
+
+/// Settings of [`skin_interpolate`] and [`skin_approximate`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SkinOptions {
+    /// Degree along the sections (lowered to `n - 1` for a section of `n` points).
+    pub degree_u: usize,
+    /// Degree across the sections (lowered to `K - 1` for `K` sections).
+    pub degree_v: usize,
+    /// Parameterization in both directions.
+    pub param: Parameterization,
+}
+
+impl Default for SkinOptions {
+    /// Bicubic, centripetal.
+    fn default() -> Self {
+        SkinOptions { degree_u: 3, degree_v: 3, param: Parameterization::Centripetal }
+    }
+}
+
+/// A skinned surface and the parameters `(u, v)` assigned to every input point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SkinResult {
+    pub surface: NurbsSurface,
+    /// `params[k][i]` belongs to `sections[k][i]`. Interpolation gives
+    /// `surface.point(u, v) == sections[k][i]`; approximation gives the points it fitted to.
+    pub params: Vec<Vec<(f64, f64)>>,
+}
+
+/// One section, checked and classified.
+enum Section<'a> {
+    /// Distinct consecutive points (checked by the parameterization).
+    Regular(&'a [Vec3]),
+    /// All points at one place.
+    Point(Vec3, usize),
+}
+
+impl Section<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Section::Regular(s) => s.len(),
+            Section::Point(_, n) => *n,
+        }
+    }
+}
+
+/// Validate the sections and find the degenerate ones.
+fn classify<'a>(sections: &'a [Vec<Vec3>], opts: &SkinOptions) -> Result<Vec<Section<'a>>, NurbsError> {
+    for degree in [opts.degree_u, opts.degree_v] {
+        if degree == 0 || degree > MAX_DEGREE {
+            return Err(NurbsError::BadDegree { degree, max: MAX_DEGREE });
+        }
+    }
+    if sections.len() < 2 {
+        return Err(NurbsError::TooFewPoints { what: "skinning (sections)".into(), needed: 2, got: sections.len() });
+    }
+    let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    let mut hi = -lo;
+    let mut flat = 0;
+    for (k, s) in sections.iter().enumerate() {
+        if s.is_empty() {
+            return Err(NurbsError::TooFewPoints { what: format!("section {k}"), needed: 1, got: 0 });
+        }
+        for p in s {
+            if !p.is_finite() {
+                return Err(NurbsError::NonFinitePoint { index: flat });
+            }
+            lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+            hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+            flat += 1;
+        }
+    }
+    let size = (hi - lo).norm();
+    let out: Vec<Section> = sections
+        .iter()
+        .map(|s| {
+            let c = s[0];
+            if s.iter().all(|p| p.distance(c) <= COINCIDENT_REL * size) {
+                Section::Point(c, s.len())
+            } else {
+                Section::Regular(s)
+            }
+        })
+        .collect();
+    if !out.iter().any(|s| matches!(s, Section::Regular(_))) {
+        return Err(NurbsError::TooFewPoints {
+            what: "skinning: every section is a single point; sections with extent".into(),
+            needed: 1,
+            got: 0,
+        });
+    }
+    Ok(out)
+}
+
+/// Prefix `what` of an error with the section it concerns.
+fn in_section(e: NurbsError, k: usize) -> NurbsError {
+    let tag = |w: String| format!("section {k}: {w}");
+    match e {
+        NurbsError::TooFewPoints { what, needed, got } => NurbsError::TooFewPoints { what: tag(what), needed, got },
+        NurbsError::CoincidentPoints { what, index, next } => {
+            NurbsError::CoincidentPoints { what: tag(what), index, next }
+        }
+        NurbsError::BadControlPointCount { what, count, min, max } => {
+            NurbsError::BadControlPointCount { what: tag(what), count, min, max }
+        }
+        NurbsError::SingularSystem { what } => NurbsError::SingularSystem { what: tag(what) },
+        NurbsError::Incompatible { what } => NurbsError::Incompatible { what: tag(what) },
+        NurbsError::NonFiniteResult { what } => NurbsError::NonFiniteResult { what: tag(what) },
+        NurbsError::DecreasingParameters { what, index, prev, value } => {
+            NurbsError::DecreasingParameters { what: tag(what), index, prev, value }
+        }
+        other => other,
+    }
+}
+
+/// Parameters across the sections: for [`Parameterization::Universal`] the universal values for
+/// `K` points; otherwise, as The NURBS Book A9.4 / eq. 10.8, the mean over the columns
+/// `col(i) = (X_{i,0}, ..., X_{i,K-1})` of each column's own parameters (eq. 9.3-9.6), skipping
+/// columns whose points all coincide.
+///
+/// # Errors
+/// [`NurbsError::CoincidentPoints`] if two consecutive sections coincide in every column.
+fn cross_params(
+    n_cols: usize,
+    k_sections: usize,
+    column: impl Fn(usize, usize) -> Vec3,
+    kind: Parameterization,
+    degree_v: usize,
+) -> Result<Vec<f64>, NurbsError> {
+    let v = match kind {
+        Parameterization::Universal => return universal_params(k_sections, degree_v, "sections"),
+        Parameterization::Uniform => uniform_params(k_sections),
+        Parameterization::ChordLength | Parameterization::Centripetal => {
+            let mut sum = vec![0.0; k_sections];
+            let mut used = 0usize;
+            let mut pts = Vec::with_capacity(k_sections);
+            for i in 0..n_cols {
+                pts.clear();
+                pts.extend((0..k_sections).map(|k| column(i, k)));
+                let mut d = chord_lengths(&pts);
+                if kind == Parameterization::Centripetal {
+                    d.iter_mut().for_each(|x| *x = x.sqrt());
+                }
+                let total: f64 = d.iter().sum();
+                if total <= 0.0 {
+                    continue;
+                }
+                used += 1;
+                let mut acc = 0.0;
+                for (s, dk) in sum[1..].iter_mut().zip(&d) {
+                    acc += dk;
+                    *s += acc / total;
+                }
+            }
+            if used == 0 {
+                return Err(NurbsError::CoincidentPoints { what: "sections (all of them)".into(), index: 0, next: 1 });
+            }
+            let mut v: Vec<f64> = sum.iter().map(|s| s / used as f64).collect();
+            v[0] = 0.0;
+            v[k_sections - 1] = 1.0;
+            v
+        }
+    };
+    // A gap below COINCIDENT_REL in every column means two sections in the same place.
+    if let Some(index) = v.windows(2).position(|w| w[1] - w[0] <= COINCIDENT_REL) {
+        return Err(NurbsError::CoincidentPoints { what: "sections".into(), index, next: index + 1 });
+    }
+    Ok(v)
+}
+
+/// Interpolate every column `columns[i] = (R_{i,0}, ..., R_{i,K-1})` across the sections with one
+/// factorization and assemble the u-major net.
+fn interpolate_across(
+    rows: &[Vec<Vec3>],
+    v: &[f64],
+    kind: Parameterization,
+    q: usize,
+) -> Result<(KnotVector, Vec<[f64; 4]>), NurbsError> {
+    let kv = knots_for_interpolation(v, q, kind)?;
+    let solver = InterpolationSolver::new(v, &kv)?;
+    let n_u = rows[0].len();
+    let mut net = Vec::with_capacity(n_u * v.len());
+    let mut col: Vec<[f64; 3]> = vec![[0.0; 3]; v.len()];
+    for i in 0..n_u {
+        for (c, row) in col.iter_mut().zip(rows) {
+            *c = row[i].to_array();
+        }
+        solver.solve_in_place(&mut col)?;
+        net.extend(col.iter().map(|&c| to_homogeneous(Vec3::from_array(c), 1.0)));
+    }
+    Ok((kv, net))
+}
+
+/// Interpolating skin (The NURBS Book 9.2.5 A9.4 and 10.3): a surface through every input point.
+///
+/// - All non-degenerate sections have the same count `n` (degenerate ones may have any
+///   count): global surface interpolation, A9.4. One u-parameter vector, the mean of the
+///   sections' own parameters (eq. 9.18), averaging knots (eq. 9.8), degree `p = min(degree_u,
+///   n - 1)`; each section is interpolated with that one factorization. The net is `n x K`,
+///   one pole per offset. The v-parameters are the mean over the data columns.
+/// - Otherwise (10.3): each section is interpolated on its own parameters and knots (degree
+///   lowered to `n_k - 1` if needed), the curves are made compatible by degree elevation to the
+///   highest degree (A5.9) and refinement to the merged knot vector (A5.4), and the
+///   v-parameters are the mean over the columns of the compatible control points (eq. 10.8).
+///
+/// Across the sections, degree `q = min(degree_v, K - 1)` with the knots of the
+/// parameterization (averaging, or uniform for universal), one factorization for all columns.
+///
+/// # Errors
+/// [`NurbsError::BadDegree`]; [`NurbsError::TooFewPoints`] for fewer than 2 sections, an empty
+/// section, or only degenerate sections; [`NurbsError::NonFinitePoint`] (index counted through
+/// all sections in order); [`NurbsError::CoincidentPoints`] for consecutive equal points within
+/// a section (the message names it) or two coincident sections; [`NurbsError::SingularSystem`].
+pub fn skin_interpolate(sections: &[Vec<Vec3>], opts: &SkinOptions) -> Result<SkinResult, NurbsError> {
+    let secs = classify(sections, opts)?;
+    let q = opts.degree_v.min(secs.len() - 1);
+    let regular_counts: Vec<usize> =
+        secs.iter().filter_map(|s| if let Section::Regular(s) = s { Some(s.len()) } else { None }).collect();
+    let n = regular_counts[0];
+    if regular_counts.iter().all(|&c| c == n) {
+        interpolate_equal(&secs, n, q, opts)
+    } else {
+        interpolate_unequal(&secs, q, opts)
+    }
+    .map(|(surface, v, u_of)| SkinResult { params: data_params(&secs, &v, u_of), surface })
+}
+
+/// `u` parameters per section (`None` for a degenerate section: spread uniformly).
+type UParams = Vec<Option<Vec<f64>>>;
+
+fn data_params(secs: &[Section], v: &[f64], u_of: UParams) -> Vec<Vec<(f64, f64)>> {
+    secs.iter()
+        .zip(u_of)
+        .zip(v)
+        .map(|((s, u), &vk)| {
+            let u = u.unwrap_or_else(|| if s.len() < 2 { vec![0.0] } else { uniform_params(s.len()) });
+            u.into_iter().map(|uk| (uk, vk)).collect()
+        })
+        .collect()
+}
+
+fn interpolate_equal(
+    secs: &[Section],
+    n: usize,
+    q: usize,
+    opts: &SkinOptions,
+) -> Result<(NurbsSurface, Vec<f64>, UParams), NurbsError> {
+    let kind = opts.param;
+    let p = opts.degree_u.min(n - 1);
+    let mut own = Vec::new();
+    for (k, s) in secs.iter().enumerate() {
+        if let Section::Regular(pts) = s {
+            own.push(parameterize_labelled(pts, kind, p, "points").map_err(|e| in_section(e, k))?);
+        }
+    }
+    let u = common_parameters(&own)?;
+    let ku = knots_for_interpolation(&u, p, kind)?;
+    let solver = InterpolationSolver::new(&u, &ku)?;
+    let rows: Vec<Vec<Vec3>> = secs
+        .iter()
+        .enumerate()
+        .map(|(k, s)| match s {
+            Section::Regular(pts) => solver.control_points(pts).map_err(|e| in_section(e, k)),
+            Section::Point(c, _) => Ok(vec![*c; n]),
+        })
+        .collect::<Result<_, _>>()?;
+    let data = |i: usize, k: usize| match &secs[k] {
+        Section::Regular(pts) => pts[i],
+        Section::Point(c, _) => *c,
+    };
+    let v = cross_params(n, secs.len(), data, kind, q)?;
+    let (kv, net) = interpolate_across(&rows, &v, kind, q)?;
+    let u_of = secs.iter().map(|s| (s.len() == n || matches!(s, Section::Regular(_))).then(|| u.clone())).collect();
+    Ok((NurbsSurface::from_parts_unchecked(ku, kv, net), v, u_of))
+}
+
+fn interpolate_unequal(
+    secs: &[Section],
+    q: usize,
+    opts: &SkinOptions,
+) -> Result<(NurbsSurface, Vec<f64>, UParams), NurbsError> {
+    let kind = opts.param;
+    let mut curves: Vec<Option<NurbsCurve>> = Vec::with_capacity(secs.len());
+    let mut u_of: UParams = Vec::with_capacity(secs.len());
+    for (k, s) in secs.iter().enumerate() {
+        match s {
+            Section::Regular(pts) => {
+                let pk = opts.degree_u.min(pts.len() - 1);
+                let fit = || -> Result<(NurbsCurve, Vec<f64>), NurbsError> {
+                    let t = parameterize_labelled(pts, kind, pk, "points")?;
+                    let kv = knots_for_interpolation(&t, pk, kind)?;
+                    Ok((InterpolationSolver::new(&t, &kv)?.curve(pts)?, t))
+                };
+                let (c, t) = fit().map_err(|e| in_section(e, k))?;
+                curves.push(Some(c));
+                u_of.push(Some(t));
+            }
+            Section::Point(..) => {
+                curves.push(None);
+                u_of.push(None);
+            }
+        }
+    }
+    let p = curves.iter().flatten().map(NurbsCurve::degree).max().expect("classify keeps one regular section");
+    let elevated: Vec<Option<NurbsCurve>> = curves
+        .into_iter()
+        .map(|c| c.map(|c| c.elevate_degree(p - c.degree())).transpose())
+        .collect::<Result<_, _>>()?;
+    let knot_refs: Vec<&KnotVector> = elevated.iter().flatten().map(NurbsCurve::knots).collect();
+    let ku = merge_knot_vectors(&knot_refs)?;
+    let n_u = ku.num_basis();
+    let rows: Vec<Vec<Vec3>> = elevated
+        .iter()
+        .zip(secs)
+        .map(|(c, s)| match (c, s) {
+            (Some(c), _) => Ok(c.refine_to(&ku)?.control_points()),
+            (None, Section::Point(x, _)) => Ok(vec![*x; n_u]),
+            (None, Section::Regular(_)) => unreachable!("regular sections have curves"),
+        })
+        .collect::<Result<_, NurbsError>>()?;
+    let v = cross_params(n_u, secs.len(), |i, k| rows[k][i], kind, q)?;
+    let (kv, net) = interpolate_across(&rows, &v, kind, q)?;
+    Ok((NurbsSurface::from_parts_unchecked(ku, kv, net), v, u_of))
+}
+
+/// Approximating skin: a surface with `nu x nv` control points, degrees `(p, q)`, fitted by
+/// least squares first along each section, then across the sections (The NURBS Book 9.4.1
+/// applied as in 9.4.3's two-stage surface fit).
+///
+/// 1. Each non-degenerate section gets its own parameters; the common u knot vector is the mean
+///    of the sections' symmetric eq. 9.68-9.69 knot vectors ([`approximation_knots`]; this is
+///    also the knot vector of the averaged parameters, the placement being linear in them), or
+///    uniform for [`Parameterization::Universal`]. Each section is fitted with `nu` control
+///    points on those knots, its ends interpolated; the Schoenberg-Whitney condition is checked
+///    per section and a violation names the section. Degenerate sections get `nu` copies of
+///    their point.
+/// 2. Across: the columns of the `K` curves' control points are fitted with `nv` control
+///    points; v-parameters are the mean over the columns (eq. 10.8), knots as in step 1; one
+///    factorization for all columns. The first and last sections are interpolated.
+///
+/// Degrees are lowered as in [`skin_interpolate`]: `p = min(degree_u, n_min - 1)` with `n_min`
+/// the smallest non-degenerate section, `q = min(degree_v, K - 1)`.
+///
+/// # Errors
+/// As [`skin_interpolate`], and [`NurbsError::BadControlPointCount`] unless `p + 1 <= nu <=
+/// n_min` and `q + 1 <= nv <= K`.
+pub fn skin_approximate(
+    sections: &[Vec<Vec3>],
+    nu: usize,
+    nv: usize,
+    opts: &SkinOptions,
+) -> Result<SkinResult, NurbsError> {
+    let secs = classify(sections, opts)?;
+    let kind = opts.param;
+    let k_count = secs.len();
+    let n_min = secs
+        .iter()
+        .filter_map(|s| if let Section::Regular(s) = s { Some(s.len()) } else { None })
+        .min()
+        .expect("classify keeps one regular section");
+    let p = opts.degree_u.min(n_min - 1);
+    let q = opts.degree_v.min(k_count - 1);
+    check_ctrl_count(nu, n_min, p, "skinning along the sections (smallest section)")?;
+    check_ctrl_count(nv, k_count, q, "skinning across the sections")?;
+    // Step 1: parameters, common knots, one least-squares fit per section.
+    let mut u_of: UParams = Vec::with_capacity(k_count);
+    for (k, s) in secs.iter().enumerate() {
+        u_of.push(match s {
+            Section::Regular(pts) => Some(parameterize_labelled(pts, kind, p, "points").map_err(|e| in_section(e, k))?),
+            Section::Point(..) => None,
+        });
+    }
+    let ku = common_approximation_knots(&u_of, nu, p, kind)?;
+    let rows: Vec<Vec<Vec3>> = secs
+        .iter()
+        .zip(&u_of)
+        .enumerate()
+        .map(|(k, (s, t))| match (s, t) {
+            (Section::Regular(pts), Some(t)) => LeastSquaresSolver::new(t, &ku)
+                .and_then(|solver| solver.control_points(pts))
+                .map_err(|e| in_section(e, k)),
+            (Section::Point(c, _), _) => Ok(vec![*c; nu]),
+            (Section::Regular(_), None) => unreachable!("regular sections have parameters"),
+        })
+        .collect::<Result<_, _>>()?;
+    // Step 2: across the sections.
+    let v = cross_params(nu, k_count, |i, k| rows[k][i], kind, q)?;
+    let kv = knots_for_approximation(&v, nv, q, kind)?;
+    let solver = LeastSquaresSolver::new(&v, &kv)?;
+    let mut net = vec![[0.0; 4]; nu * nv];
+    let mut col: Vec<[f64; 3]> = vec![[0.0; 3]; k_count];
+    for i in 0..nu {
+        for (c, row) in col.iter_mut().zip(&rows) {
+            *c = row[i].to_array();
+        }
+        for (j, cp) in solver.solve(&col)?.into_iter().enumerate() {
+            net[i * nv + j] = to_homogeneous(Vec3::from_array(cp), 1.0);
+        }
+    }
+    let surface = NurbsSurface::from_parts_unchecked(ku, kv, net);
+    Ok(SkinResult { params: data_params(&secs, &v, u_of), surface })
+}
+
+/// The mean of the sections' approximation knot vectors (or uniform knots for universal).
+fn common_approximation_knots(
+    u_of: &[Option<Vec<f64>>],
+    nu: usize,
+    p: usize,
+    kind: Parameterization,
+) -> Result<KnotVector, NurbsError> {
+    if kind == Parameterization::Universal {
+        return KnotVector::uniform(p, nu);
+    }
+    let mut sum = vec![0.0; nu + p + 1];
+    let mut count = 0usize;
+    for (k, t) in u_of.iter().enumerate() {
+        if let Some(t) = t {
+            let kv = approximation_knots(t, nu, p).map_err(|e| in_section(e, k))?;
+            sum.iter_mut().zip(kv.as_slice()).for_each(|(s, x)| *s += x);
+            count += 1;
+        }
+    }
+    // Every section's knots run from 0 to 1, so the clamped ends stay exact.
+    let mut knots: Vec<f64> = sum.iter().map(|s| s / count as f64).collect();
+    knots[..=p].fill(0.0);
+    knots[nu..].fill(1.0);
+    KnotVector::try_new(p, knots)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assert_near;
+
+    /// A hull-like table: `k` stations over length `l`, `n` waterlines; half-breadth
+    /// `y = b/2 (1 - (2x/l)^2) (1 - (1 - z/t)^4)`, zero at both ends (vertical stem and stern
+    /// lines, not points).
+    fn hull(k: usize, n: usize) -> Vec<Vec<Vec3>> {
+        let (l, b, t) = (100.0, 16.0, 6.0);
+        (0..k)
+            .map(|s| {
+                let x = -l / 2.0 + l * s as f64 / (k - 1) as f64;
+                (0..n)
+                    .map(|j| {
+                        let z = t * j as f64 / (n - 1) as f64;
+                        let y = b / 2.0 * (1.0 - (2.0 * x / l).powi(2)) * (1.0 - (1.0 - z / t).powi(4));
+                        Vec3::new(x, y, z)
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    fn assert_passes_through(r: &SkinResult, sections: &[Vec<Vec3>], tol: f64) {
+        for (sec, par) in sections.iter().zip(&r.params) {
+            assert_eq!(sec.len(), par.len());
+            for (q, &(u, v)) in sec.iter().zip(par) {
+                assert_near!(r.surface.point(u, v), *q, tol, "at ({u}, {v})");
+            }
+        }
+    }
+
+    #[test]
+    fn equal_counts_give_one_pole_per_offset_and_pass_through() {
+        let s = hull(21, 11);
+        for kind in [Parameterization::Centripetal, Parameterization::ChordLength, Parameterization::Universal] {
+            let opts = SkinOptions { param: kind, ..SkinOptions::default() };
+            let r = skin_interpolate(&s, &opts).expect("valid");
+            assert_eq!((r.surface.n_u(), r.surface.n_v()), (11, 21));
+            assert!(!r.surface.is_rational());
+            // Model size 100: two well-conditioned banded solves keep residuals near 1e-13.
+            assert_passes_through(&r, &s, 1e-10 * 100.0);
+        }
+    }
+
+    #[test]
+    fn reproduces_a_bicubic_surface() {
+        // Sample a known bicubic B-spline surface at the parameters the skin will compute
+        // (uniform, or universal) on the knots it will choose (averaging of uniform parameters,
+        // or uniform): interpolation is exact on its own spline space, so the skin must return
+        // the surface's control net.
+        for kind in [Parameterization::Uniform, Parameterization::Universal] {
+            let (p, q, nu, nv) = (3, 3, 7, 6);
+            let tu = parameterize_stub(nu, p, kind);
+            let tv = parameterize_stub(nv, q, kind);
+            let ku = knots_for_interpolation(&tu, p, kind).expect("valid");
+            let kv = knots_for_interpolation(&tv, q, kind).expect("valid");
+            let mut net = Vec::new();
+            for i in 0..nu {
+                for j in 0..nv {
+                    net.push(Vec3::new(j as f64 * 2.0, i as f64, ((i * 7 + j * 3) % 5) as f64 * 0.3));
+                }
+            }
+            let truth = NurbsSurface::try_new(ku, kv, &net, None).expect("valid");
+            let sections: Vec<Vec<Vec3>> =
+                tv.iter().map(|&v| tu.iter().map(|&u| truth.point(u, v)).collect()).collect();
+            let opts = SkinOptions { param: kind, ..SkinOptions::default() };
+            let r = skin_interpolate(&sections, &opts).expect("valid");
+            assert_eq!(r.surface.knots_u(), truth.knots_u());
+            assert_eq!(r.surface.knots_v(), truth.knots_v());
+            for i in 0..nu {
+                for j in 0..nv {
+                    // Both collocation matrices have condition O(10): round-off ~1e-14 on
+                    // coordinates up to 10.
+                    assert_near!(r.surface.control_point(i, j), truth.control_point(i, j), 1e-12, "{kind}");
+                }
+            }
+        }
+        // Degree 1 data (a planar grid): the interpolant of data on a plane lies in the plane
+        // (the spline space contains the linear functions, for any parameterization).
+        let plane: Vec<Vec<Vec3>> = (0..4)
+            .map(|k| {
+                (0..5)
+                    .map(|i| {
+                        let (x, y) = (i as f64 * (1.0 + 0.1 * k as f64), k as f64);
+                        Vec3::new(x, y, 2.0 * x - y)
+                    })
+                    .collect()
+            })
+            .collect();
+        let r = skin_interpolate(&plane, &SkinOptions::default()).expect("valid");
+        for a in 0..=10 {
+            for b in 0..=10 {
+                let x = r.surface.point(a as f64 / 10.0, b as f64 / 10.0);
+                assert_near!(x.z, 2.0 * x.x - x.y, 1e-12);
+            }
+        }
+    }
+
+    /// The parameters a skin computes for `n` points when they do not depend on the points.
+    fn parameterize_stub(n: usize, degree: usize, kind: Parameterization) -> Vec<f64> {
+        match kind {
+            Parameterization::Universal => universal_params(n, degree, "test").expect("valid"),
+            _ => uniform_params(n),
+        }
+    }
+
+    #[test]
+    fn unequal_counts_and_uneven_spacing_pass_through() {
+        // Sections of 4, 7, 9, 5 and 3 points, unevenly spaced along a bulging shape.
+        let counts = [4usize, 7, 9, 5, 3];
+        let s: Vec<Vec<Vec3>> = counts
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| {
+                let x = k as f64 * 1.5 + (k * k) as f64 * 0.2;
+                (0..n)
+                    .map(|i| {
+                        let a = (i as f64 / (n - 1) as f64).powf(1.4) * std::f64::consts::FRAC_PI_2;
+                        let r = 2.0 + 0.3 * x.sin();
+                        Vec3::new(x, r * a.sin(), -r * a.cos())
+                    })
+                    .collect()
+            })
+            .collect();
+        let r = skin_interpolate(&s, &SkinOptions::default()).expect("valid");
+        assert_eq!(r.surface.degree_u(), 3);
+        assert_eq!(r.surface.degree_v(), 3);
+        // Refinement and elevation are exact up to round-off; sizes ~5.
+        assert_passes_through(&r, &s, 1e-10 * 5.0);
+        // Every section's iso-curve is its interpolant: between data points too it stays on the
+        // circle arc within the fit accuracy (loose: 3 points of the last section on a quarter
+        // circle give a cubic with ~1% error).
+        let vk = r.params[1][0].1;
+        let x = s[1][0].x;
+        let rad = 2.0 + 0.3 * x.sin();
+        for a in 0..=20 {
+            let pt = r.surface.point(a as f64 / 20.0, vk);
+            assert_near!(pt.x, x, 1e-10);
+            assert_near!((pt.y * pt.y + pt.z * pt.z).sqrt(), rad, 0.01 * rad);
+        }
+    }
+
+    #[test]
+    fn degenerate_first_section_collapses_the_edge() {
+        let stem = Vec3::new(-50.0, 0.0, 3.0);
+        let mut equal = hull(9, 6);
+        equal[0] = vec![stem; 6];
+        // A single stem point, and one section shorter than the others: the unequal path.
+        let mut unequal = equal.clone();
+        unequal[0] = vec![stem];
+        unequal[4].pop();
+        for (sections, label) in [(equal, "equal counts"), (unequal, "single point, unequal counts")] {
+            let r = skin_interpolate(&sections, &SkinOptions::default()).expect(label);
+            // Model size 100, modest conditioning.
+            assert_passes_through(&r, &sections, 1e-10 * 100.0);
+            for i in 0..r.surface.n_u() {
+                assert_eq!(r.surface.control_point(i, 0), stem, "{label}");
+            }
+            for a in 0..=10 {
+                // Convex combination of equal control points: round-off of a few ulps of 50.
+                assert_near!(r.surface.point(a as f64 / 10.0, 0.0), stem, 1e-12);
+            }
+            let a = skin_approximate(&sections, 4, 6, &SkinOptions::default()).expect(label);
+            for a_ in 0..=10 {
+                assert_near!(a.surface.point(a_ as f64 / 10.0, 0.0), stem, 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn full_size_approximation_interpolates() {
+        let s = hull(8, 7);
+        let r = skin_approximate(&s, 7, 8, &SkinOptions::default()).expect("valid");
+        assert_eq!((r.surface.n_u(), r.surface.n_v()), (7, 8));
+        // A square least-squares system is an interpolation; normal equations square a modest
+        // condition number: 1e-9 on a model of size 100.
+        assert_passes_through(&r, &s, 1e-9);
+    }
+
+    #[test]
+    fn approximation_of_a_paraboloid_converges() {
+        // z = x^2 + y^2 over a rectangle, sampled on 40 sections of 50 points.
+        let s: Vec<Vec<Vec3>> = (0..40)
+            .map(|k| {
+                let y = -1.0 + 2.0 * k as f64 / 39.0;
+                (0..50)
+                    .map(|i| {
+                        let x = -1.5 + 3.0 * i as f64 / 49.0;
+                        Vec3::new(x, y, x * x + y * y)
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut prev = f64::INFINITY;
+        for (nu, nv) in [(4, 4), (6, 5), (10, 8), (20, 16)] {
+            let r = skin_approximate(&s, nu, nv, &SkinOptions::default()).expect("valid");
+            let mut worst = 0.0f64;
+            for (sec, par) in s.iter().zip(&r.params) {
+                for (q, &(u, v)) in sec.iter().zip(par) {
+                    worst = worst.max(r.surface.point(u, v).distance(*q));
+                }
+            }
+            assert!(worst < prev, "{nu}x{nv}: {worst} not below {prev}");
+            prev = worst;
+        }
+        // A quadratic is in the bicubic space; only the parameterization error remains, and it
+        // shrinks with the number of spans: at 17 x 13 spans it is far below 1e-3.
+        assert!(prev < 1e-3, "final error {prev}");
+        // With uniform parameters (uniform data), the paraboloid is reproduced exactly even by
+        // the smallest net, a bicubic Bezier patch (quadratic precision): round-off only.
+        let opts = SkinOptions { param: Parameterization::Uniform, ..SkinOptions::default() };
+        let r = skin_approximate(&s, 4, 4, &opts).expect("valid");
+        for (sec, par) in s.iter().zip(&r.params) {
+            for (q, &(u, v)) in sec.iter().zip(par) {
+                assert_near!(r.surface.point(u, v), *q, 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn approximation_of_a_cylinder_converges() {
+        // Quarter cylinder of radius 2 with sections of unequal counts.
+        let s: Vec<Vec<Vec3>> = (0..30)
+            .map(|k| {
+                let n = 40 + (k % 3) * 5;
+                let x = 5.0 * k as f64 / 29.0;
+                (0..n)
+                    .map(|i| {
+                        let a = std::f64::consts::FRAC_PI_2 * i as f64 / (n - 1) as f64;
+                        Vec3::new(x, 2.0 * a.cos(), 2.0 * a.sin())
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut prev = f64::INFINITY;
+        for nu in [4, 6, 10, 16] {
+            let r = skin_approximate(&s, nu, 4, &SkinOptions::default()).expect("valid");
+            // Distance to the cylinder at every data parameter and in between.
+            let mut worst = 0.0f64;
+            for a in 0..=50 {
+                for b in 0..=10 {
+                    let p = r.surface.point(a as f64 / 50.0, b as f64 / 10.0);
+                    worst = worst.max(((p.y * p.y + p.z * p.z).sqrt() - 2.0).abs());
+                }
+            }
+            assert!(worst < prev, "nu {nu}: {worst} not below {prev}");
+            prev = worst;
+        }
+        // Cubic approximation of a circular arc with 13 spans: O(h^4) ~ 1e-6 of the radius.
+        assert!(prev < 1e-5, "final error {prev}");
+    }
+
+    #[test]
+    fn errors_name_the_fault() {
+        let s = hull(5, 6);
+        assert!(matches!(skin_interpolate(&s[..1], &SkinOptions::default()), Err(NurbsError::TooFewPoints { .. })));
+        let mut bad = s.clone();
+        bad[2][3] = bad[2][2];
+        match skin_interpolate(&bad, &SkinOptions::default()) {
+            Err(NurbsError::CoincidentPoints { what, index: 2, next: 3 }) => {
+                assert!(what.contains("section 2"), "{what}")
+            }
+            other => panic!("expected coincident points, got {other:?}"),
+        }
+        let mut twin = s.clone();
+        twin[3] = twin[2].clone();
+        assert!(matches!(skin_interpolate(&twin, &SkinOptions::default()), Err(NurbsError::CoincidentPoints { .. })));
+        assert!(matches!(
+            skin_approximate(&s, 7, 4, &SkinOptions::default()),
+            Err(NurbsError::BadControlPointCount { count: 7, max: 6, .. })
+        ));
+        assert!(matches!(
+            skin_approximate(&s, 5, 6, &SkinOptions::default()),
+            Err(NurbsError::BadControlPointCount { count: 6, max: 5, .. })
+        ));
+        let mut nan = s.clone();
+        nan[1][2].z = f64::NAN;
+        assert!(matches!(
+            skin_interpolate(&nan, &SkinOptions::default()),
+            Err(NurbsError::NonFinitePoint { index: 8 })
+        ));
+        let opts = SkinOptions { degree_u: 0, ..SkinOptions::default() };
+        assert!(matches!(skin_interpolate(&s, &opts), Err(NurbsError::BadDegree { .. })));
+    }
+
+    #[test]
+    fn degrees_are_lowered_to_the_data() {
+        // Two sections of three points: degree (2, 1), a ruled surface.
+        let s = vec![
+            vec![Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(2.0, 0.0, 0.0)],
+            vec![Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 2.0, 1.0), Vec3::new(2.0, 0.0, 1.0)],
+        ];
+        let r = skin_interpolate(&s, &SkinOptions::default()).expect("valid");
+        assert_eq!((r.surface.degree_u(), r.surface.degree_v()), (2, 1));
+        assert_passes_through(&r, &s, 1e-14);
+    }
+}
