@@ -15,6 +15,7 @@ counts read (nu x nv) the same way throughout.
 * geomdl (NURBS-Python): fitting.approximate_surface / interpolate_surface with
   centripetal=True, points u-major (index = i * size_v + j, i along u).
 """
+
 from __future__ import annotations
 
 import json
@@ -231,8 +232,8 @@ def surface_from_iges(path: str):
     xstep.cascade.unit = M makes the reader convert to metres (its default is mm); with the
     file's own unit flag in metres this is the identity.
     """
-    from OCP.IGESControl import IGESControl_Reader
     from OCP.IFSelect import IFSelect_ReturnStatus
+    from OCP.IGESControl import IGESControl_Reader
     from OCP.Interface import Interface_Static
 
     Interface_Static.SetCVal_s("xstep.cascade.unit", "M")
@@ -283,8 +284,7 @@ class Hullskin:
         if proc.returncode != 0:
             msg = (proc.stderr or proc.stdout).strip().splitlines()
             raise FitError(
-                f"exit {proc.returncode}: {msg[-1] if msg else '(no output)'}"
-                f" [{shlex.join(argv)}]"
+                f"exit {proc.returncode}: {msg[-1] if msg else '(no output)'} [{shlex.join(argv)}]"
             )
         surf, meta = surface_from_json(os.path.join(out_dir, "surface.json"))
         return surf, meta, elapsed, argv

@@ -5,6 +5,7 @@
 
 Needs no hullskin binary. Takes about a minute (brute-force grids in pure Python).
 """
+
 from __future__ import annotations
 
 import math
@@ -73,9 +74,12 @@ def _():
 @check("hold-out cases: fit + held-out = the full table, first and last kept")
 def _():
     for c in cases.series60(DATA):
-        nu, nv = c.size
         n_all = 25 * 8
-        assert len(c.offsets()) + len(c.between) == n_all, (c.name, len(c.offsets()), len(c.between))
+        assert len(c.offsets()) + len(c.between) == n_all, (
+            c.name,
+            len(c.offsets()),
+            len(c.between),
+        )
     wl, st = cases.series60(DATA)
     # the z of the first and last kept waterline are the table's first and last (0 and 1.5 T)
     assert wl.sections[0][0][2] == 0.0 and abs(wl.sections[0][-1][2] - 1.5 * 6.5) < 1e-12
@@ -162,8 +166,12 @@ def _():
     s = fitters.geomdl_approx(c.sections, (7, 8))
     rng = random.Random(3)
     # edge offsets: their nearest point is often on the patch boundary
-    edge = [p for k, sec in enumerate(c.sections) for i, p in enumerate(sec)
-            if k in (0, len(c.sections) - 1) or i in (0, len(sec) - 1)]
+    edge = [
+        p
+        for k, sec in enumerate(c.sections)
+        for i, p in enumerate(sec)
+        if k in (0, len(c.sections) - 1) or i in (0, len(sec) - 1)
+    ]
     _brute_check(s, rng.sample(edge, 15) + rng.sample(c.between, 15), "geomdl approx freeform")
 
 

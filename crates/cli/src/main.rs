@@ -1,1 +1,43 @@
-fn main() {}
+//! The `hullskin` command line: fit one NURBS surface to a ship's offsets.
+//!
+//! `main` only maps the outcome of [`run`] to an exit code; each subcommand lives in its own
+//! file and turns arguments into library calls.
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+mod fit;
+
+/// Fit one fair NURBS hull surface to offset data by skinning.
+#[derive(Debug, Parser)]
+#[command(name = "hullskin", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Fit a surface to offsets (the built-in Series 60 sample when no input is given) and
+    /// write surface.igs, surface.json and report.json.
+    Fit(fit::FitArgs),
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(code) => code,
+        Err(err) => {
+            eprintln!("hullskin: error: {err:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run() -> anyhow::Result<ExitCode> {
+    let cli = Cli::parse();
+    match cli.command {
+        Some(Command::Fit(args)) => fit::run(&args),
+        None => fit::run(&fit::FitArgs::default()),
+    }
+}

@@ -79,6 +79,17 @@ pub enum HullError {
         /// What, with what was expected (boxed to keep `Result<_, HullError>` small).
         kind: Box<InputErrorKind>,
     },
+    /// The kernel could not fit a surface with the requested settings.
+    #[error("{method} fit failed: {source}")]
+    Fit {
+        /// The fitting method.
+        method: &'static str,
+        /// The kernel's reason.
+        source: nurbs::NurbsError,
+    },
+    /// Settings that cannot work, whatever the data.
+    #[error("{0}")]
+    Config(String),
     /// A units name that is none of `m`, `mm`, `ft`, `in`.
     #[error("unknown units \"{0}\" (expected m, mm, ft or in)")]
     UnknownUnits(String),

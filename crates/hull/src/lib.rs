@@ -6,15 +6,23 @@
 
 mod error;
 pub mod export;
+pub mod fit_error;
 mod offsets;
+mod output;
+mod pipeline;
 pub mod read;
+mod report;
 mod sample;
 mod units;
 
 pub use error::{HullError, InputErrorKind, Location};
+pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
 pub use offsets::{Offsets, Section, COINCIDENT_REL, PLANAR_REL};
+pub use output::write_atomic;
+pub use pipeline::{default_ctrl, fit_offsets, FitConfig, FitMethod, FitOutcome};
 pub use read::{
     decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
 };
+pub use report::{summary_table, write_fit_outputs, InputSummary, Report, SurfaceSummary};
 pub use sample::{series60_sample, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
 pub use units::Units;

@@ -46,6 +46,14 @@ impl KnotVector {
         if end <= start {
             return Err(NurbsError::EmptyDomain { start, end });
         }
+        // The end knots have multiplicity exactly p + 1: one more gives a basis function that
+        // vanishes everywhere.
+        if knots[degree + 1] == start {
+            return Err(NurbsError::KnotMultiplicity { value: start, multiplicity: degree + 2, degree });
+        }
+        if knots[m - degree - 1] == end {
+            return Err(NurbsError::KnotMultiplicity { value: end, multiplicity: degree + 2, degree });
+        }
         let mut i = degree + 1;
         while i < m - degree {
             let mult = knots[i..].iter().take_while(|&&k| k == knots[i]).count();
@@ -204,6 +212,13 @@ mod tests {
             Err(NurbsError::KnotMultiplicity { multiplicity: 3, .. })
         ));
         assert!(matches!(KnotVector::try_new(1, vec![1.0, 1.0, 1.0, 1.0]), Err(NurbsError::EmptyDomain { .. })));
+    }
+
+    #[test]
+    fn end_knots_have_multiplicity_exactly_degree_plus_one() {
+        for k in [vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]] {
+            assert!(matches!(KnotVector::try_new(2, k), Err(NurbsError::KnotMultiplicity { multiplicity: 4, .. })));
+        }
     }
 
     #[test]

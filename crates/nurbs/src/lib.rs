@@ -22,5 +22,7 @@ pub use knots::{KnotVector, MAX_DEGREE};
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
 pub use vec3::Vec3;
 // refine / elevate / project: their helpers add `pub use` lines below.
+pub use project::{
+    project_point_to_curve, CurveProjection, CurveProjector, ProjectionOptions, SurfaceProjection, SurfaceProjector,
+};
 pub use refine::merge_knot_vectors;
-pub use project::{project_point_to_curve, CurveProjection, CurveProjector, ProjectionOptions, SurfaceProjection, SurfaceProjector};

@@ -185,28 +185,57 @@ struct Block {
     b0: usize,
 }
 
-/// A start point for Newton: a discrete local minimum of the sampled distance.
+/// A grid node: the point and its first partial derivatives.
+#[derive(Clone, Copy, Debug)]
+struct Sample {
+    p: Vec3,
+    su: Vec3,
+    sv: Vec3,
+}
+
+/// A start point for Newton where the samples suggest a local minimum.
 #[derive(Clone, Copy, Debug)]
 struct Seed {
+    /// Smallest sampled squared distance near the seed (the ranking key).
     d2: f64,
-    node: usize,
+    u: f64,
+    v: f64,
+    /// The parameter box `[u0, u1, v0, v1]` the seed stands for: a start is skipped when an
+    /// earlier Newton run already ended inside its box.
+    range: [f64; 4],
     /// Lower bound of the distance over the span the seed was found in.
     lower: f64,
+}
+
+impl Seed {
+    fn covers(&self, u: f64, v: f64) -> bool {
+        let [u0, u1, v0, v1] = self.range;
+        (u0..=u1).contains(&u) && (v0..=v1).contains(&v)
+    }
 }
 
 /// Reusable per-query buffers.
 #[derive(Default)]
 struct Scratch {
     order: Vec<(f64, usize)>,
-    dist: Vec<f64>,
+    /// Per node of the span being scanned: `(|S - q|^2, S_u . (S - q), S_v . (S - q))`.
+    vals: Vec<[f64; 3]>,
     seeds: Vec<Seed>,
+    feet: Vec<(f64, f64)>,
 }
 
 /// Projects points onto one surface; build it once, then project many points.
 ///
-/// Construction samples the surface at `max(grid, degree)` intervals per knot span and
-/// direction and bounds each span by a sphere; a query then costs a sphere test per span, the
-/// samples of the spans that may hold the foot point, and a few Newton iterations.
+/// Construction samples the surface (point and first derivatives) at `max(grid, degree)`
+/// intervals per knot span and direction and bounds each span by a sphere. A query tests the
+/// spheres, scans the samples of the spans that may hold a closer point, and starts Newton
+/// from the best few places where the samples suggest a local minimum:
+/// - nodes nearer than their 8 neighbours (or than their 2 neighbours along a domain edge);
+/// - grid cells where the gradient `(S_u . r, S_v . r)` changes sign from negative to positive
+///   across the cell in both directions (a minimum between samples, caught even when no node
+///   shows it: the Poincare-Miranda pattern);
+/// - edge segments with such a sign change along the edge while the gradient points out of the
+///   domain, and corners where both components point out (constrained minima).
 #[derive(Clone, Debug)]
 pub struct SurfaceProjector<'a> {
     surface: &'a NurbsSurface,
@@ -214,8 +243,8 @@ pub struct SurfaceProjector<'a> {
     eps: f64,
     us: Vec<f64>,
     vs: Vec<f64>,
-    /// `S(us[a], vs[b])` at index `a * vs.len() + b`.
-    nodes: Vec<Vec3>,
+    /// Samples at `(us[a], vs[b])`, index `a * vs.len() + b`.
+    samples: Vec<Sample>,
     gu: usize,
     gv: usize,
     blocks: Vec<Block>,
@@ -232,30 +261,31 @@ impl<'a> SurfaceProjector<'a> {
         let gv = options.grid.max(surface.degree_v()).max(1);
         let (bu, bv) = (breaks(surface.knots_u()), breaks(surface.knots_v()));
         let (us, vs) = (sample_params(&bu, gu), sample_params(&bv, gv));
-        let nv = vs.len();
-        let mut nodes = Vec::with_capacity(us.len() * nv);
+        let (nu, nv) = (us.len(), vs.len());
+        let mut samples = Vec::with_capacity(nu * nv);
         for &u in &us {
             for &v in &vs {
-                nodes.push(surface.point(u, v));
+                let d = surface.derivatives(u, v);
+                samples.push(Sample { p: d.point, su: d.su, sv: d.sv });
             }
         }
         let (lo, hi) = surface.control_bounds();
         let eps = abs_tolerance(&options, (hi - lo).norm());
+        let magnitude = lo.norm().max(hi.norm());
         let mut blocks = Vec::with_capacity((bu.len() - 1) * (bv.len() - 1));
         for (i, wu) in bu.windows(2).enumerate() {
             for (j, wv) in bv.windows(2).enumerate() {
                 let (a0, b0) = (i * gu, j * gv);
-                let center = nodes[(a0 + gu / 2) * nv + b0 + gv / 2];
+                let center = samples[(a0 + gu / 2) * nv + b0 + gv / 2].p;
                 let radius = span_radius(surface, center, (wu[0], wu[1], gu), (wv[0], wv[1], gv)) + eps;
                 blocks.push(Block { center, radius, a0, b0 });
             }
         }
-        let magnitude = lo.norm().max(hi.norm());
-        let nu = us.len();
+        let same = eps.max(64.0 * f64::EPSILON * magnitude);
         let collapsed_edge = |idx: &mut dyn Iterator<Item = usize>| {
-            let mut pts = idx.map(|k| nodes[k]);
+            let mut pts = idx.map(|k| samples[k].p);
             let first = pts.next().unwrap_or(Vec3::ZERO);
-            pts.all(|p| (p - first).norm() <= eps.max(64.0 * f64::EPSILON * magnitude))
+            pts.all(|p| (p - first).norm() <= same)
         };
         let collapsed = [
             collapsed_edge(&mut (0..nv)),
@@ -263,7 +293,7 @@ impl<'a> SurfaceProjector<'a> {
             collapsed_edge(&mut (0..nu).map(|a| a * nv)),
             collapsed_edge(&mut (0..nu).map(|a| a * nv + nv - 1)),
         ];
-        SurfaceProjector { surface, options, eps, us, vs, nodes, gu, gv, blocks, magnitude, collapsed }
+        SurfaceProjector { surface, options, eps, us, vs, samples, gu, gv, blocks, magnitude, collapsed }
     }
 
     /// The surface projected onto.
@@ -276,7 +306,7 @@ impl<'a> SurfaceProjector<'a> {
         &self.options
     }
 
-    /// The closest point of the surface to `q` (global minimum over the grid's basins).
+    /// The closest point of the surface to `q`.
     ///
     /// For a finite `q` every field of the result is finite. A non-finite `q` gives
     /// `converged = false` at the domain's first corner, with a non-finite distance.
@@ -303,12 +333,12 @@ impl<'a> SurfaceProjector<'a> {
                 converged: false,
             };
         }
-        // 1. Sphere bounds of the spans; the closest span centre bounds the answer from above.
+        // 1. Sphere bounds of the spans; the nearest span centre bounds the answer from above.
         let mut upper = f64::INFINITY;
-        scratch.order.clear();
         for b in &self.blocks {
             upper = upper.min((q - b.center).norm());
         }
+        scratch.order.clear();
         for (k, b) in self.blocks.iter().enumerate() {
             let lower = (q - b.center).norm() - b.radius;
             if lower <= upper {
@@ -316,46 +346,36 @@ impl<'a> SurfaceProjector<'a> {
             }
         }
         scratch.order.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
-        // 2. Sample the spans that may hold a closer point; collect discrete local minima.
+        // 2. Scan the spans that may hold a closer point, nearest first; collect seeds.
         let mut best2 = upper * upper;
         scratch.seeds.clear();
-        let nv = self.vs.len();
-        let (ru, rv) = (self.gu + 1, self.gv + 1);
         for &(lower, k) in &scratch.order {
             if lower > 0.0 && lower * lower > best2 {
-                break;
+                break; // sorted: no later span can hold a closer point either
             }
             let b = self.blocks[k];
-            scratch.dist.clear();
-            for a in b.a0..b.a0 + ru {
-                let row = &self.nodes[a * nv + b.b0..][..rv];
-                scratch.dist.extend(row.iter().map(|&p| (p - q).norm_squared()));
-            }
-            for la in 0..ru {
-                for lb in 0..rv {
-                    let d2 = scratch.dist[la * rv + lb];
-                    best2 = best2.min(d2);
-                    let (a, bb) = (b.a0 + la, b.b0 + lb);
-                    let node = a * nv + bb;
-                    if self.is_local_min(q, &scratch.dist, &b, la, lb, d2, node)
-                        || self.is_edge_local_min(q, a, bb, d2, node)
-                    {
-                        push_seed(&mut scratch.seeds, Seed { d2, node, lower });
-                    }
-                }
-            }
+            self.scan_block(q, &b, lower, &mut scratch.vals, &mut scratch.seeds);
+            best2 = scratch.vals.iter().fold(best2, |m, x| m.min(x[0]));
         }
         scratch.seeds.sort_unstable_by(|x, y| x.d2.total_cmp(&y.d2));
-        // 3. Newton from the best few, skipping spans that cannot beat the best so far.
+        // 3. Newton from the best few, skipping spans that cannot beat the best so far and
+        //    seeds whose box already holds a foot found.
         let mut best: Option<SurfaceProjection> = None;
-        for seed in scratch.seeds.iter().take(self.options.candidates.max(1)) {
-            if let Some(bp) = &best {
-                if seed.lower >= bp.distance {
-                    continue;
-                }
+        let mut runs = 0;
+        scratch.feet.clear();
+        for seed in &scratch.seeds {
+            if runs >= self.options.candidates.max(1) {
+                break;
             }
-            let (a, bb) = (seed.node / nv, seed.node % nv);
-            let res = self.refine(q, self.us[a], self.vs[bb]);
+            if matches!(&best, Some(bp) if seed.lower >= bp.distance) {
+                continue;
+            }
+            if scratch.feet.iter().any(|&(u, v)| seed.covers(u, v)) {
+                continue;
+            }
+            runs += 1;
+            let res = self.refine(q, seed.u, seed.v);
+            scratch.feet.push((res.u, res.v));
             if !matches!(&best, Some(bp) if bp.distance <= res.distance) {
                 best = Some(res);
             }
@@ -363,10 +383,74 @@ impl<'a> SurfaceProjector<'a> {
         best.unwrap_or_else(|| self.refine(q, u0, v0))
     }
 
+    /// Sample one span against `q` into `vals` and push its seeds.
+    fn scan_block(&self, q: Vec3, b: &Block, lower: f64, vals: &mut Vec<[f64; 3]>, seeds: &mut Vec<Seed>) {
+        let (nu, nv) = (self.us.len(), self.vs.len());
+        let (ru, rv) = (self.gu + 1, self.gv + 1);
+        vals.clear();
+        for a in b.a0..b.a0 + ru {
+            for smp in &self.samples[a * nv + b.b0..][..rv] {
+                let r = smp.p - q;
+                vals.push([r.norm_squared(), smp.su.dot(r), smp.sv.dot(r)]);
+            }
+        }
+        let at = |la: usize, lb: usize| vals[la * rv + lb];
+        let (us, vs) = (&self.us, &self.vs);
+        let box_of = |a0: usize, a1: usize, b0: usize, b1: usize| [us[a0], us[a1], vs[b0], vs[b1]];
+        // Nodes: discrete local minima, in 2-D or along an edge, and corners held by both bounds.
+        for la in 0..ru {
+            for lb in 0..rv {
+                let [d2, gu, gv] = at(la, lb);
+                let (a, bb) = (b.a0 + la, b.b0 + lb);
+                let node = a * nv + bb;
+                let corner_held = (a == 0 || a + 1 == nu)
+                    && (bb == 0 || bb + 1 == nv)
+                    && (if a == 0 { gu >= 0.0 } else { gu <= 0.0 })
+                    && (if bb == 0 { gv >= 0.0 } else { gv <= 0.0 });
+                if corner_held
+                    || self.is_local_min(q, vals, b, la, lb, d2, node)
+                    || self.is_edge_local_min(q, a, bb, d2, node)
+                {
+                    let range =
+                        box_of(a.saturating_sub(1), (a + 1).min(nu - 1), bb.saturating_sub(1), (bb + 1).min(nv - 1));
+                    seeds.push(Seed { d2, u: us[a], v: vs[bb], range, lower });
+                }
+            }
+        }
+        // Cells: the gradient turns from negative to positive across the cell in u and in v.
+        for la in 0..self.gu {
+            for lb in 0..self.gv {
+                let (c00, c10, c01, c11) = (at(la, lb), at(la + 1, lb), at(la, lb + 1), at(la + 1, lb + 1));
+                let (a, bb) = (b.a0 + la, b.b0 + lb);
+                let d2 = c00[0].min(c10[0]).min(c01[0]).min(c11[0]);
+                let range = box_of(a, a + 1, bb, bb + 1);
+                let (um, vm) = (0.5 * (us[a] + us[a + 1]), 0.5 * (vs[bb] + vs[bb + 1]));
+                let turns_u = |l: [f64; 3], r: [f64; 3]| l[1] < 0.0 && r[1] > 0.0;
+                let turns_v = |l: [f64; 3], r: [f64; 3]| l[2] < 0.0 && r[2] > 0.0;
+                if (turns_u(c00, c10) || turns_u(c01, c11)) && (turns_v(c00, c01) || turns_v(c10, c11)) {
+                    seeds.push(Seed { d2, u: um, v: vm, range, lower });
+                }
+                // Edge segments of the domain: a turn along the edge, held across it.
+                if a == 0 && turns_v(c00, c01) && (c00[1] >= 0.0 || c01[1] >= 0.0) {
+                    seeds.push(Seed { d2, u: us[a], v: vm, range, lower });
+                }
+                if a + 2 == nu && turns_v(c10, c11) && (c10[1] <= 0.0 || c11[1] <= 0.0) {
+                    seeds.push(Seed { d2, u: us[a + 1], v: vm, range, lower });
+                }
+                if bb == 0 && turns_u(c00, c10) && (c00[2] >= 0.0 || c10[2] >= 0.0) {
+                    seeds.push(Seed { d2, u: um, v: vs[bb], range, lower });
+                }
+                if bb + 2 == nv && turns_u(c01, c11) && (c01[2] <= 0.0 || c11[2] <= 0.0) {
+                    seeds.push(Seed { d2, u: um, v: vs[bb + 1], range, lower });
+                }
+            }
+        }
+    }
+
     /// Is node `(la, lb)` of block `b` (distance^2 `d2`) a discrete local minimum over its
     /// 8 neighbours? Ties go to the lower node index so a plateau (a collapsed edge) gives one.
     #[allow(clippy::too_many_arguments)]
-    fn is_local_min(&self, q: Vec3, dist: &[f64], b: &Block, la: usize, lb: usize, d2: f64, node: usize) -> bool {
+    fn is_local_min(&self, q: Vec3, vals: &[[f64; 3]], b: &Block, la: usize, lb: usize, d2: f64, node: usize) -> bool {
         let nv = self.vs.len();
         let (nu_all, rv) = (self.us.len(), self.gv + 1);
         let (a, bb) = (b.a0 + la, b.b0 + lb);
@@ -382,9 +466,9 @@ impl<'a> SurfaceProjector<'a> {
                 let (na, nb) = (na as usize, nb as usize);
                 let other = na * nv + nb;
                 let od2 = if na >= b.a0 && na <= b.a0 + self.gu && nb >= b.b0 && nb <= b.b0 + self.gv {
-                    dist[(na - b.a0) * rv + nb - b.b0]
+                    vals[(na - b.a0) * rv + nb - b.b0][0]
                 } else {
-                    (self.nodes[other] - q).norm_squared()
+                    (self.samples[other].p - q).norm_squared()
                 };
                 if od2 < d2 || (od2 == d2 && other < node) {
                     return false;
@@ -400,7 +484,7 @@ impl<'a> SurfaceProjector<'a> {
     fn is_edge_local_min(&self, q: Vec3, a: usize, b: usize, d2: f64, node: usize) -> bool {
         let (nu, nv) = (self.us.len(), self.vs.len());
         let wins = |other: usize| {
-            let od2 = (self.nodes[other] - q).norm_squared();
+            let od2 = (self.samples[other].p - q).norm_squared();
             od2 > d2 || (od2 == d2 && other > node)
         };
         let along_v = || (b == 0 || wins(node - 1)) && (b + 1 == nv || wins(node + 1));
@@ -451,9 +535,6 @@ impl<'a> SurfaceProjector<'a> {
             }
             iterations += 1;
             let (du, dv) = surface_step(&d, r, gu, gv, hold_u, hold_v);
-            if std::env::var("DBG").is_ok() {
-                eprintln!("it {iterations} u {u:e} v {v} f {f:e} g {gu:e} {gv:e} hold {hold_u} {hold_v} step {du:e} {dv:e} su {:e} sv {:e}", d.su.norm(), d.sv.norm());
-            }
             let residual = |d: &SurfaceDerivatives, r: Vec3| tangential(d.su, r, hold_u) + tangential(d.sv, r, hold_v);
             let res0 = residual(&d, r);
             let mut alpha = 1.0;
@@ -513,9 +594,6 @@ impl<'a> SurfaceProjector<'a> {
             let (t, g) = if along_u { (d.su, d.su.dot(r)) } else { (d.sv, d.sv.dot(r)) };
             // Directional derivative into the surface per unit length.
             let slope = inward * g / t.norm().max(f64::MIN_POSITIVE);
-            if std::env::var("DBG").is_ok() {
-                eprintln!("  collapsed probe {nu} {nv} slope {slope:e}");
-            }
             if slope < -self.eps && best.map_or(true, |b| slope < b.2) {
                 best = Some((nu, nv, slope));
             }
@@ -544,15 +622,6 @@ fn tangential(sk: Vec3, r: Vec3, held: bool) -> f64 {
         0.0
     } else {
         sk.dot(r).powi(2) / n2
-    }
-}
-
-/// Keep one seed per node (the lowest span bound).
-fn push_seed(seeds: &mut Vec<Seed>, s: Seed) {
-    if let Some(old) = seeds.iter_mut().find(|o| o.node == s.node) {
-        old.lower = old.lower.min(s.lower);
-    } else {
-        seeds.push(s);
     }
 }
 
@@ -622,16 +691,18 @@ fn curve_ders2(c: &NurbsCurve, u: f64) -> [Vec3; 3] {
 }
 
 /// Projects points onto one curve; the one-dimensional counterpart of [`SurfaceProjector`]:
-/// `max(grid, degree)` samples per knot span, a bounding sphere per span, Newton on
-/// `g(u) = C'(u) . (C(u) - P)` (The NURBS Book eq. 6.3-6.4) from the best few discrete local
-/// minima, with the same safeguards.
+/// `max(grid, degree)` samples (point and tangent) per knot span, a bounding sphere per span,
+/// and Newton on `g(u) = C'(u) . (C(u) - P)` (The NURBS Book eq. 6.3-6.4) from the best few
+/// nodes nearer than their neighbours, intervals where `g` turns from negative to positive, and
+/// end points where `g` points out of the domain, with the same safeguards.
 #[derive(Clone, Debug)]
 pub struct CurveProjector<'a> {
     curve: &'a NurbsCurve,
     options: ProjectionOptions,
     eps: f64,
     us: Vec<f64>,
-    nodes: Vec<Vec3>,
+    /// `(C(u), C'(u))` at `us`.
+    samples: Vec<(Vec3, Vec3)>,
     g: usize,
     /// Per span: centre node (a curve point) and radius of a sphere holding the span.
     spans: Vec<(Vec3, f64)>,
@@ -645,7 +716,13 @@ impl<'a> CurveProjector<'a> {
         let g = options.grid.max(curve.degree()).max(1);
         let br = breaks(curve.knots());
         let us = sample_params(&br, g);
-        let nodes: Vec<Vec3> = us.iter().map(|&u| curve.point(u)).collect();
+        let samples: Vec<(Vec3, Vec3)> = us
+            .iter()
+            .map(|&u| {
+                let [c0, c1, _] = curve_ders2(curve, u);
+                (c0, c1)
+            })
+            .collect();
         let pts = curve.control_points();
         let (mut lo, mut hi) = (pts[0], pts[0]);
         for p in &pts {
@@ -657,7 +734,7 @@ impl<'a> CurveProjector<'a> {
             .windows(2)
             .enumerate()
             .map(|(i, w)| {
-                let center = nodes[i * g + g / 2];
+                let center = samples[i * g + g / 2].0;
                 let f = 2 * g;
                 let fine: Vec<Vec3> = (0..=f)
                     .map(|a| curve.point(if a == f { w[1] } else { w[0] + (w[1] - w[0]) * a as f64 / f as f64 }))
@@ -669,7 +746,7 @@ impl<'a> CurveProjector<'a> {
             })
             .collect();
         let magnitude = lo.norm().max(hi.norm());
-        CurveProjector { curve, options, eps, us, nodes, g, spans, magnitude }
+        CurveProjector { curve, options, eps, us, samples, g, spans, magnitude }
     }
 
     /// The closest point of the curve to `q`. For a finite `q` every field is finite.
@@ -680,32 +757,53 @@ impl<'a> CurveProjector<'a> {
             return CurveProjection { u: u0, point, distance: (point - q).norm(), iterations: 0, converged: false };
         }
         let upper = self.spans.iter().map(|(c, _)| (q - *c).norm()).fold(f64::INFINITY, f64::min);
-        let dist: Vec<f64> = self.nodes.iter().map(|&p| (p - q).norm_squared()).collect();
-        let n = dist.len();
+        let vals: Vec<(f64, f64)> = self
+            .samples
+            .iter()
+            .map(|&(p, t)| {
+                let r = p - q;
+                (r.norm_squared(), t.dot(r))
+            })
+            .collect();
+        let n = vals.len();
+        let us = &self.us;
+        let bound = |s: usize| (q - self.spans[s].0).norm() - self.spans[s].1;
+        let span_of = |i: usize| (i / self.g).min(self.spans.len() - 1);
         let mut seeds: Vec<Seed> = Vec::new();
-        for (i, &d2) in dist.iter().enumerate() {
-            let left_ok = i == 0 || dist[i - 1] > d2;
-            let right_ok = i + 1 == n || dist[i + 1] >= d2;
-            if left_ok && right_ok {
-                // The span(s) the node belongs to; a node on a break takes the lower bound.
-                let s_hi = (i / self.g).min(self.spans.len() - 1);
-                let s_lo = if i % self.g == 0 && i > 0 { i / self.g - 1 } else { s_hi };
-                let bound = |s: usize| (q - self.spans[s].0).norm() - self.spans[s].1;
-                let lower = bound(s_lo).min(bound(s_hi));
-                if lower <= upper {
-                    seeds.push(Seed { d2, node: i, lower });
-                }
+        for (i, &(d2, g)) in vals.iter().enumerate() {
+            let left_ok = i == 0 || vals[i - 1].0 > d2;
+            let right_ok = i + 1 == n || vals[i + 1].0 >= d2;
+            let end_held = (i == 0 && g >= 0.0) || (i + 1 == n && g <= 0.0);
+            if (left_ok && right_ok) || end_held {
+                // A node on a break belongs to two spans: take the lower bound.
+                let lower = bound(span_of(i)).min(bound(span_of(i.saturating_sub(1))));
+                let range = [us[i.saturating_sub(1)], us[(i + 1).min(n - 1)], 0.0, 0.0];
+                seeds.push(Seed { d2, u: us[i], v: 0.0, range, lower });
+            }
+            if i + 1 < n && g < 0.0 && vals[i + 1].1 > 0.0 {
+                let range = [us[i], us[i + 1], 0.0, 0.0];
+                let u = 0.5 * (us[i] + us[i + 1]);
+                seeds.push(Seed { d2: d2.min(vals[i + 1].0), u, v: 0.0, range, lower: bound(span_of(i)) });
             }
         }
+        seeds.retain(|s| s.lower <= upper);
         seeds.sort_unstable_by(|x, y| x.d2.total_cmp(&y.d2));
         let mut best: Option<CurveProjection> = None;
-        for seed in seeds.iter().take(self.options.candidates.max(1)) {
-            if let Some(bp) = &best {
-                if seed.lower >= bp.distance {
-                    continue;
-                }
+        let mut feet: Vec<f64> = Vec::new();
+        let mut runs = 0;
+        for seed in &seeds {
+            if runs >= self.options.candidates.max(1) {
+                break;
             }
-            let res = self.refine(q, self.us[seed.node]);
+            if matches!(&best, Some(bp) if seed.lower >= bp.distance) {
+                continue;
+            }
+            if feet.iter().any(|&u| seed.covers(u, 0.0)) {
+                continue;
+            }
+            runs += 1;
+            let res = self.refine(q, seed.u);
+            feet.push(res.u);
             if !matches!(&best, Some(bp) if bp.distance <= res.distance) {
                 best = Some(res);
             }
@@ -1140,99 +1238,5 @@ mod tests {
                 prop_assert!(r.distance <= brute_force(&samples, q) + 1e-12 * 20.0);
             }
         }
-    }
-}
-
-#[cfg(test)]
-mod debug_tmp {
-    use super::*;
-    #[test]
-    fn debug_case() {
-        let s = NurbsSurface::try_from_homogeneous(
-            KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]).expect("v"),
-            KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0, 1.0]).expect("v"),
-            vec![
-                [0.0, 2.8568809662507055, 0.0, 0.8162517046430587],
-                [0.0, 4.329796563613635, 0.0, 1.2370847324610386],
-                [0.0, 2.564221052783714, 0.0, 0.7326345865096326],
-                [0.0, 2.0664421370954527, 0.0, 0.5904120391701293],
-                [0.0, 4.687411776460035, 0.0, 1.33926050756001],
-                [0.0, 6.513608103908683, 0.0, 1.8610308868310523],
-                [0.0, 5.945293114946219, 0.0, 1.6986551756989197],
-                [1.7017005683541493, 0.0, -0.9367441916609275, 1.7017005683541493],
-                [1.265113856203456, 1.265113856203456, 0.2448773043930866, 1.265113856203456],
-                [1.6990951491606656, 3.3981902983213312, -0.33588658339589117, 1.6990951491606656],
-                [1.6312060781977737, 4.893618234593321, -0.3925952745185909, 1.6312060781977737],
-                [0.8013014135997268, 3.2052056543989074, -0.11840841798723149, 0.8013014135997268],
-                [1.885092159806714, 9.425460799033571, -0.7607750431504819, 1.885092159806714],
-                [1.9793193035350123, 11.875915821210073, 0.6831189961991389, 1.9793193035350123],
-                [3.509624485250898, 0.0, 0.905651240370138, 1.754812242625449],
-                [1.7148966945785804, 0.8574483472892902, -0.45606048331887056, 0.8574483472892902],
-                [2.2511391486854384, 2.2511391486854384, 0.612494695087117, 1.1255695743427192],
-                [1.5977912810978276, 2.3966869216467415, 0.4615675358287606, 0.7988956405489138],
-                [3.0940454850025456, 6.188090970005091, -0.6070676624206388, 1.5470227425012728],
-                [3.70178803875724, 9.254470096893101, 0.22385979269094206, 1.85089401937862],
-                [3.7701744757232083, 11.310523427169624, -0.5000676670251208, 1.8850872378616041],
-                [5.931689643358755, 0.0, 0.8388500208716483, 1.977229881119585],
-                [1.6725892049119397, 0.5575297349706466, 0.1400832500556098, 0.5575297349706466],
-                [5.77911604728065, 3.8527440315204333, -0.9705223284136937, 1.9263720157602167],
-                [1.7238408008942647, 1.7238408008942647, -0.18123167740902432, 0.5746136002980883],
-                [3.106683107793378, 4.142244143724504, 0.6159920746819693, 1.035561035931126],
-                [5.650467059609621, 9.417445099349369, 1.0448019985147063, 1.8834890198698737],
-                [2.460750649681733, 4.921501299363466, 0.06352336572486043, 0.8202502165605776],
-            ],
-        )
-        .expect("v");
-        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
-        for (u, v, off, slide) in [
-            (0.8110059531727208, 0.7427942014599608, 0.1611833121316828, 0.23474449374468373),
-            (0.23968316868134337, 0.0017022491985775373, -0.5747830598455705, 0.015695588357471164),
-            (0.6374061986927507, 0.928836440899705, 0.9671149490006606, -0.007936119915966522),
-            (0.0394302207860488, 0.5244385688441032, 0.9858217733687894, -0.19310639291704187),
-            (0.8910354152449176, 0.8849057878697534, -0.4907530533282729, 0.040466868541376176),
-            (0.39262818998260485, 0.10472555783491067, 0.7764070709509935, 0.2703935490014034),
-            (0.28857578352907437, 0.48771235192912243, 0.6701223160145012, 0.023930069000186883),
-            (0.39625695579784564, 0.7622624213473435, -0.508460062925725, 0.09609899544459793),
-        ] {
-            let d = s.derivatives(u, v);
-            let n = d.normal().unwrap_or(Vec3::new(0.0, 0.0, 1.0));
-            let q = d.point + n * off + Vec3::new(slide * 3.0, -slide * 2.0, 0.0);
-            let r = proj.project(q);
-            if std::env::var("DBG").is_ok() {
-                eprintln!("=== {q:?} {r:?}");
-            }
-            let mut best = (f64::INFINITY, 0.0, 0.0);
-            for a in 0..=300 {
-                for b in 0..=300 {
-                    let (uu, vv) = (a as f64 / 300.0, b as f64 / 300.0);
-                    let dd = (s.point(uu, vv) - q).norm();
-                    if dd < best.0 {
-                        best = (dd, uu, vv);
-                    }
-                }
-            }
-            if r.distance > best.0 + 1e-12 {
-                eprintln!("q {:?}\n  got {:?}\n  bf {:?}", q, r, best);
-            }
-        }
-    }
-}
-#[cfg(test)]
-mod debug_tmp2 {
-    use super::*;
-    #[test]
-    fn debug_curve() {
-        let ys = [0.0,0.0,0.0,0.0,0.0,0.0,1.2554339337908524,1.583669658418114,-0.4995056116931081,0.15128554364998026];
-        let ws = [0.5,0.5,0.5,0.5,0.5,0.5,1.8965673951785986,1.2280670388686241,0.5704612338229461,1.277322970218235];
-        let n = ys.len();
-        let pts: Vec<Vec3> = ys.iter().enumerate().map(|(i, &y)| Vec3::new(i as f64, y, 0.3 * y * y)).collect();
-        let c = NurbsCurve::try_new(KnotVector::uniform(3, n).expect("valid"), &pts, Some(&ws[..n])).expect("valid");
-        let proj = CurveProjector::new(&c, ProjectionOptions::default());
-        let q = Vec3::new(8.827509117339707,1.3314657741030063,0.8090320873138355);
-        let r = proj.project(q);
-        let mut best = (f64::INFINITY, 0.0);
-        for k in 0..=4000 { let u = k as f64 / 4000.0; let d = (c.point(u) - q).norm(); if d < best.0 { best = (d, u); } }
-        eprintln!("{r:?}\n{best:?}");
-        for (i, u) in proj.us.iter().enumerate() { eprintln!("{u} {}", (proj.nodes[i]-q).norm()); }
     }
 }

@@ -1,0 +1,89 @@
+//! `hullskin fit`: read offsets, skin a surface, measure its true error, write the outputs.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+use hull::{FitConfig, FitMethod, Units};
+use nurbs::fit::Parameterization;
+
+/// Arguments of `hullskin fit`.
+#[derive(Debug, Args)]
+pub struct FitArgs {
+    /// Offsets file: a sections CSV (header `section,x,y,z`) or an offset table CSV (first row
+    /// station positions, first column waterline heights, cells half-breadths). Without it the
+    /// built-in Series 60 Cb 0.60 parent hull is fitted.
+    pub input: Option<PathBuf>,
+    /// Output directory for surface.igs, surface.json and report.json.
+    #[arg(short = 'o', long = "out", default_value = "hullskin-out")]
+    pub out: PathBuf,
+    /// Skinning method: `interp` passes through every offset, `approx` is a least-squares fit
+    /// with the control-point counts of --ctrl.
+    #[arg(long, default_value = "approx", value_parser = parse_method)]
+    pub method: FitMethod,
+    /// Control points NU,NV of `approx` (u along each section, v across sections). Default:
+    /// about two thirds of the offsets in each direction.
+    #[arg(long, value_parser = parse_pair)]
+    pub ctrl: Option<(usize, usize)>,
+    /// Degrees P,Q in u (along sections) and v (across sections).
+    #[arg(long, default_value = "3,3", value_parser = parse_pair)]
+    pub degree: (usize, usize),
+    /// Parameterization of the offsets: centripetal, chord, uniform or universal.
+    #[arg(long, default_value = "centripetal", value_parser = parse_param)]
+    pub param: Parameterization,
+    /// Units of the input coordinates, carried to the exports: m, mm, ft or in.
+    #[arg(long, default_value = "m", value_parser = parse_units)]
+    pub units: Units,
+}
+
+impl Default for FitArgs {
+    fn default() -> Self {
+        FitArgs {
+            input: None,
+            out: PathBuf::from("hullskin-out"),
+            method: FitMethod::Approx,
+            ctrl: None,
+            degree: (3, 3),
+            param: Parameterization::Centripetal,
+            units: Units::Metre,
+        }
+    }
+}
+
+fn parse_pair(s: &str) -> Result<(usize, usize), String> {
+    let (a, b) = s.split_once(',').ok_or_else(|| format!("expected two integers like 8,12, got `{s}`"))?;
+    let p = |t: &str| t.trim().parse::<usize>().map_err(|_| format!("`{t}` is not a non-negative integer (in `{s}`)"));
+    Ok((p(a)?, p(b)?))
+}
+
+fn parse_method(s: &str) -> Result<FitMethod, String> {
+    s.parse()
+}
+
+fn parse_param(s: &str) -> Result<Parameterization, String> {
+    s.parse().map_err(|e| format!("{e}"))
+}
+
+fn parse_units(s: &str) -> Result<Units, String> {
+    s.parse().map_err(|e| format!("{e}"))
+}
+
+/// Run `hullskin fit`.
+pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
+    let offsets = match &args.input {
+        Some(path) => hull::read_offsets(path, args.units)?,
+        None => hull::series60_sample(),
+    };
+    let config = FitConfig { method: args.method, degree: args.degree, ctrl: args.ctrl, param: args.param };
+    let outcome = hull::fit_offsets(&offsets, &config)?;
+    write_outputs(&args.out, &offsets, &outcome)?;
+    print!("{}", hull::summary_table(&offsets, &outcome));
+    println!("wrote {}", args.out.join("{surface.igs,surface.json,report.json}").display());
+    Ok(ExitCode::SUCCESS)
+}
+
+fn write_outputs(dir: &Path, offsets: &hull::Offsets, outcome: &hull::FitOutcome) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    hull::write_fit_outputs(dir, offsets, outcome).with_context(|| format!("cannot write outputs to {}", dir.display()))
+}

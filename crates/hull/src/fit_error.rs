@@ -1,0 +1,156 @@
+//! The true fit error: the distance of every input offset to the surface, measured by
+//! closest-point projection (not the parametric residual `|S(u_k, v_k) - Q_k|`, which
+//! overstates the error wherever the fit's parameters are not the foot points).
+
+use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
+use serde::Serialize;
+
+use crate::Offsets;
+
+/// Max, mean and RMS of a set of distances.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct ErrorStats {
+    pub max: f64,
+    pub mean: f64,
+    pub rms: f64,
+    /// Number of points measured.
+    pub points: usize,
+}
+
+impl ErrorStats {
+    /// Statistics of `distances` (all zero for an empty set).
+    pub fn from_distances(distances: &[f64]) -> Self {
+        if distances.is_empty() {
+            return ErrorStats::default();
+        }
+        let n = distances.len() as f64;
+        let max = distances.iter().copied().fold(0.0, f64::max);
+        let mean = distances.iter().sum::<f64>() / n;
+        let rms = (distances.iter().map(|d| d * d).sum::<f64>() / n).sqrt();
+        ErrorStats { max, mean, rms, points: distances.len() }
+    }
+}
+
+/// The error of one section.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SectionError {
+    /// The section's label in the input.
+    pub section: String,
+    #[serde(flatten)]
+    pub stats: ErrorStats,
+}
+
+/// Where the largest error is.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WorstPoint {
+    /// Section label.
+    pub section: String,
+    /// 0-based index of the point in its section.
+    pub index: usize,
+    /// 1-based input line of the point, when known.
+    pub line: Option<usize>,
+    /// The offset itself.
+    pub point: [f64; 3],
+    /// Its foot point on the surface.
+    pub foot: [f64; 3],
+    pub distance: f64,
+}
+
+/// The fit error of a surface against its offsets.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FitError {
+    #[serde(flatten)]
+    pub overall: ErrorStats,
+    /// The worst offset (`None` without points).
+    pub worst: Option<WorstPoint>,
+    /// One entry per input section, in input order.
+    pub per_section: Vec<SectionError>,
+    /// Projections that stopped at the iteration limit instead of a convergence criterion.
+    pub unconverged_projections: usize,
+}
+
+/// Distance of every offset to `surface` by closest-point projection, per section and overall.
+pub fn measure_fit_error(surface: &NurbsSurface, offsets: &Offsets) -> FitError {
+    let projector = SurfaceProjector::new(surface, ProjectionOptions::default());
+    let mut all = Vec::with_capacity(offsets.num_points());
+    let mut per_section = Vec::with_capacity(offsets.sections.len());
+    let mut worst: Option<WorstPoint> = None;
+    let mut unconverged = 0;
+    for section in &offsets.sections {
+        let mut distances = Vec::with_capacity(section.points.len());
+        for (index, &q) in section.points.iter().enumerate() {
+            let proj = projector.project(q);
+            if !proj.converged {
+                unconverged += 1;
+            }
+            distances.push(proj.distance);
+            if worst.as_ref().is_none_or(|w| proj.distance > w.distance) {
+                worst = Some(WorstPoint {
+                    section: section.label.clone(),
+                    index,
+                    line: section.lines.get(index).copied(),
+                    point: q.to_array(),
+                    foot: proj.point.to_array(),
+                    distance: proj.distance,
+                });
+            }
+        }
+        per_section
+            .push(SectionError { section: section.label.clone(), stats: ErrorStats::from_distances(&distances) });
+        all.extend(distances);
+    }
+    FitError { overall: ErrorStats::from_distances(&all), worst, per_section, unconverged_projections: unconverged }
+}
+
+/// The parametric residuals `|S(u_k, v_k) - Q_k|` at given data parameters (an upper bound
+/// of the true distance, used where speed matters more than exactness).
+pub fn parametric_residuals(surface: &NurbsSurface, points: &[Vec3], params: &[(f64, f64)]) -> Vec<f64> {
+    points.iter().zip(params).map(|(&q, &(u, v))| surface.point(u, v).distance(q)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Section;
+    use nurbs::{assert_near, KnotVector};
+
+    /// The plane z = 0 over [0, 2] x [0, 3] as a bilinear surface.
+    fn plane() -> NurbsSurface {
+        let k = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
+        let pts = [Vec3::new(0., 0., 0.), Vec3::new(0., 3., 0.), Vec3::new(2., 0., 0.), Vec3::new(2., 3., 0.)];
+        NurbsSurface::try_new(k.clone(), k, &pts, None).expect("valid")
+    }
+
+    #[test]
+    fn distances_to_a_plane_are_the_heights() {
+        let offsets = Offsets {
+            source: "test".into(),
+            units: crate::Units::Metre,
+            sections: vec![
+                Section::new("a", vec![Vec3::new(0.5, 0.5, 0.1), Vec3::new(1.0, 1.0, -0.3)]),
+                Section::new("b", vec![Vec3::new(1.5, 2.0, 0.0), Vec3::new(1.0, 2.5, 0.2)]),
+            ],
+        };
+        let e = measure_fit_error(&plane(), &offsets);
+        // Exact answers |z|; projection onto a plane converges to round-off.
+        assert_near!(e.overall.max, 0.3, 1e-12);
+        assert_near!(e.overall.mean, 0.6 / 4.0, 1e-12);
+        assert_near!(e.overall.rms, ((0.01 + 0.09 + 0.04) / 4.0f64).sqrt(), 1e-12);
+        assert_eq!(e.per_section.len(), 2);
+        assert_near!(e.per_section[1].stats.max, 0.2, 1e-12);
+        let w = e.worst.expect("points exist");
+        assert_eq!((w.section.as_str(), w.index), ("a", 1));
+        assert_near!(w.foot[2], 0.0, 1e-12);
+    }
+
+    #[test]
+    fn parametric_residual_bounds_the_true_distance() {
+        let s = plane();
+        let q = [Vec3::new(1.0, 1.0, 0.5)];
+        // Wrong parameters give a larger residual than the true distance 0.5.
+        let r = parametric_residuals(&s, &q, &[(0.2, 0.2)]);
+        assert!(r[0] > 0.5 + 0.1);
+        let r = parametric_residuals(&s, &q, &[(0.5, 1.0 / 3.0)]);
+        assert_near!(r[0], 0.5, 1e-12);
+    }
+}

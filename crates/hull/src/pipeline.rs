@@ -1,0 +1,184 @@
+//! The offsets -> surface pipeline: validate the offsets, skin a surface through or near
+//! them, and measure its true error.
+
+use std::fmt;
+use std::str::FromStr;
+use std::time::Instant;
+
+use nurbs::fit::{skin_approximate, skin_interpolate, Parameterization, SkinOptions};
+use nurbs::{NurbsError, NurbsSurface};
+
+use crate::fit_error::{measure_fit_error, FitError};
+use crate::{HullError, Offsets};
+
+/// How the surface is built from the sections.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FitMethod {
+    /// Skinning interpolation (The NURBS Book 10.3): passes through every offset.
+    Interp,
+    /// Skinning approximation: least squares with `NU x NV` control points.
+    Approx,
+}
+
+impl FitMethod {
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            FitMethod::Interp => "interp",
+            FitMethod::Approx => "approx",
+        }
+    }
+}
+
+impl fmt::Display for FitMethod {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for FitMethod {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "interp" | "interpolation" => Ok(FitMethod::Interp),
+            "approx" | "approximation" => Ok(FitMethod::Approx),
+            _ => Err(format!("unknown method `{s}` (expected interp or approx)")),
+        }
+    }
+}
+
+/// Settings of [`fit_offsets`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FitConfig {
+    pub method: FitMethod,
+    /// Degrees `(p, q)`: along the sections (u) and across them (v).
+    pub degree: (usize, usize),
+    /// Control points `(NU, NV)` of `approx`; `None` picks [`default_ctrl`].
+    pub ctrl: Option<(usize, usize)>,
+    pub param: Parameterization,
+}
+
+impl Default for FitConfig {
+    fn default() -> Self {
+        FitConfig { method: FitMethod::Approx, degree: (3, 3), ctrl: None, param: Parameterization::Centripetal }
+    }
+}
+
+/// A fitted surface with its measured error and timings.
+#[derive(Clone, Debug)]
+pub struct FitOutcome {
+    pub config: FitConfig,
+    pub surface: NurbsSurface,
+    /// Data parameters `(u, v)` of every offset, per section.
+    pub params: Vec<Vec<(f64, f64)>>,
+    pub error: FitError,
+    /// Seconds spent in the kernel's skinning.
+    pub fit_seconds: f64,
+    /// Seconds spent measuring the error by projection.
+    pub error_seconds: f64,
+}
+
+/// The default control-point counts of `approx`: three quarters of the offsets of the smallest
+/// section along u and of the sections along v, at least degree + 1 and at most the data.
+pub fn default_ctrl(offsets: &Offsets, degree: (usize, usize)) -> (usize, usize) {
+    let n_min = offsets.sections.iter().map(|s| s.points.len()).min().unwrap_or(0);
+    let k = offsets.sections.len();
+    let pick = |n: usize, d: usize| ((3 * n).div_ceil(4)).max(d + 1).min(n);
+    (pick(n_min, degree.0), pick(k, degree.1))
+}
+
+/// Validate `offsets` and fit a surface to them.
+///
+/// # Errors
+/// [`HullError::Input`] when the offsets are invalid for the requested degree (fewer than
+/// two sections, a section with fewer than `p + 1` points, repeated points, stations out of
+/// order), and [`HullError::Fit`] when the kernel refuses the fit (control-point counts out of
+/// range, a singular system).
+pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullError> {
+    let (p, q) = config.degree;
+    for (d, dir) in [(p, "u (along the sections)"), (q, "v (across the sections)")] {
+        if d == 0 || d > nurbs::MAX_DEGREE {
+            return Err(HullError::Config(format!(
+                "degree {d} in {dir} is not supported (expected 1 to {})",
+                nurbs::MAX_DEGREE
+            )));
+        }
+    }
+    offsets.validate(p + 1)?;
+    let sections: Vec<Vec<nurbs::Vec3>> = offsets.sections.iter().map(|s| s.points.clone()).collect();
+    let opts = SkinOptions { degree_u: p, degree_v: q, param: config.param };
+    let start = Instant::now();
+    let result = match config.method {
+        FitMethod::Interp => skin_interpolate(&sections, &opts),
+        FitMethod::Approx => {
+            let (nu, nv) = config.ctrl.unwrap_or_else(|| default_ctrl(offsets, config.degree));
+            skin_approximate(&sections, nu, nv, &opts)
+        }
+    }
+    .map_err(|e| fit_error(config, e))?;
+    let fit_seconds = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let error = measure_fit_error(&result.surface, offsets);
+    let error_seconds = start.elapsed().as_secs_f64();
+    if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
+        return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
+    }
+    Ok(FitOutcome {
+        config: *config,
+        surface: result.surface,
+        params: result.params,
+        error,
+        fit_seconds,
+        error_seconds,
+    })
+}
+
+fn fit_error(config: &FitConfig, source: NurbsError) -> HullError {
+    HullError::Fit { method: config.method.name(), source }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::series60_sample;
+
+    #[test]
+    fn interpolation_passes_through_the_sample_offsets() {
+        let offsets = series60_sample();
+        let cfg = FitConfig { method: FitMethod::Interp, ..FitConfig::default() };
+        let out = fit_offsets(&offsets, &cfg).expect("sample fits");
+        // 25 stations of 8 waterlines: one pole per offset in each direction.
+        assert_eq!((out.surface.n_u(), out.surface.n_v()), (8, 25));
+        // Interpolation error is round-off of the banded solves on a 122 m hull: 1e-9 m.
+        assert!(out.error.overall.max < 1e-9, "max {}", out.error.overall.max);
+        assert_eq!(out.error.per_section.len(), 25);
+    }
+
+    #[test]
+    fn approximation_error_shrinks_with_more_control_points() {
+        let offsets = series60_sample();
+        let mut last = f64::INFINITY;
+        for (nu, nv) in [(4, 8), (6, 14), (8, 25)] {
+            let cfg = FitConfig { ctrl: Some((nu, nv)), ..FitConfig::default() };
+            let out = fit_offsets(&offsets, &cfg).expect("sample fits");
+            assert_eq!((out.surface.n_u(), out.surface.n_v()), (nu, nv));
+            assert!(out.error.overall.rms < last, "{nu}x{nv}: rms {} not below {last}", out.error.overall.rms);
+            last = out.error.overall.rms;
+        }
+        // With as many control points as offsets the approximation interpolates.
+        assert!(last < 1e-9, "rms {last}");
+    }
+
+    #[test]
+    fn bad_settings_are_reported_not_panicked() {
+        let offsets = series60_sample();
+        let too_many = FitConfig { ctrl: Some((9, 10)), ..FitConfig::default() };
+        let e = fit_offsets(&offsets, &too_many).expect_err("9 > 8 points per section");
+        assert!(matches!(e, HullError::Fit { .. }), "{e}");
+        let bad_degree = FitConfig { degree: (0, 3), ..FitConfig::default() };
+        assert!(matches!(fit_offsets(&offsets, &bad_degree), Err(HullError::Config(_))));
+        let high_degree = FitConfig { degree: (8, 3), method: FitMethod::Interp, ..FitConfig::default() };
+        let e = fit_offsets(&offsets, &high_degree).expect_err("8 points cannot carry degree 8");
+        assert!(e.to_string().contains("expected"), "{e}");
+    }
+}

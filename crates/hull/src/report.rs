@@ -1,0 +1,193 @@
+//! What a fit run writes: `surface.igs`, `surface.json` and `report.json` (each atomically),
+//! and the summary table printed to the terminal.
+//!
+//! `report.json` layout (stable; later features add fields):
+//!
+//! ```text
+//! {"hullskin": "0.1.0", "method": "approx",
+//!  "input": {"source": "...", "sections": K, "points": N, "units": "m"},
+//!  "surface": {"degree": [P, Q], "control_points": [NU, NV], "rational": false},
+//!  "parameterization": "centripetal",
+//!  "error": {"max": .., "mean": .., "rms": .., "points": N, "worst": {...},
+//!            "per_section": [{"section": "..", "max": .., "mean": .., "rms": .., "points": n}],
+//!            "unconverged_projections": 0},
+//!  "seconds": .., "fit_seconds": .., "error_seconds": ..}
+//! ```
+//!
+//! Errors are distances in the input's units, measured by closest-point projection of every
+//! input point onto the surface.
+
+use std::fmt::Write as _;
+use std::io;
+use std::path::Path;
+
+use serde::Serialize;
+
+use crate::export::{iges_timestamp, write_iges, write_surface_json, IgesMeta};
+use crate::{write_atomic, FitError, FitOutcome, HullError, Offsets};
+
+/// The `input` block of `report.json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct InputSummary {
+    pub source: String,
+    pub sections: usize,
+    pub points: usize,
+    pub units: &'static str,
+}
+
+/// The `surface` block of `report.json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct SurfaceSummary {
+    pub degree: [usize; 2],
+    pub control_points: [usize; 2],
+    pub rational: bool,
+}
+
+/// `report.json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    pub hullskin: &'static str,
+    pub method: &'static str,
+    pub input: InputSummary,
+    pub surface: SurfaceSummary,
+    pub parameterization: &'static str,
+    pub error: FitError,
+    /// Fit plus error measurement, seconds.
+    pub seconds: f64,
+    pub fit_seconds: f64,
+    pub error_seconds: f64,
+}
+
+impl Report {
+    /// The report of one fit.
+    pub fn new(offsets: &Offsets, outcome: &FitOutcome) -> Self {
+        let s = &outcome.surface;
+        Report {
+            hullskin: env!("CARGO_PKG_VERSION"),
+            method: outcome.config.method.name(),
+            input: InputSummary {
+                source: offsets.source.clone(),
+                sections: offsets.sections.len(),
+                points: offsets.num_points(),
+                units: offsets.units.symbol(),
+            },
+            surface: SurfaceSummary {
+                degree: [s.degree_u(), s.degree_v()],
+                control_points: [s.n_u(), s.n_v()],
+                rational: s.is_rational(),
+            },
+            parameterization: outcome.config.param.name(),
+            error: outcome.error.clone(),
+            seconds: outcome.fit_seconds + outcome.error_seconds,
+            fit_seconds: outcome.fit_seconds,
+            error_seconds: outcome.error_seconds,
+        }
+    }
+}
+
+/// The IGES date: `SOURCE_DATE_EPOCH` when set (reproducible builds), else now.
+fn timestamp() -> String {
+    let secs =
+        std::env::var("SOURCE_DATE_EPOCH").ok().and_then(|s| s.trim().parse::<i64>().ok()).unwrap_or_else(|| {
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map(|d| i64::try_from(d.as_secs()).unwrap_or(0))
+                .unwrap_or(0)
+        });
+    iges_timestamp(secs)
+}
+
+/// Write `surface.igs`, `surface.json` and `report.json` into the existing directory `dir`.
+/// Each file is written to a temporary file and renamed, so a failure leaves what was there.
+///
+/// # Errors
+/// [`HullError::Io`] naming the file that could not be written.
+pub fn write_fit_outputs(dir: &Path, offsets: &Offsets, outcome: &FitOutcome) -> Result<(), HullError> {
+    let surface = &outcome.surface;
+    let units = offsets.units;
+    let io_err = |path: &Path| {
+        let path = path.to_path_buf();
+        move |error: io::Error| HullError::Io { path, error }
+    };
+    // Build everything in memory first, so nothing is written if any part fails.
+    let mut iges = Vec::new();
+    write_iges(&mut iges, surface, &IgesMeta::new(units.into(), "surface.igs", &timestamp()))
+        .map_err(io_err(&dir.join("surface.igs")))?;
+    let mut json = Vec::new();
+    write_surface_json(&mut json, surface, units.symbol()).map_err(io_err(&dir.join("surface.json")))?;
+    let mut report = serde_json::to_vec_pretty(&Report::new(offsets, outcome))
+        .map_err(|e| io_err(&dir.join("report.json"))(io::Error::other(e)))?;
+    report.push(b'\n');
+    for (name, bytes) in [("surface.igs", &iges), ("surface.json", &json), ("report.json", &report)] {
+        let path = dir.join(name);
+        write_atomic(&path, |w| w.write_all(bytes)).map_err(io_err(&path))?;
+    }
+    Ok(())
+}
+
+/// A short fixed-width table of the fit for the terminal.
+pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
+    let u = offsets.units.symbol();
+    let s = &outcome.surface;
+    let e = &outcome.error;
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "input: {} ({} sections, {} points, {})",
+        offsets.source,
+        offsets.sections.len(),
+        offsets.num_points(),
+        offsets.units.plural_name()
+    );
+    let _ = writeln!(
+        t,
+        "{:<8} {:>10} {:>7} {:>12} {:>12} {:>12} {:>10}",
+        "method", "ctrl pts", "degree", "max err", "mean err", "RMS err", "time"
+    );
+    let _ = writeln!(
+        t,
+        "{:<8} {:>10} {:>7} {:>12} {:>12} {:>12} {:>10}",
+        outcome.config.method.name(),
+        format!("{}x{}", s.n_u(), s.n_v()),
+        format!("{},{}", s.degree_u(), s.degree_v()),
+        format!("{:.3e} {u}", e.overall.max),
+        format!("{:.3e} {u}", e.overall.mean),
+        format!("{:.3e} {u}", e.overall.rms),
+        format!("{:.2} ms", 1e3 * (outcome.fit_seconds + outcome.error_seconds)),
+    );
+    if let Some(w) = &e.worst {
+        let line = w.line.map(|l| format!(", line {l}")).unwrap_or_default();
+        let _ = writeln!(t, "worst offset: section {} point {}{line}: {:.3e} {u}", w.section, w.index + 1, w.distance);
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{fit_offsets, series60_sample, FitConfig};
+
+    #[test]
+    fn outputs_are_written_and_read_back() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let offsets = series60_sample();
+        let out = fit_offsets(&offsets, &FitConfig::default()).expect("fits");
+        write_fit_outputs(dir.path(), &offsets, &out).expect("writes");
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("report.json")).expect("read"))
+                .expect("valid JSON");
+        assert_eq!(report["method"], "approx");
+        assert_eq!(report["input"]["sections"], 25);
+        assert_eq!(report["input"]["points"], 200);
+        assert_eq!(report["surface"]["degree"], serde_json::json!([3, 3]));
+        assert_eq!(report["error"]["max"].as_f64(), Some(out.error.overall.max));
+        let text = std::fs::read_to_string(dir.path().join("surface.json")).expect("read");
+        let (s, units) = crate::export::read_surface_json(&text).expect("reads back");
+        assert_eq!(units, "m");
+        assert_eq!(s, out.surface);
+        let iges = std::fs::read_to_string(dir.path().join("surface.igs")).expect("read");
+        assert!(iges.lines().all(|l| l.len() == 80));
+        let table = summary_table(&offsets, &out);
+        assert!(table.contains("approx") && table.contains("25 sections"), "{table}");
+    }
+}
