@@ -66,7 +66,8 @@ def versions(hullskin_cmd):
                 text=True,
                 timeout=600,
             )
-            v["hullskin"] = (out.stdout or out.stderr).strip()
+            text = (out.stdout or out.stderr).strip().splitlines()
+            v["hullskin"] = text[0] if out.returncode == 0 and text else "(--version failed)"
         except (OSError, subprocess.TimeoutExpired) as e:
             v["hullskin"] = f"unavailable: {e}"
     return v
@@ -111,8 +112,9 @@ def run_case(case, args, hullskin, inputs_dir, work_dir, log):
             igs = os.path.join(out_dir, "surface.igs")
             if os.path.exists(igs):
                 try:
-                    isurf = fitters.surface_from_iges(igs)
+                    isurf, unit = fitters.surface_from_iges(igs)
                     extra["iges_check"] = {
+                        "unit": unit,
                         "poles": [isurf.NbUPoles(), isurf.NbVPoles()],
                         "max_deviation_from_json": max_deviation(surf, isurf),
                     }
@@ -325,9 +327,11 @@ def case_markdown(res):
     good = [r["iges_check"] for r in igs if "error" not in r["iges_check"]]
     if good:
         worst = max(g["max_deviation_from_json"] for g in good)
+        units = sorted({g["unit"]["unit_name"] or str(g["unit"]["unit_flag"]) for g in good})
         lines.append(
-            f"- hullskin's surface.igs read back with IGESControl_Reader ({len(good)} runs): "
-            f"max deviation from surface.json {worst:.3g} m on a 25 x 25 parameter grid."
+            f"- hullskin's surface.igs, entity 128 read with IGESControl_Reader ({len(good)} "
+            f"runs, unit {', '.join(units)}): max deviation from surface.json {worst:.3g} m on "
+            "a 25 x 25 parameter grid."
         )
     if res.get("verdicts"):
         lines += ["", "| floor | holds | numbers |", "|---|---|---|"]

@@ -79,6 +79,9 @@ def main(argv=None):
     )
     face = BRepBuilderAPI_MakeFace(surf, 1e-7).Face()
     w = IGESControl_Writer("M", 0)
+    gs = w.Model().GlobalSection()
+    gs.SetCascadeUnit(1000.0)  # the shape's length unit, in mm: metres
+    w.Model().SetGlobalSection(gs)
     w.AddShape(face)
     w.ComputeModel()
     if not w.Write(os.path.join(a.out, "surface.igs")):

@@ -226,29 +226,69 @@ def surface_from_json(path: str) -> tuple[Geom_BSplineSurface, dict]:
     return surf, d
 
 
-def surface_from_iges(path: str):
-    """The first B-spline surface (entity 128) of an IGES file, in metres.
+# IGES global-section unit flag -> metres per file unit (IGES 5.3, section 2.2.4.3, field 14).
+IGES_UNITS = {
+    1: 0.0254,
+    2: 0.001,
+    4: 0.3048,
+    5: 1609.344,
+    6: 1.0,
+    7: 1000.0,
+    8: 0.0000254,
+    9: 1e-6,
+    10: 0.01,
+    11: 0.0254e-6,
+}
 
-    xstep.cascade.unit = M makes the reader convert to metres (its default is mm); with the
-    file's own unit flag in metres this is the identity.
+
+def _quiet_occt():
+    """Drop OCCT's default console printer (the IGES loader's 'Total number of loaded
+    entities' on stdout); failures are detected from return statuses, not from messages."""
+    from OCP.Message import Message, Message_PrinterOStream
+
+    Message.DefaultMessenger_s().RemovePrinters(Message_PrinterOStream.get_type_descriptor_s())
+
+
+def surface_from_iges(path: str):
+    """The first rational B-spline surface entity (128) of an IGES file, rebuilt in metres.
+
+    The entity is read as written (IGESControl_Reader.ReadFile loads the model; no shape
+    transfer), so OCCT's process-wide unit settings (xstep.cascade.unit), which do not reset
+    between reads, play no part; the file's own unit flag gives the scale. Returns
+    (surface, {"unit_flag", "unit_name", "metres_per_unit"}).
     """
     from OCP.IFSelect import IFSelect_ReturnStatus
     from OCP.IGESControl import IGESControl_Reader
-    from OCP.Interface import Interface_Static
+    from OCP.IGESGeom import IGESGeom_BSplineSurface
 
-    Interface_Static.SetCVal_s("xstep.cascade.unit", "M")
+    _quiet_occt()
     reader = IGESControl_Reader()
     if reader.ReadFile(path) != IFSelect_ReturnStatus.IFSelect_RetDone:
         raise FitError(f"IGESControl_Reader could not read {path}")
-    reader.TransferRoots()
-    shape = reader.OneShape()
-    ex = TopExp_Explorer(shape, TopAbs_FACE)
-    while ex.More():
-        surf = BRep_Tool.Surface_s(TopoDS.Face(ex.Current()))
-        if isinstance(surf, Geom_BSplineSurface):
-            return surf
-        ex.Next()
-    raise FitError(f"{path}: no B-spline surface face after transfer")
+    model = reader.IGESModel()
+    gs = model.GlobalSection()
+    flag = gs.UnitFlag()
+    name = gs.UnitName().ToCString() if gs.UnitName() else ""
+    if flag not in IGES_UNITS:
+        raise FitError(f"{path}: IGES unit flag {flag} ({name!r}) not supported here")
+    k = IGES_UNITS[flag]
+    for i in range(1, model.NbEntities() + 1):
+        e = model.Entity(i)
+        if not isinstance(e, IGESGeom_BSplineSurface):
+            continue
+        p, q = e.DegreeU(), e.DegreeV()
+        nu, nv = e.UpperIndexU() + 1, e.UpperIndexV() + 1
+        ku = [e.KnotU(j) for j in range(-p, nu + 1)]
+        kv = [e.KnotV(j) for j in range(-q, nv + 1)]
+        ctrl, w = [], []
+        for a in range(nu):
+            for b in range(nv):
+                c = e.TransformedPole(a, b)
+                ctrl.append((c.X() * k, c.Y() * k, c.Z() * k))
+                w.append(e.Weight(a, b))
+        surf = bspline_surface((p, q), (nu, nv), ku, kv, ctrl, w)
+        return surf, {"unit_flag": flag, "unit_name": name, "metres_per_unit": k}
+    raise FitError(f"{path}: no B-spline surface entity (128)")
 
 
 class Hullskin:

@@ -23,7 +23,8 @@ pub struct FitArgs {
     #[arg(long, default_value = "approx", value_parser = parse_method)]
     pub method: FitMethod,
     /// Control points NU,NV of `approx` (u along each section, v across sections). Default:
-    /// about two thirds of the offsets in each direction.
+    /// three quarters of the offsets in each direction
+    /// (of the smallest section along u, of the sections along v).
     #[arg(long, value_parser = parse_pair)]
     pub ctrl: Option<(usize, usize)>,
     /// Degrees P,Q in u (along sections) and v (across sections).

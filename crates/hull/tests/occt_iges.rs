@@ -1,12 +1,13 @@
 //! The IGES export read back by a real CAD kernel (Open CASCADE through `tools/occt_check.py`),
 //! and the golden IGES text of a tiny surface.
 //!
-//! The OCCT tests need a Python with the `cadquery-ocp-novtk` package; `.ci/run` makes one in
-//! `.venv` and sets `HULLSKIN_PYTHON`. Without it these tests fail (so the check cannot vanish
-//! silently) unless `HULLSKIN_SKIP_OCCT=1` says to skip them.
+//! The OCCT tests need a Python with the `cadquery-ocp-novtk` package: `HULLSKIN_PYTHON`, or
+//! else `.venv` made by `tools/setup-python.sh` (run by the test itself when needed). If that
+//! fails the tests fail (the check cannot vanish silently) unless `HULLSKIN_SKIP_OCCT=1`.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::OnceLock;
 
 use hull::export::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
 use nurbs::{KnotVector, NurbsSurface, Vec3};
@@ -16,20 +17,35 @@ fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-/// The Python that has OCP, or `None` if the OCCT checks are explicitly skipped.
+/// The Python that has OCP, or `None` if the OCCT checks are explicitly skipped. Without
+/// `HULLSKIN_PYTHON`, `tools/setup-python.sh` makes (once) `.venv` in the checkout, so a plain
+/// `cargo test --workspace` runs the check on a fresh machine too.
 fn occt_python() -> Option<String> {
-    match std::env::var("HULLSKIN_PYTHON") {
-        Ok(p) if !p.is_empty() => Some(p),
-        _ if std::env::var("HULLSKIN_SKIP_OCCT").as_deref() == Ok("1") => {
-            eprintln!("SKIPPED: OCCT check of the IGES export (HULLSKIN_SKIP_OCCT=1)");
-            None
+    static PYTHON: OnceLock<Result<String, String>> = OnceLock::new();
+    if let Ok(p) = std::env::var("HULLSKIN_PYTHON") {
+        if !p.is_empty() {
+            return Some(p);
         }
-        _ => panic!(
-            "HULLSKIN_PYTHON is not set. The IGES export is checked with Open CASCADE; set up a \
-             Python with it and point HULLSKIN_PYTHON at it:\n  \
-             python3 -m venv .venv && .venv/bin/pip install -r tools/requirements.txt\n  \
-             HULLSKIN_PYTHON=$PWD/.venv/bin/python cargo test -p hullskin-hull --test occt_iges\n\
-             (.ci/run does all of this), or set HULLSKIN_SKIP_OCCT=1 to skip the check."
+    }
+    if std::env::var("HULLSKIN_SKIP_OCCT").as_deref() == Ok("1") {
+        eprintln!("SKIPPED: OCCT check of the IGES export (HULLSKIN_SKIP_OCCT=1)");
+        return None;
+    }
+    let found = PYTHON.get_or_init(|| {
+        let script = workspace_root().join("tools/setup-python.sh");
+        let out =
+            Command::new("bash").arg(&script).output().map_err(|e| format!("cannot run {}: {e}", script.display()))?;
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        match stdout.lines().last() {
+            Some(p) if out.status.success() => Ok(p.trim().to_string()),
+            _ => Err(format!("{} failed:\n{}", script.display(), String::from_utf8_lossy(&out.stderr))),
+        }
+    });
+    match found {
+        Ok(p) => Some(p.clone()),
+        Err(e) => panic!(
+            "{e}\nThe IGES export is checked with Open CASCADE (PyPI package cadquery-ocp-novtk). \
+             Point HULLSKIN_PYTHON at a Python that has it, or set HULLSKIN_SKIP_OCCT=1 to skip the check."
         ),
     }
 }

@@ -358,6 +358,26 @@ impl<'a> SurfaceProjector<'a> {
             best2 = scratch.vals.iter().fold(best2, |m, x| m.min(x[0]));
         }
         scratch.seeds.sort_unstable_by(|x, y| x.d2.total_cmp(&y.d2));
+        if std::env::var("DBG").is_ok() {
+            for sd in &scratch.seeds {
+                eprintln!("seed {:?}", sd);
+            }
+            let nv = self.vs.len();
+            for a in 0..6.min(self.us.len()) {
+                for b in 0..3 {
+                    let sm = self.samples[a * nv + b];
+                    let r = sm.p - q;
+                    eprintln!(
+                        "node u {} v {} d {} gu {} gv {}",
+                        self.us[a],
+                        self.vs[b],
+                        r.norm(),
+                        sm.su.dot(r),
+                        sm.sv.dot(r)
+                    );
+                }
+            }
+        }
         // 3. Newton from the best few, skipping spans that cannot beat the best so far and
         //    seeds whose box already holds a foot found.
         let mut best: Option<SurfaceProjection> = None;
@@ -407,13 +427,18 @@ impl<'a> SurfaceProjector<'a> {
                     && (bb == 0 || bb + 1 == nv)
                     && (if a == 0 { gu >= 0.0 } else { gu <= 0.0 })
                     && (if bb == 0 { gv >= 0.0 } else { gv <= 0.0 });
-                if corner_held
-                    || self.is_local_min(q, vals, b, la, lb, d2, node)
-                    || self.is_edge_local_min(q, a, bb, d2, node)
-                {
+                // A seed for a constrained minimum stands for its corner or edge only, not for
+                // the cells beside it, whose interior minima are others.
+                if corner_held {
+                    seeds.push(Seed { d2, u: us[a], v: vs[bb], range: box_of(a, a, bb, bb), lower });
+                } else if self.is_local_min(q, vals, b, la, lb, d2, node) {
                     let range =
                         box_of(a.saturating_sub(1), (a + 1).min(nu - 1), bb.saturating_sub(1), (bb + 1).min(nv - 1));
                     seeds.push(Seed { d2, u: us[a], v: vs[bb], range, lower });
+                } else if self.is_edge_local_min(q, a, bb, d2, node) {
+                    let (a0, a1) = if a == 0 || a + 1 == nu { (a, a) } else { (a - 1, a + 1) };
+                    let (b0, b1) = if bb == 0 || bb + 1 == nv { (bb, bb) } else { (bb - 1, bb + 1) };
+                    seeds.push(Seed { d2, u: us[a], v: vs[bb], range: box_of(a0, a1, b0, b1), lower });
                 }
             }
         }
@@ -432,16 +457,16 @@ impl<'a> SurfaceProjector<'a> {
                 }
                 // Edge segments of the domain: a turn along the edge, held across it.
                 if a == 0 && turns_v(c00, c01) && (c00[1] >= 0.0 || c01[1] >= 0.0) {
-                    seeds.push(Seed { d2, u: us[a], v: vm, range, lower });
+                    seeds.push(Seed { d2, u: us[a], v: vm, range: box_of(a, a, bb, bb + 1), lower });
                 }
                 if a + 2 == nu && turns_v(c10, c11) && (c10[1] <= 0.0 || c11[1] <= 0.0) {
-                    seeds.push(Seed { d2, u: us[a + 1], v: vm, range, lower });
+                    seeds.push(Seed { d2, u: us[a + 1], v: vm, range: box_of(a + 1, a + 1, bb, bb + 1), lower });
                 }
                 if bb == 0 && turns_u(c00, c10) && (c00[2] >= 0.0 || c10[2] >= 0.0) {
-                    seeds.push(Seed { d2, u: um, v: vs[bb], range, lower });
+                    seeds.push(Seed { d2, u: um, v: vs[bb], range: box_of(a, a + 1, bb, bb), lower });
                 }
                 if bb + 2 == nv && turns_u(c01, c11) && (c01[2] <= 0.0 || c11[2] <= 0.0) {
-                    seeds.push(Seed { d2, u: um, v: vs[bb + 1], range, lower });
+                    seeds.push(Seed { d2, u: um, v: vs[bb + 1], range: box_of(a, a + 1, bb + 1, bb + 1), lower });
                 }
             }
         }
@@ -587,30 +612,50 @@ impl<'a> SurfaceProjector<'a> {
         let s = self.surface;
         let ((ua, ub), (va, vb)) = (s.domain_u(), s.domain_v());
         let [cu0, cu1, cv0, cv1] = self.collapsed;
-        let mut best: Option<(f64, f64, f64)> = None;
-        let mut consider = |nu: f64, nv: f64, inward: f64, along_u: bool| {
-            let d = s.derivatives(nu, nv);
-            let r = d.point - q;
-            let (t, g) = if along_u { (d.su, d.su.dot(r)) } else { (d.sv, d.sv.dot(r)) };
-            // Directional derivative into the surface per unit length.
-            let slope = inward * g / t.norm().max(f64::MIN_POSITIVE);
-            if slope < -self.eps && best.map_or(true, |b| slope < b.2) {
-                best = Some((nu, nv, slope));
+        // Directional derivative into the surface per unit length, along the edge parameter t.
+        let slope = |t: f64, across_u: bool, inward: f64| {
+            let d = if across_u { s.derivatives(u, t) } else { s.derivatives(t, v) };
+            let dir = if across_u { d.su } else { d.sv };
+            inward * dir.dot(d.point - q) / dir.norm().max(f64::MIN_POSITIVE)
+        };
+        // The steepest direction: the best sample, then golden-section search between its
+        // neighbours (the slope is smooth in t).
+        let steepest = |ts: &[f64], across_u: bool, inward: f64| {
+            let (k, _) = ts
+                .iter()
+                .map(|&t| slope(t, across_u, inward))
+                .enumerate()
+                .fold((0, f64::INFINITY), |b, (k, m)| if m < b.1 { (k, m) } else { b });
+            let (mut lo, mut hi) = (ts[k.saturating_sub(1)], ts[(k + 1).min(ts.len() - 1)]);
+            let phi = 0.5 * (5f64.sqrt() - 1.0);
+            for _ in 0..40 {
+                let (t1, t2) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
+                if slope(t1, across_u, inward) < slope(t2, across_u, inward) {
+                    hi = t2;
+                } else {
+                    lo = t1;
+                }
+            }
+            let t = 0.5 * (lo + hi);
+            let (m, mk) = (slope(t, across_u, inward), slope(ts[k], across_u, inward));
+            if m < mk {
+                (t, m)
+            } else {
+                (ts[k], mk)
             }
         };
+        let mut best: Option<(f64, f64, f64)> = None;
         if hold_u && ((u <= ua && cu0) || (u >= ub && cu1)) {
-            let inward = if u <= ua { 1.0 } else { -1.0 };
-            for &nv in &self.vs {
-                consider(u, nv, inward, true);
-            }
+            let (t, m) = steepest(&self.vs, true, if u <= ua { 1.0 } else { -1.0 });
+            best = Some((u, t, m));
         }
         if hold_v && ((v <= va && cv0) || (v >= vb && cv1)) {
-            let inward = if v <= va { 1.0 } else { -1.0 };
-            for &nu in &self.us {
-                consider(nu, v, inward, false);
+            let (t, m) = steepest(&self.us, false, if v <= va { 1.0 } else { -1.0 });
+            if best.map_or(true, |b| m < b.2) {
+                best = Some((t, v, m));
             }
         }
-        best.map(|(nu, nv, _)| (nu, nv))
+        best.filter(|b| b.2 < -self.eps).map(|(nu, nv, _)| (nu, nv))
     }
 }
 
@@ -775,9 +820,14 @@ impl<'a> CurveProjector<'a> {
             let right_ok = i + 1 == n || vals[i + 1].0 >= d2;
             let end_held = (i == 0 && g >= 0.0) || (i + 1 == n && g <= 0.0);
             if (left_ok && right_ok) || end_held {
-                // A node on a break belongs to two spans: take the lower bound.
+                // A node on a break belongs to two spans: take the lower bound. A held end
+                // stands for itself only, not for the interval beside it.
                 let lower = bound(span_of(i)).min(bound(span_of(i.saturating_sub(1))));
-                let range = [us[i.saturating_sub(1)], us[(i + 1).min(n - 1)], 0.0, 0.0];
+                let range = if end_held {
+                    [us[i], us[i], 0.0, 0.0]
+                } else {
+                    [us[i.saturating_sub(1)], us[(i + 1).min(n - 1)], 0.0, 0.0]
+                };
                 seeds.push(Seed { d2, u: us[i], v: 0.0, range, lower });
             }
             if i + 1 < n && g < 0.0 && vals[i + 1].1 > 0.0 {

@@ -408,7 +408,7 @@ mod tests {
         assert_eq!((s.sections.len(), s.num_points()), (3, 12));
         assert!(s.source.ends_with("sections_example.csv"));
         let t = read_offsets(&testdata("offsets_example.csv"), Units::Foot).expect("offsets example");
-        assert_eq!((t.sections.len(), t.num_points(), t.units), (4, 15, Units::Foot));
+        assert_eq!((t.sections.len(), t.num_points(), t.units), (4, 19, Units::Foot));
     }
 
     #[test]

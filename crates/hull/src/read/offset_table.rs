@@ -333,9 +333,9 @@ mod tests {
         let text = include_str!("../../../../testdata/offsets_example.csv");
         let o = parse_offset_table(text, "offsets_example.csv", Units::Metre).expect("valid example");
         assert_eq!(o.sections.len(), 4);
-        // 4 stations x 4 waterlines with one missing cell.
-        assert_eq!(o.num_points(), 15);
-        assert!(o.validate(3).is_ok());
+        // 4 stations x 5 waterlines with one missing cell.
+        assert_eq!(o.num_points(), 19);
+        assert!(o.validate(4).is_ok());
         for s in &o.sections {
             assert!(s.points.windows(2).all(|w| w[1].z > w[0].z), "keel to deck in {}", s.label);
             assert!(s.points.iter().all(|p| p.y >= 0.0));

@@ -1,0 +1,152 @@
+//! The `hullskin` binary end to end: the default run, the outputs' stable layout, bad input
+//! reported with file, line and column, and earlier results never lost.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn hullskin(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hullskin")).args(args).current_dir(dir).output().expect("run hullskin")
+}
+
+fn testdata(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
+}
+
+fn text(o: &Output) -> (String, String) {
+    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+fn read_json(p: &Path) -> Value {
+    serde_json::from_str(&fs::read_to_string(p).expect("read json")).expect("valid json")
+}
+
+#[test]
+fn no_arguments_fits_the_builtin_sample_and_prints_a_table() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let o = hullskin(dir.path(), &[]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    assert!(out.contains("Series 60") && out.contains("max err") && out.contains("approx"), "{out}");
+    let report = read_json(&dir.path().join("hullskin-out/report.json"));
+    assert_eq!(report["input"]["sections"], 25);
+    assert!(dir.path().join("hullskin-out/surface.igs").is_file());
+    assert!(dir.path().join("hullskin-out/surface.json").is_file());
+}
+
+#[test]
+fn report_json_has_the_stable_fields() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let input = testdata("sections_example.csv");
+    let o = hullskin(dir.path(), &["fit", input.to_str().expect("utf-8 path"), "-o", "out", "--method", "interp"]);
+    assert!(o.status.success(), "{:?}", text(&o));
+    let r = read_json(&dir.path().join("out/report.json"));
+    assert_eq!(r["method"], "interp");
+    assert_eq!(r["input"]["sections"], 3);
+    assert_eq!(r["input"]["points"], 12);
+    // 3 sections cap the degree across them at 2; 4 points per section carry a cubic.
+    assert_eq!(r["surface"]["degree"], serde_json::json!([3, 2]));
+    assert_eq!(r["surface"]["control_points"], serde_json::json!([4, 3]));
+    assert_eq!(r["surface"]["rational"], false);
+    for k in ["max", "mean", "rms"] {
+        // Interpolation: the true distance is round-off on a 10 m model.
+        let e = r["error"][k].as_f64().expect("number");
+        assert!((0.0..1e-9).contains(&e), "{k} = {e}");
+    }
+    assert!(r["seconds"].as_f64().expect("number") >= 0.0);
+}
+
+#[test]
+fn units_reach_the_exports() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let input = testdata("offsets_example.csv");
+    let o = hullskin(dir.path(), &["fit", input.to_str().expect("utf-8"), "-o", "mm", "--units", "mm"]);
+    assert!(o.status.success(), "{:?}", text(&o));
+    let iges = fs::read_to_string(dir.path().join("mm/surface.igs")).expect("iges");
+    let global: String = iges.lines().filter(|l| l.as_bytes().get(72) == Some(&b'G')).map(|l| &l[..72]).collect();
+    assert!(global.contains(",2,2HMM,"), "units flag 2 and name MM in the global section: {global}");
+    assert_eq!(read_json(&dir.path().join("mm/surface.json"))["units"], "mm");
+    assert_eq!(read_json(&dir.path().join("mm/report.json"))["input"]["units"], "mm");
+}
+
+/// Each bad input: (file content, what the message must contain).
+const BAD: &[(&str, &str, &[&str])] = &[
+    ("non_numeric", "section,x,y,z\na,0,0,0\na,0,1,x1\na,0,2,2\n", &[":3:4:", "not a number"]),
+    ("nan", "section,x,y,z\na,0,0,0\na,0,NaN,1\n", &[":3:3:", "finite"]),
+    ("inf", "z\\x,0,1\n0,1,inf\n1,2,2\n", &[":2:3:", "finite"]),
+    ("column_count", "section,x,y,z\na,0,0,0\na,0,1\n", &[":3", "fields"]),
+    (
+        "one_section",
+        "section,x,y,z\na,0,0,0\na,0,1,1\na,0,2,2\na,0,3,3\n",
+        &["section", "expected at least 2"],
+    ),
+    ("too_few_points", "section,x,y,z\na,0,0,0\na,0,1,1\nb,1,0,0\nb,1,1,1\n", &[":2", "expected at least 4 points"]),
+    (
+        "repeated_point",
+        "section,x,y,z\na,0,0,0\na,0,1,1\na,0,1,1\na,0,2,2\na,0,3,3\nb,1,0,0\nb,1,1,1\nb,1,2,2\nb,1,3,3\n",
+        &[":4", "repeat"],
+    ),
+    ("stations_out_of_order", "z\\x,0,2,1,3\n0,1,1,1,1\n1,2,2,2,2\n", &[":1", "order"]),
+    ("empty", "", &["empty"]),
+    ("binary", "\u{0}\u{1}PNG\u{0}\u{0}", &["binary"]),
+];
+
+#[test]
+fn bad_input_is_reported_with_its_place_and_a_nonzero_exit() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    for (name, content, needles) in BAD {
+        let path = dir.path().join(format!("{name}.csv"));
+        fs::write(&path, content).expect("write");
+        let o = hullskin(dir.path(), &["fit", path.to_str().expect("utf-8"), "-o", "out"]);
+        let (out, err) = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: exit {:?}, stdout {out} stderr {err}", o.status);
+        assert!(!err.contains("panicked"), "{name}: {err}");
+        assert!(err.contains(&format!("{name}.csv")), "{name}: message names the file: {err}");
+        for n in *needles {
+            assert!(err.to_lowercase().contains(&n.to_lowercase()), "{name}: `{n}` missing from: {err}");
+        }
+        assert!(!dir.path().join("out").exists(), "{name}: nothing written on failure");
+    }
+}
+
+#[test]
+fn missing_file_and_bad_flags_are_clear_errors() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let o = hullskin(dir.path(), &["fit", "no_such_file.csv"]);
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(err.contains("no_such_file.csv"), "{err}");
+    let o = hullskin(dir.path(), &["fit", "--ctrl", "40,3"]);
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("40") && err.contains("control points"), "{err}");
+    let o = hullskin(dir.path(), &["fit", "--ctrl", "4x3"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = hullskin(dir.path(), &["fit", "--param", "bogus"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).1.contains("centripetal"), "lists the choices");
+}
+
+#[test]
+fn a_failed_run_leaves_earlier_results_intact() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let o = hullskin(dir.path(), &["fit", "-o", "out"]);
+    assert!(o.status.success());
+    let before: Vec<Vec<u8>> = ["surface.igs", "surface.json", "report.json"]
+        .iter()
+        .map(|f| fs::read(dir.path().join("out").join(f)).expect("read"))
+        .collect();
+    let bad = dir.path().join("bad.csv");
+    fs::write(&bad, "section,x,y,z\na,0,0,oops\n").expect("write");
+    let o = hullskin(dir.path(), &["fit", bad.to_str().expect("utf-8"), "-o", "out"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = hullskin(dir.path(), &["fit", "-o", "out", "--ctrl", "99,99"]);
+    assert_eq!(o.status.code(), Some(2));
+    for (f, b) in ["surface.igs", "surface.json", "report.json"].iter().zip(&before) {
+        assert_eq!(&fs::read(dir.path().join("out").join(f)).expect("read"), b, "{f} unchanged");
+    }
+    let leftovers: Vec<_> = fs::read_dir(dir.path().join("out")).expect("list").collect();
+    assert_eq!(leftovers.len(), 3, "no temporary files left behind");
+}
