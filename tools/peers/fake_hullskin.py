@@ -8,6 +8,7 @@ Fits with geomdl (interpolate_surface / approximate_surface) and writes DIR/surf
 hullskin's format, DIR/surface.igs (OCCT's IGES writer, unit metres) and DIR/report.json.
 It is NOT a peer and never appears in results; selftest.py uses it.
 """
+
 from __future__ import annotations
 
 import argparse

@@ -194,7 +194,11 @@ def _():
         js = os.path.join(d, "r.json")
         argv = ["--hullskin", fake, "--cases", "cargo116_st", "--data", DATA, "--inputs", d]
         argv += ["--work", d, "--out-md", os.path.join(d, "r.md"), "--out-json", js]
-        assert compare.main(argv) == 0
+        import contextlib
+        import io
+
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            assert compare.main(argv) == 0
         res = json.load(open(js))["cases"][0]
     rows = {r["method"]: r for r in res["rows"]}
     assert not [r for r in res["rows"] if "error" in r], res["rows"]

@@ -108,6 +108,79 @@ fn sample_params(br: &[f64], g: usize) -> Vec<f64> {
     out
 }
 
+/// Sample parameters with `counts[i]` equal intervals in span `i` of `br`, plus, when `grade`
+/// says so for the first (last) end, [`GRADED_LEVELS`] extra samples halving the first (last)
+/// interval towards that end. Returns the parameters, each span's first sample index and each
+/// span's final interval count.
+fn sample_params_by_span(br: &[f64], counts: &[usize], grade: (bool, bool)) -> (Vec<f64>, Vec<usize>, Vec<usize>) {
+    let mut out = Vec::with_capacity(counts.iter().sum::<usize>() + 2 * GRADED_LEVELS + 1);
+    let mut starts = Vec::with_capacity(counts.len());
+    let mut finals = Vec::with_capacity(counts.len());
+    let last = counts.len() - 1;
+    for (i, (w, &g)) in br.windows(2).zip(counts).enumerate() {
+        starts.push(out.len());
+        let h = (w[1] - w[0]) / g as f64;
+        let mut n = g;
+        for k in 0..g {
+            out.push(w[0] + h * k as f64);
+            if k == 0 && i == 0 && grade.0 {
+                out.extend((1..=GRADED_LEVELS).rev().map(|l| w[0] + h / (1u32 << l) as f64));
+                n += GRADED_LEVELS;
+            }
+        }
+        if i == last && grade.1 {
+            out.extend((1..=GRADED_LEVELS).map(|l| w[1] - h / (1u32 << l) as f64));
+            n += GRADED_LEVELS;
+        }
+        finals.push(n);
+    }
+    out.push(br[br.len() - 1]);
+    (out, starts, finals)
+}
+
+/// Extra sample rows graded towards a collapsed edge (at 1/2, 1/4, 1/8 of the first interval):
+/// near a stem the parameterization is polar-like and the distance varies fastest there.
+const GRADED_LEVELS: usize = 3;
+
+/// Largest tangent turning per sampling interval, in radians: spans whose tangent turns more
+/// get more intervals, so a sharp bend cannot hide a second minimum between two samples.
+const TURN_PER_INTERVAL: f64 = 0.3;
+/// Upper limit of sampling intervals per knot span.
+const MAX_INTERVALS: usize = 64;
+/// Sub-steps per span used to measure the turning.
+const TURN_STEPS: usize = 16;
+
+/// Intervals per span of `br`: at least `base`, and enough that the tangent `tangent(t)` turns
+/// by at most [`TURN_PER_INTERVAL`] per interval (measured with [`TURN_STEPS`] steps). Tangents
+/// shorter than 1e-6 of the longest in the span (a collapsed edge) have no direction and are
+/// skipped.
+fn intervals_by_turning(br: &[f64], base: usize, tangent: impl Fn(f64) -> Vec3) -> Vec<usize> {
+    br.windows(2)
+        .map(|w| {
+            let ts: Vec<Vec3> = (0..=TURN_STEPS)
+                .map(|k| {
+                    tangent(if k == TURN_STEPS { w[1] } else { w[0] + (w[1] - w[0]) * k as f64 / TURN_STEPS as f64 })
+                })
+                .collect();
+            let longest = ts.iter().map(|t| t.norm()).fold(0.0, f64::max);
+            let mut total = 0.0;
+            let mut prev: Option<Vec3> = None;
+            for &t in &ts {
+                if !(t.norm() > 1e-6 * longest) {
+                    continue;
+                }
+                if let Some(p) = prev {
+                    total += p.cross(t).norm().atan2(p.dot(t));
+                }
+                prev = Some(t);
+            }
+            let need = (total / TURN_PER_INTERVAL).ceil();
+            let need = if need.is_finite() { need as usize } else { base };
+            need.clamp(base, MAX_INTERVALS.max(base))
+        })
+        .collect()
+}
+
 /// `eps1` of the options for a model whose control net has bounding-box diagonal `size`.
 fn abs_tolerance(opts: &ProjectionOptions, size: f64) -> f64 {
     let t = if opts.tolerance.is_finite() && opts.tolerance > 0.0 { opts.tolerance } else { 0.0 };
@@ -180,9 +253,12 @@ struct Block {
     center: Vec3,
     /// Every point of the surface over the span lies within this distance of `center`.
     radius: f64,
-    /// First node row (u) and column (v) of the span; it spans `gu + 1` by `gv + 1` nodes.
+    /// First node row (u) and column (v) of the span, and its intervals in u and v: it spans
+    /// `na + 1` by `nb + 1` nodes.
     a0: usize,
     b0: usize,
+    na: usize,
+    nb: usize,
 }
 
 /// A grid node: the point and its first partial derivatives.
@@ -221,7 +297,8 @@ struct Scratch {
     /// Per node of the span being scanned: `(|S - q|^2, S_u . (S - q), S_v . (S - q))`.
     vals: Vec<[f64; 3]>,
     seeds: Vec<Seed>,
-    feet: Vec<(f64, f64)>,
+    /// `(u, v, S(u, v))` of the Newton runs so far.
+    feet: Vec<(f64, f64, Vec3)>,
 }
 
 /// Projects points onto one surface; build it once, then project many points.
@@ -245,8 +322,6 @@ pub struct SurfaceProjector<'a> {
     vs: Vec<f64>,
     /// Samples at `(us[a], vs[b])`, index `a * vs.len() + b`.
     samples: Vec<Sample>,
-    gu: usize,
-    gv: usize,
     blocks: Vec<Block>,
     /// Largest coordinate magnitude of the control net (scale of evaluation round-off).
     magnitude: f64,
@@ -257,10 +332,34 @@ pub struct SurfaceProjector<'a> {
 impl<'a> SurfaceProjector<'a> {
     /// Sample `surface` and prepare the span bounds.
     pub fn new(surface: &'a NurbsSurface, options: ProjectionOptions) -> Self {
-        let gu = options.grid.max(surface.degree_u()).max(1);
-        let gv = options.grid.max(surface.degree_v()).max(1);
+        let base_u = options.grid.max(surface.degree_u()).max(1);
+        let base_v = options.grid.max(surface.degree_v()).max(1);
         let (bu, bv) = (breaks(surface.knots_u()), breaks(surface.knots_v()));
-        let (us, vs) = (sample_params(&bu, gu), sample_params(&bv, gv));
+        // Intervals per span: the base count, more where some iso-line bends sharply.
+        let (lines_u, lines_v) = (sample_params(&bu, base_u), sample_params(&bv, base_v));
+        let counts_u: Vec<usize> = lines_v
+            .iter()
+            .map(|&v| intervals_by_turning(&bu, base_u, |u| surface.derivatives(u, v).su))
+            .fold(vec![base_u; bu.len() - 1], |m, c| m.iter().zip(&c).map(|(&a, &b)| a.max(b)).collect());
+        let counts_v: Vec<usize> = lines_u
+            .iter()
+            .map(|&u| intervals_by_turning(&bv, base_v, |v| surface.derivatives(u, v).sv))
+            .fold(vec![base_v; bv.len() - 1], |m, c| m.iter().zip(&c).map(|(&a, &b)| a.max(b)).collect());
+        // Collapsed edges, from samples along them; the grid is graded towards them.
+        let (lo, hi) = surface.control_bounds();
+        let eps = abs_tolerance(&options, (hi - lo).norm());
+        let magnitude = lo.norm().max(hi.norm());
+        let same = eps.max(64.0 * f64::EPSILON * magnitude);
+        let ((ua, ub), (va, vb)) = (surface.domain_u(), surface.domain_v());
+        let collapsed_at = |pts: Vec<Vec3>| pts.iter().all(|&p| (p - pts[0]).norm() <= same);
+        let collapsed = [
+            collapsed_at(lines_v.iter().map(|&v| surface.point(ua, v)).collect()),
+            collapsed_at(lines_v.iter().map(|&v| surface.point(ub, v)).collect()),
+            collapsed_at(lines_u.iter().map(|&u| surface.point(u, va)).collect()),
+            collapsed_at(lines_u.iter().map(|&u| surface.point(u, vb)).collect()),
+        ];
+        let (us, starts_u, counts_u) = sample_params_by_span(&bu, &counts_u, (collapsed[0], collapsed[1]));
+        let (vs, starts_v, counts_v) = sample_params_by_span(&bv, &counts_v, (collapsed[2], collapsed[3]));
         let (nu, nv) = (us.len(), vs.len());
         let mut samples = Vec::with_capacity(nu * nv);
         for &u in &us {
@@ -269,31 +368,16 @@ impl<'a> SurfaceProjector<'a> {
                 samples.push(Sample { p: d.point, su: d.su, sv: d.sv });
             }
         }
-        let (lo, hi) = surface.control_bounds();
-        let eps = abs_tolerance(&options, (hi - lo).norm());
-        let magnitude = lo.norm().max(hi.norm());
         let mut blocks = Vec::with_capacity((bu.len() - 1) * (bv.len() - 1));
         for (i, wu) in bu.windows(2).enumerate() {
             for (j, wv) in bv.windows(2).enumerate() {
-                let (a0, b0) = (i * gu, j * gv);
-                let center = samples[(a0 + gu / 2) * nv + b0 + gv / 2].p;
-                let radius = span_radius(surface, center, (wu[0], wu[1], gu), (wv[0], wv[1], gv)) + eps;
-                blocks.push(Block { center, radius, a0, b0 });
+                let (a0, b0, na, nb) = (starts_u[i], starts_v[j], counts_u[i], counts_v[j]);
+                let center = samples[(a0 + na / 2) * nv + b0 + nb / 2].p;
+                let radius = span_radius(surface, center, (wu[0], wu[1], na), (wv[0], wv[1], nb)) + eps;
+                blocks.push(Block { center, radius, a0, b0, na, nb });
             }
         }
-        let same = eps.max(64.0 * f64::EPSILON * magnitude);
-        let collapsed_edge = |idx: &mut dyn Iterator<Item = usize>| {
-            let mut pts = idx.map(|k| samples[k].p);
-            let first = pts.next().unwrap_or(Vec3::ZERO);
-            pts.all(|p| (p - first).norm() <= same)
-        };
-        let collapsed = [
-            collapsed_edge(&mut (0..nv)),
-            collapsed_edge(&mut ((nu - 1) * nv..nu * nv)),
-            collapsed_edge(&mut (0..nu).map(|a| a * nv)),
-            collapsed_edge(&mut (0..nu).map(|a| a * nv + nv - 1)),
-        ];
-        SurfaceProjector { surface, options, eps, us, vs, samples, gu, gv, blocks, magnitude, collapsed }
+        SurfaceProjector { surface, options, eps, us, vs, samples, blocks, magnitude, collapsed }
     }
 
     /// The surface projected onto.
@@ -358,44 +442,41 @@ impl<'a> SurfaceProjector<'a> {
             best2 = scratch.vals.iter().fold(best2, |m, x| m.min(x[0]));
         }
         scratch.seeds.sort_unstable_by(|x, y| x.d2.total_cmp(&y.d2));
-        if std::env::var("DBG").is_ok() {
-            for sd in &scratch.seeds {
-                eprintln!("seed {:?}", sd);
-            }
-            let nv = self.vs.len();
-            for a in 0..6.min(self.us.len()) {
-                for b in 0..3 {
-                    let sm = self.samples[a * nv + b];
-                    let r = sm.p - q;
-                    eprintln!(
-                        "node u {} v {} d {} gu {} gv {}",
-                        self.us[a],
-                        self.vs[b],
-                        r.norm(),
-                        sm.su.dot(r),
-                        sm.sv.dot(r)
-                    );
-                }
-            }
-        }
         // 3. Newton from the best few, skipping spans that cannot beat the best so far and
         //    seeds whose box already holds a foot found.
         let mut best: Option<SurfaceProjection> = None;
         let mut runs = 0;
+        let mut done_edges = 0u8;
         scratch.feet.clear();
+        // `candidates` distinct local minima at most; a run that ends at a foot already found
+        // does not count, but all runs together are bounded by three times that.
+        let wanted = self.options.candidates.max(1);
+        let mut distinct = 0;
         for seed in &scratch.seeds {
-            if runs >= self.options.candidates.max(1) {
+            if distinct >= wanted || runs >= 3 * wanted {
                 break;
             }
             if matches!(&best, Some(bp) if seed.lower >= bp.distance) {
                 continue;
             }
-            if scratch.feet.iter().any(|&(u, v)| seed.covers(u, v)) {
+            if scratch.feet.iter().any(|&(u, v, _)| seed.covers(u, v)) {
                 continue;
             }
+            // All starts on one collapsed edge are one point, and Newton tries every direction
+            // out of it: one run per such edge.
+            let edge = self.collapsed_edge_of(seed.u, seed.v);
+            if edge & done_edges != 0 {
+                continue;
+            }
+            done_edges |= edge;
             runs += 1;
             let res = self.refine(q, seed.u, seed.v);
-            scratch.feet.push((res.u, res.v));
+            let again =
+                scratch.feet.iter().any(|&(_, _, p)| (p - res.point).norm() <= self.eps.max(1e-9 * res.distance));
+            if !again {
+                distinct += 1;
+            }
+            scratch.feet.push((res.u, res.v, res.point));
             if !matches!(&best, Some(bp) if bp.distance <= res.distance) {
                 best = Some(res);
             }
@@ -406,7 +487,7 @@ impl<'a> SurfaceProjector<'a> {
     /// Sample one span against `q` into `vals` and push its seeds.
     fn scan_block(&self, q: Vec3, b: &Block, lower: f64, vals: &mut Vec<[f64; 3]>, seeds: &mut Vec<Seed>) {
         let (nu, nv) = (self.us.len(), self.vs.len());
-        let (ru, rv) = (self.gu + 1, self.gv + 1);
+        let (ru, rv) = (b.na + 1, b.nb + 1);
         vals.clear();
         for a in b.a0..b.a0 + ru {
             for smp in &self.samples[a * nv + b.b0..][..rv] {
@@ -443,30 +524,42 @@ impl<'a> SurfaceProjector<'a> {
             }
         }
         // Cells: the gradient turns from negative to positive across the cell in u and in v.
-        for la in 0..self.gu {
-            for lb in 0..self.gv {
+        for la in 0..b.na {
+            for lb in 0..b.nb {
                 let (c00, c10, c01, c11) = (at(la, lb), at(la + 1, lb), at(la, lb + 1), at(la + 1, lb + 1));
                 let (a, bb) = (b.a0 + la, b.b0 + lb);
-                let d2 = c00[0].min(c10[0]).min(c01[0]).min(c11[0]);
+                // Ranked by the mean of the corners' squared distances (the minimum would tie all
+                // cells around one near node).
+                let d2 = 0.25 * (c00[0] + c10[0] + c01[0] + c11[0]);
+                let (d2_u0, d2_u1) = (0.5 * (c00[0] + c01[0]), 0.5 * (c10[0] + c11[0]));
+                let (d2_v0, d2_v1) = (0.5 * (c00[0] + c10[0]), 0.5 * (c01[0] + c11[0]));
                 let range = box_of(a, a + 1, bb, bb + 1);
                 let (um, vm) = (0.5 * (us[a] + us[a + 1]), 0.5 * (vs[bb] + vs[bb + 1]));
                 let turns_u = |l: [f64; 3], r: [f64; 3]| l[1] < 0.0 && r[1] > 0.0;
                 let turns_v = |l: [f64; 3], r: [f64; 3]| l[2] < 0.0 && r[2] > 0.0;
-                if (turns_u(c00, c10) || turns_u(c01, c11)) && (turns_v(c00, c01) || turns_v(c10, c11)) {
+                let cell_turns_u = turns_u(c00, c10) || turns_u(c01, c11);
+                let cell_turns_v = turns_v(c00, c01) || turns_v(c10, c11);
+                if cell_turns_u && cell_turns_v {
                     seeds.push(Seed { d2, u: um, v: vm, range, lower });
                 }
                 // Edge segments of the domain: a turn along the edge, held across it.
                 if a == 0 && turns_v(c00, c01) && (c00[1] >= 0.0 || c01[1] >= 0.0) {
-                    seeds.push(Seed { d2, u: us[a], v: vm, range: box_of(a, a, bb, bb + 1), lower });
+                    seeds.push(Seed { d2: d2_u0, u: us[a], v: vm, range: box_of(a, a, bb, bb + 1), lower });
                 }
                 if a + 2 == nu && turns_v(c10, c11) && (c10[1] <= 0.0 || c11[1] <= 0.0) {
-                    seeds.push(Seed { d2, u: us[a + 1], v: vm, range: box_of(a + 1, a + 1, bb, bb + 1), lower });
+                    seeds.push(Seed { d2: d2_u1, u: us[a + 1], v: vm, range: box_of(a + 1, a + 1, bb, bb + 1), lower });
                 }
                 if bb == 0 && turns_u(c00, c10) && (c00[2] >= 0.0 || c10[2] >= 0.0) {
-                    seeds.push(Seed { d2, u: um, v: vs[bb], range: box_of(a, a + 1, bb, bb), lower });
+                    seeds.push(Seed { d2: d2_v0, u: um, v: vs[bb], range: box_of(a, a + 1, bb, bb), lower });
                 }
                 if bb + 2 == nv && turns_u(c01, c11) && (c01[2] <= 0.0 || c11[2] <= 0.0) {
-                    seeds.push(Seed { d2, u: um, v: vs[bb + 1], range: box_of(a, a + 1, bb + 1, bb + 1), lower });
+                    seeds.push(Seed {
+                        d2: d2_v1,
+                        u: um,
+                        v: vs[bb + 1],
+                        range: box_of(a, a + 1, bb + 1, bb + 1),
+                        lower,
+                    });
                 }
             }
         }
@@ -477,7 +570,7 @@ impl<'a> SurfaceProjector<'a> {
     #[allow(clippy::too_many_arguments)]
     fn is_local_min(&self, q: Vec3, vals: &[[f64; 3]], b: &Block, la: usize, lb: usize, d2: f64, node: usize) -> bool {
         let nv = self.vs.len();
-        let (nu_all, rv) = (self.us.len(), self.gv + 1);
+        let (nu_all, rv) = (self.us.len(), b.nb + 1);
         let (a, bb) = (b.a0 + la, b.b0 + lb);
         for da in -1i64..=1 {
             for db in -1i64..=1 {
@@ -490,7 +583,7 @@ impl<'a> SurfaceProjector<'a> {
                 }
                 let (na, nb) = (na as usize, nb as usize);
                 let other = na * nv + nb;
-                let od2 = if na >= b.a0 && na <= b.a0 + self.gu && nb >= b.b0 && nb <= b.b0 + self.gv {
+                let od2 = if na >= b.a0 && na <= b.a0 + b.na && nb >= b.b0 && nb <= b.b0 + b.nb {
                     vals[(na - b.a0) * rv + nb - b.b0][0]
                 } else {
                     (self.samples[other].p - q).norm_squared()
@@ -529,6 +622,16 @@ impl<'a> SurfaceProjector<'a> {
         let mut converged = false;
         let mut iterations = 0;
         let mut turned = false;
+        // A start on a collapsed edge leaves it in the steepest direction into the surface.
+        if self.collapsed_edge_of(u, v) != 0 {
+            let (at_u, at_v) = (u <= ua || u >= ub, v <= va || v >= vb);
+            if let Some((nu, nv)) = self.leave_collapsed_edge(q, u, v, at_u, at_v) {
+                (u, v) = (nu, nv);
+                d = s.derivatives(u, v);
+                r = d.point - q;
+                f = r.norm_squared();
+            }
+        }
         'newton: while iterations < self.options.max_iterations {
             if f.sqrt() <= eps {
                 converged = true; // point coincidence
@@ -599,6 +702,13 @@ impl<'a> SurfaceProjector<'a> {
         16.0 * f64::EPSILON * (f.sqrt() * self.magnitude + f)
     }
 
+    /// Bit mask of the collapsed edges `(u, v)` lies on (bits: u0, u1, v0, v1).
+    fn collapsed_edge_of(&self, u: f64, v: f64) -> u8 {
+        let ((ua, ub), (va, vb)) = (self.surface.domain_u(), self.surface.domain_v());
+        let on = [u <= ua, u >= ub, v <= va, v >= vb];
+        (0..4).filter(|&k| on[k] && self.collapsed[k]).fold(0, |m, k| m | (1 << k))
+    }
+
     /// Is `(u, v)` held on a bound whose edge is collapsed to a point?
     fn on_collapsed_edge(&self, u: f64, v: f64, hold_u: bool, hold_v: bool) -> bool {
         let ((ua, ub), (va, vb)) = (self.surface.domain_u(), self.surface.domain_v());
@@ -651,7 +761,7 @@ impl<'a> SurfaceProjector<'a> {
         }
         if hold_v && ((v <= va && cv0) || (v >= vb && cv1)) {
             let (t, m) = steepest(&self.us, false, if v <= va { 1.0 } else { -1.0 });
-            if best.map_or(true, |b| m < b.2) {
+            if !matches!(best, Some(b) if b.2 <= m) {
                 best = Some((t, v, m));
             }
         }
@@ -748,7 +858,8 @@ pub struct CurveProjector<'a> {
     us: Vec<f64>,
     /// `(C(u), C'(u))` at `us`.
     samples: Vec<(Vec3, Vec3)>,
-    g: usize,
+    /// Index of each span's first sample.
+    starts: Vec<usize>,
     /// Per span: centre node (a curve point) and radius of a sphere holding the span.
     spans: Vec<(Vec3, f64)>,
     /// Largest coordinate magnitude of the control polygon (scale of evaluation round-off).
@@ -758,9 +869,10 @@ pub struct CurveProjector<'a> {
 impl<'a> CurveProjector<'a> {
     /// Sample `curve` and prepare the span bounds.
     pub fn new(curve: &'a NurbsCurve, options: ProjectionOptions) -> Self {
-        let g = options.grid.max(curve.degree()).max(1);
+        let base = options.grid.max(curve.degree()).max(1);
         let br = breaks(curve.knots());
-        let us = sample_params(&br, g);
+        let counts = intervals_by_turning(&br, base, |u| curve_ders2(curve, u)[1]);
+        let (us, starts, counts) = sample_params_by_span(&br, &counts, (false, false));
         let samples: Vec<(Vec3, Vec3)> = us
             .iter()
             .map(|&u| {
@@ -779,8 +891,8 @@ impl<'a> CurveProjector<'a> {
             .windows(2)
             .enumerate()
             .map(|(i, w)| {
-                let center = samples[i * g + g / 2].0;
-                let f = 2 * g;
+                let center = samples[starts[i] + counts[i] / 2].0;
+                let f = 2 * counts[i];
                 let fine: Vec<Vec3> = (0..=f)
                     .map(|a| curve.point(if a == f { w[1] } else { w[0] + (w[1] - w[0]) * a as f64 / f as f64 }))
                     .collect();
@@ -791,7 +903,7 @@ impl<'a> CurveProjector<'a> {
             })
             .collect();
         let magnitude = lo.norm().max(hi.norm());
-        CurveProjector { curve, options, eps, us, samples, g, spans, magnitude }
+        CurveProjector { curve, options, eps, us, samples, starts, spans, magnitude }
     }
 
     /// The closest point of the curve to `q`. For a finite `q` every field is finite.
@@ -813,7 +925,7 @@ impl<'a> CurveProjector<'a> {
         let n = vals.len();
         let us = &self.us;
         let bound = |s: usize| (q - self.spans[s].0).norm() - self.spans[s].1;
-        let span_of = |i: usize| (i / self.g).min(self.spans.len() - 1);
+        let span_of = |i: usize| self.starts.partition_point(|&st| st <= i).saturating_sub(1);
         let mut seeds: Vec<Seed> = Vec::new();
         for (i, &(d2, g)) in vals.iter().enumerate() {
             let left_ok = i == 0 || vals[i - 1].0 > d2;
@@ -1287,6 +1399,27 @@ mod tests {
                 prop_assert!(r.u.is_finite() && r.distance.is_finite());
                 prop_assert!(r.distance <= brute_force(&samples, q) + 1e-12 * 20.0);
             }
+        }
+    }
+}
+#[cfg(test)]
+mod debug_tmp2 {
+    use super::*;
+    #[test]
+    fn debug_curve() {
+        for (ys, ws, q) in [
+            (vec![0.0,0.0,0.0,0.0,-1.6541844798336822,1.0207729034005733,-1.0514890726606436,-1.8304350034587686], vec![0.5,0.5,0.5,0.5,1.447053352633903,0.9323632453201431,0.6827527728468168,1.9657234760668265], Vec3::new(11.168565351158112,2.398689344356121,0.0)),
+            (vec![0.0,0.0,0.0,0.0,0.0,0.0,1.2554339337908524,1.583669658418114,-0.4995056116931081,0.15128554364998026], vec![0.5,0.5,0.5,0.5,0.5,0.5,1.8965673951785986,1.2280670388686241,0.5704612338229461,1.277322970218235], Vec3::new(8.827509117339707,1.3314657741030063,0.8090320873138355)),
+        ] {
+        let n = ys.len();
+        let pts: Vec<Vec3> = ys.iter().enumerate().map(|(i, &y)| Vec3::new(i as f64, y, 0.3 * y * y)).collect();
+        let c = NurbsCurve::try_new(KnotVector::uniform(3, n).expect("valid"), &pts, Some(&ws[..n])).expect("valid");
+        let proj = CurveProjector::new(&c, ProjectionOptions::default());
+        let r = proj.project(q);
+        let mut best = (f64::INFINITY, 0.0);
+        for k in 0..=4000 { let u = k as f64 / 4000.0; let d = (c.point(u) - q).norm(); if d < best.0 { best = (d, u); } }
+        eprintln!("{r:?}\n{best:?}");
+        for (i, u) in proj.us.iter().enumerate() { let r = proj.samples[i].0 - q; if *u > 0.85 { eprintln!("{u} {} {}", r.norm(), proj.samples[i].1.dot(r)); } }
         }
     }
 }

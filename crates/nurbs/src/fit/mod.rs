@@ -8,12 +8,16 @@
 //! sections ([`skin_interpolate`], [`skin_approximate`]; 9.2.5 and 10.3).
 
 mod banded;
+mod constrained;
 mod interp;
 mod knots;
 mod lsq;
 mod param;
 mod skin;
 
+pub use constrained::{
+    energy_order, fair_interpolate_curve, row_schoenberg_whitney, FairInterpolationSolver,
+};
 pub use interp::{interpolate_curve, interpolate_curve_auto, InterpolationSolver};
 pub use knots::{
     approximation_knots, averaging_knots, knots_for_approximation, knots_for_interpolation, schoenberg_whitney,

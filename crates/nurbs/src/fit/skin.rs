@@ -7,27 +7,38 @@
 //! pointed stem or stern. It becomes a curve whose control points all sit at that point, so
 //! the surface edge collapses there. The surface is non-rational (all weights 1) and its
 //! control net is stored u-major: index `i * n_v + j`, `i` along the sections, `j` across them.
+//!
+//! Sections may have different point counts (an offset table with missing cells: keel rise
+//! aft, a transom, a forecastle). All sections are then fitted on *one* knot vector along `u`
+//! with `N` control points (`N = max n_k` for interpolation, `nu` for approximation), and a
+//! section with fewer than `N` points is interpolated by its least-bending-energy curve on those
+//! knots ([`FairInterpolationSolver`]). The net stays at one pole per offset of the largest
+//! section, where the classical approach (The NURBS Book 10.3, also Open CASCADE's skinning)
+//! interpolates each section on its own knots and merges the knot vectors, which keeps every
+//! knot of every section: 517 poles along `u` for the 16-point sections of R/V Gunnerus.
 
+use super::constrained::EnergyGram;
 use super::interp::InterpolationSolver;
 use super::knots::{approximation_knots, check_ctrl_count, knots_for_approximation, knots_for_interpolation};
 use super::lsq::LeastSquaresSolver;
 use super::param::{chord_lengths, parameterize_labelled, uniform_params, universal_params};
-use super::{common_parameters, Parameterization};
+use super::{common_parameters, FairInterpolationSolver, Parameterization};
+use crate::basis::{basis_funs, BasisRow};
 use crate::curve::to_homogeneous;
 use crate::tolerance::COINCIDENT_REL;
-use crate::{merge_knot_vectors, KnotVector, NurbsCurve, NurbsError, NurbsSurface, Vec3, MAX_DEGREE};
+use crate::{KnotVector, NurbsError, NurbsSurface, Vec3, MAX_DEGREE};
 
 /// Settings of [`skin_interpolate`] and [`skin_approximate`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SkinOptions {
-    /// Degree along the sections (lowered to `n - 1` for a section of `n` points).
+    /// Degree along the sections, lowered to `N - 1` when the largest section has only `N`
+    /// points (shorter sections do not lower it: they are fitted on the common knots).
     pub degree_u: usize,
     /// Degree across the sections (lowered to `K - 1` for `K` sections).
     pub degree_v: usize,
     /// Parameterization in both directions.
     pub param: Parameterization,
 }
-
 impl Default for SkinOptions {
     /// Bicubic, centripetal.
     fn default() -> Self {
@@ -208,17 +219,36 @@ fn interpolate_across(
     Ok((kv, net))
 }
 
-/// Interpolating skin (The NURBS Book 9.2.5 A9.4 and 10.3): a surface through every input point.
+/// Interpolating skin (The NURBS Book 9.2.5 A9.4 and 10.3): a surface through every input point,
+/// with one pole per offset of the largest section along `u` and one per section along `v`.
 ///
 /// - All non-degenerate sections have the same count `n` (degenerate ones may have any
 ///   count): global surface interpolation, A9.4. One u-parameter vector, the mean of the
 ///   sections' own parameters (eq. 9.18), averaging knots (eq. 9.8), degree `p = min(degree_u,
-///   n - 1)`; each section is interpolated with that one factorization. The net is `n x K`,
-///   one pole per offset. The v-parameters are the mean over the data columns.
-/// - Otherwise (10.3): each section is interpolated on its own parameters and knots (degree
-///   lowered to `n_k - 1` if needed), the curves are made compatible by degree elevation to the
-///   highest degree (A5.9) and refinement to the merged knot vector (A5.4), and the
-///   v-parameters are the mean over the columns of the compatible control points (eq. 10.8).
+///   n - 1)`; each section is interpolated with that one factorization. The net is `n x K`.
+///   The v-parameters are the mean over the data columns.
+/// - Otherwise, with `N = max_k n_k`: one knot vector along `u` with `N` basis functions and
+///   degree `p = min(degree_u, N - 1)` for all sections, so the net is `N x K`.
+///   1. The *full* sections (`n_k = N`) are treated exactly as in A9.4: the common parameters
+///      `ū` are the mean of their own parameters, the knots are those of `ū` (averaging, or
+///      uniform for [`Parameterization::Universal`]), and each full section is interpolated at
+///      `ū` with one factorization, nonsingular by construction (Schoenberg-Whitney).
+///   2. A shorter section keeps its own parameters of the chosen kind, which span `[0, 1]`:
+///      a partial section (a station that stops at a lower deck, or starts higher on a rising
+///      keel) is stretched over the whole `u` range, so the `u = 0` and `u = 1` edges follow
+///      the first and last offsets of every section, as in the classical skin. It is
+///      interpolated by the curve of least bending energy `∫ |C''(t)|^2 dt` on the common knots
+///      ([`FairInterpolationSolver`]: `N - n_k` degrees of freedom left by the interpolation
+///      conditions are spent on fairness; a straight or circular section stays straight or
+///      round between its points). If its parameters crowd too many points between the common
+///      knots (the conditions are dependent: [`super::row_schoenberg_whitney`] fails), it is
+///      reparameterized at the Greville abscissae `ξ_i = (u_{i+1} + ... + u_{i+p}) / p` of
+///      the knots with indices `round(j (N - 1) / (n_k - 1))`, which satisfy the condition by
+///      construction (each `ξ_i` lies inside the support of `N_i`); the returned
+///      [`SkinResult::params`] are the parameters used.
+///   3. The v-parameters are the mean over the `N` columns (eq. 9.18) of the sections' points
+///      at `ū`: the data for full sections, `C_k(ū_i)` for the others. With equal counts every
+///      step reduces to A9.4, so the two cases agree.
 ///
 /// Across the sections, degree `q = min(degree_v, K - 1)` with the knots of the
 /// parameterization (averaging, or uniform for universal), one factorization for all columns.
@@ -227,19 +257,40 @@ fn interpolate_across(
 /// [`NurbsError::BadDegree`]; [`NurbsError::TooFewPoints`] for fewer than 2 sections, an empty
 /// section, or only degenerate sections; [`NurbsError::NonFinitePoint`] (index counted through
 /// all sections in order); [`NurbsError::CoincidentPoints`] for consecutive equal points within
-/// a section (the message names it) or two coincident sections; [`NurbsError::SingularSystem`].
+/// a section (the message names it) or two coincident sections; [`NurbsError::SingularSystem`]
+/// (naming the section when its fair interpolation fails even after reparameterization).
 pub fn skin_interpolate(sections: &[Vec<Vec3>], opts: &SkinOptions) -> Result<SkinResult, NurbsError> {
     let secs = classify(sections, opts)?;
     let q = opts.degree_v.min(secs.len() - 1);
-    let regular_counts: Vec<usize> =
-        secs.iter().filter_map(|s| if let Section::Regular(s) = s { Some(s.len()) } else { None }).collect();
-    let n = regular_counts[0];
-    if regular_counts.iter().all(|&c| c == n) {
+    let n = max_count(&secs);
+    if secs.iter().all(|s| matches!(s, Section::Point(..)) || s.len() == n) {
         interpolate_equal(&secs, n, q, opts)
     } else {
-        interpolate_unequal(&secs, q, opts)
+        interpolate_ragged(&secs, q, opts)
     }
     .map(|(surface, v, u_of)| SkinResult { params: data_params(&secs, &v, u_of), surface })
+}
+
+/// The largest point count of a non-degenerate section.
+fn max_count(secs: &[Section]) -> usize {
+    secs.iter()
+        .filter_map(|s| if let Section::Regular(s) = s { Some(s.len()) } else { None })
+        .max()
+        .expect("classify keeps one regular section")
+}
+
+/// Every non-degenerate section's own parameters of `kind` (for universal parameters, of degree
+/// `min(p, n_k - 1)`, the highest its count carries).
+fn own_params(secs: &[Section], kind: Parameterization, p: usize) -> Result<UParams, NurbsError> {
+    secs.iter()
+        .enumerate()
+        .map(|(k, s)| match s {
+            Section::Regular(pts) => {
+                parameterize_labelled(pts, kind, p.min(pts.len() - 1), "points").map(Some).map_err(|e| in_section(e, k))
+            }
+            Section::Point(..) => Ok(None),
+        })
+        .collect()
 }
 
 /// `u` parameters per section (`None` for a degenerate section: spread uniformly).
@@ -291,53 +342,127 @@ fn interpolate_equal(
     Ok((NurbsSurface::from_parts_unchecked(ku, kv, net), v, u_of))
 }
 
-fn interpolate_unequal(
+/// The unequal-count interpolating skin of [`skin_interpolate`] (steps 1-3). It is correct for
+/// equal counts too, and then gives the surface of [`interpolate_equal`].
+fn interpolate_ragged(
     secs: &[Section],
     q: usize,
     opts: &SkinOptions,
 ) -> Result<(NurbsSurface, Vec<f64>, UParams), NurbsError> {
     let kind = opts.param;
-    let mut curves: Vec<Option<NurbsCurve>> = Vec::with_capacity(secs.len());
+    let n = max_count(secs);
+    let p = opts.degree_u.min(n - 1);
+    let own = own_params(secs, kind, p)?;
+    let full: Vec<Vec<f64>> = own.iter().flatten().filter(|t| t.len() == n).cloned().collect();
+    let u = common_parameters(&full)?;
+    let ku = knots_for_interpolation(&u, p, kind)?;
+    let solver = InterpolationSolver::new(&u, &ku)?;
+    let mut fair = FairFits::new(&ku);
+    let mut rows: Vec<Vec<Vec3>> = Vec::with_capacity(secs.len());
     let mut u_of: UParams = Vec::with_capacity(secs.len());
-    for (k, s) in secs.iter().enumerate() {
-        match s {
-            Section::Regular(pts) => {
-                let pk = opts.degree_u.min(pts.len() - 1);
-                let fit = || -> Result<(NurbsCurve, Vec<f64>), NurbsError> {
-                    let t = parameterize_labelled(pts, kind, pk, "points")?;
-                    let kv = knots_for_interpolation(&t, pk, kind)?;
-                    Ok((InterpolationSolver::new(&t, &kv)?.curve(pts)?, t))
-                };
-                let (c, t) = fit().map_err(|e| in_section(e, k))?;
-                curves.push(Some(c));
-                u_of.push(Some(t));
+    for (k, (s, t)) in secs.iter().zip(own).enumerate() {
+        match (s, t) {
+            (Section::Regular(pts), _) if pts.len() == n => {
+                rows.push(solver.control_points(pts).map_err(|e| in_section(e, k))?);
+                u_of.push(Some(u.clone()));
             }
-            Section::Point(..) => {
-                curves.push(None);
-                u_of.push(None);
+            (Section::Regular(pts), Some(t)) => {
+                let (cp, used) = fair.fit(pts, t, k)?;
+                rows.push(cp);
+                u_of.push(Some(used));
             }
+            (Section::Point(c, count), _) => {
+                rows.push(vec![*c; n]);
+                u_of.push((*count == n).then(|| u.clone()));
+            }
+            (Section::Regular(_), None) => unreachable!("own_params gives every regular section parameters"),
         }
     }
-    let p = curves.iter().flatten().map(NurbsCurve::degree).max().expect("classify keeps one regular section");
-    let elevated: Vec<Option<NurbsCurve>> = curves
-        .into_iter()
-        .map(|c| c.map(|c| c.elevate_degree(p - c.degree())).transpose())
-        .collect::<Result<_, _>>()?;
-    let knot_refs: Vec<&KnotVector> = elevated.iter().flatten().map(NurbsCurve::knots).collect();
-    let ku = merge_knot_vectors(&knot_refs)?;
-    let n_u = ku.num_basis();
-    let rows: Vec<Vec<Vec3>> = elevated
+    // Every section's points at the common parameters ū: data, curve points, or the point.
+    let at_u: Vec<(usize, BasisRow)> = u
         .iter()
-        .zip(secs)
-        .map(|(c, s)| match (c, s) {
-            (Some(c), _) => Ok(c.refine_to(&ku)?.control_points()),
-            (None, Section::Point(x, _)) => Ok(vec![*x; n_u]),
-            (None, Section::Regular(_)) => unreachable!("regular sections have curves"),
+        .map(|&t| {
+            let s = ku.find_span(t);
+            let mut row = [0.0; MAX_DEGREE + 1];
+            basis_funs(ku.as_slice(), s, t, p, &mut row);
+            (s, row)
         })
-        .collect::<Result<_, NurbsError>>()?;
-    let v = cross_params(n_u, secs.len(), |i, k| rows[k][i], kind, q)?;
+        .collect();
+    let samples: Vec<Vec<Vec3>> = secs
+        .iter()
+        .zip(&rows)
+        .map(|(s, cp)| match s {
+            Section::Regular(pts) if pts.len() == n => pts.to_vec(),
+            Section::Regular(_) => at_u
+                .iter()
+                .map(|(span, row)| {
+                    row[..=p].iter().enumerate().fold(Vec3::ZERO, |acc, (j, &b)| acc + cp[span - p + j] * b)
+                })
+                .collect(),
+            Section::Point(c, _) => vec![*c; n],
+        })
+        .collect();
+    let v = cross_params(n, secs.len(), |i, k| samples[k][i], kind, q)?;
     let (kv, net) = interpolate_across(&rows, &v, kind, q)?;
     Ok((NurbsSurface::from_parts_unchecked(ku, kv, net), v, u_of))
+}
+
+/// Fair interpolation of the sections shorter than the common knot vector, with one shared
+/// Gram matrix and one factorization per distinct parameter vector.
+struct FairFits<'a> {
+    knots: &'a KnotVector,
+    gram: Option<EnergyGram>,
+    solvers: Vec<FairInterpolationSolver>,
+}
+
+impl<'a> FairFits<'a> {
+    fn new(knots: &'a KnotVector) -> Self {
+        FairFits { knots, gram: None, solvers: Vec::new() }
+    }
+
+    /// The solver for `params`, from the cache or newly factored.
+    fn solver(&mut self, params: &[f64]) -> Result<&FairInterpolationSolver, NurbsError> {
+        let index = match self.solvers.iter().position(|s| s.params() == params) {
+            Some(i) => i,
+            None => {
+                let gram = self.gram.get_or_insert_with(|| EnergyGram::new(self.knots));
+                self.solvers.push(FairInterpolationSolver::with_gram(params, self.knots, gram)?);
+                self.solvers.len() - 1
+            }
+        };
+        Ok(&self.solvers[index])
+    }
+
+    /// Control points of the least-energy curve through section `k`'s `pts` at its parameters
+    /// `own`, or, if those make the conditions dependent, at Greville abscissae
+    /// ([`skin_interpolate`] step 2); and the parameters used.
+    fn fit(&mut self, pts: &[Vec3], own: Vec<f64>, k: usize) -> Result<(Vec<Vec3>, Vec<f64>), NurbsError> {
+        let first = match self.solver(&own) {
+            Ok(s) => return Ok((s.control_points(pts).map_err(|e| in_section(e, k))?, own)),
+            Err(e @ NurbsError::SingularSystem { .. }) => e,
+            Err(e) => return Err(in_section(e, k)),
+        };
+        let spread = greville_subset(self.knots, pts.len());
+        match self.solver(&spread) {
+            Ok(s) => Ok((s.control_points(pts).map_err(|e| in_section(e, k))?, spread)),
+            Err(_) => Err(in_section(first, k)),
+        }
+    }
+}
+
+/// `n` of the Greville abscissae `ξ_i = (u_{i+1} + ... + u_{i+p}) / p` of `knots` (de Boor,
+/// A Practical Guide to Splines, IX), those with indices `i_j = round(j (N - 1) / (n - 1))`:
+/// distinct for `n <= N`, from `ξ_0 = u_0` to `ξ_{N-1} = u_{N+p}`, and `N_{i_j}(ξ_{i_j}) > 0`,
+/// so the rows of the collocation matrix are independent.
+fn greville_subset(knots: &KnotVector, n: usize) -> Vec<f64> {
+    let (p, u, big_n) = (knots.degree(), knots.as_slice(), knots.num_basis());
+    (0..n)
+        .map(|j| {
+            // round(j (N - 1) / (n - 1)) in integers, halves up.
+            let i = if n < 2 { 0 } else { (2 * j * (big_n - 1) + n - 1) / (2 * (n - 1)) };
+            u[i + 1..=i + p].iter().sum::<f64>() / p as f64
+        })
+        .collect()
 }
 
 /// Approximating skin: a surface with `nu x nv` control points, degrees `(p, q)`, fitted by
@@ -345,22 +470,26 @@ fn interpolate_unequal(
 /// applied as in 9.4.3's two-stage surface fit).
 ///
 /// 1. Each non-degenerate section gets its own parameters; the common u knot vector is the mean
-///    of the sections' symmetric eq. 9.68-9.69 knot vectors ([`approximation_knots`]; this is
-///    also the knot vector of the averaged parameters, the placement being linear in them), or
-///    uniform for [`Parameterization::Universal`]. Each section is fitted with `nu` control
-///    points on those knots, its ends interpolated; the Schoenberg-Whitney condition is checked
-///    per section and a violation names the section. Degenerate sections get `nu` copies of
-///    their point.
+///    of the symmetric eq. 9.68-9.69 knot vectors ([`approximation_knots`]; this is also the
+///    knot vector of the averaged parameters, the placement being linear in them) of the
+///    sections with at least `nu` points, or uniform for [`Parameterization::Universal`].
+///    - A section with at least `nu` points is fitted by least squares on those knots, its
+///      ends interpolated; the Schoenberg-Whitney condition is checked per section and a
+///      violation names the section.
+///    - A section with fewer points is interpolated by its least-bending-energy curve on those
+///      knots, as in [`skin_interpolate`] step 2 (with the same fallback to Greville
+///      abscissae): approximation must not be worse than interpolation where data are scarce.
+///    - Degenerate sections get `nu` copies of their point.
 /// 2. Across: the columns of the `K` curves' control points are fitted with `nv` control
 ///    points; v-parameters are the mean over the columns (eq. 10.8), knots as in step 1; one
 ///    factorization for all columns. The first and last sections are interpolated.
 ///
-/// Degrees are lowered as in [`skin_interpolate`]: `p = min(degree_u, n_min - 1)` with `n_min`
-/// the smallest non-degenerate section, `q = min(degree_v, K - 1)`.
+/// Degrees: `p = min(degree_u, N - 1)` with `N` the largest non-degenerate section (shorter
+/// sections do not lower it), `q = min(degree_v, K - 1)`.
 ///
 /// # Errors
-/// As [`skin_interpolate`], and [`NurbsError::BadControlPointCount`] unless `p + 1 <= nu <=
-/// n_min` and `q + 1 <= nv <= K`.
+/// As [`skin_interpolate`], and [`NurbsError::BadControlPointCount`] unless `p + 1 <= nu <= N`
+/// and `q + 1 <= nv <= K`.
 pub fn skin_approximate(
     sections: &[Vec<Vec3>],
     nu: usize,
@@ -370,36 +499,30 @@ pub fn skin_approximate(
     let secs = classify(sections, opts)?;
     let kind = opts.param;
     let k_count = secs.len();
-    let n_min = secs
-        .iter()
-        .filter_map(|s| if let Section::Regular(s) = s { Some(s.len()) } else { None })
-        .min()
-        .expect("classify keeps one regular section");
-    let p = opts.degree_u.min(n_min - 1);
+    let n_max = max_count(&secs);
+    let p = opts.degree_u.min(n_max - 1);
     let q = opts.degree_v.min(k_count - 1);
-    check_ctrl_count(nu, n_min, p, "skinning along the sections (smallest section)")?;
+    check_ctrl_count(nu, n_max, p, "skinning along the sections (largest section)")?;
     check_ctrl_count(nv, k_count, q, "skinning across the sections")?;
-    // Step 1: parameters, common knots, one least-squares fit per section.
-    let mut u_of: UParams = Vec::with_capacity(k_count);
-    for (k, s) in secs.iter().enumerate() {
-        u_of.push(match s {
-            Section::Regular(pts) => Some(parameterize_labelled(pts, kind, p, "points").map_err(|e| in_section(e, k))?),
-            Section::Point(..) => None,
+    // Step 1: parameters, common knots, one fit per section.
+    let mut u_of = own_params(&secs, kind, p)?;
+    let ku = common_approximation_knots(&u_of, nu, p, kind)?;
+    let mut fair = FairFits::new(&ku);
+    let mut rows: Vec<Vec<Vec3>> = Vec::with_capacity(k_count);
+    for (k, (s, t)) in secs.iter().zip(u_of.iter_mut()).enumerate() {
+        rows.push(match (s, t) {
+            (Section::Regular(pts), Some(t)) if pts.len() >= nu => LeastSquaresSolver::new(t, &ku)
+                .and_then(|solver| solver.control_points(pts))
+                .map_err(|e| in_section(e, k))?,
+            (Section::Regular(pts), Some(t)) => {
+                let (cp, used) = fair.fit(pts, std::mem::take(t), k)?;
+                *t = used;
+                cp
+            }
+            (Section::Point(c, _), _) => vec![*c; nu],
+            (Section::Regular(_), None) => unreachable!("own_params gives every regular section parameters"),
         });
     }
-    let ku = common_approximation_knots(&u_of, nu, p, kind)?;
-    let rows: Vec<Vec<Vec3>> = secs
-        .iter()
-        .zip(&u_of)
-        .enumerate()
-        .map(|(k, (s, t))| match (s, t) {
-            (Section::Regular(pts), Some(t)) => LeastSquaresSolver::new(t, &ku)
-                .and_then(|solver| solver.control_points(pts))
-                .map_err(|e| in_section(e, k)),
-            (Section::Point(c, _), _) => Ok(vec![*c; nu]),
-            (Section::Regular(_), None) => unreachable!("regular sections have parameters"),
-        })
-        .collect::<Result<_, _>>()?;
     // Step 2: across the sections.
     let v = cross_params(nu, k_count, |i, k| rows[k][i], kind, q)?;
     let kv = knots_for_approximation(&v, nv, q, kind)?;
@@ -418,7 +541,8 @@ pub fn skin_approximate(
     Ok(SkinResult { params: data_params(&secs, &v, u_of), surface })
 }
 
-/// The mean of the sections' approximation knot vectors (or uniform knots for universal).
+/// The mean of the approximation knot vectors of the sections with at least `nu` points (or
+/// uniform knots for universal).
 fn common_approximation_knots(
     u_of: &[Option<Vec<f64>>],
     nu: usize,
@@ -431,11 +555,19 @@ fn common_approximation_knots(
     let mut sum = vec![0.0; nu + p + 1];
     let mut count = 0usize;
     for (k, t) in u_of.iter().enumerate() {
-        if let Some(t) = t {
+        if let Some(t) = t.as_ref().filter(|t| t.len() >= nu) {
             let kv = approximation_knots(t, nu, p).map_err(|e| in_section(e, k))?;
             sum.iter_mut().zip(kv.as_slice()).for_each(|(s, x)| *s += x);
             count += 1;
         }
+    }
+    if count == 0 {
+        return Err(NurbsError::BadControlPointCount {
+            what: "skinning along the sections (no section has that many points)".into(),
+            count: nu,
+            min: p + 1,
+            max: u_of.iter().flatten().map(Vec::len).max().unwrap_or(0),
+        });
     }
     // Every section's knots run from 0 to 1, so the clamped ends stay exact.
     let mut knots: Vec<f64> = sum.iter().map(|s| s / count as f64).collect();
@@ -741,5 +873,66 @@ mod tests {
         let r = skin_interpolate(&s, &SkinOptions::default()).expect("valid");
         assert_eq!((r.surface.degree_u(), r.surface.degree_v()), (2, 1));
         assert_passes_through(&r, &s, 1e-14);
+    }
+}
+#[cfg(test)]
+mod scratch {
+    use super::*;
+    fn gunnerus() -> Vec<Vec<Vec3>> {
+        let text = include_str!("../../../../testdata/gunnerus_offsets.csv");
+        let rows: Vec<Vec<&str>> = text.lines().filter(|l| !l.trim().is_empty()).map(|l| l.split(',').collect()).collect();
+        let xs: Vec<f64> = rows[0][1..].iter().map(|c| c.trim().parse().unwrap()).collect();
+        let mut sections = vec![Vec::new(); xs.len()];
+        for row in &rows[1..] {
+            let z: f64 = row[0].trim().parse().unwrap();
+            for ((section, &x), cell) in sections.iter_mut().zip(&xs).zip(&row[1..]) {
+                if !cell.trim().is_empty() {
+                    section.push(Vec3::new(x, cell.trim().parse().unwrap(), z));
+                }
+            }
+        }
+        sections
+    }
+    fn seg_dist(x: Vec3, a: Vec3, b: Vec3) -> f64 {
+        let d = b - a;
+        let t = ((x - a).dot(d) / d.dot(d)).clamp(0.0, 1.0);
+        (a + d * t).distance(x)
+    }
+    fn overshoot(c: impl Fn(f64) -> Vec3, pts: &[Vec3]) -> f64 {
+        let mut w = 0.0f64;
+        for k in 0..=400 {
+            let x = c(k as f64 / 400.0);
+            let d = pts.windows(2).map(|s| seg_dist(x, s[0], s[1])).fold(f64::INFINITY, f64::min);
+            w = w.max(d);
+        }
+        w
+    }
+    #[test]
+    fn dbg_v() {
+        let s = gunnerus();
+        let opts = SkinOptions::default();
+        let r = skin_interpolate(&s, &opts).unwrap();
+        let nu = r.surface.n_u();
+        eprintln!("interp {}x{}", nu, r.surface.n_v());
+        let mut tot = (0.0f64, 0.0f64);
+        for (k, sec) in s.iter().enumerate() {
+            let v = r.params[k][0].1;
+            let a = overshoot(|u| r.surface.point(u, v), sec);
+            let own = crate::fit::interpolate_curve_auto(sec, 3.min(sec.len() - 1), Parameterization::Centripetal).unwrap();
+            let b = overshoot(|u| own.point(u), sec);
+            tot.0 = tot.0.max(a); tot.1 = tot.1.max(b);
+            if a > 1.5 * b + 0.01 { eprintln!("sec {k} n {} skin {a:.4} own {b:.4}", sec.len()); }
+        }
+        eprintln!("worst skin {:.4} own {:.4}", tot.0, tot.1);
+        for (nu, nv) in [(12, 40), (16, 40)] {
+            let r = skin_approximate(&s, nu, nv, &opts).unwrap();
+            let mut w = (0.0f64, 0);
+            for (k, sec) in s.iter().enumerate() {
+                let v = r.params[k][0].1;
+                let a = overshoot(|u| r.surface.point(u, v), sec);
+                if a > w.0 { w = (a, k); }
+            }
+            eprintln!("approx {nu}x{nv}: worst overshoot {:.4} at {} (n {})", w.0, w.1, s[w.1].len());
+        }
     }
 }
