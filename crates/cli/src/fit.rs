@@ -24,7 +24,7 @@ pub struct FitArgs {
     pub method: FitMethod,
     /// Control points NU,NV of `approx` (u along each section, v across sections). Default:
     /// three quarters of the offsets in each direction
-    /// (of the smallest section along u, of the sections along v).
+    /// (of the largest section along u, of the sections along v).
     #[arg(long, value_parser = parse_pair)]
     pub ctrl: Option<(usize, usize)>,
     /// Degrees P,Q in u (along sections) and v (across sections).

@@ -77,11 +77,7 @@ const BAD: &[(&str, &str, &[&str])] = &[
     ("nan", "section,x,y,z\na,0,0,0\na,0,NaN,1\n", &[":3:3:", "finite"]),
     ("inf", "z\\x,0,1\n0,1,inf\n1,2,2\n", &[":2:3:", "finite"]),
     ("column_count", "section,x,y,z\na,0,0,0\na,0,1\n", &[":3", "fields"]),
-    (
-        "one_section",
-        "section,x,y,z\na,0,0,0\na,0,1,1\na,0,2,2\na,0,3,3\n",
-        &["section", "expected at least 2"],
-    ),
+    ("one_section", "section,x,y,z\na,0,0,0\na,0,1,1\na,0,2,2\na,0,3,3\n", &["section", "expected at least 2"]),
     ("too_few_points", "section,x,y,z\na,0,0,0\na,0,1,1\nb,1,0,0\nb,1,1,1\n", &[":2", "expected at least 4 points"]),
     (
         "repeated_point",

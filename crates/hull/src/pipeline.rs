@@ -78,13 +78,13 @@ pub struct FitOutcome {
     pub error_seconds: f64,
 }
 
-/// The default control-point counts of `approx`: three quarters of the offsets of the smallest
+/// The default control-point counts of `approx`: three quarters of the offsets of the largest
 /// section along u and of the sections along v, at least degree + 1 and at most the data.
 pub fn default_ctrl(offsets: &Offsets, degree: (usize, usize)) -> (usize, usize) {
-    let n_min = offsets.sections.iter().map(|s| s.points.len()).min().unwrap_or(0);
+    let n_max = offsets.sections.iter().map(|s| s.points.len()).max().unwrap_or(0);
     let k = offsets.sections.len();
     let pick = |n: usize, d: usize| ((3 * n).div_ceil(4)).max(d + 1).min(n);
-    (pick(n_min, degree.0), pick(k, degree.1))
+    (pick(n_max, degree.0), pick(k, degree.1))
 }
 
 /// Validate `offsets` and fit a surface to them.

@@ -2,7 +2,7 @@
 //! interpolation, sweeping the table size. The degenerate cases are a table whose end sections
 //! have zero width (a vertical stem and stern line, the usual hull table) and one whose end
 //! sections collapse to single points (pointed ends), plus unequal point counts (`ragged`, and
-//! the R/V Gunnerus table: 62 stations of 4 to 16 waterline points), which take the
+//! the R/V Gunnerus table: 62 stations of 8 to 16 waterline points), which take the
 //! common-knot path with fair constrained interpolation of the shorter sections.
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
@@ -35,7 +35,7 @@ fn table(k: usize, n: usize, pointed: bool, ragged: bool) -> Vec<Vec<Vec3>> {
 
 /// The R/V Gunnerus offset table of `testdata/` (first row stations x, first column waterlines
 /// z, cells half-breadths, empty = missing) as sections keel to deck, as the hull reader builds
-/// them: 62 sections of 4 to 16 points.
+/// them: 62 sections of 8 to 16 points.
 fn gunnerus() -> Vec<Vec<Vec3>> {
     let text = include_str!("../../../testdata/gunnerus_offsets.csv");
     let rows: Vec<Vec<&str>> = text.lines().filter(|l| !l.trim().is_empty()).map(|l| l.split(',').collect()).collect();
@@ -59,7 +59,7 @@ fn bench_skin(c: &mut Criterion) {
         ("21x11_pointed", table(21, 11, true, false)),
         ("21x11_ragged", table(21, 11, false, true)),
         ("64x20", table(64, 20, false, false)),
-        ("gunnerus_62x4-16", gunnerus()),
+        ("gunnerus_62x8-16", gunnerus()),
     ];
     let mut g = c.benchmark_group("skin_interpolate");
     for (name, s) in &cases {
@@ -75,9 +75,10 @@ fn bench_skin(c: &mut Criterion) {
         ("21x11_ragged_to_8x12", &cases[2].1, 8, 12),
         ("64x20_to_12x24", &cases[3].1, 12, 24),
         ("gunnerus_to_4x40", &cases[4].1, 4, 40),
+        ("gunnerus_to_8x40", &cases[4].1, 8, 40),
         ("gunnerus_to_12x40", &cases[4].1, 12, 40),
     ] {
-        // Before fair constrained interpolation, nu above the smallest section (4 for
+        // Before fair constrained interpolation, nu above the smallest section (8 for
         // Gunnerus) was refused: skip what the kernel refuses rather than abort the run.
         if skin_approximate(s, nu, nv, &opts).is_err() {
             continue;
