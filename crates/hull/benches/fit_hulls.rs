@@ -50,7 +50,7 @@ fn bench(c: &mut Criterion) {
         let cfg = FitConfig { ctrl: Some(*ctrl), ..FitConfig::default() };
         let out = fit_offsets(offsets, &cfg).expect("fits");
         g.bench_with_input(BenchmarkId::from_parameter(name), offsets, |b, o| {
-            b.iter(|| measure_fit_error(&out.surface, black_box(o)))
+            b.iter(|| measure_fit_error(&out.surface, black_box(o), Some(&out.params)))
         });
     }
     g.finish();

@@ -118,7 +118,7 @@ pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, 
     .map_err(|e| fit_error(config, e))?;
     let fit_seconds = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let error = measure_fit_error(&result.surface, offsets);
+    let error = measure_fit_error(&result.surface, offsets, Some(&result.params));
     let error_seconds = start.elapsed().as_secs_f64();
     if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
         return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));

@@ -57,7 +57,8 @@ pub struct ProjectionOptions {
     /// (a run ending at a foot already found does not count; all runs are bounded by three
     /// times this); more guard against local minima on strongly curved shapes, at a cost.
     pub candidates: usize,
-    /// Newton iterations per start point.
+    /// Newton iterations per start point (3 to 6 typically; slow valleys next to a collapsed
+    /// edge can take a few dozen).
     pub max_iterations: usize,
     /// Geometric tolerance `eps1` relative to the model size (the diagonal of the control net's
     /// bounding box). Non-finite or negative values are taken as 0 (iterate to the limit).
@@ -66,7 +67,7 @@ pub struct ProjectionOptions {
 
 impl Default for ProjectionOptions {
     fn default() -> Self {
-        ProjectionOptions { grid: 4, candidates: 4, max_iterations: 30, tolerance: PROJECTION_REL }
+        ProjectionOptions { grid: 4, candidates: 4, max_iterations: 60, tolerance: PROJECTION_REL }
     }
 }
 
@@ -454,6 +455,24 @@ impl<'a> SurfaceProjector<'a> {
         self.project_with(q, &mut Scratch::default())
     }
 
+    /// The closest point of the surface to `q`, knowing that `S(hint)` is near it (the
+    /// parameters a fit assigned to a data point, say): the global search of
+    /// [`SurfaceProjector::project`] plus a Newton run from `hint`, the better of the two. The
+    /// result is never farther than `S(hint)`.
+    pub fn project_near(&self, q: Vec3, hint: (f64, f64)) -> SurfaceProjection {
+        let global = self.project(q);
+        let (u, v) = (self.surface.knots_u().clamp(hint.0), self.surface.knots_v().clamp(hint.1));
+        if !q.is_finite() || !(u.is_finite() && v.is_finite()) {
+            return global;
+        }
+        let local = self.refine(q, u, v);
+        if local.distance < global.distance {
+            local
+        } else {
+            global
+        }
+    }
+
     /// [`SurfaceProjector::project`] for every point of `qs`, reusing buffers.
     pub fn project_many(&self, qs: &[Vec3]) -> Vec<SurfaceProjection> {
         let mut scratch = Scratch::default();
@@ -495,7 +514,6 @@ impl<'a> SurfaceProjector<'a> {
             }
             let b = self.blocks[k];
             self.scan_block(q, &b, lower, &mut scratch.vals, &mut scratch.seeds);
-            BLOCKS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             best2 = scratch.vals.iter().fold(best2, |m, x| m.min(x[0]));
         }
         scratch.seeds.sort_unstable_by(|x, y| x.d2.total_cmp(&y.d2));
@@ -536,8 +554,6 @@ impl<'a> SurfaceProjector<'a> {
             scratch.cluster_done[scratch.cluster[k]] = true;
             runs += 1;
             let res = self.refine(q, seed.u, seed.v);
-            RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            ITERS.fetch_add(res.iterations, std::sync::atomic::Ordering::Relaxed);
             let again =
                 scratch.feet.iter().any(|&(_, _, p)| (p - res.point).norm() <= self.eps.max(1e-9 * res.distance));
             if !again {
@@ -565,21 +581,6 @@ impl<'a> SurfaceProjector<'a> {
         let at = |la: usize, lb: usize| vals[la * rv + lb];
         let (us, vs) = (&self.us, &self.vs);
         let box_of = |a0: usize, a1: usize, b0: usize, b1: usize| [us[a0], us[a1], vs[b0], vs[b1]];
-        // A lower bound of the distance over the node box `[a0, a1] x [b0, b1]`: the nearest
-        // corner's distance less 1.5 times the box's extent (the corners' largest spread, with
-        // room for the bulge between them: cells turn by at most 0.3 rad). No better than the
-        // span's own bound, which it sharpens for far-away candidates.
-        let lower_of = |a0: usize, a1: usize, b0: usize, b1: usize| {
-            let c = [a0 * nv + b0, a1 * nv + b0, a0 * nv + b1, a1 * nv + b1].map(|k| self.samples[k].p);
-            let near = c.iter().map(|&p| (p - q).norm_squared()).fold(f64::INFINITY, f64::min).sqrt();
-            let mut spread: f64 = 0.0;
-            for i in 0..4 {
-                for j in i + 1..4 {
-                    spread = spread.max((c[i] - c[j]).norm());
-                }
-            }
-            (near - 1.5 * spread).max(lower)
-        };
         // Nodes: discrete local minima, in 2-D or along an edge, and corners held by both bounds.
         for la in 0..ru {
             for lb in 0..rv {
@@ -593,18 +594,14 @@ impl<'a> SurfaceProjector<'a> {
                 // A seed for a constrained minimum stands for its corner or edge only, not for
                 // the cells beside it, whose interior minima are others.
                 if corner_held {
-                    let lower =
-                        lower_of(a.saturating_sub(1), (a + 1).min(nu - 1), bb.saturating_sub(1), (bb + 1).min(nv - 1));
                     seeds.push(Seed { d2, u: us[a], v: vs[bb], range: box_of(a, a, bb, bb), lower });
                 } else if self.is_local_min(q, vals, b, la, lb, d2, node) {
                     let (a0, a1, b0, b1) =
                         (a.saturating_sub(1), (a + 1).min(nu - 1), bb.saturating_sub(1), (bb + 1).min(nv - 1));
-                    let lower = lower_of(a0, a1, b0, b1);
                     seeds.push(Seed { d2, u: us[a], v: vs[bb], range: box_of(a0, a1, b0, b1), lower });
                 } else if self.is_edge_local_min(q, a, bb, d2, node) {
                     let (a0, a1) = if a == 0 || a + 1 == nu { (a, a) } else { (a - 1, a + 1) };
                     let (b0, b1) = if bb == 0 || bb + 1 == nv { (bb, bb) } else { (bb - 1, bb + 1) };
-                    let lower = lower_of(a0, a1, b0, b1);
                     seeds.push(Seed { d2, u: us[a], v: vs[bb], range: box_of(a0, a1, b0, b1), lower });
                 }
             }
@@ -630,7 +627,6 @@ impl<'a> SurfaceProjector<'a> {
                 if !interior && !on_edge {
                     continue;
                 }
-                let lower = lower_of(a, a + 1, bb, bb + 1);
                 if interior && self.gauss_newton_lands_near(a, bb, [c00, c10, c01, c11]) {
                     seeds.push(Seed { d2, u: um, v: vm, range, lower });
                 }
@@ -1434,6 +1430,26 @@ mod tests {
     }
 
     #[test]
+    fn project_near_is_never_farther_than_its_hint() {
+        let s = sphere_octant(2.0);
+        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
+        for i in 0..=10 {
+            for j in 0..=10 {
+                let hint = (i as f64 / 10.0, j as f64 / 10.0);
+                // Points just off the surface near the hint, and far ones.
+                for scale in [1.01, 0.5, 3.0] {
+                    let q = s.point(hint.0, hint.1) * scale + Vec3::new(0.01, -0.02, 0.005);
+                    let r = proj.project_near(q, hint);
+                    assert!(r.distance <= s.point(hint.0, hint.1).distance(q) + 1e-15);
+                    // And no worse than the global search alone.
+                    assert!(r.distance <= proj.project(q).distance + 1e-15);
+                    check_consistent(&s, q, &r);
+                }
+            }
+        }
+    }
+
+    #[test]
     fn project_many_equals_project() {
         let s = bicubic(6, 5, |i, j| 0.2 * ((i + 2 * j) % 3) as f64, None, false);
         let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
@@ -1549,41 +1565,6 @@ mod tests {
                 prop_assert!(r.u.is_finite() && r.distance.is_finite());
                 prop_assert!(r.distance <= brute_force(&samples, q) + 1e-12 * 20.0);
             }
-        }
-    }
-}
-
-pub static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-pub static ITERS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-pub static BLOCKS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-#[cfg(test)]
-mod prof_tmp {
-    use super::*;
-    use std::sync::atomic::Ordering::Relaxed;
-    fn surface(nu: usize, nv: usize, p: usize, q: usize, collapse: bool) -> NurbsSurface {
-        let knots = |n: usize, d: usize| {
-            let mut k = vec![0.0; d + 1];
-            let segs = n - d;
-            for i in 1..segs { let t = i as f64 / segs as f64; k.push(t + 0.3 * t * (1.0 - t) * (i as f64).sin() / segs as f64); }
-            k.extend(std::iter::repeat_n(1.0, d + 1));
-            KnotVector::try_new(d, k).expect("valid knots")
-        };
-        let mut pts = Vec::new(); let mut w = Vec::new();
-        for i in 0..nu { for j in 0..nv { let (x, y) = (i as f64, j as f64); let y = if collapse && i == 0 { 0.0 } else { y };
-            pts.push(Vec3::new(x, y, (0.7 * x).sin() * (0.5 * y).cos())); w.push(1.0 + 0.5 * ((i * 7 + j * 3) % 5) as f64 / 4.0 - 0.25); } }
-        NurbsSurface::try_new(knots(nu, p), knots(nv, q), &pts, Some(&w)).expect("valid surface")
-    }
-    #[test]
-    fn prof() {
-        for (collapse, scale) in [(false, 0.05); 40] {
-        RUNS.store(0, Relaxed); ITERS.store(0, Relaxed); BLOCKS.store(0, Relaxed);
-        let s = surface(10, 8, 3, 3, collapse);
-        let proj = SurfaceProjector::new(&s, ProjectionOptions::default());
-        let qs: Vec<Vec3> = (0..1000).map(|k| { let (u, v) = ((k as f64 * 0.618_034).fract(), (k as f64 * 0.414_214).fract()); let d = s.derivatives(u, v); d.point + d.normal().unwrap_or(Vec3::new(0.0,0.0,1.0)) * (scale * (2.0 * (k as f64 * 0.732_051).fract() - 1.0)) }).collect();
-        let t = std::time::Instant::now();
-        let _ = proj.project_many(&qs);
-        let el = t.elapsed();
-        eprintln!("collapse {collapse} scale {scale}: runs/q {} iters/q {} blocks/q {} time/q {:?}", RUNS.load(Relaxed) as f64 / 1000.0, ITERS.load(Relaxed) as f64 / 1000.0, BLOCKS.load(Relaxed) as f64 / 1000.0, el / 1000);
         }
     }
 }
