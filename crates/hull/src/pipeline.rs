@@ -79,9 +79,17 @@ pub struct FitOutcome {
 }
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
-/// section along u and of the sections along v, at least degree + 1 and at most the data.
+/// section along u (not counting pointed ends) and of the sections along v, at least degree + 1
+/// and at most the data.
 pub fn default_ctrl(offsets: &Offsets, degree: (usize, usize)) -> (usize, usize) {
-    let n_max = offsets.sections.iter().map(|s| s.points.len()).max().unwrap_or(0);
+    // A section that is one repeated point (a pointed stem) carries no shape along u.
+    let n_max = offsets
+        .sections
+        .iter()
+        .filter(|s| s.points.iter().any(|p| *p != s.points[0]))
+        .map(|s| s.points.len())
+        .max()
+        .unwrap_or(0);
     let k = offsets.sections.len();
     let pick = |n: usize, d: usize| ((3 * n).div_ceil(4)).max(d + 1).min(n);
     (pick(n_max, degree.0), pick(k, degree.1))

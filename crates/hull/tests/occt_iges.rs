@@ -211,6 +211,34 @@ fn occt_reads_the_iges_export_exactly() {
     }
 }
 
+/// The surfaces hullskin actually fits: the built-in Series 60 hull by interpolation (8 x 25
+/// poles) and approximation, and the Gunnerus table with unequal section counts; OCCT must
+/// read each as one B-spline face equal to ours.
+#[test]
+fn occt_reads_fitted_hull_surfaces() {
+    let Some(python) = occt_python() else { return };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let gunnerus = hull::read_offsets(&workspace_root().join("testdata/gunnerus_offsets.csv"), hull::Units::Metre)
+        .expect("gunnerus reads");
+    let cases = [
+        ("s60_interp", hull::series60_sample(), hull::FitMethod::Interp, None),
+        ("s60_approx", hull::series60_sample(), hull::FitMethod::Approx, Some((6, 15))),
+        ("gunnerus_interp", gunnerus, hull::FitMethod::Interp, None),
+    ];
+    for (name, offsets, method, ctrl) in cases {
+        let cfg = hull::FitConfig { method, ctrl, ..hull::FitConfig::default() };
+        let s = hull::fit_offsets(&offsets, &cfg).expect("fits").surface;
+        let (igs, exp) = write_case(dir.path(), name, &s, IgesUnits::METRE, &samples(&s));
+        let (code, summary) = run_check(&python, &igs, &exp);
+        assert!(
+            code == 0 && summary["ok"] == true,
+            "{name}: OCCT disagrees with the export (exit {code}):\n{}",
+            serde_json::to_string_pretty(&summary["failed"]).unwrap_or_default()
+        );
+        assert_eq!(summary["reads"]["native"]["samples"].as_u64(), Some(samples(&s).len() as u64), "{name}");
+    }
+}
+
 /// The checker must fail when the file and our evaluator disagree: samples of the quarter
 /// cylinder with the middle weight changed, and a surface labelled in the wrong unit.
 #[test]

@@ -1,0 +1,83 @@
+//! Property tests across the pipeline: any valid set of hull-like sections (random counts,
+//! uneven spacing, a pointed or zero-width end) fits by both methods; interpolation passes
+//! through its data; the error in the report is the error re-measured from the written file.
+
+use hull::{fit_offsets, measure_fit_error, FitConfig, FitMethod, Offsets, Section, Units};
+use nurbs::Vec3;
+use proptest::prelude::*;
+
+/// Sections of a random hull: stations at increasing x, each from the keel line up to a
+/// deck, half-breadths from a smooth random shape; `end` makes the first station zero-width
+/// (1) or a single point, repeated (2: a pointed stem).
+fn hull_sections() -> impl Strategy<Value = Offsets> {
+    (prop::collection::vec((0.3f64..2.0, 4usize..12), 3..14), 0.5f64..3.0, 0.1f64..1.0, 0u8..3).prop_map(
+        |(stations, beam, fullness, end)| {
+            let mut x = 0.0;
+            let n = stations.len();
+            let sections = stations
+                .iter()
+                .enumerate()
+                .map(|(k, &(dx, count))| {
+                    x += dx;
+                    let s = k as f64 / (n - 1) as f64;
+                    let width = if end > 0 && k == 0 { 0.0 } else { beam * (0.2 + (std::f64::consts::PI * s).sin()) };
+                    let points = (0..count)
+                        .map(|i| {
+                            let t = i as f64 / (count - 1) as f64;
+                            let z = if end == 2 && k == 0 { 1.0 } else { 2.0 * t * t + 0.3 * t };
+                            let y = width * (1.0 - (1.0 - t).powf(1.0 + 4.0 * fullness));
+                            Vec3::new(x, y, z)
+                        })
+                        .collect();
+                    Section::new(format!("{k}"), points)
+                })
+                .collect();
+            Offsets { source: "proptest".into(), units: Units::Metre, sections }
+        },
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    #[test]
+    fn every_method_fits_and_interpolation_passes_through(offsets in hull_sections()) {
+        let size = offsets.size();
+        let interp = fit_offsets(&offsets, &FitConfig { method: FitMethod::Interp, ..FitConfig::default() })
+            .map_err(|e| TestCaseError::fail(format!("interp: {e}")))?;
+        // Round-off of banded solves and of projection on a model of this size.
+        prop_assert!(interp.error.overall.max <= 1e-9 * size, "interp max {} size {}", interp.error.overall.max, size);
+        // One pole per offset along the sections: as many as the largest section that is not a
+        // single (repeated) point.
+        let n_max = offsets
+            .sections
+            .iter()
+            .filter(|s| s.points.iter().any(|p| *p != s.points[0]))
+            .map(|s| s.points.len())
+            .max()
+            .unwrap_or(0);
+        prop_assert_eq!(interp.surface.n_u(), n_max);
+        prop_assert_eq!(interp.surface.n_v(), offsets.sections.len());
+        let approx = fit_offsets(&offsets, &FitConfig::default())
+            .map_err(|e| TestCaseError::fail(format!("approx: {e}")))?;
+        prop_assert!(approx.error.overall.max.is_finite());
+        prop_assert!(approx.error.overall.rms <= approx.error.overall.max);
+    }
+
+    #[test]
+    fn reported_error_equals_error_remeasured_from_the_written_file(offsets in hull_sections()) {
+        let out = fit_offsets(&offsets, &FitConfig::default()).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let dir = tempfile::tempdir().map_err(|e| TestCaseError::fail(e.to_string()))?;
+        hull::write_fit_outputs(dir.path(), &offsets, &out).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let text = std::fs::read_to_string(dir.path().join("surface.json")).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let (surface, _) = hull::export::read_surface_json(&text).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        prop_assert_eq!(&surface, &out.surface);
+        let again = measure_fit_error(&surface, &offsets, Some(&out.params));
+        prop_assert_eq!(again.overall, out.error.overall);
+        let report: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.path().join("report.json")).map_err(|e| TestCaseError::fail(e.to_string()))?,
+        ).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        prop_assert_eq!(report["error"]["max"].as_f64(), Some(again.overall.max));
+        prop_assert_eq!(report["error"]["rms"].as_f64(), Some(again.overall.rms));
+    }
+}
