@@ -55,6 +55,12 @@ impl Section {
         Location { file: source.to_string(), line, column: line.and(self.column) }
     }
 
+    /// True if every point lies within `tol` of the first: the section is one point, a pointed
+    /// stem or stern (empty sections are not).
+    pub fn is_point(&self, tol: f64) -> bool {
+        self.points.first().is_some_and(|&first| self.points.iter().all(|p| p.distance(first) <= tol))
+    }
+
     /// The mean x of the points, `None` for an empty section.
     pub fn mean_x(&self) -> Option<f64> {
         if self.points.is_empty() {
@@ -150,8 +156,7 @@ impl Offsets {
         }
         let tol = COINCIDENT_REL * self.size();
         for s in &self.sections {
-            let first = s.points[0];
-            if s.points.iter().all(|p| p.distance(first) <= tol) {
+            if s.is_point(tol) {
                 continue; // a pointed end
             }
             for (i, w) in s.points.windows(2).enumerate() {

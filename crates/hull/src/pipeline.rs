@@ -83,13 +83,8 @@ pub struct FitOutcome {
 /// and at most the data.
 pub fn default_ctrl(offsets: &Offsets, degree: (usize, usize)) -> (usize, usize) {
     // A section that is one repeated point (a pointed stem) carries no shape along u.
-    let n_max = offsets
-        .sections
-        .iter()
-        .filter(|s| s.points.iter().any(|p| *p != s.points[0]))
-        .map(|s| s.points.len())
-        .max()
-        .unwrap_or(0);
+    let tol = crate::COINCIDENT_REL * offsets.size();
+    let n_max = offsets.sections.iter().filter(|s| !s.is_point(tol)).map(|s| s.points.len()).max().unwrap_or(0);
     let k = offsets.sections.len();
     let pick = |n: usize, d: usize| ((3 * n).div_ceil(4)).max(d + 1).min(n);
     (pick(n_max, degree.0), pick(k, degree.1))
@@ -113,7 +108,14 @@ pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, 
         }
     }
     offsets.validate(p + 1)?;
-    let sections: Vec<Vec<nurbs::Vec3>> = offsets.sections.iter().map(|s| s.points.clone()).collect();
+    // A pointed end (all points within the validation tolerance) goes to the kernel as one
+    // exactly repeated point, so both agree on what is a point.
+    let tol = crate::COINCIDENT_REL * offsets.size();
+    let sections: Vec<Vec<nurbs::Vec3>> = offsets
+        .sections
+        .iter()
+        .map(|s| if s.is_point(tol) { vec![s.points[0]; s.points.len()] } else { s.points.clone() })
+        .collect();
     let opts = SkinOptions { degree_u: p, degree_v: q, param: config.param };
     let start = Instant::now();
     let result = match config.method {

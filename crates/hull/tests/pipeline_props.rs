@@ -52,7 +52,7 @@ proptest! {
         let n_max = offsets
             .sections
             .iter()
-            .filter(|s| s.points.iter().any(|p| *p != s.points[0]))
+            .filter(|s| !s.is_point(0.0))
             .map(|s| s.points.len())
             .max()
             .unwrap_or(0);
