@@ -8,6 +8,7 @@ mod error;
 pub mod export;
 pub mod fit_error;
 mod offsets;
+pub mod optimize;
 mod output;
 mod pipeline;
 pub mod read;

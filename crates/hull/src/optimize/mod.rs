@@ -1,0 +1,188 @@
+//! Optimisers of the NURBS weights: the objective is kept apart from the algorithms, so the
+//! Genetic Algorithm, Particle Swarm Optimization, the Gravitational Search Algorithm and the
+//! local solvers all minimise one [`Objective`] over `&[f64]`.
+//!
+//! Reproducibility: every algorithm draws its random numbers from one ChaCha8 stream seeded by
+//! the caller, in a fixed order on the calling thread; only the objective evaluations of a
+//! population run in parallel (rayon), and each evaluation is a pure function of its vector.
+//! So the same seed gives bit-identical results whatever the thread count.
+//!
+//! Every run starts from the objective's [`Objective::start`] (all weights 1) and never returns
+//! anything worse than it (elitism), records the best value after each iteration, and stops
+//! early, keeping its best, when [`Control::stop`] is raised (Ctrl-C).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+/// A function to minimise over a box.
+pub trait Objective: Sync {
+    /// Number of variables.
+    fn dim(&self) -> usize;
+    /// Lower bounds, one per variable.
+    fn lower(&self) -> &[f64];
+    /// Upper bounds, one per variable.
+    fn upper(&self) -> &[f64];
+    /// The value at `x` (inside the box). A non-finite value marks an infeasible point and is
+    /// treated as `+inf` by the algorithms.
+    fn value(&self, x: &[f64]) -> f64;
+    /// The known good starting point (for weights: all 1, i.e. zero log-weights).
+    fn start(&self) -> Vec<f64>;
+}
+
+/// Why a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    /// The iteration budget was used.
+    Iterations,
+    /// A convergence criterion was met.
+    Converged,
+    /// [`Control::stop`] was raised.
+    Interrupted,
+}
+
+/// The outcome of a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OptimResult {
+    /// The best point found.
+    pub x: Vec<f64>,
+    /// Its value.
+    pub value: f64,
+    /// Objective evaluations done.
+    pub evaluations: usize,
+    /// Iterations (generations) done.
+    pub iterations: usize,
+    /// The best value after each iteration (`history[0]` is the start's value).
+    pub history: Vec<f64>,
+    pub stop: StopReason,
+}
+
+/// One progress report, sent after each iteration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    pub iteration: usize,
+    pub iterations: usize,
+    pub best: f64,
+    pub evaluations: usize,
+}
+
+/// How a caller watches and stops a run.
+pub struct Control<'a> {
+    /// Raised (e.g. by a Ctrl-C handler) to stop the run at the end of the current iteration.
+    pub stop: &'a AtomicBool,
+    /// Called after each iteration.
+    pub progress: &'a (dyn Fn(Progress) + Sync),
+}
+
+impl Control<'_> {
+    /// True once a stop was requested.
+    pub fn stopped(&self) -> bool {
+        self.stop.load(Ordering::Relaxed)
+    }
+}
+
+/// A control that never stops and reports nothing.
+pub fn quiet<R>(f: impl FnOnce(&Control<'_>) -> R) -> R {
+    let stop = AtomicBool::new(false);
+    let control = Control { stop: &stop, progress: &|_| {} };
+    f(&control)
+}
+
+/// The random stream of a run.
+pub fn rng(seed: u64) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(seed)
+}
+
+/// Evaluate a population in parallel; non-finite values become `+inf`. The result does not
+/// depend on the thread count (each value is a pure function of its vector).
+pub fn evaluate_all(obj: &dyn Objective, xs: &[Vec<f64>]) -> Vec<f64> {
+    xs.par_iter()
+        .map(|x| {
+            let f = obj.value(x);
+            if f.is_finite() {
+                f
+            } else {
+                f64::INFINITY
+            }
+        })
+        .collect()
+}
+
+/// Clamp `x` into the objective's box.
+pub fn clamp_to_box(obj: &dyn Objective, x: &mut [f64]) {
+    for ((xi, &lo), &hi) in x.iter_mut().zip(obj.lower()).zip(obj.upper()) {
+        *xi = if xi.is_nan() { 0.5 * (lo + hi) } else { xi.clamp(lo, hi) };
+    }
+}
+
+/// Standard test functions, for the algorithms' tests.
+#[cfg(test)]
+pub(crate) mod testfns {
+    use super::Objective;
+
+    /// `f(x) = sum_i c_i (x_i - s_i)^2` on `[-5, 5]^n`, minimum 0 at `s` (shifted off the
+    /// start so a run must move).
+    pub struct Sphere {
+        pub lo: Vec<f64>,
+        pub hi: Vec<f64>,
+        pub shift: Vec<f64>,
+    }
+
+    impl Sphere {
+        pub fn new(n: usize) -> Self {
+            Sphere { lo: vec![-5.0; n], hi: vec![5.0; n], shift: (0..n).map(|i| 1.0 + 0.25 * i as f64).collect() }
+        }
+    }
+
+    impl Objective for Sphere {
+        fn dim(&self) -> usize {
+            self.lo.len()
+        }
+        fn lower(&self) -> &[f64] {
+            &self.lo
+        }
+        fn upper(&self) -> &[f64] {
+            &self.hi
+        }
+        fn value(&self, x: &[f64]) -> f64 {
+            x.iter().zip(&self.shift).enumerate().map(|(i, (a, s))| (1.0 + i as f64) * (a - s).powi(2)).sum()
+        }
+        fn start(&self) -> Vec<f64> {
+            vec![0.0; self.dim()]
+        }
+    }
+
+    /// Rastrigin shifted by 1.5: many local minima, global 0 at x = 1.5.
+    pub struct Rastrigin {
+        pub lo: Vec<f64>,
+        pub hi: Vec<f64>,
+    }
+
+    impl Rastrigin {
+        pub fn new(n: usize) -> Self {
+            Rastrigin { lo: vec![-5.12; n], hi: vec![5.12; n] }
+        }
+    }
+
+    impl Objective for Rastrigin {
+        fn dim(&self) -> usize {
+            self.lo.len()
+        }
+        fn lower(&self) -> &[f64] {
+            &self.lo
+        }
+        fn upper(&self) -> &[f64] {
+            &self.hi
+        }
+        fn value(&self, x: &[f64]) -> f64 {
+            let tau = 2.0 * std::f64::consts::PI;
+            x.iter().map(|&a| (a - 1.5).powi(2) - 10.0 * (tau * (a - 1.5)).cos() + 10.0).sum()
+        }
+        fn start(&self) -> Vec<f64> {
+            vec![0.0; self.dim()]
+        }
+    }
+}
