@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 use hull::{FitConfig, FitMethod, Units};
-use nurbs::fit::Parameterization;
+use nurbs::fit::SkinParameterization;
 
 /// Arguments of `hullskin fit`.
 #[derive(Debug, Args)]
@@ -30,9 +30,10 @@ pub struct FitArgs {
     /// Degrees P,Q in u (along sections) and v (across sections).
     #[arg(long, default_value = "3,3", value_parser = parse_pair)]
     pub degree: (usize, usize),
-    /// Parameterization of the offsets: centripetal, chord, uniform or universal.
-    #[arg(long, default_value = "centripetal", value_parser = parse_param)]
-    pub param: Parameterization,
+    /// Parameterization of the offsets: centripetal, chord, uniform or universal; one name for
+    /// both directions, or U,V for along the sections (u) and across them (v).
+    #[arg(long, default_value = "centripetal,chord", value_parser = parse_param)]
+    pub param: SkinParameterization,
     /// Units of the input coordinates, carried to the exports: m, mm, ft or in.
     #[arg(long, default_value = "m", value_parser = parse_units)]
     pub units: Units,
@@ -46,7 +47,7 @@ impl Default for FitArgs {
             method: FitMethod::Approx,
             ctrl: None,
             degree: (3, 3),
-            param: Parameterization::Centripetal,
+            param: SkinParameterization::default(),
             units: Units::Metre,
         }
     }
@@ -62,7 +63,7 @@ fn parse_method(s: &str) -> Result<FitMethod, String> {
     s.parse()
 }
 
-fn parse_param(s: &str) -> Result<Parameterization, String> {
+fn parse_param(s: &str) -> Result<SkinParameterization, String> {
     s.parse().map_err(|e| format!("{e}"))
 }
 
@@ -87,4 +88,21 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
 fn write_outputs(dir: &Path, offsets: &hull::Offsets, outcome: &hull::FitOutcome) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
     hull::write_fit_outputs(dir, offsets, outcome).with_context(|| format!("cannot write outputs to {}", dir.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nurbs::fit::Parameterization;
+
+    #[test]
+    fn param_takes_one_name_or_one_per_direction() {
+        let both = parse_param("chord").expect("one name");
+        assert_eq!((both.u, both.v), (Parameterization::ChordLength, Parameterization::ChordLength));
+        let pair = parse_param("centripetal,chord").expect("two names");
+        assert_eq!(pair, SkinParameterization::default());
+        assert_eq!(FitArgs::default().param, pair);
+        let err = parse_param("centripetal,bogus").expect_err("unknown name");
+        assert!(err.contains("bogus") && err.contains("universal"), "{err}");
+    }
 }

@@ -17,6 +17,21 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
+pub mod ga;
+pub mod gsa;
+mod linalg;
+pub mod lm;
+pub mod pso;
+pub mod weights;
+
+pub use ga::GaOptions;
+pub use gsa::{GsaOptions, GsaRandom};
+pub use pso::{PsoOptions, PsoVariant};
+pub use lm::{LmOptions, ParamFit};
+pub use weights::{
+    JacobianKind, Linearization, ParamFreedom, WeightLayout, WeightMode, WeightOptions, WeightProblem,
+};
+
 /// A function to minimise over a box.
 pub trait Objective: Sync {
     /// Number of variables.

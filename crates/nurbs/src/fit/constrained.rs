@@ -136,7 +136,7 @@ impl EnergyGram {
 /// the nodes are the roots of the Legendre polynomial `P_m`, found by Newton's method from
 /// the Tricomi estimate `cos(π (i + 3/4) / (m + 1/2))`, and the weights are
 /// `2 / ((1 - x^2) P_m'(x)^2)` (Abramowitz and Stegun 25.4.29; Numerical Recipes `gauleg`).
-fn gauss_legendre(m: usize) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn gauss_legendre(m: usize) -> (Vec<f64>, Vec<f64>) {
     if m <= 1 {
         return (vec![0.0], vec![2.0]);
     }

@@ -50,8 +50,15 @@ impl InterpolationSolver {
         let ku = spans.iter().enumerate().map(|(k, &s)| s.saturating_sub(k)).max().unwrap_or(0);
         let mut lu = BandedLu::zeros(n, kl, ku);
         let mut row: BasisRow = [0.0; MAX_DEGREE + 1];
+        let (start, end) = knots.domain();
         for (k, (&t, &s)) in params.iter().zip(&spans).enumerate() {
             basis_funs(u, s, t, p, &mut row);
+            // At the clamped ends N_0 = 1 (N_{n-1} = 1) exactly; A2.2 can round it to 1 - 1e-16,
+            // and a collapsed edge (a stem section reduced to one point) must stay one point.
+            if t == start || t == end {
+                let one = if t == start { 0 } else { p };
+                row.iter_mut().take(p + 1).enumerate().for_each(|(j, x)| *x = if j == one { 1.0 } else { 0.0 });
+            }
             for (j, &v) in row.iter().enumerate().take(p + 1) {
                 lu.set(k, s - p + j, v);
             }

@@ -20,8 +20,9 @@ pub use constrained::{
 };
 pub use interp::{interpolate_curve, interpolate_curve_auto, InterpolationSolver};
 pub use knots::{
-    approximation_knots, averaging_knots, knots_for_approximation, knots_for_interpolation, schoenberg_whitney,
+    approximation_knots, averaging_knots, centred_approximation_knots, knots_for_approximation, knots_for_interpolation,
+    optimal_knots, schoenberg_whitney,
 };
 pub use lsq::{approximate_curve, approximate_curve_auto, LeastSquaresSolver};
-pub use param::{common_parameters, parameterize, Parameterization, UnknownParameterization};
+pub use param::{common_parameters, parameterize, Parameterization, SkinParameterization, UnknownParameterization};
 pub use skin::{skin_approximate, skin_interpolate, SkinOptions, SkinResult};

@@ -21,10 +21,13 @@ use std::collections::HashMap;
 
 use super::constrained::EnergyGram;
 use super::interp::InterpolationSolver;
-use super::knots::{approximation_knots, check_ctrl_count, knots_for_approximation, knots_for_interpolation};
+use super::knots::{
+    approximation_knots, centred_approximation_knots, check_ctrl_count, knots_for_approximation,
+    knots_for_interpolation,
+};
 use super::lsq::LeastSquaresSolver;
 use super::param::{chord_lengths, parameterize_labelled, uniform_params, universal_params};
-use super::{common_parameters, FairInterpolationSolver, Parameterization};
+use super::{common_parameters, FairInterpolationSolver, Parameterization, SkinParameterization};
 use crate::basis::{basis_funs, BasisRow};
 use crate::curve::to_homogeneous;
 use crate::tolerance::COINCIDENT_REL;
@@ -38,13 +41,14 @@ pub struct SkinOptions {
     pub degree_u: usize,
     /// Degree across the sections (lowered to `K - 1` for `K` sections).
     pub degree_v: usize,
-    /// Parameterization in both directions.
-    pub param: Parameterization,
+    /// Parameterization along the sections (`u`) and across them (`v`).
+    pub param: SkinParameterization,
 }
 impl Default for SkinOptions {
-    /// Bicubic, centripetal.
+    /// Bicubic, centripetal along the sections and chord length across them
+    /// ([`SkinParameterization::default`]).
     fn default() -> Self {
-        SkinOptions { degree_u: 3, degree_v: 3, param: Parameterization::Centripetal }
+        SkinOptions { degree_u: 3, degree_v: 3, param: SkinParameterization::default() }
     }
 }
 
@@ -146,7 +150,8 @@ fn in_section(e: NurbsError, k: usize) -> NurbsError {
 /// Parameters across the sections: for [`Parameterization::Universal`] the universal values for
 /// `K` points; otherwise, as The NURBS Book A9.4 / eq. 10.8, the mean over the columns
 /// `col(i) = (X_{i,0}, ..., X_{i,K-1})` of each column's own parameters (eq. 9.3-9.6), skipping
-/// columns whose points all coincide.
+/// columns whose points all coincide. Both skins pass the columns of the sections' control
+/// points (the curves that are then fitted across), not of the data.
 ///
 /// # Errors
 /// [`NurbsError::CoincidentPoints`] if two consecutive sections coincide in every column.
@@ -226,13 +231,14 @@ fn interpolate_across(
 ///
 /// - All non-degenerate sections have the same count `n` (degenerate ones may have any
 ///   count): global surface interpolation, A9.4. One u-parameter vector, the mean of the
-///   sections' own parameters (eq. 9.18), averaging knots (eq. 9.8), degree `p = min(degree_u,
-///   n - 1)`; each section is interpolated with that one factorization. The net is `n x K`.
-///   The v-parameters are the mean over the data columns.
+///   sections' own parameters (eq. 9.18) of kind `param.u`, the optimal knots of
+///   [`crate::fit::optimal_knots`] (or uniform for [`Parameterization::Universal`]), degree
+///   `p = min(degree_u, n - 1)`; each section is interpolated with that one factorization. The
+///   net is `n x K`.
 /// - Otherwise, with `N = max_k n_k`: one knot vector along `u` with `N` basis functions and
 ///   degree `p = min(degree_u, N - 1)` for all sections, so the net is `N x K`.
 ///   1. The *full* sections (`n_k = N`) are treated exactly as in A9.4: the common parameters
-///      `ū` are the mean of their own parameters, the knots are those of `ū` (averaging, or
+///      `ū` are the mean of their own parameters, the knots are those of `ū` (optimal, or
 ///      uniform for [`Parameterization::Universal`]), and each full section is interpolated at
 ///      `ū` with one factorization, nonsingular by construction (Schoenberg-Whitney).
 ///   2. A shorter section is interpolated by the curve of least bending energy
@@ -256,9 +262,7 @@ fn interpolate_across(
 ///      16-point stations it kept the bulge beyond the section's own interpolant below 0.5% of
 ///      the section length, where own parameters reach 11% to 50%. [`SkinResult::params`]
 ///      are the parameters used.
-///   3. The v-parameters are the mean over the `N` columns (eq. 9.18) of the sections' points
-///      at `ū`: the data for full sections, `C_k(ū_i)` for the others. With equal counts every
-///      step reduces to A9.4, so the two cases agree.
+///   3. With equal counts every step reduces to the first case, so the two agree.
 ///
 /// The energy criterion for the parameters is that of "best parametric interpolation": the
 /// parameters on a fixed interval for which the interpolating spline has the least
@@ -267,8 +271,14 @@ fn interpolate_across(
 /// interpolation knots). Here it only picks among five blends, for five small factorizations
 /// per short section.
 ///
-/// Across the sections, degree `q = min(degree_v, K - 1)` with the knots of the
-/// parameterization (averaging, or uniform for universal), one factorization for all columns.
+/// Across the sections: the columns of the sections' control points `R_{k,i}` are interpolated
+/// with degree `q = min(degree_v, K - 1)` at v-parameters of kind `param.v` (the mean over the
+/// columns of `R`, eq. 10.8) on their knots (optimal, or uniform for universal), one
+/// factorization for all columns. Why the control points and not the data (A9.4 takes the
+/// data columns): the control-point columns are what is interpolated, their spacing is the
+/// surface's; on the nine tables of `tools/peers/results.md` this lowered the error between
+/// the offsets by 1 % in the geometric mean, by 18 % (max) on R/V Gunnerus, whose stations
+/// differ most in shape, and changed no other table by more than 1 %.
 ///
 /// # Errors
 /// [`NurbsError::BadDegree`]; [`NurbsError::TooFewPoints`] for fewer than 2 sections, an empty
@@ -330,7 +340,7 @@ fn interpolate_equal(
     q: usize,
     opts: &SkinOptions,
 ) -> Result<(NurbsSurface, Vec<f64>, UParams), NurbsError> {
-    let kind = opts.param;
+    let kind = opts.param.u;
     let p = opts.degree_u.min(n - 1);
     let mut own = Vec::new();
     for (k, s) in secs.iter().enumerate() {
@@ -349,12 +359,8 @@ fn interpolate_equal(
             Section::Point(c, _) => Ok(vec![*c; n]),
         })
         .collect::<Result<_, _>>()?;
-    let data = |i: usize, k: usize| match &secs[k] {
-        Section::Regular(pts) => pts[i],
-        Section::Point(c, _) => *c,
-    };
-    let v = cross_params(n, secs.len(), data, kind, q)?;
-    let (kv, net) = interpolate_across(&rows, &v, kind, q)?;
+    let v = cross_params(n, secs.len(), |i, k| rows[k][i], opts.param.v, q)?;
+    let (kv, net) = interpolate_across(&rows, &v, opts.param.v, q)?;
     let u_of = secs.iter().map(|s| (s.len() == n || matches!(s, Section::Regular(_))).then(|| u.clone())).collect();
     Ok((NurbsSurface::from_parts_unchecked(ku, kv, net), v, u_of))
 }
@@ -366,7 +372,7 @@ fn interpolate_ragged(
     q: usize,
     opts: &SkinOptions,
 ) -> Result<(NurbsSurface, Vec<f64>, UParams), NurbsError> {
-    let kind = opts.param;
+    let kind = opts.param.u;
     let n = max_count(secs);
     let p = opts.degree_u.min(n - 1);
     let own = own_params(secs, kind, p)?;
@@ -384,7 +390,7 @@ fn interpolate_ragged(
                 u_of.push(Some(u.clone()));
             }
             (Section::Regular(pts), Some(t)) => {
-                let (cp, used) = fits.interpolate(pts, t, k)?;
+                let (_, cp, used) = fits.interpolate(pts, t, k)?;
                 rows.push(cp);
                 u_of.push(Some(used));
             }
@@ -395,32 +401,8 @@ fn interpolate_ragged(
             (Section::Regular(_), None) => unreachable!("own_params gives every regular section parameters"),
         }
     }
-    // Every section's points at the common parameters ū: data, curve points, or the point.
-    let at_u: Vec<(usize, BasisRow)> = u
-        .iter()
-        .map(|&t| {
-            let s = ku.find_span(t);
-            let mut row = [0.0; MAX_DEGREE + 1];
-            basis_funs(ku.as_slice(), s, t, p, &mut row);
-            (s, row)
-        })
-        .collect();
-    let samples: Vec<Vec<Vec3>> = secs
-        .iter()
-        .zip(&rows)
-        .map(|(s, cp)| match s {
-            Section::Regular(pts) if pts.len() == n => pts.to_vec(),
-            Section::Regular(_) => at_u
-                .iter()
-                .map(|(span, row)| {
-                    row[..=p].iter().enumerate().fold(Vec3::ZERO, |acc, (j, &b)| acc + cp[span - p + j] * b)
-                })
-                .collect(),
-            Section::Point(c, _) => vec![*c; n],
-        })
-        .collect();
-    let v = cross_params(n, secs.len(), |i, k| samples[k][i], kind, q)?;
-    let (kv, net) = interpolate_across(&rows, &v, kind, q)?;
+    let v = cross_params(n, secs.len(), |i, k| rows[k][i], opts.param.v, q)?;
+    let (kv, net) = interpolate_across(&rows, &v, opts.param.v, q)?;
     Ok((NurbsSurface::from_parts_unchecked(ku, kv, net), v, u_of))
 }
 
@@ -437,6 +419,25 @@ const BLEND_WEIGHTS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 /// energy is larger by orders of magnitude (on R/V Gunnerus: 13 to 16-point sections on 12 to
 /// 15 poles overshoot by up to 31 m with their own parameters, 0.16 m at the chosen blend).
 const LSQ_ENERGY_WEIGHT: f64 = 1e-3;
+
+/// A section fitted on common knots: its score (energy, or penalized residual), control points
+/// and parameters.
+type BlendFit = (f64, Vec<Vec3>, Vec<f64>);
+
+/// `sum_k |C(t_k) - Q_k|^2` of the non-rational curve with control points `cp` on `knots`.
+fn residual(knots: &KnotVector, t: &[f64], pts: &[Vec3], cp: &[Vec3]) -> f64 {
+    let (p, u) = (knots.degree(), knots.as_slice());
+    let mut row: BasisRow = [0.0; MAX_DEGREE + 1];
+    t.iter()
+        .zip(pts)
+        .map(|(&x, q)| {
+            let s = knots.find_span(x);
+            basis_funs(u, s, x, p, &mut row);
+            let c = row[..=p].iter().enumerate().fold(Vec3::ZERO, |acc, (j, &b)| acc + cp[s - p + j] * b);
+            c.distance(*q).powi(2)
+        })
+        .sum()
+}
 
 /// Fits of sections on one common knot vector: fair interpolation (a section with at most as
 /// many points as control points) and least squares (more points), each at the blend of
@@ -470,52 +471,46 @@ impl<'a> SectionFits<'a> {
     }
 
     /// The least-energy curve through section `k`'s `pts` over the candidate parameters
-    /// `(1 - w) own + w m` ([`skin_interpolate`] step 2): its control points and parameters.
+    /// `(1 - w) own + w m` ([`skin_interpolate`] step 2): its energy `∫ |C''|^2`, control
+    /// points and parameters.
     ///
     /// # Errors
     /// The error of the first candidate, in the section's name, if no candidate can be solved
     /// (only possible on knots with interior multiplicity `p`).
-    fn interpolate(&mut self, pts: &[Vec3], own: Vec<f64>, k: usize) -> Result<(Vec<Vec3>, Vec<f64>), NurbsError> {
-        let (_, t) = self.best_blend(pts, own, k, |fits, t| Ok((fits.solver(t)?.energy(pts)?, Vec::new())))?;
+    fn interpolate(&mut self, pts: &[Vec3], own: Vec<f64>, k: usize) -> Result<BlendFit, NurbsError> {
+        let (energy, _, t) = self.best_blend(pts, own, k, |fits, t| Ok((fits.solver(t)?.energy(pts)?, Vec::new())))?;
         let cp = self.solver(&t).and_then(|s| s.control_points(pts)).map_err(|e| in_section(e, k))?;
-        Ok((cp, t))
+        Ok((energy, cp, t))
     }
 
     /// The least-squares curve of section `k`'s `pts` ([`skin_approximate`] step 1) over the
     /// candidate parameters, scored by `sum_k |C(t_k) - Q_k|^2 + λ E(C)`
-    /// ([`LSQ_ENERGY_WEIGHT`]): its control points and parameters.
+    /// ([`LSQ_ENERGY_WEIGHT`]): that score, its control points and parameters.
     ///
     /// # Errors
     /// The error of the first candidate, in the section's name, if no candidate can be solved.
-    fn approximate(&mut self, pts: &[Vec3], own: Vec<f64>, k: usize) -> Result<(Vec<Vec3>, Vec<f64>), NurbsError> {
-        let lambda = LSQ_ENERGY_WEIGHT / self.gram.max_diagonal();
-        let (p, u) = (self.knots.degree(), self.knots.as_slice());
+    fn approximate(&mut self, pts: &[Vec3], own: Vec<f64>, k: usize) -> Result<BlendFit, NurbsError> {
+        let lambda = self.lambda();
         self.best_blend(pts, own, k, |fits, t| {
             let cp = LeastSquaresSolver::new(t, fits.knots)?.control_points(pts)?;
-            let mut row: BasisRow = [0.0; MAX_DEGREE + 1];
-            let residual: f64 = t
-                .iter()
-                .zip(pts)
-                .map(|(&x, q)| {
-                    let s = fits.knots.find_span(x);
-                    basis_funs(u, s, x, p, &mut row);
-                    let c = row[..=p].iter().enumerate().fold(Vec3::ZERO, |acc, (j, &b)| acc + cp[s - p + j] * b);
-                    c.distance(*q).powi(2)
-                })
-                .sum();
-            Ok((residual + lambda * fits.gram.energy(&cp), cp))
+            Ok((residual(fits.knots, t, pts, &cp) + lambda * fits.gram.energy(&cp), cp))
         })
     }
 
+    /// `λ = LSQ_ENERGY_WEIGHT / max_i G_ii` of these knots.
+    fn lambda(&self) -> f64 {
+        LSQ_ENERGY_WEIGHT / self.gram.max_diagonal()
+    }
+
     /// Solve at every candidate blend of `own` with the Greville spread and keep the lowest
-    /// score `solve` returns.
+    /// score `solve` returns (with the control points it returned and the parameters).
     fn best_blend(
         &mut self,
         pts: &[Vec3],
         own: Vec<f64>,
         k: usize,
         mut solve: impl FnMut(&mut Self, &[f64]) -> Result<(f64, Vec<Vec3>), NurbsError>,
-    ) -> Result<(Vec<Vec3>, Vec<f64>), NurbsError> {
+    ) -> Result<BlendFit, NurbsError> {
         let m = greville_spread(self.knots, pts.len());
         let mut best: Option<(f64, Vec<Vec3>, Vec<f64>)> = None;
         let mut first_error = None;
@@ -541,7 +536,7 @@ impl<'a> SectionFits<'a> {
             }
         }
         match (best, first_error) {
-            (Some((_, cp, t)), _) => Ok((cp, t)),
+            (Some(fit), _) => Ok(fit),
             (None, Some(e)) => Err(in_section(e, k)),
             (None, None) => unreachable!("BLEND_WEIGHTS is not empty"),
         }
@@ -579,13 +574,36 @@ fn greville_spread(knots: &KnotVector, n: usize) -> Vec<f64> {
 /// least squares first along each section, then across the sections (The NURBS Book 9.4.1
 /// applied as in 9.4.3's two-stage surface fit).
 ///
-/// 1. Each non-degenerate section gets its own parameters; the common u knot vector is the mean
-///    of the symmetric eq. 9.68-9.69 knot vectors ([`approximation_knots`]; this is also the
-///    knot vector of the averaged parameters, the placement being linear in them) of the
-///    sections with at least `nu` points, or uniform for [`Parameterization::Universal`].
-///    - A section with more than `nu` points is fitted by least squares on those knots, its
-///      ends interpolated, at the blend of parameters `(1 - w) t + w m` (as in
-///      [`skin_interpolate`] step 2; `m` spreads the points over the Greville abscissae, now
+/// Both stages try a few principled choices and keep the one that fits the data best, i.e. the
+/// one with the least value of the least-squares objective itself (plus a small energy term
+/// that rejects nearly singular fits):
+///
+/// - the knot placement in each direction: [`approximation_knots`] (averages of resampled
+///   parameters: wide end spans, well conditioned up to interpolation) or
+///   [`centred_approximation_knots`] (The NURBS Book eq. 9.69, centred: the same amount of data
+///   in every span);
+/// - along the sections, when all non-degenerate sections have the same count: each section on
+///   its own parameters, or all on their mean (eq. 9.18, as in global surface interpolation).
+///
+/// Why: each choice wins clearly on some hull tables and loses on others (averaged parameters:
+/// a fifth of the RMS error of own ones on the Wigley hull, whose sections are alike, 30 % more
+/// on the R/V Gunnerus waterlines; centred knots: less than half the error of resampled ones on
+/// the Wigley hull, whose stations crowd at the ends, 1.7 times more on the Series 60
+/// stations), and on the nine tables of `tools/peers` (18 fits) the smaller residual at the
+/// offsets went with the smaller RMS error between them in 17 of 18 choices of knots (the
+/// other within 0.1 %) and 18 of 18 choices of parameters. The residual is the quantity least
+/// squares minimizes, so the selection adds no criterion of its own; with universal
+/// parameters the knots are uniform and only the parameters are chosen.
+///
+/// 1. Along: for each candidate (parameters x placement), the common `u` knot vector is the
+///    mean of the placement's knot vectors of the sections with at least `nu` points (for
+///    averaged parameters simply that of the mean), or uniform for
+///    [`Parameterization::Universal`].
+///    - With averaged parameters every non-degenerate section is fitted by least squares at
+///      them, its ends interpolated (one factorization).
+///    - With own parameters, a section with more than `nu` points is fitted by least squares
+///      on those knots, its ends interpolated, at the blend of parameters `(1 - w) t + w m` (as
+///      in [`skin_interpolate`] step 2; `m` spreads the points over the Greville abscissae, now
 ///      several per abscissa, and still satisfies Schoenberg-Whitney) whose fit has the least
 ///      `sum_k |C(t_k) - Q_k|^2 + λ E(C)` with `λ = 1e-3 / max_i G_ii`. With own
 ///      parameters only, a section with slightly more points than `nu` gets nearly singular
@@ -593,14 +611,20 @@ fn greville_spread(knots: &KnotVector, n: usize) -> Vec<f64> {
 ///      the points (R/V Gunnerus: 31 m on 5 to 12 m sections); the blend with the least
 ///      penalized residual keeps it within 0.16 m. A candidate that violates the
 ///      Schoenberg-Whitney condition is skipped; if all do, the error names the section.
-///    - A section with at most `nu` points is interpolated by its least-bending-energy curve on
+///      A section with at most `nu` points is interpolated by its least-bending-energy curve on
 ///      those knots, with parameters chosen as in [`skin_interpolate`] step 2: approximation
 ///      must not be worse than interpolation where data are scarce. (With exactly `nu` points
 ///      that is plain interpolation, at the blend of parameters that bends least.)
 ///    - Degenerate sections get `nu` copies of their point.
+///
+///    The placement with the least `sum over sections of (residual + λ E)` is kept (for a
+///    section interpolated exactly, `λ E`).
 /// 2. Across: the columns of the `K` curves' control points are fitted with `nv` control
-///    points; v-parameters are the mean over the columns (eq. 10.8), knots as in step 1; one
-///    factorization for all columns. The first and last sections are interpolated.
+///    points; v-parameters of `param.v` are the mean over the columns (eq. 10.8); one
+///    factorization per placement for all columns, the first and last sections interpolated,
+///    and again the placement with the least `sum over columns of (residual + λ E)` is kept.
+/// 3. Of the two parameter choices of step 1 (equal counts only), the surface with the least
+///    `sum |S(u_k, v_k) - Q_k|^2` over all offsets is returned.
 ///
 /// Degrees: `p = min(degree_u, N - 1)` with `N` the largest non-degenerate section (shorter
 /// sections do not lower it), `q = min(degree_v, K - 1)`.
@@ -615,24 +639,144 @@ pub fn skin_approximate(
     opts: &SkinOptions,
 ) -> Result<SkinResult, NurbsError> {
     let secs = classify(sections, opts)?;
-    let kind = opts.param;
     let k_count = secs.len();
     let n_max = max_count(&secs);
     let p = opts.degree_u.min(n_max - 1);
     let q = opts.degree_v.min(k_count - 1);
     check_ctrl_count(nu, n_max, p, "skinning along the sections (largest section)")?;
     check_ctrl_count(nv, k_count, q, "skinning across the sections")?;
-    // Step 1: parameters, common knots, one fit per section.
-    let mut u_of = own_params(&secs, kind, p)?;
-    let ku = common_approximation_knots(&u_of, nu, p, kind)?;
-    let mut fits = SectionFits::new(&ku);
-    let mut rows: Vec<Vec<Vec3>> = Vec::with_capacity(k_count);
+    let own = own_params(&secs, opts.param.u, p)?;
+    let equal = secs.iter().all(|s| matches!(s, Section::Point(..)) || s.len() == n_max);
+    let mut candidates = vec![own.clone()];
+    if equal {
+        // All sections on the mean of their parameters (eq. 9.18).
+        let mean = common_parameters(&own.iter().flatten().cloned().collect::<Vec<_>>())?;
+        candidates.push(own.iter().map(|t| t.as_ref().map(|_| mean.clone())).collect());
+    }
+    let shared = [false, true];
+    let mut best: Option<(f64, SkinResult)> = None;
+    let mut first_error = None;
+    for (u_of, shared) in candidates.into_iter().zip(shared) {
+        let fit = fit_along(&secs, u_of, nu, p, opts.param.u, shared)
+            .and_then(|along| fit_across(&along.rows, nv, q, opts.param.v).map(|across| (along, across)));
+        let (along, across) = match fit {
+            Ok(f) => f,
+            Err(e) => {
+                first_error.get_or_insert(e);
+                continue;
+            }
+        };
+        let surface = NurbsSurface::from_parts_unchecked(along.knots, across.knots, across.net);
+        let params = data_params(&secs, &across.v, along.u_of);
+        let score = surface_residual(&surface, &secs, &params);
+        if best.as_ref().is_none_or(|(b, _)| score < *b) {
+            best = Some((score, SkinResult { surface, params }));
+        }
+    }
+    match (best, first_error) {
+        (Some((_, r)), _) => Ok(r),
+        (None, Some(e)) => Err(e),
+        (None, None) => unreachable!("the own-parameter candidate is always tried"),
+    }
+}
+
+/// The knot placements tried by [`skin_approximate`] in each direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Placement {
+    /// [`approximation_knots`].
+    Resampled,
+    /// [`centred_approximation_knots`].
+    Centred,
+}
+
+impl Placement {
+    const ALL: [Placement; 2] = [Placement::Resampled, Placement::Centred];
+
+    fn knots(self, params: &[f64], n_ctrl: usize, degree: usize) -> Result<KnotVector, NurbsError> {
+        match self {
+            Placement::Resampled => approximation_knots(params, n_ctrl, degree),
+            Placement::Centred => centred_approximation_knots(params, n_ctrl, degree),
+        }
+    }
+}
+
+/// The placements to try for parameters of `kind`: uniform knots only for universal
+/// parameters (their defining pairing), both placements otherwise.
+fn placements(kind: Parameterization) -> &'static [Option<Placement>] {
+    const BOTH: [Option<Placement>; 2] = [Some(Placement::ALL[0]), Some(Placement::ALL[1])];
+    const UNIFORM: [Option<Placement>; 1] = [None];
+    if kind == Parameterization::Universal {
+        &UNIFORM
+    } else {
+        &BOTH
+    }
+}
+
+/// Step 1 of [`skin_approximate`]: the common `u` knots, one row of `nu` control points per
+/// section, and the parameters used.
+struct AlongFit {
+    knots: KnotVector,
+    rows: Vec<Vec<Vec3>>,
+    u_of: UParams,
+}
+
+/// Fit every section on common knots for each placement and keep the best (step 1). `shared`:
+/// every regular section has the parameters `u_of` gives it, all equal (plain least squares,
+/// one factorization); otherwise each has its own (blends, [`SectionFits`]).
+fn fit_along(
+    secs: &[Section],
+    u_of: UParams,
+    nu: usize,
+    p: usize,
+    kind: Parameterization,
+    shared: bool,
+) -> Result<AlongFit, NurbsError> {
+    let mut best: Option<(f64, AlongFit)> = None;
+    let mut first_error = None;
+    for &placement in placements(kind) {
+        let fit = common_approximation_knots(&u_of, nu, p, placement).and_then(|knots| {
+            if shared {
+                along_shared(secs, &u_of, knots)
+            } else {
+                along_own(secs, u_of.clone(), nu, knots)
+            }
+        });
+        match fit {
+            Ok((score, fit)) => {
+                if best.as_ref().is_none_or(|(b, _)| score < *b) {
+                    best = Some((score, fit));
+                }
+            }
+            Err(e) => {
+                first_error.get_or_insert(e);
+            }
+        }
+    }
+    match (best, first_error) {
+        (Some((_, fit)), _) => Ok(fit),
+        (None, Some(e)) => Err(e),
+        (None, None) => unreachable!("placements() is never empty"),
+    }
+}
+
+/// Step 1 with each section on its own parameters (blends); the score is the sum of the
+/// sections' penalized residuals (`λ E` for those interpolated).
+fn along_own(secs: &[Section], mut u_of: UParams, nu: usize, knots: KnotVector) -> Result<(f64, AlongFit), NurbsError> {
+    let mut fits = SectionFits::new(&knots);
+    let lambda = fits.lambda();
+    let mut rows: Vec<Vec<Vec3>> = Vec::with_capacity(secs.len());
+    let mut score = 0.0;
     for (k, (s, t)) in secs.iter().zip(u_of.iter_mut()).enumerate() {
         rows.push(match (s, t) {
             (Section::Regular(pts), Some(t)) => {
                 let own = std::mem::take(t);
-                let (cp, used) =
-                    if pts.len() > nu { fits.approximate(pts, own, k)? } else { fits.interpolate(pts, own, k)? };
+                let (sk, cp, used) = if pts.len() > nu {
+                    fits.approximate(pts, own, k)?
+                } else {
+                    let (energy, cp, used) = fits.interpolate(pts, own, k)?;
+                    (lambda * energy, cp, used)
+                };
+                score += sk;
                 *t = used;
                 cp
             }
@@ -640,40 +784,121 @@ pub fn skin_approximate(
             (Section::Regular(_), None) => unreachable!("own_params gives every regular section parameters"),
         });
     }
-    // Step 2: across the sections.
-    let v = cross_params(nu, k_count, |i, k| rows[k][i], kind, q)?;
-    let kv = knots_for_approximation(&v, nv, q, kind)?;
-    let solver = LeastSquaresSolver::new(&v, &kv)?;
-    let mut net = vec![[0.0; 4]; nu * nv];
-    let mut col: Vec<[f64; 3]> = vec![[0.0; 3]; k_count];
-    for i in 0..nu {
-        for (c, row) in col.iter_mut().zip(&rows) {
-            *c = row[i].to_array();
-        }
-        for (j, cp) in solver.solve(&col)?.into_iter().enumerate() {
-            net[i * nv + j] = to_homogeneous(Vec3::from_array(cp), 1.0);
-        }
-    }
-    let surface = NurbsSurface::from_parts_unchecked(ku, kv, net);
-    Ok(SkinResult { params: data_params(&secs, &v, u_of), surface })
+    drop(fits);
+    Ok((score, AlongFit { knots, rows, u_of }))
 }
 
-/// The mean of the approximation knot vectors of the sections with at least `nu` points (or
-/// uniform knots for universal).
+/// Step 1 with all regular sections at the same parameters: one least-squares factorization.
+fn along_shared(secs: &[Section], u_of: &UParams, knots: KnotVector) -> Result<(f64, AlongFit), NurbsError> {
+    let t = u_of.iter().flatten().next().expect("classify keeps one regular section");
+    let solver = LeastSquaresSolver::new(t, &knots)?;
+    let gram = EnergyGram::new(&knots);
+    let lambda = LSQ_ENERGY_WEIGHT / gram.max_diagonal();
+    let nu = knots.num_basis();
+    let mut score = 0.0;
+    let rows = secs
+        .iter()
+        .enumerate()
+        .map(|(k, s)| match s {
+            Section::Regular(pts) => {
+                let cp = solver.control_points(pts).map_err(|e| in_section(e, k))?;
+                score += residual(&knots, t, pts, &cp) + lambda * gram.energy(&cp);
+                Ok(cp)
+            }
+            Section::Point(c, _) => Ok(vec![*c; nu]),
+        })
+        .collect::<Result<Vec<_>, NurbsError>>()?;
+    Ok((score, AlongFit { knots, rows, u_of: u_of.clone() }))
+}
+
+/// Step 2 of [`skin_approximate`]: the `v` knots, the u-major net and the v-parameters.
+struct AcrossFit {
+    knots: KnotVector,
+    net: Vec<[f64; 4]>,
+    v: Vec<f64>,
+}
+
+/// Fit the columns of the rows' control points across the sections for each placement and
+/// keep the one with the least `sum over columns of (residual + λ E)` (step 2).
+fn fit_across(rows: &[Vec<Vec3>], nv: usize, q: usize, kind: Parameterization) -> Result<AcrossFit, NurbsError> {
+    let (nu, k_count) = (rows[0].len(), rows.len());
+    let v = cross_params(nu, k_count, |i, k| rows[k][i], kind, q)?;
+    let columns: Vec<Vec<Vec3>> = (0..nu).map(|i| rows.iter().map(|r| r[i]).collect()).collect();
+    let mut best: Option<(f64, KnotVector, Vec<Vec<Vec3>>)> = None;
+    let mut first_error = None;
+    for &placement in placements(kind) {
+        let fit = match placement {
+            Some(pl) => pl.knots(&v, nv, q),
+            None => knots_for_approximation(&v, nv, q, kind),
+        }
+        .and_then(|kv| {
+            let solver = LeastSquaresSolver::new(&v, &kv)?;
+            let gram = EnergyGram::new(&kv);
+            let lambda = LSQ_ENERGY_WEIGHT / gram.max_diagonal();
+            let mut score = 0.0;
+            let mut cps = Vec::with_capacity(nu);
+            for col in &columns {
+                let cp = solver.control_points(col)?;
+                score += residual(&kv, &v, col, &cp) + lambda * gram.energy(&cp);
+                cps.push(cp);
+            }
+            Ok((score, kv, cps))
+        });
+        match fit {
+            Ok((score, kv, cps)) => {
+                if best.as_ref().is_none_or(|(b, _, _)| score < *b) {
+                    best = Some((score, kv, cps));
+                }
+            }
+            Err(e) => {
+                first_error.get_or_insert(e);
+            }
+        }
+    }
+    let (knots, cps) = match (best, first_error) {
+        (Some((_, kv, cps)), _) => (kv, cps),
+        (None, Some(e)) => return Err(e),
+        (None, None) => unreachable!("placements() is never empty"),
+    };
+    let net = cps.iter().flatten().map(|&c| to_homogeneous(c, 1.0)).collect();
+    Ok(AcrossFit { knots, net, v })
+}
+
+/// `sum |S(u, v) - Q|^2` over every input point at its parameters.
+fn surface_residual(surface: &NurbsSurface, secs: &[Section], params: &[Vec<(f64, f64)>]) -> f64 {
+    secs.iter()
+        .zip(params)
+        .map(|(s, par)| {
+            par.iter()
+                .enumerate()
+                .map(|(i, &(u, v))| {
+                    let q = match s {
+                        Section::Regular(pts) => pts[i],
+                        Section::Point(c, _) => *c,
+                    };
+                    surface.point(u, v).distance(q).powi(2)
+                })
+                .sum::<f64>()
+        })
+        .sum()
+}
+
+/// The mean of the `placement` knot vectors of the sections with at least `nu` points (or
+/// uniform knots for `None`, the universal parameterization).
 fn common_approximation_knots(
     u_of: &[Option<Vec<f64>>],
     nu: usize,
     p: usize,
-    kind: Parameterization,
+    placement: Option<Placement>,
 ) -> Result<KnotVector, NurbsError> {
-    if kind == Parameterization::Universal {
+    let Some(placement) = placement else {
         return KnotVector::uniform(p, nu);
-    }
+    };
     let mut sum = vec![0.0; nu + p + 1];
     let mut count = 0usize;
     for (k, t) in u_of.iter().enumerate() {
         if let Some(t) = t.as_ref().filter(|t| t.len() >= nu) {
-            let kv = approximation_knots(t, nu, p).map_err(|e| in_section(e, k))?;
+            let kv = placement.knots(t, nu, p).map_err(|e| in_section(e, k))?;
             sum.iter_mut().zip(kv.as_slice()).for_each(|(s, x)| *s += x);
             count += 1;
         }
@@ -730,7 +955,7 @@ mod tests {
     fn equal_counts_give_one_pole_per_offset_and_pass_through() {
         let s = hull(21, 11);
         for kind in [Parameterization::Centripetal, Parameterization::ChordLength, Parameterization::Universal] {
-            let opts = SkinOptions { param: kind, ..SkinOptions::default() };
+            let opts = SkinOptions { param: kind.into(), ..SkinOptions::default() };
             let r = skin_interpolate(&s, &opts).expect("valid");
             assert_eq!((r.surface.n_u(), r.surface.n_v()), (11, 21));
             assert!(!r.surface.is_rational());
@@ -760,7 +985,7 @@ mod tests {
             let truth = NurbsSurface::try_new(ku, kv, &net, None).expect("valid");
             let sections: Vec<Vec<Vec3>> =
                 tv.iter().map(|&v| tu.iter().map(|&u| truth.point(u, v)).collect()).collect();
-            let opts = SkinOptions { param: kind, ..SkinOptions::default() };
+            let opts = SkinOptions { param: kind.into(), ..SkinOptions::default() };
             let r = skin_interpolate(&sections, &opts).expect("valid");
             assert_eq!(r.surface.knots_u(), truth.knots_u());
             assert_eq!(r.surface.knots_v(), truth.knots_v());
@@ -874,6 +1099,150 @@ mod tests {
         assert_passes_through(&r, &s, 1e-9);
     }
 
+    /// `hull(k, n)` made asymmetric: stations spaced unevenly (crowded aft), sections sheared
+    /// in z by a station-dependent amount.
+    fn skewed_hull(k: usize, n: usize) -> Vec<Vec<Vec3>> {
+        hull(k, n)
+            .into_iter()
+            .enumerate()
+            .map(|(s, sec)| {
+                let a = s as f64 / (k - 1) as f64;
+                let x = -50.0 + 100.0 * a.powf(1.4);
+                sec.into_iter().map(|q| Vec3::new(x, q.y, q.z + 0.4 * (3.0 * a).sin() * q.y / 8.0)).collect()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn each_direction_has_its_own_parameterization() {
+        // An extrusion along x with section gaps 1, 2, 4: every column moves by the gap, so
+        // chord-length v-parameters are 0, 1/7, 3/7, 1 and centripetal ones follow the square
+        // roots, whatever the parameterization along the sections.
+        let sec: Vec<Vec3> =
+            (0..7).map(|i| Vec3::new(0.0, (i as f64 * 0.5).sin() * 3.0, i as f64 * i as f64 * 0.2)).collect();
+        let s: Vec<Vec<Vec3>> =
+            [0.0, 1.0, 3.0, 7.0].iter().map(|&x| sec.iter().map(|q| *q + Vec3::new(x, 0.0, 0.0)).collect()).collect();
+        let r2 = 2f64.sqrt();
+        let centripetal = [0.0, 1.0 / (3.0 + r2), (1.0 + r2) / (3.0 + r2), 1.0];
+        for u in [Parameterization::Centripetal, Parameterization::ChordLength, Parameterization::Uniform] {
+            for (v, want) in [
+                (Parameterization::ChordLength, [0.0, 1.0 / 7.0, 3.0 / 7.0, 1.0]),
+                (Parameterization::Centripetal, centripetal),
+            ] {
+                let opts = SkinOptions { param: SkinParameterization { u, v }, ..SkinOptions::default() };
+                let own_u = crate::fit::parameterize(&sec, u, 3).expect("valid");
+                let interp = skin_interpolate(&s, &opts).expect("valid");
+                let approx = skin_approximate(&s, 5, 4, &opts).expect("valid");
+                for (k, &vk) in want.iter().enumerate() {
+                    for (i, &tu) in own_u.iter().enumerate() {
+                        // Means of equal values and a few roundings of values in [0, 1]. (The
+                        // approximation may move u to a blend with the Greville spread.)
+                        assert_near!(interp.params[k][i].1, vk, 1e-14, "{u} {v}");
+                        assert_near!(interp.params[k][i].0, tu, 1e-14, "{u} {v}");
+                        assert_near!(approx.params[k][i].1, vk, 1e-14, "{u} {v}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn approximation_is_symmetric_under_reversal() {
+        // Both knot placements and both parameter choices are symmetric under reversal, and the
+        // scores that pick among them are sums over the same terms: reversing the order of the
+        // sections (or of the points in every section) mirrors the surface in v (in u).
+        let s = skewed_hull(15, 9);
+        let across: Vec<Vec<Vec3>> = s.iter().rev().cloned().collect();
+        let along: Vec<Vec<Vec3>> = s.iter().map(|sec| sec.iter().rev().copied().collect()).collect();
+        for (nu, nv) in [(5, 7), (7, 11), (8, 14)] {
+            let a = skin_approximate(&s, nu, nv, &SkinOptions::default()).expect("valid");
+            let b = skin_approximate(&across, nu, nv, &SkinOptions::default()).expect("valid");
+            let c = skin_approximate(&along, nu, nv, &SkinOptions::default()).expect("valid");
+            for i in 0..=20 {
+                for j in 0..=20 {
+                    let (u, v) = (i as f64 / 20.0, j as f64 / 20.0);
+                    // The same operations in mirrored order: round-off on a model of size 100.
+                    assert_near!(b.surface.point(u, 1.0 - v), a.surface.point(u, v), 1e-9, "{nu}x{nv}");
+                    assert_near!(c.surface.point(1.0 - u, v), a.surface.point(u, v), 1e-9, "{nu}x{nv}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn approximation_keeps_the_best_fitting_candidate() {
+        // Step 1 keeps the knot placement with the least penalized residual, and the result is
+        // closer to the offsets (at its parameters) than the fit with own parameters and
+        // resampled knots alone, the skin's former rule.
+        let s = skewed_hull(21, 11);
+        let secs = classify(&s, &SkinOptions::default()).expect("valid");
+        let kind = Parameterization::Centripetal;
+        for (nu, nv) in [(6, 9), (8, 13), (10, 20)] {
+            let own = own_params(&secs, kind, 3).expect("valid");
+            let scores: Vec<f64> = Placement::ALL
+                .iter()
+                .map(|&pl| {
+                    let ku = common_approximation_knots(&own, nu, 3, Some(pl)).expect("valid");
+                    along_own(&secs, own.clone(), nu, ku).expect("valid").0
+                })
+                .collect();
+            let chosen = fit_along(&secs, own.clone(), nu, 3, kind, false).expect("valid");
+            let (chosen_score, _) = along_own(&secs, own.clone(), nu, chosen.knots).expect("valid");
+            let best = scores.iter().copied().fold(f64::INFINITY, f64::min);
+            assert_eq!(chosen_score, best, "{nu}x{nv}: {scores:?}");
+            // The whole fit against the former rule.
+            let ku = common_approximation_knots(&own, nu, 3, Some(Placement::Resampled)).expect("valid");
+            let (_, old) = along_own(&secs, own.clone(), nu, ku).expect("valid");
+            let v = cross_params(nu, s.len(), |i, k| old.rows[k][i], Parameterization::ChordLength, 3).expect("valid");
+            let kv = approximation_knots(&v, nv, 3).expect("valid");
+            let solver = LeastSquaresSolver::new(&v, &kv).expect("valid");
+            let mut net = vec![[0.0; 4]; nu * nv];
+            for i in 0..nu {
+                let col: Vec<Vec3> = old.rows.iter().map(|r| r[i]).collect();
+                for (j, cp) in solver.control_points(&col).expect("valid").into_iter().enumerate() {
+                    net[i * nv + j] = to_homogeneous(cp, 1.0);
+                }
+            }
+            let former = NurbsSurface::from_parts_unchecked(old.knots, kv, net);
+            let former_res = surface_residual(&former, &secs, &data_params(&secs, &v, old.u_of));
+            let r = skin_approximate(&s, nu, nv, &SkinOptions::default()).expect("valid");
+            let now = surface_residual(&r.surface, &secs, &r.params);
+            // Not a theorem (each stage picks by its own score), but the point of the selection:
+            // on this table it lowers the residual 9, 300 and 1.4 times (measured).
+            assert!(now < former_res, "{nu}x{nv}: {now} vs {former_res}");
+        }
+    }
+
+    #[test]
+    fn near_square_approximation_of_equal_sections_stays_on_the_data() {
+        // nu = n - 1, nv = K - 1: the centred knots are then nearly singular, and the selection
+        // must not return a surface that swings between the offsets. Measured against the exact
+        // hull (half-breadth error at the surface's own x and z on a 101 x 101 grid), it stays
+        // closer than the interpolating skin (which overshoots at the ends: 6.9 cm there, the
+        // approximations 1.1 cm measured).
+        let s = skewed_hull(21, 11);
+        let half_breadth_error = |f: &NurbsSurface| {
+            let mut worst = 0.0f64;
+            for a in 0..=100 {
+                for b in 0..=100 {
+                    let p = f.point(a as f64 / 100.0, b as f64 / 100.0);
+                    // Undo skewed_hull: station spacing, then the shear, then hull()'s formula.
+                    let t = ((p.x + 50.0) / 100.0).max(0.0).powf(1.0 / 1.4);
+                    let (x0, z0) = (-50.0 + 100.0 * t, p.z - 0.4 * (3.0 * t).sin() * p.y / 8.0);
+                    let y = 8.0 * (1.0 - (2.0 * x0 / 100.0).powi(2)) * (1.0 - (1.0 - z0 / 6.0).powi(4));
+                    worst = worst.max((p.y - y).abs());
+                }
+            }
+            worst
+        };
+        let interp = half_breadth_error(&skin_interpolate(&s, &SkinOptions::default()).expect("valid").surface);
+        for (nu, nv) in [(10, 20), (9, 20), (10, 18)] {
+            let r = skin_approximate(&s, nu, nv, &SkinOptions::default()).expect("valid");
+            let approx = half_breadth_error(&r.surface);
+            assert!(approx < interp, "{nu}x{nv}: {approx} vs interpolation {interp}");
+        }
+    }
+
     #[test]
     fn approximation_of_a_paraboloid_converges() {
         // z = x^2 + y^2 over a rectangle, sampled on 40 sections of 50 points.
@@ -905,7 +1274,7 @@ mod tests {
         assert!(prev < 1e-3, "final error {prev}");
         // With uniform parameters (uniform data), the paraboloid is reproduced exactly even by
         // the smallest net, a bicubic Bezier patch (quadratic precision): round-off only.
-        let opts = SkinOptions { param: Parameterization::Uniform, ..SkinOptions::default() };
+        let opts = SkinOptions { param: Parameterization::Uniform.into(), ..SkinOptions::default() };
         let r = skin_approximate(&s, 4, 4, &opts).expect("valid");
         for (sec, par) in s.iter().zip(&r.params) {
             for (q, &(u, v)) in sec.iter().zip(par) {
@@ -1055,7 +1424,7 @@ mod tests {
         let counts: Vec<usize> = s.iter().map(Vec::len).collect();
         assert!(counts.iter().min() < counts.iter().max(), "{counts:?}");
         for kind in [Parameterization::Centripetal, Parameterization::ChordLength, Parameterization::Universal] {
-            let opts = SkinOptions { param: kind, ..SkinOptions::default() };
+            let opts = SkinOptions { param: kind.into(), ..SkinOptions::default() };
             let r = skin_interpolate(&s, &opts).expect("valid");
             assert_eq!((r.surface.n_u(), r.surface.n_v()), (12, 17), "{kind}");
             assert_eq!((r.surface.degree_u(), r.surface.degree_v()), (3, 3));
@@ -1099,7 +1468,7 @@ mod tests {
         for s in [hull(13, 9), pointed] {
             let secs = classify(&s, &SkinOptions::default()).expect("valid");
             for kind in [Parameterization::Centripetal, Parameterization::Uniform, Parameterization::Universal] {
-                let opts = SkinOptions { param: kind, ..SkinOptions::default() };
+                let opts = SkinOptions { param: kind.into(), ..SkinOptions::default() };
                 let n = max_count(&secs);
                 let q = opts.degree_v.min(secs.len() - 1);
                 let (a, va, ua) = interpolate_equal(&secs, n, q, &opts).expect("valid");
@@ -1146,8 +1515,9 @@ mod tests {
                 })
                 .fold(0.0, f64::max);
             // A least-energy cubic through 4 (6) points of a quarter circle: within 1.5%
-            // (0.5%) of the radius (the natural end conditions flatten the ends a little).
-            let tol = if k == 2 { 0.03 } else { 0.01 };
+            // (0.55%) of the radius (the natural end conditions flatten the ends a little;
+            // measured 1.39% and 0.51% on the optimal knots, 0.49% on the averaging ones).
+            let tol = if k == 2 { 0.03 } else { 0.011 };
             assert!(worst < tol, "section {k}: {worst}");
         }
         // Straight sections: 3 points of a segment among 12-point segments of varying slope.
@@ -1208,10 +1578,10 @@ mod tests {
         let secs = classify(&g, &SkinOptions::default()).expect("valid");
         for nu in [12, 14, 15] {
             let u_of = own_params(&secs, Parameterization::Centripetal, 3).expect("valid");
-            let ku = common_approximation_knots(&u_of, nu, 3, Parameterization::Centripetal).expect("valid");
+            let ku = common_approximation_knots(&u_of, nu, 3, Some(Placement::Resampled)).expect("valid");
             let mut fits = SectionFits::new(&ku);
             for (k, (sec, t)) in g.iter().zip(u_of).enumerate().filter(|(_, (sec, _))| sec.len() > nu) {
-                let (cp, _) = fits.approximate(sec, t.expect("regular"), k).expect("valid");
+                let (_, cp, _) = fits.approximate(sec, t.expect("regular"), k).expect("valid");
                 let c = crate::NurbsCurve::try_new(ku.clone(), &cp, None).expect("valid");
                 let b = bulge(|u| c.point(u), sec);
                 assert!(b < 0.25, "nu {nu} section {k}: {b}");

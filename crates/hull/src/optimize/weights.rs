@@ -1,0 +1,1346 @@
+//! The NURBS weight-optimisation objective: the RMS parametric residual of the offsets as a
+//! function of the (log-)weights, with the control points either kept or re-solved.
+//!
+//! With data points `Q_k` at parameters `(u_k, v_k)`, B-spline products
+//! `B_kc = N_{i,p}(u_k) N_{j,q}(v_k)` (`c = (i, j)`) and weights `w_c`, the rational basis is
+//! `R_kc(w) = B_kc w_c / W_k`, `W_k = sum_c B_kc w_c` (The NURBS Book eq. 4.15), and
+//! `S_k = sum_c R_kc(w) P_c`. The objective is
+//!
+//! `f(θ) = sqrt( (1/m) sum_k |S_k - Q_k|^2 + ρ^2 (1/d) sum_i θ_i^2 )`,
+//!
+//! over `d` log-weights `θ` in a box (weights in `[0.1, 10]` by default), `m` offsets, and a
+//! mild regularisation `ρ = regularization x model size` that keeps the log-weights near 0
+//! (weights near 1) where the data do not care, and fixes the scale gauge (multiplying all weights
+//! by one factor changes nothing else). At `θ = 0` the penalty vanishes.
+//!
+//! * [`WeightMode::Fixed`]: `P_c` are the control points of the plain approximation.
+//! * [`WeightMode::Resolved`] (variable projection, Golub and Pereyra 1973): for each `w`,
+//!   `P(w) = argmin_P sum_k |sum_c R_kc(w) P_c - Q_k|^2`. Writing `Y_c = w_c P_c` (homogeneous
+//!   coordinates) and `h_kc = B_kc / W_k`, `S_k = sum_c h_kc Y_c`, so `Y` solves the normal
+//!   equations `G Y = H^T Q` with `G = H^T H` - the same system as `R^T R P = R^T Q`
+//!   (`R = H diag(w)`), without the `w_c w_d` scaling that would square the weights' spread
+//!   into its condition number. Each row of `H` has `(p+1)(q+1)` non-zeros, so `G` is banded:
+//!   half-bandwidth `p n_v + q` in u-major order, `q n_u + p` in v-major order; the smaller is
+//!   used. The B-spline products are computed once (they do not depend on `w`): an evaluation
+//!   costs `m ((p+1)(q+1))^2 / 2` multiply-adds to assemble `G` and `n bw^2 / 2` to factor it,
+//!   with scratch space reused per thread (no allocation once warm).
+//!
+//! A singular or too ill-conditioned `G` (Cholesky pivot below `1e-12` of its diagonal, as when
+//! some control point has no offset in its support) makes the value `+inf`, never NaN.
+
+use std::cell::RefCell;
+
+use nurbs::basis::{basis_funs, ders_basis_funs, BasisRow};
+use nurbs::{KnotVector, NurbsError, NurbsSurface, Vec3, MAX_DEGREE};
+
+use super::linalg::{band_cholesky, band_solve};
+use super::Objective;
+use crate::{FitOutcome, HullError, Offsets};
+
+/// What happens to the control points when the weights move.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WeightMode {
+    /// The plain approximation's control points stay (the simple formulation).
+    Fixed,
+    /// The control points are re-solved by linear least squares for every weight vector
+    /// (variable projection).
+    #[default]
+    Resolved,
+}
+
+/// How the weights are parameterised.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WeightLayout {
+    /// One log-weight per control point: `n_u n_v` variables, `w_ij = exp(θ_{i n_v + j})`.
+    #[default]
+    Full,
+    /// Rank one: `w_ij = a_i b_j = exp(α_i + β_j)`, `n_u + n_v` variables `(α, β)`. Fewer
+    /// variables, less over-fitting between the offsets.
+    RankOne,
+}
+
+/// Settings of a [`WeightProblem`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WeightOptions {
+    pub mode: WeightMode,
+    pub layout: WeightLayout,
+    /// Weight range `(lo, hi)`, `0 < lo <= 1 <= hi`. The log-weights are boxed to
+    /// `[ln lo, ln hi]`; in the rank-one layout each factor to `[ln lo / 2, ln hi / 2]`, so
+    /// every product `a_i b_j` stays in range too.
+    pub bounds: (f64, f64),
+    /// `ρ / model size` (see the module docs): a log-weight of 1 on every variable costs as much
+    /// as an RMS error of `regularization x size`. The default `1e-6` is far below any fit
+    /// error of interest (0.1 mm on a 100 m hull) yet pins the scale gauge.
+    pub regularization: f64,
+}
+
+impl Default for WeightOptions {
+    /// Re-solved control points, full grid, weights in `[0.1, 10]`, regularisation `1e-6`.
+    fn default() -> Self {
+        WeightOptions {
+            mode: WeightMode::Resolved,
+            layout: WeightLayout::Full,
+            bounds: (0.1, 10.0),
+            regularization: 1e-6,
+        }
+    }
+}
+
+/// Which Jacobian of the variable-projection residual to form.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum JacobianKind {
+    /// Kaufman's approximation (1975): `J = (I - H G^{-1} H^T) dS/dθ|_P`, the derivative at
+    /// fixed control points projected off the range of the least-squares matrix. Its gradient
+    /// `J^T r` is exact; `J` itself is exact at zero residual.
+    #[default]
+    Kaufman,
+    /// The exact Jacobian (Golub and Pereyra 1973): Kaufman's plus
+    /// `- H G^{-1} D^{-1} (dR/dθ_c)^T e`. About twice the cost. For the data parameters (see
+    /// [`ParamFreedom`]) the Kaufman form is always used.
+    Exact,
+}
+
+/// Which data parameters are unknowns too (for exact recovery of rational shapes). The
+/// parameter unknowns follow the weight variables: `u_0 .. u_{m-1}` (all but `None`), then
+/// `v_0 .. v_{G-1}` of the sections (`USectionV`), or interleaved `u_k, v_k` (`UV`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ParamFreedom {
+    /// The parameters stay.
+    #[default]
+    None,
+    /// Each offset's `u_k` moves; `v` stays (sections at known `v`).
+    U,
+    /// Each offset's `u_k` moves, and each section's one `v`: the offsets of a section stay on
+    /// one iso-curve `v = const`, as skinning puts them. A section is a run of consecutive
+    /// offsets sharing the same `v` when the problem was built.
+    USectionV,
+    /// Each offset's `u_k` and `v_k` move independently. Beware: this frees the surface from
+    /// having the sections as iso-curves, and then even a polynomial surface can contain a
+    /// circular cone's sections (a quadric has polynomial parameterizations).
+    UV,
+}
+
+/// Residuals and Jacobian at one point, for least-squares solvers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Linearization {
+    /// `3 m` data rows `(S_k - Q_k) / sqrt(m)` (x, y, z of each offset in turn), then `d`
+    /// regularisation rows `ρ θ_i / sqrt(d)`: `|r| = f(θ)`.
+    pub residuals: Vec<f64>,
+    /// Column-major `rows x cols`: the `d` weight variables, then the free parameters
+    /// (`u_0, [v_0,] u_1, ...`).
+    pub jacobian: Vec<f64>,
+    pub rows: usize,
+    pub cols: usize,
+}
+
+impl Linearization {
+    /// Column `j` of the Jacobian.
+    pub fn column(&self, j: usize) -> &[f64] {
+        &self.jacobian[j * self.rows..(j + 1) * self.rows]
+    }
+
+    /// `|r|`, the objective value.
+    pub fn value(&self) -> f64 {
+        self.residuals.iter().map(|r| r * r).sum::<f64>().sqrt()
+    }
+}
+
+/// The structure shared by all evaluations: band layout of the control points and the offsets
+/// of one offset's `(p+1)(q+1)` control points from its first.
+#[derive(Clone, Debug)]
+struct Pattern {
+    n_u: usize,
+    n_v: usize,
+    p: usize,
+    q: usize,
+    /// Half-bandwidth of `G`.
+    bw: usize,
+    /// Band order: u-major (`pos = i n_v + j`) or v-major (`pos = j n_u + i`).
+    u_major: bool,
+    /// `(p+1)(q+1)`.
+    nb: usize,
+    /// Local entry `l` (in increasing band position) sits at `first + off[l]`.
+    off: Vec<usize>,
+    /// Local entry `l` is `(a, b)`: `N_{i0+a}(u) N_{j0+b}(v)`.
+    ab: Vec<(usize, usize)>,
+    /// Length of the local index's inner (band-contiguous) dimension: `q + 1` in u-major
+    /// order, `p + 1` in v-major; local entry `l = o inner + i` sits at `o so + i` from the
+    /// offset's first control point.
+    inner: usize,
+    /// Row stride of the band storage: `bw + inner`, the padding taking the upper-triangle
+    /// half of the diagonal blocks, so every block is written whole.
+    stride: usize,
+    /// The blocks of `h h^T` for one offset: `(l, band index minus first stride, first l2)`,
+    /// each `inner` long: entries `(l, l2 .. l2 + inner)` for every outer index up to `l`'s.
+    blocks: Vec<(usize, usize, usize)>,
+    /// Band position -> u-major control index `i n_v + j`.
+    grid: Vec<usize>,
+}
+
+impl Pattern {
+    fn new(p: usize, q: usize, n_u: usize, n_v: usize) -> Self {
+        let (bw_u, bw_v) = (p * n_v + q, q * n_u + p);
+        let u_major = bw_u <= bw_v;
+        let bw = if u_major { bw_u } else { bw_v };
+        let mut ab = Vec::with_capacity((p + 1) * (q + 1));
+        if u_major {
+            for a in 0..=p {
+                for b in 0..=q {
+                    ab.push((a, b));
+                }
+            }
+        } else {
+            for b in 0..=q {
+                for a in 0..=p {
+                    ab.push((a, b));
+                }
+            }
+        }
+        let pos = |i: usize, j: usize| if u_major { i * n_v + j } else { j * n_u + i };
+        let off: Vec<usize> = ab.iter().map(|&(a, b)| pos(a, b)).collect();
+        // Entry (r, c) = (first + off_l, first + off_l2) sits at r stride + c + bw - r
+        // = first stride + off_l (stride - 1) + off_l2 + bw; with l = (o, i), l2 = (o2, i2),
+        // off_l2 = o2 so + i2 is contiguous in i2. For o2 = o the entries i2 > i lie above the
+        // diagonal, at most inner - 1 columns: in row r's padding.
+        let (inner, so) = if u_major { (q + 1, n_v) } else { (p + 1, n_u) };
+        let stride = bw + inner;
+        let mut blocks = Vec::new();
+        for (l, &o_l) in off.iter().enumerate() {
+            for o2 in 0..=l / inner {
+                blocks.push((l, o_l * (stride - 1) + o2 * so + bw, o2 * inner));
+            }
+        }
+        let mut grid = vec![0; n_u * n_v];
+        for i in 0..n_u {
+            for j in 0..n_v {
+                grid[pos(i, j)] = i * n_v + j;
+            }
+        }
+        Pattern { n_u, n_v, p, q, bw, u_major, nb: ab.len(), off, ab, inner, stride, blocks, grid }
+    }
+
+    fn n(&self) -> usize {
+        self.n_u * self.n_v
+    }
+
+    fn pos(&self, i: usize, j: usize) -> usize {
+        if self.u_major {
+            i * self.n_v + j
+        } else {
+            j * self.n_u + i
+        }
+    }
+}
+
+/// The B-spline products of every offset (and, for parameter optimisation, their derivatives
+/// in `u` and `v`), independent of the weights.
+#[derive(Clone, Debug)]
+pub(crate) struct BasisTable {
+    /// Band position of each offset's first control point.
+    first: Vec<usize>,
+    /// `m nb` products, local order.
+    vals: Vec<f64>,
+    /// `d/du` of the products (empty unless asked for).
+    du: Vec<f64>,
+    /// `d/dv` of the products (empty unless asked for).
+    dv: Vec<f64>,
+}
+
+/// Per-thread scratch of one evaluation.
+#[derive(Default)]
+struct Scratch {
+    /// Weights in band order.
+    w: Vec<f64>,
+    /// Rank-one factors `a`, `b`.
+    ab: Vec<f64>,
+    /// `1 / W_k` per offset.
+    s: Vec<f64>,
+    /// `h_kl` of one offset.
+    h: Vec<f64>,
+    /// The normal matrix `G`, then its Cholesky factor.
+    band: Vec<f64>,
+    /// Homogeneous control points `Y = w P`, band order.
+    y: Vec<[f64; 3]>,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// The weight-optimisation objective (see the module docs). `Sync`: evaluations may run in
+/// parallel, each with its own per-thread scratch.
+#[derive(Clone, Debug)]
+pub struct WeightProblem {
+    ku: KnotVector,
+    kv: KnotVector,
+    options: WeightOptions,
+    pat: Pattern,
+    points: Vec<[f64; 3]>,
+    params: Vec<(f64, f64)>,
+    table: BasisTable,
+    /// The plain approximation's control points, band order (used in `Fixed` mode).
+    fixed: Vec<[f64; 3]>,
+    lower: Vec<f64>,
+    upper: Vec<f64>,
+    size: f64,
+    /// `ρ` of the module docs.
+    rho: f64,
+    /// The section (run of offsets sharing one `v` at construction) of each offset.
+    section: Vec<usize>,
+}
+
+impl WeightProblem {
+    /// The problem for `surface`'s degrees and knots (its control points serve
+    /// [`WeightMode::Fixed`]; its weights, if any, are ignored: the start is all weights 1),
+    /// data points `points[k]` at parameters `params[k]` (clamped to the domain).
+    ///
+    /// # Errors
+    /// [`HullError::Config`] if `points` and `params` differ in length, are empty, hold a
+    /// non-finite value, or the options are out of range (`0 < lo <= 1 <= hi` finite,
+    /// `regularization >= 0` finite).
+    pub fn new(
+        surface: &NurbsSurface,
+        points: &[Vec3],
+        params: &[(f64, f64)],
+        options: WeightOptions,
+    ) -> Result<Self, HullError> {
+        let (lo, hi) = options.bounds;
+        if !(lo > 0.0 && lo <= 1.0 && hi >= 1.0 && hi.is_finite()) {
+            return Err(HullError::Config(format!(
+                "weight bounds ({lo}, {hi}) are not usable (expected 0 < lo <= 1 <= hi, finite)"
+            )));
+        }
+        if !(options.regularization >= 0.0 && options.regularization.is_finite()) {
+            return Err(HullError::Config(format!(
+                "weight regularization {} is not usable (expected a finite number >= 0)",
+                options.regularization
+            )));
+        }
+        if points.len() != params.len() || points.is_empty() {
+            return Err(HullError::Config(format!(
+                "{} offsets with {} parameters (expected as many parameters as offsets, at least one)",
+                points.len(),
+                params.len()
+            )));
+        }
+        if let Some(k) = points.iter().position(|q| !q.is_finite()) {
+            return Err(HullError::Config(format!("offset {k} is not finite (expected finite coordinates)")));
+        }
+        if let Some(k) = params.iter().position(|(u, v)| !(u.is_finite() && v.is_finite())) {
+            return Err(HullError::Config(format!(
+                "parameters of offset {k} are not finite (expected finite (u, v))"
+            )));
+        }
+        let (ku, kv) = (surface.knots_u().clone(), surface.knots_v().clone());
+        let (n_u, n_v) = (surface.n_u(), surface.n_v());
+        let pat = Pattern::new(surface.degree_u(), surface.degree_v(), n_u, n_v);
+        let params: Vec<(f64, f64)> = params.iter().map(|&(u, v)| (ku.clamp(u), kv.clamp(v))).collect();
+        let mut fixed = vec![[0.0; 3]; n_u * n_v];
+        for i in 0..n_u {
+            for j in 0..n_v {
+                fixed[pat.pos(i, j)] = surface.control_point(i, j).to_array();
+            }
+        }
+        let d = match options.layout {
+            WeightLayout::Full => n_u * n_v,
+            WeightLayout::RankOne => n_u + n_v,
+        };
+        let half = if options.layout == WeightLayout::RankOne { 0.5 } else { 1.0 };
+        let (lower, upper) = (vec![half * lo.ln(); d], vec![half * hi.ln(); d]);
+        let (mut bmin, mut bmax) = (points[0], points[0]);
+        for q in points {
+            bmin = Vec3::new(bmin.x.min(q.x), bmin.y.min(q.y), bmin.z.min(q.z));
+            bmax = Vec3::new(bmax.x.max(q.x), bmax.y.max(q.y), bmax.z.max(q.z));
+        }
+        let size = (bmax - bmin).norm();
+        let mut problem = WeightProblem {
+            ku,
+            kv,
+            options,
+            pat,
+            points: points.iter().map(|q| q.to_array()).collect(),
+            params: Vec::new(),
+            table: BasisTable { first: Vec::new(), vals: Vec::new(), du: Vec::new(), dv: Vec::new() },
+            fixed,
+            lower,
+            upper,
+            size,
+            rho: options.regularization * size,
+            section: Vec::with_capacity(params.len()),
+        };
+        for (k, &(_, v)) in params.iter().enumerate() {
+            let g = match problem.section.last() {
+                Some(&g) if v == params[k - 1].1 => g,
+                Some(&g) => g + 1,
+                None => 0,
+            };
+            problem.section.push(g);
+        }
+        problem.table = problem.basis_table(&params, false);
+        problem.params = params;
+        Ok(problem)
+    }
+
+    /// The problem of a plain approximation `fit` of `offsets`: its surface, and every offset
+    /// with its fitted parameters, section by section.
+    ///
+    /// # Errors
+    /// [`HullError::Config`] if `fit.params` does not match the offsets point for point, and as
+    /// [`WeightProblem::new`].
+    pub fn from_fit(fit: &FitOutcome, offsets: &Offsets, options: WeightOptions) -> Result<Self, HullError> {
+        let shapes_match = fit.params.len() == offsets.sections.len()
+            && fit.params.iter().zip(&offsets.sections).all(|(t, s)| t.len() == s.points.len());
+        if !shapes_match {
+            return Err(HullError::Config(
+                "the fit's parameters do not match the offsets (expected the fit of these offsets)".into(),
+            ));
+        }
+        let points: Vec<Vec3> = offsets.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
+        let params: Vec<(f64, f64)> = fit.params.iter().flatten().copied().collect();
+        Self::new(&fit.surface, &points, &params, options)
+    }
+
+    /// The same problem at other data parameters (clamped to the domain).
+    ///
+    /// # Errors
+    /// [`HullError::Config`] if `params` does not hold one finite pair per offset.
+    pub fn with_params(&self, params: &[(f64, f64)]) -> Result<Self, HullError> {
+        if params.len() != self.points.len() {
+            return Err(HullError::Config(format!(
+                "{} parameters for {} offsets (expected one pair per offset)",
+                params.len(),
+                self.points.len()
+            )));
+        }
+        if let Some(k) = params.iter().position(|(u, v)| !(u.is_finite() && v.is_finite())) {
+            return Err(HullError::Config(format!(
+                "parameters of offset {k} are not finite (expected finite (u, v))"
+            )));
+        }
+        let params: Vec<(f64, f64)> = params.iter().map(|&(u, v)| (self.ku.clamp(u), self.kv.clamp(v))).collect();
+        let mut out = self.clone();
+        out.table = self.basis_table(&params, false);
+        out.params = params;
+        Ok(out)
+    }
+
+    pub fn options(&self) -> &WeightOptions {
+        &self.options
+    }
+    /// The data parameters `(u_k, v_k)`.
+    pub fn params(&self) -> &[(f64, f64)] {
+        &self.params
+    }
+    /// Number of offsets `m`.
+    pub fn num_points(&self) -> usize {
+        self.points.len()
+    }
+    /// Control points `(n_u, n_v)`.
+    pub fn ctrl(&self) -> (usize, usize) {
+        (self.pat.n_u, self.pat.n_v)
+    }
+    /// The diagonal of the offsets' bounding box.
+    pub fn size(&self) -> f64 {
+        self.size
+    }
+    /// Half-bandwidth of the normal matrix (after choosing the cheaper ordering).
+    pub fn bandwidth(&self) -> usize {
+        self.pat.bw
+    }
+    /// The sections of [`ParamFreedom::USectionV`]: maximal runs of consecutive offsets that
+    /// shared one `v` when the problem was built (kept by [`WeightProblem::with_params`]),
+    /// as the index of each offset's section.
+    pub fn sections(&self) -> &[usize] {
+        &self.section
+    }
+
+    /// Number of parameter unknowns for `free`.
+    pub fn param_count(&self, free: ParamFreedom) -> usize {
+        let m = self.points.len();
+        match free {
+            ParamFreedom::None => 0,
+            ParamFreedom::U => m,
+            ParamFreedom::USectionV => m + self.section.last().map_or(0, |g| g + 1),
+            ParamFreedom::UV => 2 * m,
+        }
+    }
+
+    /// The parameter unknowns of `params` for `free` (a section's `v` is its first offset's),
+    /// with their boxes (the knot domains).
+    pub fn param_vars(&self, params: &[(f64, f64)], free: ParamFreedom) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let ((u0, u1), (v0, v1)) = (self.ku.domain(), self.kv.domain());
+        let (mut x, mut lo, mut hi) = (Vec::new(), Vec::new(), Vec::new());
+        let mut push = |t: f64, a: f64, b: f64| {
+            x.push(t);
+            lo.push(a);
+            hi.push(b);
+        };
+        match free {
+            ParamFreedom::None => {}
+            ParamFreedom::U => params.iter().for_each(|&(u, _)| push(u, u0, u1)),
+            ParamFreedom::USectionV => {
+                params.iter().for_each(|&(u, _)| push(u, u0, u1));
+                for (k, &(_, v)) in params.iter().enumerate() {
+                    if k == 0 || self.section[k] != self.section[k - 1] {
+                        push(v, v0, v1);
+                    }
+                }
+            }
+            ParamFreedom::UV => params.iter().for_each(|&(u, v)| {
+                push(u, u0, u1);
+                push(v, v0, v1);
+            }),
+        }
+        (x, lo, hi)
+    }
+
+    /// The data parameters given the unknowns `vars` of [`WeightProblem::param_vars`] (the
+    /// others taken from `base`).
+    pub fn params_from_vars(&self, base: &[(f64, f64)], vars: &[f64], free: ParamFreedom) -> Vec<(f64, f64)> {
+        let m = base.len();
+        base.iter()
+            .enumerate()
+            .map(|(k, &(u, v))| match free {
+                ParamFreedom::None => (u, v),
+                ParamFreedom::U => (vars[k], v),
+                ParamFreedom::USectionV => (vars[k], vars[m + self.section[k]]),
+                ParamFreedom::UV => (vars[2 * k], vars[2 * k + 1]),
+            })
+            .collect()
+    }
+
+    /// The Jacobian column of the parameter unknown moving `u` (`dir` 0) or `v` (`dir` 1) of
+    /// offset `k`, if it is one.
+    fn param_col(&self, free: ParamFreedom, d: usize, k: usize, dir: usize) -> Option<usize> {
+        let m = self.points.len();
+        match (free, dir) {
+            (ParamFreedom::None, _) => None,
+            (ParamFreedom::U, 0) => Some(d + k),
+            (ParamFreedom::U, _) => None,
+            (ParamFreedom::USectionV, 0) => Some(d + k),
+            (ParamFreedom::USectionV, _) => Some(d + m + self.section[k]),
+            (ParamFreedom::UV, _) => Some(d + 2 * k + dir),
+        }
+    }
+
+    /// The weights `w_ij` of variables `x`, u-major (`i n_v + j`). Not clamped to the box.
+    pub fn weights(&self, x: &[f64]) -> Vec<f64> {
+        let mut w = Vec::new();
+        let mut ab = Vec::new();
+        self.fill_weights(x, &mut w, &mut ab);
+        let mut out = vec![0.0; w.len()];
+        for (pos, &c) in self.pat.grid.iter().enumerate() {
+            out[c] = w[pos];
+        }
+        out
+    }
+
+    /// The rational surface of variables `x`: the plain approximation's control points with
+    /// these weights ([`WeightMode::Fixed`]) or the least-squares control points for them
+    /// ([`WeightMode::Resolved`]).
+    ///
+    /// # Errors
+    /// [`HullError::Config`] if `x` has the wrong length or a non-finite entry;
+    /// [`HullError::Fit`] with [`NurbsError::SingularSystem`] if the least-squares system is
+    /// singular or too ill-conditioned, or another kernel error if the result is not finite.
+    pub fn surface(&self, x: &[f64]) -> Result<NurbsSurface, HullError> {
+        if x.len() != self.dim() || !x.iter().all(|t| t.is_finite()) {
+            return Err(HullError::Config(format!(
+                "{} weight variables (expected {} finite numbers)",
+                x.len(),
+                self.dim()
+            )));
+        }
+        let mut sc = Scratch::default();
+        if !self.solve(&self.table, x, &mut sc) {
+            return Err(HullError::Fit {
+                method: "weights",
+                source: NurbsError::SingularSystem {
+                    what: "least-squares control points for these weights".into(),
+                },
+            });
+        }
+        let mut cw = vec![[0.0; 4]; self.pat.n()];
+        for (pos, &c) in self.pat.grid.iter().enumerate() {
+            let y = sc.y[pos];
+            cw[c] = [y[0], y[1], y[2], sc.w[pos]];
+        }
+        NurbsSurface::try_from_homogeneous(self.ku.clone(), self.kv.clone(), cw)
+            .map_err(|source| HullError::Fit { method: "weights", source })
+    }
+
+    /// The residual vector `r` (see [`Linearization::residuals`]), `None` where the value is
+    /// infinite.
+    pub fn residuals(&self, x: &[f64]) -> Option<Vec<f64>> {
+        let mut sc = Scratch::default();
+        if !self.solve(&self.table, x, &mut sc) {
+            return None;
+        }
+        Some(self.residual_vector(&self.table, x, &sc))
+    }
+
+    /// Residuals and the analytic Jacobian with respect to the weight variables (`kind`: see
+    /// [`JacobianKind`]); `None` where the value is infinite.
+    ///
+    /// Derivative of the rational point w.r.t. a log-weight at fixed control points:
+    /// `dS_k/dθ_c = R_kc (P_c - S_k)`; rank-one by the chain rule
+    /// `dS_k/dα_i = sum_j dS_k/dθ_ij`, `dS_k/dβ_j = sum_i dS_k/dθ_ij`. In `Resolved` mode
+    /// projected off the range of `H` (Kaufman) and, for [`JacobianKind::Exact`], corrected by
+    /// Golub and Pereyra's second term.
+    pub fn residuals_and_jacobian(&self, x: &[f64], kind: JacobianKind) -> Option<Linearization> {
+        self.linearize(&self.table, x, ParamFreedom::None, kind)
+    }
+
+    /// As [`WeightProblem::residuals_and_jacobian`], at data parameters `params`, some of them
+    /// extra unknowns (`free` says which, ordered as [`WeightProblem::param_vars`]): columns
+    /// `d..` hold `dS_k/du_k` (and `dS_k/dv`) at fixed control points,
+    /// `sum_c (dB_kc/du) w_c (P_c - S_k) / W_k` (a section's `v` column sums its offsets'),
+    /// projected (Kaufman) in `Resolved` mode. `None` where the value is infinite or `params`
+    /// has the wrong length.
+    pub fn residuals_and_jacobian_with_params(
+        &self,
+        x: &[f64],
+        params: &[(f64, f64)],
+        free: ParamFreedom,
+    ) -> Option<Linearization> {
+        if params.len() != self.points.len() {
+            return None;
+        }
+        let table = self.basis_table(params, free != ParamFreedom::None);
+        self.linearize(&table, x, free, JacobianKind::Kaufman)
+    }
+
+    // ----- internals -----
+
+    /// Basis products at `params` (clamped), with first derivatives if `derivs`.
+    pub(crate) fn basis_table(&self, params: &[(f64, f64)], derivs: bool) -> BasisTable {
+        let pat = &self.pat;
+        let (p, q, nb) = (pat.p, pat.q, pat.nb);
+        let m = params.len();
+        let mut t = BasisTable {
+            first: Vec::with_capacity(m),
+            vals: Vec::with_capacity(m * nb),
+            du: Vec::with_capacity(if derivs { m * nb } else { 0 }),
+            dv: Vec::with_capacity(if derivs { m * nb } else { 0 }),
+        };
+        let mut nu = [[0.0; MAX_DEGREE + 1]; 2];
+        let mut nv = [[0.0; MAX_DEGREE + 1]; 2];
+        for &(u, v) in params {
+            let (u, v) = (self.ku.clamp(u), self.kv.clamp(v));
+            let (su, sv) = (self.ku.find_span(u), self.kv.find_span(v));
+            if derivs {
+                ders_basis_funs(self.ku.as_slice(), su, u, p, 1, &mut nu);
+                ders_basis_funs(self.kv.as_slice(), sv, v, q, 1, &mut nv);
+            } else {
+                let (mut bu, mut bv): (BasisRow, BasisRow) = ([0.0; MAX_DEGREE + 1], [0.0; MAX_DEGREE + 1]);
+                basis_funs(self.ku.as_slice(), su, u, p, &mut bu);
+                basis_funs(self.kv.as_slice(), sv, v, q, &mut bv);
+                nu[0] = bu;
+                nv[0] = bv;
+            }
+            t.first.push(pat.pos(su - p, sv - q));
+            for &(a, b) in &pat.ab {
+                t.vals.push(nu[0][a] * nv[0][b]);
+                if derivs {
+                    t.du.push(nu[1][a] * nv[0][b]);
+                    t.dv.push(nu[0][a] * nv[1][b]);
+                }
+            }
+        }
+        t
+    }
+
+    /// Weights in band order from the variables (and the rank-one factors in `ab`).
+    fn fill_weights(&self, x: &[f64], w: &mut Vec<f64>, ab: &mut Vec<f64>) {
+        let pat = &self.pat;
+        w.clear();
+        w.resize(pat.n(), 0.0);
+        match self.options.layout {
+            WeightLayout::Full => {
+                for (wp, &c) in w.iter_mut().zip(&pat.grid) {
+                    *wp = x[c].exp();
+                }
+            }
+            WeightLayout::RankOne => {
+                ab.clear();
+                ab.extend(x.iter().map(|t| t.exp()));
+                for (wp, &c) in w.iter_mut().zip(&pat.grid) {
+                    let (i, j) = (c / pat.n_v, c % pat.n_v);
+                    *wp = ab[i] * ab[pat.n_u + j];
+                }
+            }
+        }
+    }
+
+    /// Weights, `1 / W_k`, and homogeneous control points `Y` for variables `x` at the
+    /// parameters of `table` (in `Resolved` mode also the Cholesky factor of `G` in
+    /// `sc.band`). `false` if `x` is not finite or of the wrong length, a `W_k` is not positive,
+    /// or `G` is singular.
+    fn solve(&self, table: &BasisTable, x: &[f64], sc: &mut Scratch) -> bool {
+        if x.len() != self.dim() || !x.iter().all(|t| t.is_finite()) {
+            return false;
+        }
+        let pat = &self.pat;
+        let (n, nb, bw) = (pat.n(), pat.nb, pat.bw);
+        self.fill_weights(x, &mut sc.w, &mut sc.ab);
+        let m = table.first.len();
+        sc.s.clear();
+        sc.s.resize(m, 0.0);
+        sc.y.clear();
+        sc.y.resize(n, [0.0; 3]);
+        match self.options.mode {
+            WeightMode::Fixed => {
+                for (k, &first) in table.first.iter().enumerate() {
+                    let b = &table.vals[k * nb..(k + 1) * nb];
+                    let wk = &sc.w[first..];
+                    let big_w: f64 = b.iter().zip(&pat.off).map(|(bl, &o)| bl * wk[o]).sum();
+                    if !(big_w > 0.0 && big_w.is_finite()) {
+                        return false;
+                    }
+                    sc.s[k] = 1.0 / big_w;
+                }
+                for ((y, &w), p) in sc.y.iter_mut().zip(&sc.w).zip(&self.fixed) {
+                    *y = [w * p[0], w * p[1], w * p[2]];
+                }
+                true
+            }
+            WeightMode::Resolved => {
+                let stride = pat.stride;
+                sc.band.clear();
+                sc.band.resize(n * stride, 0.0);
+                sc.h.clear();
+                sc.h.resize(nb, 0.0);
+                for (k, &first) in table.first.iter().enumerate() {
+                    let b = &table.vals[k * nb..(k + 1) * nb];
+                    let wk = &sc.w[first..];
+                    let big_w: f64 = b.iter().zip(&pat.off).map(|(bl, &o)| bl * wk[o]).sum();
+                    if !(big_w > 0.0 && big_w.is_finite()) {
+                        return false;
+                    }
+                    let s = 1.0 / big_w;
+                    sc.s[k] = s;
+                    for (h, bl) in sc.h.iter_mut().zip(b) {
+                        *h = bl * s;
+                    }
+                    // G += h h^T (lower triangle), H^T Q += h Q_k.
+                    let band = &mut sc.band[first * stride..];
+                    match pat.inner {
+                        2 => add_blocks::<2>(band, &sc.h, &pat.blocks),
+                        3 => add_blocks::<3>(band, &sc.h, &pat.blocks),
+                        4 => add_blocks::<4>(band, &sc.h, &pat.blocks),
+                        _ => add_blocks_any(band, &sc.h, &pat.blocks, pat.inner),
+                    }
+                    let qk = self.points[k];
+                    let y = &mut sc.y[first..];
+                    for (&o, &hl) in pat.off.iter().zip(&sc.h) {
+                        let yo = &mut y[o];
+                        yo[0] += hl * qk[0];
+                        yo[1] += hl * qk[1];
+                        yo[2] += hl * qk[2];
+                    }
+                }
+                if !band_cholesky(&mut sc.band, n, bw, stride) {
+                    return false;
+                }
+                band_solve(&sc.band, n, bw, stride, &mut sc.y);
+                sc.y.iter().all(|y| y.iter().all(|c| c.is_finite()))
+            }
+        }
+    }
+
+    /// `S_k` for offset `k` after [`WeightProblem::solve`].
+    #[inline]
+    fn point_of(&self, table: &BasisTable, sc: &Scratch, k: usize) -> [f64; 3] {
+        let nb = self.pat.nb;
+        let b = &table.vals[k * nb..(k + 1) * nb];
+        let y = &sc.y[table.first[k]..];
+        let mut acc = [0.0; 3];
+        for (bl, &o) in b.iter().zip(&self.pat.off) {
+            let yo = y[o];
+            acc[0] += bl * yo[0];
+            acc[1] += bl * yo[1];
+            acc[2] += bl * yo[2];
+        }
+        let s = sc.s[k];
+        [acc[0] * s, acc[1] * s, acc[2] * s]
+    }
+
+    /// `f^2` after [`WeightProblem::solve`].
+    fn value_squared(&self, table: &BasisTable, x: &[f64], sc: &Scratch) -> f64 {
+        let m = table.first.len();
+        let mut sum = 0.0;
+        for (k, qk) in self.points.iter().enumerate().take(m) {
+            let s = self.point_of(table, sc, k);
+            let e = [s[0] - qk[0], s[1] - qk[1], s[2] - qk[2]];
+            sum += e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+        }
+        let mut f2 = sum / m as f64;
+        if self.rho > 0.0 {
+            f2 += self.rho * self.rho * x.iter().map(|t| t * t).sum::<f64>() / x.len() as f64;
+        }
+        f2
+    }
+
+    /// The value at variables `x` and the parameters of `table`: `+inf` if infeasible.
+    pub(crate) fn value_with(&self, table: &BasisTable, x: &[f64]) -> f64 {
+        let eval = |sc: &mut Scratch| {
+            if self.solve(table, x, sc) {
+                let f = self.value_squared(table, x, sc).sqrt();
+                if f.is_finite() {
+                    return f;
+                }
+            }
+            f64::INFINITY
+        };
+        SCRATCH.with(|cell| match cell.try_borrow_mut() {
+            Ok(mut sc) => eval(&mut sc),
+            // Only reachable by re-entrance; a fresh scratch keeps it correct.
+            Err(_) => eval(&mut Scratch::default()),
+        })
+    }
+
+    /// The residual vector after [`WeightProblem::solve`].
+    fn residual_vector(&self, table: &BasisTable, x: &[f64], sc: &Scratch) -> Vec<f64> {
+        let m = table.first.len();
+        let d = x.len();
+        let mut r = Vec::with_capacity(3 * m + d);
+        let scale = 1.0 / (m as f64).sqrt();
+        for (k, qk) in self.points.iter().enumerate() {
+            let s = self.point_of(table, sc, k);
+            r.extend((0..3).map(|c| (s[c] - qk[c]) * scale));
+        }
+        let reg = self.rho / (d as f64).sqrt();
+        r.extend(x.iter().map(|t| reg * t));
+        r
+    }
+
+    /// The variables a band position's log-weight feeds: `[c]` (full grid) or `[i, n_u + j]`
+    /// (rank one); the count is returned with them.
+    #[inline]
+    fn vars_of(&self, pos: usize) -> ([usize; 2], usize) {
+        let c = self.pat.grid[pos];
+        match self.options.layout {
+            WeightLayout::Full => ([c, 0], 1),
+            WeightLayout::RankOne => ([c / self.pat.n_v, self.pat.n_u + c % self.pat.n_v], 2),
+        }
+    }
+
+    /// Residuals and Jacobian at `x` and the parameters of `table` (which must carry
+    /// derivatives if `free` is not `None`).
+    pub(crate) fn linearize(
+        &self,
+        table: &BasisTable,
+        x: &[f64],
+        free: ParamFreedom,
+        kind: JacobianKind,
+    ) -> Option<Linearization> {
+        let mut sc = Scratch::default();
+        if !self.solve(table, x, &mut sc) {
+            return None;
+        }
+        let pat = &self.pat;
+        let (n, nb, bw) = (pat.n(), pat.nb, pat.bw);
+        let m = table.first.len();
+        let d = x.len();
+        if m != self.points.len() || (free != ParamFreedom::None && table.du.len() != m * nb) {
+            return None;
+        }
+        let cols = d + self.param_count(free);
+        let rows = 3 * m + d;
+        let residuals = self.residual_vector(table, x, &sc);
+        let resolved = self.options.mode == WeightMode::Resolved;
+        let exact = resolved && kind == JacobianKind::Exact;
+        let mut jac = vec![0.0; rows * cols];
+        // Z[v] = H^T A_v (+ Golub-Pereyra term): the right-hand sides of the projections.
+        let mut z = if resolved { vec![[0.0f64; 3]; d * n] } else { Vec::new() };
+        // Euclidean control points and the unscaled residuals.
+        let pts: Vec<[f64; 3]> =
+            sc.y.iter().zip(&sc.w).map(|(y, &w)| [y[0] / w, y[1] / w, y[2] / w]).collect();
+        let sk: Vec<[f64; 3]> = (0..m).map(|k| self.point_of(table, &sc, k)).collect();
+        let ek: Vec<[f64; 3]> = sk
+            .iter()
+            .zip(&self.points)
+            .map(|(s, q)| [s[0] - q[0], s[1] - q[1], s[2] - q[2]])
+            .collect();
+        let mut h = vec![0.0; nb];
+        for k in 0..m {
+            let first = table.first[k];
+            let s = sc.s[k];
+            let b = &table.vals[k * nb..(k + 1) * nb];
+            for (hl, bl) in h.iter_mut().zip(b) {
+                *hl = bl * s;
+            }
+            let (sp, e) = (sk[k], ek[k]);
+            for l in 0..nb {
+                let pos = first + pat.off[l];
+                let r_kc = h[l] * sc.w[pos];
+                let pc = pts[pos];
+                let a = [r_kc * (pc[0] - sp[0]), r_kc * (pc[1] - sp[1]), r_kc * (pc[2] - sp[2])];
+                let (vars, nv) = self.vars_of(pos);
+                for &v in &vars[..nv] {
+                    let col = &mut jac[v * rows + 3 * k..v * rows + 3 * k + 3];
+                    col[0] += a[0];
+                    col[1] += a[1];
+                    col[2] += a[2];
+                    if resolved {
+                        let zv = &mut z[v * n..(v + 1) * n];
+                        for (&o, &h2) in pat.off.iter().zip(&h) {
+                            let t = &mut zv[first + o];
+                            // Kaufman: H^T A_v; exact: minus sum_k R_kc h_kc' e_k.
+                            let (g0, g1, g2) = if exact {
+                                (a[0] - r_kc * e[0], a[1] - r_kc * e[1], a[2] - r_kc * e[2])
+                            } else {
+                                (a[0], a[1], a[2])
+                            };
+                            t[0] += h2 * g0;
+                            t[1] += h2 * g1;
+                            t[2] += h2 * g2;
+                        }
+                    }
+                }
+            }
+        }
+        if exact {
+            // The delta term (H^T e)_c at entry c of its variables' right-hand sides (zero at
+            // an exact least-squares solution; kept for round-off).
+            let mut hte = vec![[0.0f64; 3]; n];
+            for k in 0..m {
+                let first = table.first[k];
+                let s = sc.s[k];
+                for (bl, &o) in table.vals[k * nb..(k + 1) * nb].iter().zip(&pat.off) {
+                    let t = &mut hte[first + o];
+                    for c in 0..3 {
+                        t[c] += bl * s * ek[k][c];
+                    }
+                }
+            }
+            for (pos, he) in hte.iter().enumerate() {
+                let (vars, nv) = self.vars_of(pos);
+                for &v in &vars[..nv] {
+                    let t = &mut z[v * n + pos];
+                    for c in 0..3 {
+                        t[c] += he[c];
+                    }
+                }
+            }
+        }
+        // Parameter columns at fixed control points: a = s sum_l dB_l (Y_l - w_l S_k).
+        let mut param_cols: Vec<(usize, usize, [f64; 3])> = Vec::with_capacity(2 * m);
+        if free != ParamFreedom::None {
+            for k in 0..m {
+                let first = table.first[k];
+                let s = sc.s[k];
+                let sp = sk[k];
+                for dir in 0..2 {
+                    let Some(v) = self.param_col(free, d, k, dir) else { continue };
+                    let db = if dir == 0 { &table.du } else { &table.dv };
+                    let mut a = [0.0; 3];
+                    for (dbl, &o) in db[k * nb..(k + 1) * nb].iter().zip(&pat.off) {
+                        let (y, w) = (sc.y[first + o], sc.w[first + o]);
+                        for c in 0..3 {
+                            a[c] += dbl * (y[c] - w * sp[c]);
+                        }
+                    }
+                    let a = [a[0] * s, a[1] * s, a[2] * s];
+                    // A section's v column sums its offsets' (chain rule).
+                    for (t, ac) in jac[v * rows + 3 * k..v * rows + 3 * k + 3].iter_mut().zip(a) {
+                        *t += ac;
+                    }
+                    param_cols.push((v, k, a));
+                }
+            }
+        }
+        if resolved {
+            // J_v -= H G^{-1} Z_v.
+            let mut y = vec![[0.0f64; 3]; n];
+            let project = |jcol: &mut [f64], y: &mut [[f64; 3]]| {
+                band_solve(&sc.band, n, bw, pat.stride, y);
+                for k in 0..m {
+                    let first = table.first[k];
+                    let s = sc.s[k];
+                    let mut acc = [0.0; 3];
+                    for (bl, &o) in table.vals[k * nb..(k + 1) * nb].iter().zip(&pat.off) {
+                        let yo = y[first + o];
+                        acc[0] += bl * yo[0];
+                        acc[1] += bl * yo[1];
+                        acc[2] += bl * yo[2];
+                    }
+                    for c in 0..3 {
+                        jcol[3 * k + c] -= s * acc[c];
+                    }
+                }
+            };
+            for v in 0..d {
+                y.copy_from_slice(&z[v * n..(v + 1) * n]);
+                project(&mut jac[v * rows..v * rows + 3 * m], &mut y);
+            }
+            for &(v, k, a) in &param_cols {
+                y.iter_mut().for_each(|t| *t = [0.0; 3]);
+                let first = table.first[k];
+                let s = sc.s[k];
+                for (bl, &o) in table.vals[k * nb..(k + 1) * nb].iter().zip(&pat.off) {
+                    let hl = bl * s;
+                    y[first + o] = [hl * a[0], hl * a[1], hl * a[2]];
+                }
+                project(&mut jac[v * rows..v * rows + 3 * m], &mut y);
+            }
+        }
+        let scale = 1.0 / (m as f64).sqrt();
+        let reg = self.rho / (d as f64).sqrt();
+        for v in 0..cols {
+            let col = &mut jac[v * rows..(v + 1) * rows];
+            col[..3 * m].iter_mut().for_each(|t| *t *= scale);
+            if v < d {
+                col[3 * m + v] = reg;
+            }
+        }
+        if !(jac.iter().all(|t| t.is_finite()) && residuals.iter().all(|t| t.is_finite())) {
+            return None;
+        }
+        Some(Linearization { residuals, jacobian: jac, rows, cols })
+    }
+}
+
+/// `G += h h^T` over the blocks of one offset, blocks `L` long (monomorphised for the common
+/// degrees so the block is a fixed-length, vectorisable loop).
+#[inline]
+fn add_blocks<const L: usize>(band: &mut [f64], h: &[f64], blocks: &[(usize, usize, usize)]) {
+    for &(l, idx, l2) in blocks {
+        let hl = h[l];
+        let dst = &mut band[idx..idx + L];
+        let src = &h[l2..l2 + L];
+        for i in 0..L {
+            dst[i] += hl * src[i];
+        }
+    }
+}
+
+/// [`add_blocks`] for any block length.
+fn add_blocks_any(band: &mut [f64], h: &[f64], blocks: &[(usize, usize, usize)], len: usize) {
+    for &(l, idx, l2) in blocks {
+        let hl = h[l];
+        for (g, &h2) in band[idx..idx + len].iter_mut().zip(&h[l2..l2 + len]) {
+            *g += hl * h2;
+        }
+    }
+}
+
+impl Objective for WeightProblem {
+    fn dim(&self) -> usize {
+        self.lower.len()
+    }
+    fn lower(&self) -> &[f64] {
+        &self.lower
+    }
+    fn upper(&self) -> &[f64] {
+        &self.upper
+    }
+    /// `f(θ)` of the module docs; `+inf` for an infeasible point (wrong length, non-finite
+    /// entries, singular least-squares system).
+    fn value(&self, x: &[f64]) -> f64 {
+        self.value_with(&self.table, x)
+    }
+    /// All weights 1.
+    fn start(&self) -> Vec<f64> {
+        vec![0.0; self.dim()]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optimize::evaluate_all;
+    use crate::{fit_offsets, series60_sample, FitConfig};
+
+    fn sample_fit(ctrl: (usize, usize)) -> (FitOutcome, Offsets) {
+        let offsets = series60_sample();
+        let cfg = FitConfig { ctrl: Some(ctrl), ..FitConfig::default() };
+        (fit_offsets(&offsets, &cfg).expect("sample fits"), offsets)
+    }
+
+    fn problem(ctrl: (usize, usize), mode: WeightMode, layout: WeightLayout, reg: f64) -> WeightProblem {
+        let (fit, offsets) = sample_fit(ctrl);
+        let opts = WeightOptions { mode, layout, regularization: reg, ..WeightOptions::default() };
+        WeightProblem::from_fit(&fit, &offsets, opts).expect("shapes match")
+    }
+
+    /// Deterministic pseudo-random numbers in [-0.5, 0.5).
+    fn noise(seed: &mut u64) -> f64 {
+        *seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (*seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    }
+
+    fn points_and_params(fit: &FitOutcome, offsets: &Offsets) -> (Vec<Vec3>, Vec<(f64, f64)>) {
+        let pts = offsets.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
+        (pts, fit.params.iter().flatten().copied().collect())
+    }
+
+    #[test]
+    fn fixed_mode_at_the_start_is_the_plain_approximations_parametric_rms() {
+        let (fit, offsets) = sample_fit((6, 12));
+        let (pts, params) = points_and_params(&fit, &offsets);
+        let rms = (pts.iter().zip(&params).map(|(q, &(u, v))| (fit.surface.point(u, v) - *q).norm_squared()).sum::<f64>()
+            / pts.len() as f64)
+            .sqrt();
+        let p = WeightProblem::from_fit(&fit, &offsets, WeightOptions { mode: WeightMode::Fixed, ..Default::default() })
+            .expect("shapes match");
+        let f = p.value(&p.start());
+        // Same sums in a different order (A4.3 vs. the precomputed products): round-off only.
+        assert!((f - rms).abs() <= 1e-12 * rms, "{f} vs {rms}");
+        assert!(rms > 1e-3, "the 6 x 12 approximation must leave an error to optimise: {rms}");
+    }
+
+    #[test]
+    fn resolved_mode_at_the_start_is_the_least_squares_optimum() {
+        let (fit, offsets) = sample_fit((6, 12));
+        let (pts, params) = points_and_params(&fit, &offsets);
+        let resolved = WeightProblem::from_fit(&fit, &offsets, WeightOptions::default()).expect("ok");
+        let fixed =
+            WeightProblem::from_fit(&fit, &offsets, WeightOptions { mode: WeightMode::Fixed, ..Default::default() })
+                .expect("ok");
+        let (fr, ff) = (resolved.value(&resolved.start()), fixed.value(&fixed.start()));
+        // One least-squares solve over all offsets beats the two-stage skinning at the same
+        // parameters (and strictly: skinning interpolates the end sections).
+        assert!(fr < ff, "resolved {fr} fixed {ff}");
+        // Optimality: H^T e = 0, i.e. sum_k B_kc (S_k - Q_k) = 0 for every control point c,
+        // measured with the kernel's own evaluation of the resolved surface.
+        let s = resolved.surface(&resolved.start()).expect("regular");
+        assert!(!s.is_rational());
+        let (n_u, n_v) = resolved.ctrl();
+        let mut normal = vec![Vec3::ZERO; n_u * n_v];
+        let mut scale = 0.0;
+        for (q, &(u, v)) in pts.iter().zip(&params) {
+            let e = s.point(u, v) - *q;
+            let (su, sv) = (s.knots_u().find_span(u), s.knots_v().find_span(v));
+            let (mut bu, mut bv) = ([0.0; MAX_DEGREE + 1], [0.0; MAX_DEGREE + 1]);
+            basis_funs(s.knots_u().as_slice(), su, u, s.degree_u(), &mut bu);
+            basis_funs(s.knots_v().as_slice(), sv, v, s.degree_v(), &mut bv);
+            for a in 0..=s.degree_u() {
+                for b in 0..=s.degree_v() {
+                    normal[(su - s.degree_u() + a) * n_v + sv - s.degree_v() + b] += e * (bu[a] * bv[b]);
+                }
+            }
+            scale += q.norm();
+        }
+        let worst = normal.iter().map(|g| g.norm()).fold(0.0, f64::max);
+        // The normal equations are solved to about cond(G) ~ 1e4 ulps of the data's size.
+        assert!(worst <= 1e-10 * scale, "H^T e = {worst:e} against {scale:e}");
+    }
+
+    #[test]
+    fn value_is_the_rms_of_the_kernels_rational_surface() {
+        let (fit, offsets) = sample_fit((6, 12));
+        let (pts, params) = points_and_params(&fit, &offsets);
+        let mut seed = 5;
+        for mode in [WeightMode::Fixed, WeightMode::Resolved] {
+            for layout in [WeightLayout::Full, WeightLayout::RankOne] {
+                let opts = WeightOptions { mode, layout, regularization: 0.0, ..Default::default() };
+                let p = WeightProblem::from_fit(&fit, &offsets, opts).expect("ok");
+                let x: Vec<f64> = (0..p.dim()).map(|_| noise(&mut seed)).collect();
+                let s = p.surface(&x).expect("regular");
+                let w = p.weights(&x);
+                assert_eq!(s.weights().len(), w.len());
+                for (a, b) in s.weights().iter().zip(&w) {
+                    assert!((a - b).abs() <= 1e-15 * b, "{a} {b}");
+                }
+                let rms = (pts.iter().zip(&params).map(|(q, &(u, v))| (s.point(u, v) - *q).norm_squared()).sum::<f64>()
+                    / pts.len() as f64)
+                    .sqrt();
+                let f = p.value(&x);
+                // Homogeneous round trip and re-ordered sums: round-off.
+                assert!((f - rms).abs() <= 1e-10 * rms, "{mode:?} {layout:?}: {f} vs {rms}");
+                if mode == WeightMode::Fixed {
+                    // The plain approximation's control points are kept.
+                    for (a, b) in s.control_points().iter().zip(fit.surface.control_points()) {
+                        assert!((*a - b).norm() <= 1e-12 * p.size());
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rank_one_weights_are_products_and_the_scale_gauge_changes_nothing() {
+        let p = problem((6, 12), WeightMode::Resolved, WeightLayout::RankOne, 0.0);
+        let (n_u, n_v) = p.ctrl();
+        assert_eq!(p.dim(), n_u + n_v);
+        let x: Vec<f64> = (0..p.dim()).map(|i| 0.1 * i as f64 - 0.4).collect();
+        let w = p.weights(&x);
+        for i in 0..n_u {
+            for j in 0..n_v {
+                let want = (x[i] + x[n_u + j]).exp();
+                assert!((w[i * n_v + j] - want).abs() <= 1e-15 * want);
+            }
+        }
+        // Each product stays within the bounds: the factors are boxed to half the log range.
+        assert!((p.upper()[0] - 0.5 * 10f64.ln()).abs() < 1e-15);
+        // (α + t, β - t) is the same weight grid; all weights times e^t the same surface.
+        let f0 = p.value(&x);
+        let shifted: Vec<f64> = x.iter().enumerate().map(|(i, &t)| if i < n_u { t + 0.3 } else { t - 0.3 }).collect();
+        assert!((p.value(&shifted) - f0).abs() <= 1e-12 * f0);
+        let full = problem((6, 12), WeightMode::Resolved, WeightLayout::Full, 0.0);
+        let f_start = full.value(&full.start());
+        assert!((full.value(&vec![0.7; full.dim()]) - f_start).abs() <= 1e-12 * f_start);
+    }
+
+    /// Central differences of `g` at `x` in direction `i`, step `h`.
+    fn central(g: &dyn Fn(&[f64]) -> Vec<f64>, x: &[f64], i: usize, h: f64) -> Vec<f64> {
+        let (mut xp, mut xm) = (x.to_vec(), x.to_vec());
+        xp[i] += h;
+        xm[i] -= h;
+        g(&xp).iter().zip(g(&xm)).map(|(a, b)| (a - b) / (2.0 * h)).collect()
+    }
+
+    #[test]
+    fn jacobians_match_central_differences() {
+        let mut seed = 17;
+        for layout in [WeightLayout::Full, WeightLayout::RankOne] {
+            for mode in [WeightMode::Fixed, WeightMode::Resolved] {
+                let p = problem((5, 8), mode, layout, 1e-3);
+                let x: Vec<f64> = (0..p.dim()).map(|_| 0.8 * noise(&mut seed)).collect();
+                let r = |x: &[f64]| p.residuals(x).expect("regular");
+                let kinds: &[JacobianKind] = if mode == WeightMode::Fixed {
+                    &[JacobianKind::Kaufman]
+                } else {
+                    &[JacobianKind::Exact, JacobianKind::Kaufman]
+                };
+                for &kind in kinds {
+                    let lin = p.residuals_and_jacobian(&x, kind).expect("regular");
+                    assert_eq!(lin.residuals, r(&x));
+                    let jmax = (0..lin.cols).map(|j| dot_norm(lin.column(j))).fold(0.0, f64::max);
+                    for i in 0..p.dim() {
+                        let fd = central(&r, &x, i, 1e-5);
+                        let col = lin.column(i);
+                        // Fixed mode (no projection) and the exact Golub-Pereyra Jacobian are
+                        // the true derivative: central differences agree to O(h^2) + round-off
+                        // / h, about 1e-8 of the largest column.
+                        if mode == WeightMode::Fixed || kind == JacobianKind::Exact {
+                            let err = col.iter().zip(&fd).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+                            assert!(err <= 1e-7 * jmax, "{mode:?} {layout:?} {kind:?} col {i}: {err:e} vs {jmax:e}");
+                        }
+                        // Kaufman's Jacobian is not the derivative, but its gradient J^T r is.
+                        let g_fd: f64 = fd.iter().zip(&lin.residuals).map(|(a, b)| a * b).sum();
+                        let g: f64 = col.iter().zip(&lin.residuals).map(|(a, b)| a * b).sum();
+                        let gscale = jmax * dot_norm(&lin.residuals);
+                        assert!((g - g_fd).abs() <= 1e-7 * gscale, "{mode:?} {layout:?} {kind:?} grad {i}");
+                    }
+                }
+            }
+        }
+    }
+
+    fn dot_norm(v: &[f64]) -> f64 {
+        v.iter().map(|t| t * t).sum::<f64>().sqrt()
+    }
+
+    #[test]
+    fn parameter_columns_match_central_differences() {
+        let mut seed = 23;
+        for mode in [WeightMode::Fixed, WeightMode::Resolved] {
+            let p = problem((5, 8), mode, WeightLayout::Full, 0.0);
+            let x: Vec<f64> = (0..p.dim()).map(|_| 0.5 * noise(&mut seed)).collect();
+            // Move the parameters off the knots (one-sided derivatives there) a little.
+            let params: Vec<(f64, f64)> =
+                p.params().iter().map(|&(u, v)| ((u * 0.98 + 0.01), (v * 0.98 + 0.01))).collect();
+            for free in [ParamFreedom::U, ParamFreedom::USectionV, ParamFreedom::UV] {
+                let lin = p.residuals_and_jacobian_with_params(&x, &params, free).expect("regular");
+                let d = p.dim();
+                assert_eq!(lin.cols, d + p.param_count(free));
+                let jmax = (0..lin.cols).map(|j| dot_norm(lin.column(j))).fold(0.0, f64::max);
+                let r_of = |t: &[f64]| -> Vec<f64> {
+                    let pp = p.params_from_vars(&params, t, free);
+                    p.with_params(&pp).expect("ok").residuals(&x).expect("regular")
+                };
+                let (t0, lo, hi) = p.param_vars(&params, free);
+                assert_eq!(p.params_from_vars(&params, &t0, free), params);
+                assert!(t0.iter().zip(&lo).zip(&hi).all(|((t, l), h)| l <= t && t <= h));
+                // Every 7th unknown, and all section v's (the last 25 of USectionV).
+                for j in (0..t0.len()).filter(|j| j % 7 == 0 || (free == ParamFreedom::USectionV && j + 25 >= t0.len())) {
+                    let fd = central(&r_of, &t0, j, 1e-6);
+                    let col = lin.column(d + j);
+                    // Fixed mode: the true derivative; O(h^2) + round-off / h.
+                    if mode == WeightMode::Fixed {
+                        let err = col.iter().zip(&fd).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+                        assert!(err <= 1e-6 * jmax, "{free:?} unknown {j}: {err:e} vs {jmax:e}");
+                    }
+                    let g_fd: f64 = fd.iter().zip(&lin.residuals).map(|(a, b)| a * b).sum();
+                    let g: f64 = col.iter().zip(&lin.residuals).map(|(a, b)| a * b).sum();
+                    let gscale = jmax * dot_norm(&lin.residuals);
+                    assert!((g - g_fd).abs() <= 1e-6 * gscale, "{mode:?} {free:?} unknown {j}: {g:e} vs {g_fd:e}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn singular_systems_give_infinity_not_nan() {
+        let (fit, offsets) = sample_fit((6, 12));
+        let (pts, params) = points_and_params(&fit, &offsets);
+        // Every offset moved to v = 0: most control points have no offset in their support.
+        let squashed: Vec<(f64, f64)> = params.iter().map(|&(u, _)| (u, 0.0)).collect();
+        let p = WeightProblem::new(&fit.surface, &pts, &squashed, WeightOptions::default()).expect("ok");
+        let f = p.value(&p.start());
+        assert!(f.is_infinite() && f > 0.0, "{f}");
+        assert!(p.residuals(&p.start()).is_none());
+        assert!(p.residuals_and_jacobian(&p.start(), JacobianKind::Exact).is_none());
+        assert!(matches!(
+            p.surface(&p.start()),
+            Err(HullError::Fit { source: NurbsError::SingularSystem { .. }, .. })
+        ));
+        // Fixed mode has no system to solve: finite.
+        let fixed =
+            WeightProblem::new(&fit.surface, &pts, &squashed, WeightOptions { mode: WeightMode::Fixed, ..Default::default() })
+                .expect("ok");
+        assert!(fixed.value(&fixed.start()).is_finite());
+        // Bad variables are infeasible, not NaN.
+        let good = problem((6, 12), WeightMode::Resolved, WeightLayout::Full, 1e-6);
+        let mut x = good.start();
+        x[3] = f64::NAN;
+        assert_eq!(good.value(&x), f64::INFINITY);
+        assert_eq!(good.value(&x[1..]), f64::INFINITY);
+        x[3] = 800.0; // e^800 overflows
+        assert_eq!(good.value(&x), f64::INFINITY);
+        assert!(good.surface(&x[1..]).is_err());
+    }
+
+    #[test]
+    fn bad_settings_are_errors() {
+        let (fit, offsets) = sample_fit((6, 12));
+        for (bounds, reg) in [((0.0, 10.0), 0.0), ((2.0, 10.0), 0.0), ((0.1, f64::INFINITY), 0.0), ((0.1, 10.0), -1.0)] {
+            let o = WeightOptions { bounds, regularization: reg, ..Default::default() };
+            assert!(matches!(WeightProblem::from_fit(&fit, &offsets, o), Err(HullError::Config(_))), "{bounds:?}");
+        }
+        let (pts, params) = points_and_params(&fit, &offsets);
+        assert!(WeightProblem::new(&fit.surface, &pts[1..], &params, WeightOptions::default()).is_err());
+        let mut nan = params.clone();
+        nan[4].1 = f64::NAN;
+        assert!(WeightProblem::new(&fit.surface, &pts, &nan, WeightOptions::default()).is_err());
+        let p = WeightProblem::new(&fit.surface, &pts, &params, WeightOptions::default()).expect("ok");
+        assert!(p.with_params(&nan).is_err());
+        assert!(p.with_params(&params[1..]).is_err());
+        let (_, other) = sample_fit((5, 8));
+        assert!(WeightProblem::from_fit(&fit, &Offsets { sections: other.sections[1..].to_vec(), ..other }, WeightOptions::default()).is_err());
+    }
+
+    #[test]
+    fn parallel_evaluation_is_bit_identical_to_sequential() {
+        let p = problem((6, 12), WeightMode::Resolved, WeightLayout::Full, 1e-6);
+        let mut seed = 99;
+        let xs: Vec<Vec<f64>> = (0..64).map(|_| (0..p.dim()).map(|_| 2.0 * noise(&mut seed)).collect()).collect();
+        let par = evaluate_all(&p, &xs);
+        let seq: Vec<f64> = xs.iter().map(|x| p.value(x)).collect();
+        assert_eq!(par, seq);
+        assert!(seq.iter().all(|f| f.is_finite()));
+        // And the value does not depend on what the thread evaluated before.
+        assert_eq!(p.value(&xs[7]), seq[7]);
+    }
+
+    #[test]
+    fn band_order_is_the_cheaper_one() {
+        // 6 x 12 bicubic: u-major would give 3 * 12 + 3 = 39, v-major 3 * 6 + 3 = 21.
+        let p = problem((6, 12), WeightMode::Resolved, WeightLayout::Full, 0.0);
+        assert_eq!(p.bandwidth(), 21);
+        let p = problem((8, 5), WeightMode::Resolved, WeightLayout::Full, 0.0);
+        assert_eq!(p.bandwidth(), 3 * 5 + 3);
+    }
+}
