@@ -126,7 +126,7 @@ def run_case(case, args, hullskin, inputs_dir, work_dir, log):
 
     # Interpolation
     if hullskin:
-        add("hullskin interp (centripetal)", "hullskin", "interp", ours("interp"))
+        add(f"hullskin interp ({args.param})", "hullskin", "interp", ours("interp"))
     add(
         "OCCT PointsToBSplineSurface.Interpolate (chord length, default)",
         "occt",
@@ -150,7 +150,7 @@ def run_case(case, args, hullskin, inputs_dir, work_dir, log):
         ctrl = [nu, nv]
         if hullskin:
             add(
-                f"hullskin approx {nu}x{nv} (centripetal)",
+                f"hullskin approx {nu}x{nv} ({args.param})",
                 "hullskin",
                 "approx",
                 ours("approx", ctrl),
@@ -407,7 +407,7 @@ def main(argv=None):
     ap.add_argument("--out-md", default=os.path.join(HERE, "results.md"))
     ap.add_argument("--out-json", default=os.path.join(HERE, "results.json"))
     ap.add_argument("--density", type=int, default=4, help="between-grid refinement (exact cases)")
-    ap.add_argument("--param", default="centripetal", help="hullskin --param value")
+    ap.add_argument("--param", default="centripetal,chord", help="hullskin --param value (its default)")
     ap.add_argument("--timeout", type=float, default=900.0, help="seconds per hullskin run")
     ap.add_argument(
         "--strict", action="store_true", help="exit 1 when a floor does not hold (default: exit 0)"

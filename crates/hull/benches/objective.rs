@@ -63,6 +63,13 @@ fn bench(c: &mut Criterion) {
             g.bench_with_input(BenchmarkId::new(name, label), &x, |b, x| b.iter(|| p.value(black_box(x))));
         }
     }
+    // The built-in Series 60 table at its default control points (the GSA floor's case).
+    let offsets = series60_sample();
+    for (name, mode) in [("fixed", WeightMode::Fixed), ("resolved", WeightMode::Resolved)] {
+        let p = problem(&offsets, (6, 19), mode, WeightLayout::Full);
+        let x: Vec<f64> = (0..p.dim()).map(|i| 0.3 * ((i as f64) * 0.7).sin()).collect();
+        g.bench_with_input(BenchmarkId::new(name, "series60_6x19_200"), &x, |b, x| b.iter(|| p.value(black_box(x))));
+    }
     g.finish();
 
     let mut g = c.benchmark_group("lm_series60_6x12");

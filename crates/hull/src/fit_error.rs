@@ -2,7 +2,8 @@
 //! closest-point projection (not the parametric residual `|S(u_k, v_k) - Q_k|`, which
 //! overstates the error wherever the fit's parameters are not the foot points).
 
-use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
+use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjection, SurfaceProjector, Vec3};
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::Offsets;
@@ -76,18 +77,29 @@ pub struct FitError {
 /// than the parametric residual, whatever the global search finds.
 pub fn measure_fit_error(surface: &NurbsSurface, offsets: &Offsets, hints: Option<&[Vec<(f64, f64)>]>) -> FitError {
     let projector = SurfaceProjector::new(surface, ProjectionOptions::default());
-    let mut all = Vec::with_capacity(offsets.num_points());
+    // Project every offset in parallel (each projection is a pure function of its point, so the
+    // result does not depend on the thread count), then gather in input order.
+    let jobs: Vec<(usize, usize, Vec3)> = offsets
+        .sections
+        .iter()
+        .enumerate()
+        .flat_map(|(k, s)| s.points.iter().enumerate().map(move |(i, &q)| (k, i, q)))
+        .collect();
+    let projections: Vec<SurfaceProjection> = jobs
+        .par_iter()
+        .map(|&(k, i, q)| match hints.and_then(|h| h.get(k)).and_then(|h| h.get(i)) {
+            Some(&uv) => projector.project_near(q, uv),
+            None => projector.project(q),
+        })
+        .collect();
+    let mut all = Vec::with_capacity(jobs.len());
     let mut per_section = Vec::with_capacity(offsets.sections.len());
     let mut worst: Option<WorstPoint> = None;
     let mut unconverged = 0;
-    for (k, section) in offsets.sections.iter().enumerate() {
+    let mut next = projections.iter();
+    for section in &offsets.sections {
         let mut distances = Vec::with_capacity(section.points.len());
-        for (index, &q) in section.points.iter().enumerate() {
-            let hint = hints.and_then(|h| h.get(k)).and_then(|h| h.get(index));
-            let proj = match hint {
-                Some(&uv) => projector.project_near(q, uv),
-                None => projector.project(q),
-            };
+        for (index, (&q, proj)) in section.points.iter().zip(next.by_ref()).enumerate() {
             if !proj.converged {
                 unconverged += 1;
             }

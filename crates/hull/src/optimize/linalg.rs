@@ -62,7 +62,8 @@ pub(crate) fn band_cholesky(a: &mut [f64], n: usize, bw: usize, stride: usize) -
         }
         let aii = row[bw];
         let d = aii - dot(&row[..bw], &row[..bw]);
-        if !(d > PIVOT_REL * aii) {
+        let usable = d > PIVOT_REL * aii; // false for NaN too
+        if !usable {
             return false;
         }
         row[bw] = d.sqrt();
@@ -87,9 +88,7 @@ pub(crate) fn band_solve<const D: usize>(l: &[f64], n: usize, bw: usize, stride:
             }
         }
         let d = row[bw];
-        for c in 0..D {
-            s[c] /= d;
-        }
+        s.iter_mut().for_each(|t| *t /= d);
         rest[0] = s;
     }
     // Backward: L^T x = y, by columns of L^T (rows of L, contiguous).
@@ -97,9 +96,7 @@ pub(crate) fn band_solve<const D: usize>(l: &[f64], n: usize, bw: usize, stride:
         let row = &l[i * stride..i * stride + w];
         let d = row[bw];
         let mut xi = b[i];
-        for c in 0..D {
-            xi[c] /= d;
-        }
+        xi.iter_mut().for_each(|t| *t /= d);
         b[i] = xi;
         let k0 = i.saturating_sub(bw);
         for (lk, bk) in row[k0 + bw - i..bw].iter().zip(&mut b[k0..i]) {
@@ -125,7 +122,8 @@ pub(crate) fn dense_cholesky(a: &mut [f64], n: usize) -> bool {
         }
         let aii = row[i];
         let d = aii - dot(&row[..i], &row[..i]);
-        if !(d > PIVOT_REL * aii) {
+        let usable = d > PIVOT_REL * aii; // false for NaN too
+        if !usable {
             return false;
         }
         row[i] = d.sqrt();
@@ -181,8 +179,9 @@ mod tests {
         let mut seed = 3;
         for (n, bw) in [(1, 0), (2, 1), (7, 2), (20, 6), (33, 33), (40, 9)] {
             let a = spd(n, bw, &mut seed);
-            let x_true: Vec<[f64; 3]> =
-                (0..n).map(|_| [pseudo_random(&mut seed), pseudo_random(&mut seed), pseudo_random(&mut seed)]).collect();
+            let x_true: Vec<[f64; 3]> = (0..n)
+                .map(|_| [pseudo_random(&mut seed), pseudo_random(&mut seed), pseudo_random(&mut seed)])
+                .collect();
             let mut b: Vec<[f64; 3]> = (0..n)
                 .map(|i| {
                     let mut r = [0.0; 3];

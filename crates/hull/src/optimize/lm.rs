@@ -21,9 +21,9 @@
 //! `v_k`), the control points still eliminated by least squares: this recovers exactly
 //! rational shapes (circular sections) to round-off, which weights at fixed parameters cannot.
 
+use super::linalg::{dense_cholesky, dense_solve, dot};
 use super::weights::{JacobianKind, Linearization, ParamFreedom, WeightProblem};
 use super::{Control, Objective, OptimResult, Progress, StopReason};
-use super::linalg::{dense_cholesky, dense_solve, dot};
 
 /// Settings of [`run`], [`polish`] and [`run_with_parameters`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -182,8 +182,20 @@ fn engine(
             stop: StopReason::Converged,
         };
     };
-    let mut f = lin.value();
+    // Values reported are the objective's own (the same sums in the same order as any other
+    // caller gets), not |r| of the linearization, which differs by round-off.
+    let mut f = value(&z);
     let mut history = vec![f];
+    if !f.is_finite() {
+        return OptimResult {
+            x: z,
+            value: f64::INFINITY,
+            evaluations,
+            iterations: 0,
+            history,
+            stop: StopReason::Converged,
+        };
+    }
     let (mut a, mut g) = normal_equations(&lin);
     let mut col_norm: Vec<f64> = (0..n).map(|i| a[i * n + i].sqrt()).collect();
     let mut mu = opts.initial_damping.max(f64::MIN_POSITIVE);
@@ -239,7 +251,8 @@ fn engine(
             clamp(&mut zn, lo, hi);
             let mut h: Vec<f64> = zn.iter().zip(&z).map(|(a, b)| a - b).collect();
             let mut predicted = model_decrease(&a, &g, &h);
-            if !(predicted > 0.0) {
+            let descends = predicted > 0.0; // false for NaN too
+            if !descends {
                 let alpha = (0..n)
                     .map(|i| {
                         if full[i] > 0.0 {
@@ -269,20 +282,17 @@ fn engine(
             let fn_ = value(&zn);
             evaluations += 1;
             let actual = 0.5 * (f * f - fn_ * fn_);
-            if std::env::var("LM_DEBUG").is_ok() {
-                eprintln!("it {iterations} mu {mu:e} f {f:e} fn {fn_:e} pred {predicted:e} act {actual:e} |h| {hn:e} free {}/{n}", free.len());
-            }
             if fn_.is_finite() && actual > 0.0 {
                 if let Some(l) = linearize(&zn) {
                     accepted = true;
                     let rho = if predicted > 0.0 { actual / predicted } else { 1.0 };
                     mu *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
                     nu = 2.0;
-                    let small = actual <= opts.tolerance * 0.5 * f * f
-                        && predicted.abs() <= opts.tolerance * 0.5 * f * f;
+                    let small =
+                        actual <= opts.tolerance * 0.5 * f * f && predicted.abs() <= opts.tolerance * 0.5 * f * f;
                     z = zn;
                     lin = l;
-                    f = lin.value();
+                    f = fn_;
                     (a, g) = normal_equations(&lin);
                     col_norm = (0..n).map(|i| a[i * n + i].sqrt()).collect();
                     if small {
@@ -297,7 +307,8 @@ fn engine(
         if !accepted {
             mu *= nu;
             nu *= 2.0;
-            if !(mu < 1e30) {
+            let damped_out = mu >= 1e30 || mu.is_nan();
+            if damped_out {
                 history.push(f);
                 stop = StopReason::Converged;
                 break;
@@ -365,12 +376,11 @@ fn progress(iteration: usize, opts: &LmOptions, best: f64, evaluations: usize) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::optimize::weights::{WeightLayout, WeightMode, WeightOptions};
     use crate::optimize::quiet;
+    use crate::optimize::weights::{WeightLayout, WeightMode, WeightOptions};
     use crate::{fit_offsets, measure_fit_error, series60_sample, FitConfig, FitOutcome, Offsets, Section, Units};
     use nurbs::{KnotVector, NurbsSurface, Vec3};
     use std::sync::atomic::AtomicBool;
-    use std::time::Instant;
 
     fn fit(offsets: &Offsets, degree: (usize, usize), ctrl: (usize, usize)) -> FitOutcome {
         let cfg = FitConfig { degree, ctrl: Some(ctrl), ..FitConfig::default() };
@@ -403,19 +413,132 @@ mod tests {
         Offsets { source: "free-form test".into(), units: Units::Metre, sections }
     }
 
-    /// Quarter circles in the planes x = const, radius r(x) = r0 + c x: exactly the rational
-    /// surface of degree (2, 1) with control points (x_j, r_j (1,0)), (x_j, r_j (1,1)),
-    /// (x_j, r_j (0,1)) and weights 1, sqrt(2)/2, 1 in each column j = 0, 1.
+    /// The history is the accepted value after each iteration: starts at the start's value,
+    /// never rises, ends at the result.
+    fn assert_history(r: &OptimResult, f0: f64) {
+        assert_eq!(r.history[0], f0);
+        assert_eq!(r.history.len(), r.iterations + 1);
+        assert!(r.history.windows(2).all(|w| w[1] <= w[0]), "{:?}", r.history);
+        assert_eq!(*r.history.last().expect("non-empty"), r.value);
+        assert!(r.evaluations >= 1 && r.evaluations <= r.iterations + 1);
+    }
+
+    #[test]
+    fn lm_cuts_the_series60_error_and_resolved_beats_fixed() {
+        let o = series60_sample();
+        let out = fit(&o, (3, 3), (6, 12));
+        let mut finals = Vec::new();
+        for (mode, layout, min_cut) in [
+            // Measured cuts of the parametric RMS: 3.2 %, 67 % and 46 %. The floors leave room
+            // for round-off in the path while still failing a solver that stalls.
+            (WeightMode::Fixed, WeightLayout::Full, 0.01),
+            (WeightMode::Resolved, WeightLayout::Full, 0.55),
+            (WeightMode::Resolved, WeightLayout::RankOne, 0.35),
+        ] {
+            let p = problem(&o, &out, mode, layout);
+            let f0 = p.value(&p.start());
+            let r = quiet(|c| run(&p, &LmOptions::default(), c));
+            assert_history(&r, f0);
+            assert_eq!(r.stop, StopReason::Converged, "{mode:?} {layout:?}");
+            assert!(r.value <= (1.0 - min_cut) * f0, "{mode:?} {layout:?}: {f0} -> {}", r.value);
+            let s = p.surface(&r.x).expect("regular");
+            assert!(s.weights().iter().all(|&w| (0.1 - 1e-12..=10.0 + 1e-12).contains(&w)));
+            finals.push((r.value, s));
+        }
+        // Re-solving the control points beats moving the weights alone, on the true error too
+        // (measured 0.0098 m against 0.0316 m for the plain approximation).
+        assert!(finals[1].0 < finals[0].0 && finals[2].0 < finals[0].0);
+        let plain = out.error.overall.rms;
+        let resolved = measure_fit_error(&finals[1].1, &o, None).overall.rms;
+        assert!(resolved < 0.5 * plain, "true RMS {resolved} against plain {plain}");
+    }
+
+    #[test]
+    fn lm_cuts_the_free_form_error() {
+        let o = free_form();
+        let out = fit(&o, (3, 3), (6, 6));
+        for layout in [WeightLayout::Full, WeightLayout::RankOne] {
+            let p = problem(&o, &out, WeightMode::Resolved, layout);
+            let f0 = p.value(&p.start());
+            let r = quiet(|c| run(&p, &LmOptions::default(), c));
+            assert_history(&r, f0);
+            // Measured 86 % for both layouts (the NOTES' prototype: 59-89 %).
+            assert!(r.value <= 0.3 * f0, "{layout:?}: {f0} -> {}", r.value);
+        }
+    }
+
+    #[test]
+    fn exact_and_kaufman_jacobians_both_converge() {
+        let o = series60_sample();
+        let out = fit(&o, (3, 3), (5, 8));
+        let p = problem(&o, &out, WeightMode::Resolved, WeightLayout::RankOne);
+        let f0 = p.value(&p.start());
+        let k = quiet(|c| run(&p, &LmOptions::default(), c));
+        let e = quiet(|c| run(&p, &LmOptions { jacobian: JacobianKind::Exact, ..LmOptions::default() }, c));
+        assert_history(&e, f0);
+        // Same local minimum from the same start (the Jacobians differ by a term that vanishes
+        // with the residual; their gradients agree): values within 1e-6.
+        assert!((k.value - e.value).abs() <= 1e-6 * k.value, "{} vs {}", k.value, e.value);
+        assert!(k.value < 0.9 * f0);
+    }
+
+    #[test]
+    fn runs_are_deterministic_and_polish_never_worsens() {
+        let o = series60_sample();
+        let out = fit(&o, (3, 3), (5, 8));
+        let p = problem(&o, &out, WeightMode::Resolved, WeightLayout::Full);
+        let a = quiet(|c| run(&p, &LmOptions::default(), c));
+        let b = quiet(|c| run(&p, &LmOptions::default(), c));
+        assert_eq!(a, b);
+        // From a poor point near the box's corner: better, never worse.
+        let x0: Vec<f64> = (0..p.dim()).map(|i| if i % 2 == 0 { 2.2 } else { -2.2 }).collect();
+        let f0 = p.value(&x0);
+        let r = quiet(|c| polish(&p, &x0, &LmOptions { max_iterations: 5, ..LmOptions::default() }, c));
+        assert!(r.value <= f0 && r.history[0] == f0);
+        // Out-of-box and NaN starts are clamped, not propagated.
+        let mut wild = x0.clone();
+        wild[0] = 40.0;
+        wild[1] = f64::NAN;
+        let r = quiet(|c| polish(&p, &wild, &LmOptions { max_iterations: 3, ..LmOptions::default() }, c));
+        assert!(r.value.is_finite() && r.x[0] <= p.upper()[0] && r.x[1].is_finite());
+    }
+
+    #[test]
+    fn a_raised_stop_flag_interrupts_at_once() {
+        let o = series60_sample();
+        let out = fit(&o, (3, 3), (5, 8));
+        let p = problem(&o, &out, WeightMode::Resolved, WeightLayout::Full);
+        let stop = AtomicBool::new(true);
+        let control = Control { stop: &stop, progress: &|_| {} };
+        let r = run(&p, &LmOptions::default(), &control);
+        assert_eq!(r.stop, StopReason::Interrupted);
+        assert_eq!((r.iterations, r.x.clone(), r.value), (0, p.start(), p.value(&p.start())));
+    }
+
+    #[test]
+    fn an_infeasible_start_is_reported_as_infinite_not_a_panic() {
+        let o = series60_sample();
+        let out = fit(&o, (3, 3), (6, 12));
+        let pts: Vec<Vec3> = o.sections.iter().flat_map(|s| s.points.clone()).collect();
+        let squashed: Vec<(f64, f64)> = out.params.iter().flatten().map(|&(u, _)| (u, 0.0)).collect();
+        let p = WeightProblem::new(&out.surface, &pts, &squashed, WeightOptions::default()).expect("ok");
+        let r = quiet(|c| run(&p, &LmOptions::default(), c));
+        assert_eq!(r.value, f64::INFINITY);
+        assert_eq!(r.iterations, 0);
+    }
+
+    /// Quarter circles in the planes x = const with radius r(x) = 2 + 0.1 x, x in [0, 10]:
+    /// exactly the rational surface of degree (2, 1) with control points (x_j, r_j (1, 0)),
+    /// (x_j, r_j (1, 1)), (x_j, r_j (0, 1)) and weights 1, sqrt(2)/2, 1 in both columns j
+    /// (The NURBS Book 7.3: a quarter circle as a rational quadratic).
     fn cone_surface() -> NurbsSurface {
-        let (x0, x1, r0, r1) = (0.0, 10.0, 2.0, 3.0);
         let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
         let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
         let h = std::f64::consts::FRAC_1_SQRT_2;
         let mut pts = Vec::new();
         let mut w = Vec::new();
-        for (i, (cy, cz, wi)) in [(1.0, 0.0, 1.0), (1.0, 1.0, h), (0.0, 1.0, 1.0)].into_iter().enumerate() {
-            let _ = i;
-            for (x, r) in [(x0, r0), (x1, r1)] {
+        for (cy, cz, wi) in [(1.0, 0.0, 1.0), (1.0, 1.0, h), (0.0, 1.0, 1.0)] {
+            for (x, r) in [(0.0, 2.0), (10.0, 3.0)] {
                 pts.push(Vec3::new(x, r * cy, r * cz));
                 w.push(wi);
             }
@@ -423,19 +546,19 @@ mod tests {
         NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
     }
 
-    /// Offsets on the exact surface at irregular parameters: 6 sections, 7 points each.
+    /// 6 sections of 7 offsets on the exact surface at irregular parameters: v not evenly
+    /// spaced, u jittered differently on every section (ends kept).
     fn cone_offsets() -> Offsets {
         let s = cone_surface();
-        let vs = [0.0, 0.17, 0.38, 0.55, 0.81, 1.0];
-        let sections = vs
+        let sections = [0.0, 0.17, 0.38, 0.55, 0.81, 1.0]
             .iter()
             .enumerate()
             .map(|(k, &v)| {
                 let pts = (0..7)
                     .map(|i| {
                         let t = i as f64 / 6.0;
-                        let u = t + if i == 0 || i == 6 { 0.0 } else { 0.05 * (3.0 * t + k as f64).sin() };
-                        s.point(u, v)
+                        let jitter = if i == 0 || i == 6 { 0.0 } else { 0.05 * (3.0 * t + k as f64).sin() };
+                        s.point(t + jitter, v)
                     })
                     .collect();
                 Section::new(format!("{k}"), pts)
@@ -445,89 +568,42 @@ mod tests {
     }
 
     #[test]
-    fn explore_cone() {
+    fn exact_circular_sections_are_recovered_to_round_off() {
         let o = cone_offsets();
-        for sec in &o.sections {
-            for q in &sec.points {
-                let r = (q.y * q.y + q.z * q.z).sqrt();
-                assert!((r - (2.0 + 0.1 * q.x)).abs() < 1e-14, "{q:?}");
-            }
+        // The sections are exact quarter circles of radius 2 + 0.1 x (round-off of A4.3).
+        for q in o.sections.iter().flat_map(|s| &s.points) {
+            assert!(((q.y * q.y + q.z * q.z).sqrt() - (2.0 + 0.1 * q.x)).abs() < 1e-14, "{q:?}");
         }
-        let out = fit(&o, (2, 1), (3, 2));
         let size = o.size();
-        println!("plain rel max {:e}", out.error.overall.max / size);
-        for (name, bounds, free) in [
-            ("weights only", (0.1, 10.0), ParamFreedom::None),
-            ("weights+uv", (0.1, 10.0), ParamFreedom::UV),
-            ("weights+u", (0.1, 10.0), ParamFreedom::U),
-            ("weights+u+secv", (0.1, 10.0), ParamFreedom::USectionV),
-            ("nonrational+u+secv", (1.0, 1.0), ParamFreedom::USectionV),
-            ("nonrational+uv", (1.0, 1.0), ParamFreedom::UV),
-        ] {
-            for reg in [1e-6, 0.0] {
-                let opts = WeightOptions { bounds, regularization: reg, ..WeightOptions::default() };
-                let p = WeightProblem::from_fit(&out, &o, opts).expect("ok");
-                let t = Instant::now();
-                let pf = quiet(|c| run_with_parameters(&p, &p.start(), free, &LmOptions { max_iterations: 200, ..LmOptions::default() }, c));
-                let dt = t.elapsed().as_secs_f64();
-                let s = p.with_params(&pf.params).expect("ok").surface(&pf.result.x).expect("ok");
-                let e = measure_fit_error(&s, &o, None);
-                println!("{name} reg {reg}: rel max {:e} value {:e} it {} ev {} {:?} {dt:.4}s w {:?}", e.overall.max / size, pf.result.value, pf.result.iterations, pf.result.evaluations, pf.result.stop, s.weights());
-                println!("   hist {:?}", &pf.result.history[..pf.result.history.len().min(15)]);
-                if bounds.0 == 2.0 && reg == 0.0 {
-                    println!("   cps {:?}", s.control_points());
-                    println!("   params {:?}", pf.params);
-                    let pts: Vec<Vec3> = o.sections.iter().flat_map(|s| s.points.clone()).collect();
-                    let worst = pts.iter().zip(&pf.params).map(|(q, &(u, v))| (s.point(u, v) - *q).norm()).fold(0.0, f64::max);
-                    println!("   kernel parametric max {worst:e}");
-                }
-            }
+        let rel = |s: &NurbsSurface| measure_fit_error(s, &o, None).overall.max / size;
+        // Non-rational skinning approximation, 3 x 2 control points: measured 5.1e-3.
+        let out = fit(&o, (2, 1), (3, 2));
+        assert!(rel(&out.surface) > 1e-3, "{}", rel(&out.surface));
+        let opts = LmOptions { max_iterations: 200, ..LmOptions::default() };
+        // Weights alone at the skinning's (centripetal) parameters: measured 3.2e-3.
+        let p = WeightProblem::from_fit(&out, &o, WeightOptions::default()).expect("ok");
+        let r = quiet(|c| run(&p, &opts, c));
+        assert!(rel(&p.surface(&r.x).expect("regular")) > 1e-3);
+        // Weights with the parameters (u per offset, v per section): measured 4.6e-11 in 23
+        // iterations (1.0e-14 in 7 without the default regularisation).
+        let pf = quiet(|c| run_with_parameters(&p, &p.start(), ParamFreedom::USectionV, &opts, c));
+        let exact = p.with_params(&pf.params).expect("ok").surface(&pf.result.x).expect("regular");
+        let e = rel(&exact);
+        assert!(e < 1e-9, "relative error {e:e} after {} iterations", pf.result.iterations);
+        // The weights found are those of a quarter circle: middle / end = sqrt(2)/2 in each
+        // column (up to the scale and the Moebius reparameterization w_i -> w_i c^i, whose
+        // invariant is w_0 w_2 / w_1^2 = 2).
+        let w = exact.weights();
+        for j in 0..2 {
+            let inv = w[j] * w[4 + j] / (w[2 + j] * w[2 + j]);
+            assert!((inv - 2.0).abs() < 1e-6, "column {j}: {inv}");
         }
-    }
-
-    #[test]
-    fn explore_fixed() {
-        let o = series60_sample();
-        let out = fit(&o, (3, 3), (6, 12));
-        let p = problem(&o, &out, WeightMode::Fixed, WeightLayout::Full);
-        for tol in [1e-10, 1e-14, 0.0] {
-            let opts = LmOptions { tolerance: tol, gradient_tolerance: tol, step_tolerance: tol, max_iterations: 300, ..LmOptions::default() };
-            let r = quiet(|c| run(&p, &opts, c));
-            println!("tol {tol}: {:?} it {} f {} hist {:?}", r.stop, r.iterations, r.value, &r.history[..r.history.len().min(12)]);
-        }
-    }
-
-    #[test]
-    fn explore() {
-        let o = series60_sample();
-        for ctrl in [(6, 12), (5, 8)] {
-            let out = fit(&o, (3, 3), ctrl);
-            for mode in [WeightMode::Fixed, WeightMode::Resolved] {
-                for layout in [WeightLayout::Full, WeightLayout::RankOne] {
-                    let p = problem(&o, &out, mode, layout);
-                    let t = Instant::now();
-                    let r = quiet(|c| run(&p, &LmOptions::default(), c));
-                    let dt = t.elapsed().as_secs_f64();
-                    let f0 = p.value(&p.start());
-                    let s = p.surface(&r.x).expect("ok");
-                    let e = measure_fit_error(&s, &o, None);
-                    println!("s60 {ctrl:?} {mode:?} {layout:?}: f0 {f0:.5} f {:.5} red {:.1}% it {} ev {} {:?} {dt:.4}s true rms {:.5} (plain {:.5}) wmin {:.3} wmax {:.3}",
-                        r.value, 100.0 * (1.0 - r.value / f0), r.iterations, r.evaluations, r.stop, e.overall.rms, out.error.overall.rms,
-                        s.weights().iter().cloned().fold(f64::INFINITY, f64::min), s.weights().iter().cloned().fold(0.0, f64::max));
-                }
-            }
-        }
-        let o = free_form();
-        let out = fit(&o, (3, 3), (6, 6));
-        for mode in [WeightMode::Fixed, WeightMode::Resolved] {
-            for layout in [WeightLayout::Full, WeightLayout::RankOne] {
-                let p = problem(&o, &out, mode, layout);
-                let t = Instant::now();
-                let r = quiet(|c| run(&p, &LmOptions::default(), c));
-                let dt = t.elapsed().as_secs_f64();
-                let f0 = p.value(&p.start());
-                println!("ff {mode:?} {layout:?}: f0 {f0:.6} f {:.6} red {:.1}% it {} ev {} {:?} {dt:.4}s", r.value, 100.0 * (1.0 - r.value / f0), r.iterations, r.evaluations, r.stop);
-            }
-        }
+        // The same freedom without weights (bounds [1, 1]): measured 1.67e-3.
+        let nonrational = WeightOptions { bounds: (1.0, 1.0), ..WeightOptions::default() };
+        let p1 = WeightProblem::from_fit(&out, &o, nonrational).expect("ok");
+        let pf1 = quiet(|c| run_with_parameters(&p1, &p1.start(), ParamFreedom::USectionV, &opts, c));
+        let s1 = p1.with_params(&pf1.params).expect("ok").surface(&pf1.result.x).expect("regular");
+        assert!(!s1.is_rational());
+        assert!(rel(&s1) > 5e-4, "{}", rel(&s1));
     }
 }

@@ -327,9 +327,7 @@ impl WeightProblem {
             return Err(HullError::Config(format!("offset {k} is not finite (expected finite coordinates)")));
         }
         if let Some(k) = params.iter().position(|(u, v)| !(u.is_finite() && v.is_finite())) {
-            return Err(HullError::Config(format!(
-                "parameters of offset {k} are not finite (expected finite (u, v))"
-            )));
+            return Err(HullError::Config(format!("parameters of offset {k} are not finite (expected finite (u, v))")));
         }
         let (ku, kv) = (surface.knots_u().clone(), surface.knots_v().clone());
         let (n_u, n_v) = (surface.n_u(), surface.n_v());
@@ -413,9 +411,7 @@ impl WeightProblem {
             )));
         }
         if let Some(k) = params.iter().position(|(u, v)| !(u.is_finite() && v.is_finite())) {
-            return Err(HullError::Config(format!(
-                "parameters of offset {k} are not finite (expected finite (u, v))"
-            )));
+            return Err(HullError::Config(format!("parameters of offset {k} are not finite (expected finite (u, v))")));
         }
         let params: Vec<(f64, f64)> = params.iter().map(|&(u, v)| (self.ku.clamp(u), self.kv.clamp(v))).collect();
         let mut out = self.clone();
@@ -555,9 +551,7 @@ impl WeightProblem {
         if !self.solve(&self.table, x, &mut sc) {
             return Err(HullError::Fit {
                 method: "weights",
-                source: NurbsError::SingularSystem {
-                    what: "least-squares control points for these weights".into(),
-                },
+                source: NurbsError::SingularSystem { what: "least-squares control points for these weights".into() },
             });
         }
         let mut cw = vec![[0.0; 4]; self.pat.n()];
@@ -854,14 +848,10 @@ impl WeightProblem {
         // Z[v] = H^T A_v (+ Golub-Pereyra term): the right-hand sides of the projections.
         let mut z = if resolved { vec![[0.0f64; 3]; d * n] } else { Vec::new() };
         // Euclidean control points and the unscaled residuals.
-        let pts: Vec<[f64; 3]> =
-            sc.y.iter().zip(&sc.w).map(|(y, &w)| [y[0] / w, y[1] / w, y[2] / w]).collect();
+        let pts: Vec<[f64; 3]> = sc.y.iter().zip(&sc.w).map(|(y, &w)| [y[0] / w, y[1] / w, y[2] / w]).collect();
         let sk: Vec<[f64; 3]> = (0..m).map(|k| self.point_of(table, &sc, k)).collect();
-        let ek: Vec<[f64; 3]> = sk
-            .iter()
-            .zip(&self.points)
-            .map(|(s, q)| [s[0] - q[0], s[1] - q[1], s[2] - q[2]])
-            .collect();
+        let ek: Vec<[f64; 3]> =
+            sk.iter().zip(&self.points).map(|(s, q)| [s[0] - q[0], s[1] - q[1], s[2] - q[2]]).collect();
         let mut h = vec![0.0; nb];
         for k in 0..m {
             let first = table.first[k];
@@ -904,13 +894,13 @@ impl WeightProblem {
             // The delta term (H^T e)_c at entry c of its variables' right-hand sides (zero at
             // an exact least-squares solution; kept for round-off).
             let mut hte = vec![[0.0f64; 3]; n];
-            for k in 0..m {
+            for (k, e) in ek.iter().enumerate() {
                 let first = table.first[k];
                 let s = sc.s[k];
                 for (bl, &o) in table.vals[k * nb..(k + 1) * nb].iter().zip(&pat.off) {
                     let t = &mut hte[first + o];
                     for c in 0..3 {
-                        t[c] += bl * s * ek[k][c];
+                        t[c] += bl * s * e[c];
                     }
                 }
             }
@@ -1079,11 +1069,13 @@ mod tests {
     fn fixed_mode_at_the_start_is_the_plain_approximations_parametric_rms() {
         let (fit, offsets) = sample_fit((6, 12));
         let (pts, params) = points_and_params(&fit, &offsets);
-        let rms = (pts.iter().zip(&params).map(|(q, &(u, v))| (fit.surface.point(u, v) - *q).norm_squared()).sum::<f64>()
-            / pts.len() as f64)
-            .sqrt();
-        let p = WeightProblem::from_fit(&fit, &offsets, WeightOptions { mode: WeightMode::Fixed, ..Default::default() })
-            .expect("shapes match");
+        let rms =
+            (pts.iter().zip(&params).map(|(q, &(u, v))| (fit.surface.point(u, v) - *q).norm_squared()).sum::<f64>()
+                / pts.len() as f64)
+                .sqrt();
+        let p =
+            WeightProblem::from_fit(&fit, &offsets, WeightOptions { mode: WeightMode::Fixed, ..Default::default() })
+                .expect("shapes match");
         let f = p.value(&p.start());
         // Same sums in a different order (A4.3 vs. the precomputed products): round-off only.
         assert!((f - rms).abs() <= 1e-12 * rms, "{f} vs {rms}");
@@ -1143,9 +1135,10 @@ mod tests {
                 for (a, b) in s.weights().iter().zip(&w) {
                     assert!((a - b).abs() <= 1e-15 * b, "{a} {b}");
                 }
-                let rms = (pts.iter().zip(&params).map(|(q, &(u, v))| (s.point(u, v) - *q).norm_squared()).sum::<f64>()
-                    / pts.len() as f64)
-                    .sqrt();
+                let rms =
+                    (pts.iter().zip(&params).map(|(q, &(u, v))| (s.point(u, v) - *q).norm_squared()).sum::<f64>()
+                        / pts.len() as f64)
+                        .sqrt();
                 let f = p.value(&x);
                 // Homogeneous round trip and re-ordered sums: round-off.
                 assert!((f - rms).abs() <= 1e-10 * rms, "{mode:?} {layout:?}: {f} vs {rms}");
@@ -1255,7 +1248,8 @@ mod tests {
                 assert_eq!(p.params_from_vars(&params, &t0, free), params);
                 assert!(t0.iter().zip(&lo).zip(&hi).all(|((t, l), h)| l <= t && t <= h));
                 // Every 7th unknown, and all section v's (the last 25 of USectionV).
-                for j in (0..t0.len()).filter(|j| j % 7 == 0 || (free == ParamFreedom::USectionV && j + 25 >= t0.len())) {
+                for j in (0..t0.len()).filter(|j| j % 7 == 0 || (free == ParamFreedom::USectionV && j + 25 >= t0.len()))
+                {
                     let fd = central(&r_of, &t0, j, 1e-6);
                     let col = lin.column(d + j);
                     // Fixed mode: the true derivative; O(h^2) + round-off / h.
@@ -1283,14 +1277,15 @@ mod tests {
         assert!(f.is_infinite() && f > 0.0, "{f}");
         assert!(p.residuals(&p.start()).is_none());
         assert!(p.residuals_and_jacobian(&p.start(), JacobianKind::Exact).is_none());
-        assert!(matches!(
-            p.surface(&p.start()),
-            Err(HullError::Fit { source: NurbsError::SingularSystem { .. }, .. })
-        ));
+        assert!(matches!(p.surface(&p.start()), Err(HullError::Fit { source: NurbsError::SingularSystem { .. }, .. })));
         // Fixed mode has no system to solve: finite.
-        let fixed =
-            WeightProblem::new(&fit.surface, &pts, &squashed, WeightOptions { mode: WeightMode::Fixed, ..Default::default() })
-                .expect("ok");
+        let fixed = WeightProblem::new(
+            &fit.surface,
+            &pts,
+            &squashed,
+            WeightOptions { mode: WeightMode::Fixed, ..Default::default() },
+        )
+        .expect("ok");
         assert!(fixed.value(&fixed.start()).is_finite());
         // Bad variables are infeasible, not NaN.
         let good = problem((6, 12), WeightMode::Resolved, WeightLayout::Full, 1e-6);
@@ -1306,7 +1301,8 @@ mod tests {
     #[test]
     fn bad_settings_are_errors() {
         let (fit, offsets) = sample_fit((6, 12));
-        for (bounds, reg) in [((0.0, 10.0), 0.0), ((2.0, 10.0), 0.0), ((0.1, f64::INFINITY), 0.0), ((0.1, 10.0), -1.0)] {
+        for (bounds, reg) in [((0.0, 10.0), 0.0), ((2.0, 10.0), 0.0), ((0.1, f64::INFINITY), 0.0), ((0.1, 10.0), -1.0)]
+        {
             let o = WeightOptions { bounds, regularization: reg, ..Default::default() };
             assert!(matches!(WeightProblem::from_fit(&fit, &offsets, o), Err(HullError::Config(_))), "{bounds:?}");
         }
@@ -1319,7 +1315,12 @@ mod tests {
         assert!(p.with_params(&nan).is_err());
         assert!(p.with_params(&params[1..]).is_err());
         let (_, other) = sample_fit((5, 8));
-        assert!(WeightProblem::from_fit(&fit, &Offsets { sections: other.sections[1..].to_vec(), ..other }, WeightOptions::default()).is_err());
+        assert!(WeightProblem::from_fit(
+            &fit,
+            &Offsets { sections: other.sections[1..].to_vec(), ..other },
+            WeightOptions::default()
+        )
+        .is_err());
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! Fitting: parameterization, knot vectors, interpolation, least squares, skinning.
 //!
 //! The pipeline for one curve is: data parameters ([`parameterize`], The NURBS Book 9.2.1),
-//! a knot vector ([`averaging_knots`] for interpolation, [`approximation_knots`] for least
-//! squares, uniform with [`Parameterization::Universal`]), then a banded solve
+//! a knot vector ([`optimal_knots`] of de Boor for interpolation, [`approximation_knots`] or
+//! [`centred_approximation_knots`] for least squares, uniform with
+//! [`Parameterization::Universal`]), then a banded solve
 //! ([`InterpolationSolver`], A9.1, or [`LeastSquaresSolver`], 9.4.1) that is factored once and
 //! reused for every right-hand side sharing parameters and knots. Surfaces are skinned from
 //! sections ([`skin_interpolate`], [`skin_approximate`]; 9.2.5 and 10.3).
