@@ -26,11 +26,9 @@ pub mod weights;
 
 pub use ga::GaOptions;
 pub use gsa::{GsaOptions, GsaRandom};
-pub use pso::{PsoOptions, PsoVariant};
 pub use lm::{LmOptions, ParamFit};
-pub use weights::{
-    JacobianKind, Linearization, ParamFreedom, WeightLayout, WeightMode, WeightOptions, WeightProblem,
-};
+pub use pso::{PsoOptions, PsoVariant};
+pub use weights::{JacobianKind, Linearization, ParamFreedom, WeightLayout, WeightMode, WeightOptions, WeightProblem};
 
 /// A function to minimise over a box.
 pub trait Objective: Sync {

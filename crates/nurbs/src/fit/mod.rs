@@ -16,13 +16,11 @@ mod lsq;
 mod param;
 mod skin;
 
-pub use constrained::{
-    energy_order, fair_interpolate_curve, row_schoenberg_whitney, FairInterpolationSolver,
-};
+pub use constrained::{energy_order, fair_interpolate_curve, row_schoenberg_whitney, FairInterpolationSolver};
 pub use interp::{interpolate_curve, interpolate_curve_auto, InterpolationSolver};
 pub use knots::{
-    approximation_knots, averaging_knots, centred_approximation_knots, knots_for_approximation, knots_for_interpolation,
-    optimal_knots, schoenberg_whitney,
+    approximation_knots, averaging_knots, centred_approximation_knots, knots_for_approximation,
+    knots_for_interpolation, optimal_knots, schoenberg_whitney,
 };
 pub use lsq::{approximate_curve, approximate_curve_auto, LeastSquaresSolver};
 pub use param::{common_parameters, parameterize, Parameterization, SkinParameterization, UnknownParameterization};
