@@ -8,6 +8,9 @@ use clap::Args;
 use hull::{FitConfig, FitMethod, Units};
 use nurbs::fit::SkinParameterization;
 
+use crate::optim_args::OptimArgs;
+use crate::progress;
+
 /// Arguments of `hullskin fit`.
 #[derive(Debug, Args)]
 pub struct FitArgs {
@@ -18,8 +21,10 @@ pub struct FitArgs {
     /// Output directory for surface.igs, surface.json and report.json.
     #[arg(short = 'o', long = "out", default_value = "hullskin-out")]
     pub out: PathBuf,
-    /// Skinning method: `interp` passes through every offset, `approx` is a least-squares fit
-    /// with the control-point counts of --ctrl.
+    /// Method: `interp` passes through every offset; `approx` is a least-squares fit with the
+    /// control-point counts of --ctrl; `ga`, `pso`, `gsa`, `lm` and `gsa+lm` then optimise the
+    /// approximation's weights (Genetic Algorithm, Particle Swarm, Gravitational Search,
+    /// Levenberg-Marquardt, GSA then LM).
     #[arg(long, default_value = "approx", value_parser = parse_method)]
     pub method: FitMethod,
     /// Control points NU,NV of `approx` (u along each section, v across sections). Default:
@@ -37,6 +42,8 @@ pub struct FitArgs {
     /// Units of the input coordinates, carried to the exports: m, mm, ft or in.
     #[arg(long, default_value = "m", value_parser = parse_units)]
     pub units: Units,
+    #[command(flatten)]
+    pub optim: OptimArgs,
 }
 
 impl Default for FitArgs {
@@ -49,6 +56,7 @@ impl Default for FitArgs {
             degree: (3, 3),
             param: SkinParameterization::default(),
             units: Units::Metre,
+            optim: OptimArgs::default(),
         }
     }
 }
@@ -77,11 +85,24 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         Some(path) => hull::read_offsets(path, args.units)?,
         None => hull::series60_sample(),
     };
-    let config = FitConfig { method: args.method, degree: args.degree, ctrl: args.ctrl, param: args.param };
-    let outcome = hull::fit_offsets(&offsets, &config)?;
+    let config = FitConfig {
+        method: args.method,
+        degree: args.degree,
+        ctrl: args.ctrl,
+        param: args.param,
+        optim: args.optim.settings(),
+    };
+    let outcome = match args.method.algorithm() {
+        Some(a) => progress::with_progress(a.name(), |control| hull::fit_offsets_with(&offsets, &config, control))?,
+        None => hull::fit_offsets(&offsets, &config)?,
+    };
     write_outputs(&args.out, &offsets, &outcome)?;
     print!("{}", hull::summary_table(&offsets, &outcome));
     println!("wrote {}", args.out.join("{surface.igs,surface.json,report.json}").display());
+    if progress::stopped() {
+        eprintln!("hullskin: interrupted: wrote the best surface found before the stop");
+        return Ok(ExitCode::from(130));
+    }
     Ok(ExitCode::SUCCESS)
 }
 

@@ -8,6 +8,8 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod fit;
+mod optim_args;
+mod progress;
 
 /// Fit one fair NURBS hull surface to offset data by skinning.
 #[derive(Debug, Parser)]

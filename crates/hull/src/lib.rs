@@ -20,7 +20,7 @@ pub use error::{HullError, InputErrorKind, Location};
 pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
 pub use offsets::{Offsets, Section, COINCIDENT_REL, PLANAR_REL};
 pub use output::write_atomic;
-pub use pipeline::{default_ctrl, fit_offsets, FitConfig, FitMethod, FitOutcome};
+pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome};
 pub use read::{
     decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
 };

@@ -9,6 +9,7 @@ use nurbs::fit::{skin_approximate, skin_interpolate, SkinOptions, SkinParameteri
 use nurbs::{NurbsError, NurbsSurface};
 
 use crate::fit_error::{measure_fit_error, FitError};
+use crate::optimize::{optimize_weights, quiet, Algorithm, Control, OptimReport, OptimSettings};
 use crate::{HullError, Offsets};
 
 /// How the surface is built from the sections.
@@ -18,6 +19,8 @@ pub enum FitMethod {
     Interp,
     /// Skinning approximation: least squares with `NU x NV` control points.
     Approx,
+    /// Skinning approximation whose weights are then optimised by an algorithm.
+    Optimized(Algorithm),
 }
 
 impl FitMethod {
@@ -26,6 +29,15 @@ impl FitMethod {
         match self {
             FitMethod::Interp => "interp",
             FitMethod::Approx => "approx",
+            FitMethod::Optimized(a) => a.name(),
+        }
+    }
+
+    /// The weight optimiser, for the optimised methods.
+    pub fn algorithm(self) -> Option<Algorithm> {
+        match self {
+            FitMethod::Optimized(a) => Some(a),
+            _ => None,
         }
     }
 }
@@ -42,7 +54,10 @@ impl FromStr for FitMethod {
         match s.trim().to_ascii_lowercase().as_str() {
             "interp" | "interpolation" => Ok(FitMethod::Interp),
             "approx" | "approximation" => Ok(FitMethod::Approx),
-            _ => Err(format!("unknown method `{s}` (expected interp or approx)")),
+            t => t
+                .parse::<Algorithm>()
+                .map(FitMethod::Optimized)
+                .map_err(|_| format!("unknown method `{s}` (expected interp, approx, ga, pso, gsa, lm or gsa+lm)")),
         }
     }
 }
@@ -58,11 +73,19 @@ pub struct FitConfig {
     /// Parameterization along the sections (u) and across them (v); the default is
     /// centripetal along, chord length across ([`SkinParameterization::default`]).
     pub param: SkinParameterization,
+    /// Settings of the weight optimisation (optimised methods only).
+    pub optim: OptimSettings,
 }
 
 impl Default for FitConfig {
     fn default() -> Self {
-        FitConfig { method: FitMethod::Approx, degree: (3, 3), ctrl: None, param: SkinParameterization::default() }
+        FitConfig {
+            method: FitMethod::Approx,
+            degree: (3, 3),
+            ctrl: None,
+            param: SkinParameterization::default(),
+            optim: OptimSettings::default(),
+        }
     }
 }
 
@@ -78,6 +101,8 @@ pub struct FitOutcome {
     pub fit_seconds: f64,
     /// Seconds spent measuring the error by projection.
     pub error_seconds: f64,
+    /// What the weight optimisation did (optimised methods only).
+    pub optimization: Option<OptimReport>,
 }
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
@@ -100,6 +125,41 @@ pub fn default_ctrl(offsets: &Offsets, degree: (usize, usize)) -> (usize, usize)
 /// order), and [`HullError::Fit`] when the kernel refuses the fit (control-point counts out of
 /// range, a singular system).
 pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullError> {
+    quiet(|control| fit_offsets_with(offsets, config, control))
+}
+
+/// [`fit_offsets`] with progress reports and a stop flag for the weight optimisation: when
+/// stopped, the best surface found so far is returned (its report says `"interrupted"`).
+///
+/// # Errors
+/// As [`fit_offsets`].
+pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control<'_>) -> Result<FitOutcome, HullError> {
+    let Some(algorithm) = config.method.algorithm() else {
+        return fit_skin(offsets, config);
+    };
+    let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config })?;
+    let start = Instant::now();
+    let opt = optimize_weights(offsets, &plain, algorithm, &config.optim, control)?;
+    let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let error = measure_fit_error(&opt.surface, offsets, Some(&opt.params));
+    let error_seconds = start.elapsed().as_secs_f64();
+    if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
+        return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
+    }
+    Ok(FitOutcome {
+        config: *config,
+        surface: opt.surface,
+        params: opt.params,
+        error,
+        fit_seconds,
+        error_seconds,
+        optimization: Some(opt.report),
+    })
+}
+
+/// Skinning interpolation or approximation.
+fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullError> {
     let (p, q) = config.degree;
     for (d, dir) in [(p, "u (along the sections)"), (q, "v (across the sections)")] {
         if d == 0 || d > nurbs::MAX_DEGREE {
@@ -122,7 +182,7 @@ pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, 
     let start = Instant::now();
     let result = match config.method {
         FitMethod::Interp => skin_interpolate(&sections, &opts),
-        FitMethod::Approx => {
+        FitMethod::Approx | FitMethod::Optimized(_) => {
             let (nu, nv) = config.ctrl.unwrap_or_else(|| default_ctrl(offsets, config.degree));
             skin_approximate(&sections, nu, nv, &opts)
         }
@@ -142,6 +202,7 @@ pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, 
         error,
         fit_seconds,
         error_seconds,
+        optimization: None,
     })
 }
 

@@ -11,8 +11,16 @@
 //!  "error": {"max": .., "mean": .., "rms": .., "points": N, "worst": {...},
 //!            "per_section": [{"section": "..", "max": .., "mean": .., "rms": .., "points": n}],
 //!            "unconverged_projections": 0},
-//!  "seconds": .., "fit_seconds": .., "error_seconds": ..}
+//!  "seconds": .., "fit_seconds": .., "error_seconds": ..,
+//!  "optimization": {"algorithm": "gsa", "seed": 1, "control_points": "resolved",
+//!                   "weight_layout": "full", "weight_bounds": [0.1, 10], "weight_range": [..],
+//!                   "weights_at_bounds": n, "iterations": .., "evaluations": .., "stop": "iterations",
+//!                   "start_value": .., "final_value": .., "history": [..],
+//!                   "parameter_correction": false, "settings": {..}, "seconds": ..}}
 //! ```
+//!
+//! `optimization` is present for the weight-optimised methods only; its `history` is the best
+//! objective (parametric RMS of the offsets) after each iteration.
 //!
 //! Errors are distances in the input's units, measured by closest-point projection of every
 //! input point onto the surface.
@@ -24,6 +32,7 @@ use std::path::Path;
 use serde::Serialize;
 
 use crate::export::{iges_timestamp, write_iges, write_surface_json, IgesMeta};
+use crate::optimize::OptimReport;
 use crate::{write_atomic, FitError, FitOutcome, HullError, Offsets};
 
 /// The `input` block of `report.json`.
@@ -56,6 +65,9 @@ pub struct Report {
     pub seconds: f64,
     pub fit_seconds: f64,
     pub error_seconds: f64,
+    /// What the weight optimisation did (optimised methods only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub optimization: Option<OptimReport>,
 }
 
 impl Report {
@@ -81,6 +93,7 @@ impl Report {
             seconds: outcome.fit_seconds + outcome.error_seconds,
             fit_seconds: outcome.fit_seconds,
             error_seconds: outcome.error_seconds,
+            optimization: outcome.optimization.clone(),
         }
     }
 }
@@ -155,6 +168,21 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
         format!("{:.3e} {u}", e.overall.rms),
         format!("{:.2} ms", 1e3 * (outcome.fit_seconds + outcome.error_seconds)),
     );
+    if let Some(o) = &outcome.optimization {
+        let _ = writeln!(
+            t,
+            "weights by {}: objective {:.4e} -> {:.4e} {u} in {} evaluations, {} iterations ({}), weights {:.3}..{:.3}, {:.2} s",
+            o.algorithm,
+            o.start_value,
+            o.final_value,
+            o.evaluations,
+            o.iterations,
+            serde_json::to_value(o.stop).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default(),
+            o.weight_range[0],
+            o.weight_range[1],
+            o.seconds,
+        );
+    }
     if let Some(w) = &e.worst {
         let line = w.line.map(|l| format!(", line {l}")).unwrap_or_default();
         let _ = writeln!(t, "worst offset: section {} point {}{line}: {:.3e} {u}", w.section, w.index + 1, w.distance);

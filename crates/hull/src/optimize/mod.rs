@@ -17,6 +17,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
+mod driver;
 pub mod ga;
 pub mod gsa;
 mod linalg;
@@ -24,6 +25,7 @@ pub mod lm;
 pub mod pso;
 pub mod weights;
 
+pub use driver::{optimize_weights, Algorithm, OptimReport, OptimSettings, Optimized};
 pub use ga::GaOptions;
 pub use gsa::{GsaOptions, GsaRandom};
 pub use lm::{LmOptions, ParamFit};

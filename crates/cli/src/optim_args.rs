@@ -1,0 +1,75 @@
+//! Flags of the weight optimisation, shared by `fit` and `compare`.
+
+use clap::Args;
+use hull::optimize::{OptimSettings, WeightLayout, WeightMode, WeightOptions};
+
+/// Settings of the weight optimisers (methods ga, pso, gsa, lm, gsa+lm).
+#[derive(Debug, Clone, Args)]
+pub struct OptimArgs {
+    /// Seed of the optimisers' random numbers: the same seed gives the same surface, whatever
+    /// the thread count.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Iterations (generations) of GA, PSO or GSA, or the iteration cap of LM. Default: each
+    /// algorithm's own (GA 200, PSO 200, GSA 500, LM 100).
+    #[arg(long)]
+    pub iterations: Option<usize>,
+    /// Population of GA, particles of PSO, agents of GSA. Default: 50, 40, 50.
+    #[arg(long)]
+    pub population: Option<usize>,
+    /// Weight layout: `full` (one weight per control point) or `rank1` (w_ij = a_i b_j, fewer
+    /// variables, less over-fitting between the offsets).
+    #[arg(long, default_value = "full", value_parser = parse_layout)]
+    pub weights: WeightLayout,
+    /// Control points while the weights move: `resolved` (least squares for every weight
+    /// vector) or `fixed` (those of the plain approximation).
+    #[arg(long = "control-points", default_value = "resolved", value_parser = parse_mode)]
+    pub control_points: WeightMode,
+    /// Finish with a joint fit of the weights and the offsets' parameters (moves each
+    /// offset's parameters toward its foot point).
+    #[arg(long)]
+    pub param_correction: bool,
+}
+
+impl Default for OptimArgs {
+    fn default() -> Self {
+        let d = OptimSettings::default();
+        OptimArgs {
+            seed: d.seed,
+            iterations: None,
+            population: None,
+            weights: d.weights.layout,
+            control_points: d.weights.mode,
+            param_correction: false,
+        }
+    }
+}
+
+impl OptimArgs {
+    /// The library settings.
+    pub fn settings(&self) -> OptimSettings {
+        OptimSettings {
+            seed: self.seed,
+            iterations: self.iterations,
+            population: self.population,
+            weights: WeightOptions { mode: self.control_points, layout: self.weights, ..WeightOptions::default() },
+            parameter_correction: self.param_correction,
+        }
+    }
+}
+
+fn parse_layout(s: &str) -> Result<WeightLayout, String> {
+    match s.trim().to_ascii_lowercase().as_str() {
+        "full" => Ok(WeightLayout::Full),
+        "rank1" | "rank-one" | "rank_one" => Ok(WeightLayout::RankOne),
+        _ => Err(format!("unknown weight layout `{s}` (expected full or rank1)")),
+    }
+}
+
+fn parse_mode(s: &str) -> Result<WeightMode, String> {
+    match s.trim().to_ascii_lowercase().as_str() {
+        "resolved" => Ok(WeightMode::Resolved),
+        "fixed" => Ok(WeightMode::Fixed),
+        _ => Err(format!("unknown control-point mode `{s}` (expected resolved or fixed)")),
+    }
+}

@@ -1,0 +1,262 @@
+//! From a plain skinning approximation to a surface with optimised weights: build the
+//! [`WeightProblem`], run the chosen algorithm (GA, PSO, GSA, Levenberg-Marquardt, or GSA then
+//! LM), and report what was done.
+
+use std::fmt;
+use std::str::FromStr;
+use std::time::Instant;
+
+use nurbs::NurbsSurface;
+use serde::Serialize;
+
+use super::lm::{self, LmOptions};
+use super::weights::{ParamFreedom, WeightLayout, WeightMode, WeightOptions, WeightProblem};
+use super::{ga, gsa, pso, Control, GaOptions, GsaOptions, Objective, OptimResult, PsoOptions, StopReason};
+use crate::{FitOutcome, HullError, Offsets};
+
+/// The weight optimisers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Algorithm {
+    /// Genetic Algorithm (real-coded, SBX, polynomial mutation, elitism).
+    Ga,
+    /// Particle Swarm Optimization (inertia 0.9 -> 0.4).
+    Pso,
+    /// Gravitational Search Algorithm (Rashedi et al. 2009).
+    Gsa,
+    /// Levenberg-Marquardt on the variable-projection functional.
+    Lm,
+    /// GSA, then LM from its best point.
+    GsaLm,
+}
+
+impl Algorithm {
+    /// Every algorithm, in the order of the comparison table.
+    pub const ALL: [Algorithm; 5] = [Algorithm::Ga, Algorithm::Pso, Algorithm::Gsa, Algorithm::Lm, Algorithm::GsaLm];
+
+    /// The name on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Algorithm::Ga => "ga",
+            Algorithm::Pso => "pso",
+            Algorithm::Gsa => "gsa",
+            Algorithm::Lm => "lm",
+            Algorithm::GsaLm => "gsa+lm",
+        }
+    }
+}
+
+impl fmt::Display for Algorithm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Algorithm {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let t = s.trim().to_ascii_lowercase();
+        Algorithm::ALL
+            .into_iter()
+            .find(|a| a.name() == t)
+            .ok_or_else(|| format!("unknown optimiser `{s}` (expected ga, pso, gsa, lm or gsa+lm)"))
+    }
+}
+
+/// Settings of a weight optimisation common to all algorithms; `None` keeps each algorithm's
+/// published default.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OptimSettings {
+    /// Seed of the run's random stream (GA, PSO, GSA).
+    pub seed: u64,
+    /// Iterations (generations); for LM its iteration cap.
+    pub iterations: Option<usize>,
+    /// Population (GA), particles (PSO) or agents (GSA).
+    pub population: Option<usize>,
+    pub weights: WeightOptions,
+    /// Finish with a joint Gauss-Newton fit of the weights and the offsets' parameters (u per
+    /// offset, v per section), which moves every offset's parameters toward its foot point.
+    pub parameter_correction: bool,
+}
+
+impl Default for OptimSettings {
+    fn default() -> Self {
+        OptimSettings {
+            seed: 1,
+            iterations: None,
+            population: None,
+            weights: WeightOptions::default(),
+            parameter_correction: false,
+        }
+    }
+}
+
+/// What a weight optimisation did, for `report.json` (`"optimization"`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OptimReport {
+    pub algorithm: &'static str,
+    pub seed: u64,
+    /// `"resolved"` (control points re-solved by least squares) or `"fixed"`.
+    pub control_points: &'static str,
+    /// `"full"` (one weight per control point) or `"rank_one"`.
+    pub weight_layout: &'static str,
+    pub weight_bounds: [f64; 2],
+    /// Smallest and largest weight of the result.
+    pub weight_range: [f64; 2],
+    /// Weights at a bound (within 1e-9 relative): a sign of over-fitting.
+    pub weights_at_bounds: usize,
+    pub iterations: usize,
+    pub evaluations: usize,
+    pub stop: StopReason,
+    /// The objective (parametric RMS of the offsets, plus the tiny log-weight penalty) at the
+    /// start (all weights 1) and at the end.
+    pub start_value: f64,
+    pub final_value: f64,
+    /// Best objective after each iteration; `gsa+lm` joins both phases.
+    pub history: Vec<f64>,
+    /// Whether the offsets' parameters were corrected (jointly with the weights).
+    pub parameter_correction: bool,
+    /// The algorithm's settings as used.
+    pub settings: serde_json::Value,
+    pub seconds: f64,
+}
+
+/// The optimised surface, its data parameters (moved only with parameter correction) and the
+/// report.
+#[derive(Clone, Debug)]
+pub struct Optimized {
+    pub surface: NurbsSurface,
+    pub params: Vec<Vec<(f64, f64)>>,
+    pub report: OptimReport,
+}
+
+fn settings_json<T: Serialize>(t: &T) -> serde_json::Value {
+    serde_json::to_value(t).unwrap_or(serde_json::Value::Null)
+}
+
+/// Optimise the weights of the plain approximation `base` of `offsets`.
+///
+/// # Errors
+/// [`HullError::Config`] if the problem cannot be built (mismatched parameters, bad bounds),
+/// [`HullError::Fit`] if the resulting surface is not finite.
+pub fn optimize_weights(
+    offsets: &Offsets,
+    base: &FitOutcome,
+    algorithm: Algorithm,
+    settings: &OptimSettings,
+    control: &Control<'_>,
+) -> Result<Optimized, HullError> {
+    let start = Instant::now();
+    let problem = WeightProblem::from_fit(base, offsets, settings.weights)?;
+    let x0 = problem.start();
+    let start_value = problem.value(&x0);
+    let lm_opts = LmOptions {
+        max_iterations: settings.iterations.unwrap_or(LmOptions::default().max_iterations),
+        ..LmOptions::default()
+    };
+    let (mut result, settings_value): (OptimResult, serde_json::Value) = match algorithm {
+        Algorithm::Ga => {
+            let mut o = GaOptions::default();
+            o.iterations = settings.iterations.unwrap_or(o.iterations);
+            o.population = settings.population.unwrap_or(o.population);
+            (ga::run(&problem, &o, settings.seed, control), settings_json(&o))
+        }
+        Algorithm::Pso => {
+            let mut o = PsoOptions::default();
+            o.iterations = settings.iterations.unwrap_or(o.iterations);
+            o.particles = settings.population.unwrap_or(o.particles);
+            (pso::run(&problem, &o, settings.seed, control), settings_json(&o))
+        }
+        Algorithm::Gsa | Algorithm::GsaLm => {
+            let mut o = GsaOptions::default();
+            o.iterations = settings.iterations.unwrap_or(o.iterations);
+            o.agents = settings.population.unwrap_or(o.agents);
+            let mut r = gsa::run(&problem, &o, settings.seed, control);
+            let mut s = settings_json(&o);
+            if algorithm == Algorithm::GsaLm && !control.stopped() {
+                let polish = lm::polish(&problem, &r.x, &LmOptions::default(), control);
+                if polish.value <= r.value {
+                    r.x = polish.x;
+                    r.value = polish.value;
+                }
+                r.evaluations += polish.evaluations;
+                r.iterations += polish.iterations;
+                r.history.extend(polish.history.iter().skip(1).map(|&v| v.min(r.value)));
+                r.stop = polish.stop;
+                s = serde_json::json!({ "gsa": s, "lm": lm_settings(&LmOptions::default()) });
+            }
+            (r, s)
+        }
+        Algorithm::Lm => (lm::run(&problem, &lm_opts, control), lm_settings(&lm_opts)),
+    };
+    // Never worse than the start (the algorithms guarantee it; this guards the contract).
+    if !(result.value <= start_value) {
+        result.x = x0;
+        result.value = start_value;
+    }
+    let (problem, params) = if settings.parameter_correction && !control.stopped() {
+        let fit = lm::run_with_parameters(&problem, &result.x, ParamFreedom::USectionV, &lm_opts, control);
+        if fit.result.value < result.value {
+            result.evaluations += fit.result.evaluations;
+            result.iterations += fit.result.iterations;
+            result.history.push(fit.result.value);
+            result.x = fit.result.x;
+            result.value = fit.result.value;
+            (problem.with_params(&fit.params)?, fit.params)
+        } else {
+            (problem, flat_params(base))
+        }
+    } else {
+        (problem, flat_params(base))
+    };
+    let surface = problem.surface(&result.x)?;
+    let w = surface.weights();
+    let (lo, hi) = settings.weights.bounds;
+    let wmin = w.iter().copied().fold(f64::INFINITY, f64::min);
+    let wmax = w.iter().copied().fold(0.0, f64::max);
+    let at_bounds = w.iter().filter(|&&x| (x - lo).abs() <= 1e-9 * lo || (x - hi).abs() <= 1e-9 * hi).count();
+    let report = OptimReport {
+        algorithm: algorithm.name(),
+        seed: settings.seed,
+        control_points: match settings.weights.mode {
+            WeightMode::Resolved => "resolved",
+            WeightMode::Fixed => "fixed",
+        },
+        weight_layout: match settings.weights.layout {
+            WeightLayout::Full => "full",
+            WeightLayout::RankOne => "rank_one",
+        },
+        weight_bounds: [lo, hi],
+        weight_range: [wmin, wmax],
+        weights_at_bounds: at_bounds,
+        iterations: result.iterations,
+        evaluations: result.evaluations,
+        stop: result.stop,
+        start_value,
+        final_value: result.value,
+        history: result.history,
+        parameter_correction: settings.parameter_correction,
+        settings: settings_value,
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    Ok(Optimized { surface, params: regroup(offsets, &params), report })
+}
+
+fn lm_settings(o: &LmOptions) -> serde_json::Value {
+    serde_json::json!({
+        "max_iterations": o.max_iterations,
+        "tolerance": o.tolerance,
+        "gradient_tolerance": o.gradient_tolerance,
+        "step_tolerance": o.step_tolerance,
+        "initial_damping": o.initial_damping,
+    })
+}
+
+fn flat_params(base: &FitOutcome) -> Vec<(f64, f64)> {
+    base.params.iter().flatten().copied().collect()
+}
+
+/// Flat parameters back into one list per section.
+fn regroup(offsets: &Offsets, flat: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
+    let mut it = flat.iter().copied();
+    offsets.sections.iter().map(|s| it.by_ref().take(s.points.len()).collect()).collect()
+}
