@@ -31,10 +31,31 @@ pub fn basis_funs(knots: &[f64], span: usize, u: f64, p: usize, out: &mut BasisR
 /// The non-vanishing basis functions and their derivatives up to order `n` (A2.3):
 /// `ders[k][j]` is the k-th derivative of `N_{span-p+j,p}` at `u`. Derivatives above `p` are 0.
 pub fn ders_basis_funs(knots: &[f64], span: usize, u: f64, p: usize, n: usize, ders: &mut [BasisRow]) {
-    debug_assert!(ders.len() > n);
-    let mut ndu = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];
-    let mut left = [0.0; MAX_DEGREE + 1];
-    let mut right = [0.0; MAX_DEGREE + 1];
+    // Scratch sized to the degree: zeroing a (MAX_DEGREE + 1)^2 table on every call cost more
+    // than the arithmetic of a cubic.
+    match p {
+        1 => ders_basis_funs_sized::<2>(knots, span, u, p, n, ders),
+        2 => ders_basis_funs_sized::<3>(knots, span, u, p, n, ders),
+        3 => ders_basis_funs_sized::<4>(knots, span, u, p, n, ders),
+        4 => ders_basis_funs_sized::<5>(knots, span, u, p, n, ders),
+        5 => ders_basis_funs_sized::<6>(knots, span, u, p, n, ders),
+        _ => ders_basis_funs_sized::<{ MAX_DEGREE + 1 }>(knots, span, u, p, n, ders),
+    }
+}
+
+/// A2.3 with scratch arrays of `N >= p + 1` entries.
+fn ders_basis_funs_sized<const N: usize>(
+    knots: &[f64],
+    span: usize,
+    u: f64,
+    p: usize,
+    n: usize,
+    ders: &mut [BasisRow],
+) {
+    debug_assert!(ders.len() > n && p < N);
+    let mut ndu = [[0.0; N]; N];
+    let mut left = [0.0; N];
+    let mut right = [0.0; N];
     ndu[0][0] = 1.0;
     for j in 1..=p {
         left[j] = u - knots[span + 1 - j];
@@ -55,7 +76,7 @@ pub fn ders_basis_funs(knots: &[f64], span: usize, u: f64, p: usize, n: usize, d
         row[..=p].fill(0.0);
     }
     let nd = n.min(p);
-    let mut a = [[0.0; MAX_DEGREE + 1]; 2];
+    let mut a = [[0.0; N]; 2];
     for r in 0..=p {
         let (mut s1, mut s2) = (0usize, 1usize);
         a[0][0] = 1.0;
