@@ -51,7 +51,6 @@ use super::banded::{BandedCholesky, PIVOT_REL};
 use super::interp::check_in_domain;
 use super::knots::check_params;
 use crate::basis::{basis_funs, ders_basis_funs, BasisRow};
-use crate::curve::to_homogeneous;
 use crate::knots::MAX_DEGREE;
 use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
 
@@ -433,11 +432,7 @@ impl FairInterpolationSolver {
     /// [`NurbsError::NonFinitePoint`] for a non-finite point, else as
     /// [`FairInterpolationSolver::solve`].
     pub fn control_points(&self, points: &[Vec3]) -> Result<Vec<Vec3>, NurbsError> {
-        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-            return Err(NurbsError::NonFinitePoint { index });
-        }
-        let b: Vec<[f64; 3]> = points.iter().map(|p| p.to_array()).collect();
-        Ok(self.solve(&b)?.into_iter().map(Vec3::from_array).collect())
+        super::solve_points(points, |b| self.solve(b))
     }
 
     /// The non-rational least-energy curve through `points`.
@@ -445,11 +440,7 @@ impl FairInterpolationSolver {
     /// # Errors
     /// As [`FairInterpolationSolver::control_points`].
     pub fn curve(&self, points: &[Vec3]) -> Result<NurbsCurve, NurbsError> {
-        let cp = self.control_points(points)?;
-        Ok(NurbsCurve::from_parts_unchecked(
-            self.knots.clone(),
-            cp.into_iter().map(|p| to_homogeneous(p, 1.0)).collect(),
-        ))
+        Ok(super::polynomial_curve(&self.knots, self.control_points(points)?))
     }
 }
 

@@ -13,7 +13,6 @@ use super::banded::BandedLu;
 use super::knots::{check_params, knots_for_interpolation};
 use super::{parameterize, Parameterization};
 use crate::basis::{basis_funs, BasisRow};
-use crate::curve::to_homogeneous;
 use crate::knots::MAX_DEGREE;
 use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
 
@@ -104,12 +103,11 @@ impl InterpolationSolver {
         if points.len() != self.params.len() {
             return Err(NurbsError::ControlPointCount { expected: self.params.len(), got: points.len() });
         }
-        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-            return Err(NurbsError::NonFinitePoint { index });
-        }
-        let mut b: Vec<[f64; 3]> = points.iter().map(|p| p.to_array()).collect();
-        self.solve_in_place(&mut b)?;
-        Ok(b.into_iter().map(Vec3::from_array).collect())
+        super::solve_points(points, |b| {
+            let mut b = b.to_vec();
+            self.solve_in_place(&mut b)?;
+            Ok(b)
+        })
     }
 
     /// The non-rational curve through `points` at the solver's parameters.
@@ -117,11 +115,7 @@ impl InterpolationSolver {
     /// # Errors
     /// As [`InterpolationSolver::control_points`].
     pub fn curve(&self, points: &[Vec3]) -> Result<NurbsCurve, NurbsError> {
-        let cp = self.control_points(points)?;
-        Ok(NurbsCurve::from_parts_unchecked(
-            self.knots.clone(),
-            cp.into_iter().map(|p| to_homogeneous(p, 1.0)).collect(),
-        ))
+        Ok(super::polynomial_curve(&self.knots, self.control_points(points)?))
     }
 }
 

@@ -15,7 +15,6 @@ use super::interp::check_in_domain;
 use super::knots::{check_ctrl_count, check_params, knots_for_approximation, schoenberg_whitney};
 use super::{parameterize, Parameterization};
 use crate::basis::{basis_funs, BasisRow};
-use crate::curve::to_homogeneous;
 use crate::knots::MAX_DEGREE;
 use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
 
@@ -164,11 +163,7 @@ impl LeastSquaresSolver {
     /// # Errors
     /// [`NurbsError::NonFinitePoint`] for a non-finite point, else as [`LeastSquaresSolver::solve`].
     pub fn control_points(&self, points: &[Vec3]) -> Result<Vec<Vec3>, NurbsError> {
-        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-            return Err(NurbsError::NonFinitePoint { index });
-        }
-        let b: Vec<[f64; 3]> = points.iter().map(|p| p.to_array()).collect();
-        Ok(self.solve(&b)?.into_iter().map(Vec3::from_array).collect())
+        super::solve_points(points, |b| self.solve(b))
     }
 
     /// The non-rational least-squares curve of `points`.
@@ -176,11 +171,7 @@ impl LeastSquaresSolver {
     /// # Errors
     /// As [`LeastSquaresSolver::control_points`].
     pub fn curve(&self, points: &[Vec3]) -> Result<NurbsCurve, NurbsError> {
-        let cp = self.control_points(points)?;
-        Ok(NurbsCurve::from_parts_unchecked(
-            self.knots.clone(),
-            cp.into_iter().map(|p| to_homogeneous(p, 1.0)).collect(),
-        ))
+        Ok(super::polynomial_curve(&self.knots, self.control_points(points)?))
     }
 }
 

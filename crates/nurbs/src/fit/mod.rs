@@ -8,6 +8,8 @@
 //! reused for every right-hand side sharing parameters and knots. Surfaces are skinned from
 //! sections ([`skin_interpolate`], [`skin_approximate`]; 9.2.5 and 10.3).
 
+use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
+
 mod banded;
 mod constrained;
 mod interp;
@@ -25,3 +27,24 @@ pub use knots::{
 pub use lsq::{approximate_curve, approximate_curve_auto, LeastSquaresSolver};
 pub use param::{common_parameters, parameterize, Parameterization, SkinParameterization, UnknownParameterization};
 pub use skin::{skin_approximate, skin_interpolate, SkinOptions, SkinResult};
+
+/// The shared tail of every curve solver: check the points, solve for their coordinates and
+/// return the control points.
+pub(crate) fn solve_points(
+    points: &[Vec3],
+    solve: impl FnOnce(&[[f64; 3]]) -> Result<Vec<[f64; 3]>, NurbsError>,
+) -> Result<Vec<Vec3>, NurbsError> {
+    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+        return Err(NurbsError::NonFinitePoint { index });
+    }
+    let b: Vec<[f64; 3]> = points.iter().map(|p| p.to_array()).collect();
+    Ok(solve(&b)?.into_iter().map(Vec3::from_array).collect())
+}
+
+/// The non-rational curve with these knots and control points.
+pub(crate) fn polynomial_curve(knots: &KnotVector, control_points: Vec<Vec3>) -> NurbsCurve {
+    NurbsCurve::from_parts_unchecked(
+        knots.clone(),
+        control_points.into_iter().map(|p| crate::curve::to_homogeneous(p, 1.0)).collect(),
+    )
+}
