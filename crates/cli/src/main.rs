@@ -7,6 +7,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod compare;
 mod fit;
 mod optim_args;
 mod progress;
@@ -24,6 +25,9 @@ enum Command {
     /// Fit a surface to offsets (the built-in Series 60 sample when no input is given) and
     /// write surface.igs, surface.json and report.json.
     Fit(fit::FitArgs),
+    /// Compare interpolation, approximation and every weight optimiser at the same control
+    /// points; write compare.json and compare.md and print the table with the floors.
+    Compare(compare::CompareArgs),
 }
 
 fn main() -> ExitCode {
@@ -40,6 +44,7 @@ fn run() -> anyhow::Result<ExitCode> {
     let cli = Cli::parse();
     match cli.command {
         Some(Command::Fit(args)) => fit::run(&args),
+        Some(Command::Compare(args)) => compare::run(&args),
         None => fit::run(&fit::FitArgs::default()),
     }
 }

@@ -80,12 +80,12 @@ pub enum HullError {
         kind: Box<InputErrorKind>,
     },
     /// The kernel could not fit a surface with the requested settings.
-    #[error("{method} fit failed: {source}")]
+    #[error("{method} fit failed: {reason}")]
     Fit {
         /// The fitting method.
         method: &'static str,
-        /// The kernel's reason.
-        source: nurbs::NurbsError,
+        /// The kernel's reason (in the message; not a chained `source`, so it prints once).
+        reason: nurbs::NurbsError,
     },
     /// Settings that cannot work, whatever the data.
     #[error("{0}")]
@@ -93,6 +93,24 @@ pub enum HullError {
     /// A units name that is none of `m`, `mm`, `ft`, `in`.
     #[error("unknown units \"{0}\" (expected m, mm, ft or in)")]
     UnknownUnits(String),
+    /// No control-point count tried reached the requested max error.
+    #[error(
+        "no control-point count reaches max error {tolerance:.3e} {units}: the best max error is {best:.3e} {units} at {}x{} control points after {fits} fits (expected a tolerance of at least that)",
+        control_points.0,
+        control_points.1
+    )]
+    ToleranceNotReached {
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// The smallest max error found (infinite if no fit was done).
+        best: f64,
+        /// Where it was found `(nu, nv)`.
+        control_points: (usize, usize),
+        /// Fits done.
+        fits: usize,
+        /// Units of the distances.
+        units: &'static str,
+    },
 }
 
 impl HullError {

@@ -4,6 +4,7 @@
 //! Axes everywhere: x forward (aft to fore), y to starboard (half-breadth, >= 0), z up from
 //! the baseline; coordinates stay in the user's [`Units`].
 
+mod compare;
 mod error;
 pub mod export;
 pub mod fit_error;
@@ -14,8 +15,15 @@ mod pipeline;
 pub mod read;
 mod report;
 mod sample;
+mod tolerance_search;
 mod units;
 
+pub use compare::{
+    check_floors, compare_offsets, compare_offsets_with, comparison_json, comparison_markdown, comparison_table,
+    floors_markdown, gaussian_curvature_range, CompareConfig, CompareOptimization, CompareRow, Comparison,
+    CurvatureRange, CurvatureSampling, FloorCheck, Floors, OptimRunner, RowError, RowStatus, COMPARE_METHODS,
+    CURVATURE_GRID, FLOOR_RELATIVE_TOLERANCE,
+};
 pub use error::{HullError, InputErrorKind, Location};
 pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
 pub use offsets::{Offsets, Section, COINCIDENT_REL, PLANAR_REL};
@@ -24,6 +32,9 @@ pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, FitConfig, FitMe
 pub use read::{
     decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
 };
-pub use report::{summary_table, write_fit_outputs, InputSummary, Report, SurfaceSummary};
+pub use report::{
+    summary_table, write_fit_outputs, write_fit_outputs_with_report, InputSummary, Report, SurfaceSummary,
+};
 pub use sample::{series60_sample, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
+pub use tolerance_search::{fit_to_tolerance, ToleranceFit, ToleranceSearch, ToleranceSettings, TriedCount};
 pub use units::Units;

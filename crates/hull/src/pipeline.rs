@@ -207,7 +207,7 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullErr
 }
 
 fn fit_error(config: &FitConfig, source: NurbsError) -> HullError {
-    HullError::Fit { method: config.method.name(), source }
+    HullError::Fit { method: config.method.name(), reason: source }
 }
 
 #[cfg(test)]

@@ -20,7 +20,9 @@
 //! ```
 //!
 //! `optimization` is present for the weight-optimised methods only; its `history` is the best
-//! objective (parametric RMS of the offsets) after each iteration.
+//! objective (parametric RMS of the offsets) after each iteration. `tolerance_search` is
+//! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
+//! `interp_control_points`, `ratio`, `fits`, `complete`, `tried`).
 //!
 //! Errors are distances in the input's units, measured by closest-point projection of every
 //! input point onto the surface.
@@ -33,7 +35,7 @@ use serde::Serialize;
 
 use crate::export::{iges_timestamp, write_iges, write_surface_json, IgesMeta};
 use crate::optimize::OptimReport;
-use crate::{write_atomic, FitError, FitOutcome, HullError, Offsets};
+use crate::{write_atomic, FitError, FitOutcome, HullError, Offsets, ToleranceSearch};
 
 /// The `input` block of `report.json`.
 #[derive(Clone, Debug, Serialize)]
@@ -68,6 +70,9 @@ pub struct Report {
     /// What the weight optimisation did (optimised methods only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub optimization: Option<OptimReport>,
+    /// The search for the fewest control points within a tolerance (`--tolerance` only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tolerance_search: Option<ToleranceSearch>,
 }
 
 impl Report {
@@ -94,6 +99,7 @@ impl Report {
             fit_seconds: outcome.fit_seconds,
             error_seconds: outcome.error_seconds,
             optimization: outcome.optimization.clone(),
+            tolerance_search: None,
         }
     }
 }
@@ -116,6 +122,20 @@ fn timestamp() -> String {
 /// # Errors
 /// [`HullError::Io`] naming the file that could not be written.
 pub fn write_fit_outputs(dir: &Path, offsets: &Offsets, outcome: &FitOutcome) -> Result<(), HullError> {
+    write_fit_outputs_with_report(dir, offsets, outcome, &Report::new(offsets, outcome))
+}
+
+/// [`write_fit_outputs`] with `report.json` from `report` (e.g. [`Report::new`] plus a
+/// tolerance search).
+///
+/// # Errors
+/// As [`write_fit_outputs`].
+pub fn write_fit_outputs_with_report(
+    dir: &Path,
+    offsets: &Offsets,
+    outcome: &FitOutcome,
+    report: &Report,
+) -> Result<(), HullError> {
     let surface = &outcome.surface;
     let units = offsets.units;
     let io_err = |path: &Path| {
@@ -128,7 +148,7 @@ pub fn write_fit_outputs(dir: &Path, offsets: &Offsets, outcome: &FitOutcome) ->
         .map_err(io_err(&dir.join("surface.igs")))?;
     let mut json = Vec::new();
     write_surface_json(&mut json, surface, units.symbol()).map_err(io_err(&dir.join("surface.json")))?;
-    let mut report = serde_json::to_vec_pretty(&Report::new(offsets, outcome))
+    let mut report = serde_json::to_vec_pretty(report)
         .map_err(|e| io_err(&dir.join("report.json"))(io::Error::other(e)))?;
     report.push(b'\n');
     for (name, bytes) in [("surface.igs", &iges), ("surface.json", &json), ("report.json", &report)] {

@@ -1,0 +1,111 @@
+//! `hullskin compare`: every method at the same control points, one table.
+//!
+//! Runs skinning interpolation, the plain approximation, and the approximation with its weights
+//! optimised by GA, PSO, GSA, LM and GSA+LM; writes `DIR/compare.json` and `DIR/compare.md`
+//! (each atomically) and prints the Markdown table with the floors of issue 3.
+//!
+//! Ctrl-C stops the optimiser that is running (keeping its best surface so far, which is
+//! measured and marked `interrupted`) and then the whole comparison: what was done is written,
+//! the methods not run are listed, and the exit status is 130. A second Ctrl-C quits at once.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+use hull::{CompareConfig, Units};
+use nurbs::fit::SkinParameterization;
+
+use crate::optim_args::OptimArgs;
+use crate::progress;
+
+/// Arguments of `hullskin compare`.
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// Offsets file (sections CSV or offset table CSV). Without it the built-in Series 60
+    /// Cb 0.60 parent hull is compared.
+    pub input: Option<PathBuf>,
+    /// Output directory for compare.json and compare.md.
+    #[arg(short = 'o', long = "out", default_value = "hullskin-compare")]
+    pub out: PathBuf,
+    /// Control points NU,NV of the approximation and of every optimised method. Default: three
+    /// quarters of the offsets in each direction, as `fit`. Interpolation has its own count.
+    #[arg(long, value_parser = parse_pair)]
+    pub ctrl: Option<(usize, usize)>,
+    /// Degrees P,Q in u (along sections) and v (across sections).
+    #[arg(long, default_value = "3,3", value_parser = parse_pair)]
+    pub degree: (usize, usize),
+    /// Parameterization: centripetal, chord, uniform or universal; one name or U,V.
+    #[arg(long, default_value = "centripetal,chord", value_parser = parse_param)]
+    pub param: SkinParameterization,
+    /// Units of the input coordinates (m, mm, ft or in); errors are reported in them.
+    #[arg(long, default_value = "m", value_parser = parse_units)]
+    pub units: Units,
+    #[command(flatten)]
+    pub optim: OptimArgs,
+}
+
+fn parse_pair(s: &str) -> Result<(usize, usize), String> {
+    let (a, b) = s.split_once(',').ok_or_else(|| format!("expected two integers like 8,12, got `{s}`"))?;
+    let p = |t: &str| t.trim().parse::<usize>().map_err(|_| format!("`{t}` is not a non-negative integer (in `{s}`)"));
+    Ok((p(a)?, p(b)?))
+}
+
+fn parse_param(s: &str) -> Result<SkinParameterization, String> {
+    s.parse().map_err(|e| format!("{e}"))
+}
+
+fn parse_units(s: &str) -> Result<Units, String> {
+    s.parse().map_err(|e| format!("{e}"))
+}
+
+/// Run `hullskin compare`.
+pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
+    let offsets = match &args.input {
+        Some(path) => hull::read_offsets(path, args.units)?,
+        None => hull::series60_sample(),
+    };
+    let config =
+        CompareConfig { degree: args.degree, ctrl: args.ctrl, param: args.param, optim: args.optim.settings() };
+    let comparison = hull::compare_offsets_with(&offsets, &config, &mut |algorithm, fit| {
+        progress::with_progress(algorithm.name(), |control| fit(control))
+    })?;
+    let dir = &args.out;
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    let markdown = hull::comparison_markdown(&comparison);
+    for (name, text) in [("compare.json", hull::comparison_json(&comparison)), ("compare.md", markdown.clone())] {
+        let path = dir.join(name);
+        hull::write_atomic(&path, |w| w.write_all(text.as_bytes()))
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    print!("{markdown}");
+    println!("\nwrote {}", dir.join("{compare.json,compare.md}").display());
+    if !comparison.complete || progress::stopped() {
+        eprintln!("hullskin: interrupted: wrote the methods done before the stop");
+        return Ok(ExitCode::from(130));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Debug, Parser)]
+    struct Wrap {
+        #[command(flatten)]
+        args: CompareArgs,
+    }
+
+    #[test]
+    fn flags_reach_the_config() {
+        let w = Wrap::try_parse_from(["x", "in.csv", "--ctrl", "5,9", "--seed", "7", "--iterations", "3"])
+            .expect("valid flags");
+        assert_eq!(w.args.ctrl, Some((5, 9)));
+        assert_eq!(w.args.out, PathBuf::from("hullskin-compare"));
+        let s = w.args.optim.settings();
+        assert_eq!((s.seed, s.iterations, s.population), (7, Some(3), None));
+        assert!(Wrap::try_parse_from(["x", "--ctrl", "5"]).is_err());
+    }
+}

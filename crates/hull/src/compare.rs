@@ -1,0 +1,837 @@
+//! The comparison table: skinning interpolation, the plain skinning approximation, and the
+//! approximation with its weights optimised by GA, PSO, GSA, Levenberg-Marquardt and GSA then
+//! LM, all at the same control points, with their true error, Gaussian curvature range, time
+//! and objective evaluations, and the floors of issue 3 checked on the result.
+//!
+//! `compare.json` layout (stable; later features add fields):
+//!
+//! ```text
+//! {"hullskin": "0.1.0",
+//!  "input": {"source": "...", "sections": K, "points": N, "units": "m"},
+//!  "degree": [P, Q], "control_points": [NU, NV], "parameterization": "centripetal,chord",
+//!  "seed": 1, "optimization": {"iterations": null, "population": null, "control_points": "resolved",
+//!                              "weight_layout": "full", "parameter_correction": false},
+//!  "curvature_sampling": {"grid": 41, "knot_lines": true},
+//!  "complete": true, "not_run": [],
+//!  "methods": [{"method": "interp", "status": "done", "control_points": [8, 25],
+//!               "error": {"max": .., "mean": .., "rms": .., "parametric_rms": ..},
+//!               "gaussian_curvature": {"max": .., "min": .., "max_at": [u, v], "min_at": [u, v],
+//!                                      "samples": n, "skipped": n},
+//!               "seconds": .., "error_seconds": .., "evaluations": 0, "iterations": 0,
+//!               "seed": null, "objective": null}, ...],
+//!  "floors": {"metric": "rms", "relative_tolerance": 1e-9, "all_hold": true,
+//!             "checks": [{"floor": "ga < approx", "holds": true, "value": .., "bound": ..}, ...]}}
+//! ```
+//!
+//! * `error`: the true distance of every offset to the surface by closest-point projection, in
+//!   the input's units ([`measure_fit_error`](crate::measure_fit_error)); `parametric_rms` is the
+//!   RMS of `|S(u_k, v_k) - Q_k|` at the fit's data parameters (an upper bound of `rms`).
+//! * `gaussian_curvature`: `K = (LN - M^2) / (EG - F^2)` (1 / units^2) sampled on a
+//!   [`CURVATURE_GRID`] x [`CURVATURE_GRID`] uniform parameter grid joined with every distinct
+//!   interior knot in each direction (the knot lines, where the second derivatives of a
+//!   surface with repeated knots may jump); see [`gaussian_curvature_range`]. Degenerate points
+//!   (a pointed stem, where `S_u x S_v` vanishes and K is undefined) are skipped and counted.
+//! * `seconds`: the fit itself (skinning, plus the weight optimisation), not the error
+//!   measurement (`error_seconds`), which costs the same for every method.
+//! * `evaluations` and `iterations`: of the objective, 0 for `interp` and `approx`; `seed` and
+//!   `objective` (`[start, final]`, the optimiser's parametric RMS objective) only for the
+//!   optimised methods.
+//! * `status`: `done`, `interrupted` (stopped by the user; the best surface found before the
+//!   stop is measured) or `failed` (with `failure`, the error message). On an interruption the
+//!   comparison stops: the methods after it are listed in `not_run` and `complete` is false.
+//!
+//! Floors (issue 3), on the true RMS error: each of GA, PSO and GSA ends strictly below the
+//! plain approximation, and the better of LM and GSA+LM ends at or below the best of the three
+//! (within [`FLOOR_RELATIVE_TOLERANCE`], for round-off). A failed method fails its floors; an
+//! interrupted or missing one leaves them unchecked (`holds: null`).
+
+use std::fmt::Write as _;
+
+use nurbs::fit::SkinParameterization;
+use nurbs::{KnotVector, NurbsSurface};
+use serde::Serialize;
+
+use crate::fit_error::parametric_residuals;
+use crate::optimize::{quiet, Algorithm, Control, OptimSettings, StopReason, WeightLayout, WeightMode};
+use crate::{fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, InputSummary};
+use crate::{Offsets, COINCIDENT_REL};
+
+/// Samples per parameter direction of the curvature grid (before the knot lines are added).
+pub const CURVATURE_GRID: usize = 41;
+
+/// Relative slack of the "at or below" floor: two solvers reaching the same optimum agree to
+/// round-off, not bit for bit.
+pub const FLOOR_RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// The methods of the table, in its order.
+pub const COMPARE_METHODS: [FitMethod; 7] = [
+    FitMethod::Interp,
+    FitMethod::Approx,
+    FitMethod::Optimized(Algorithm::Ga),
+    FitMethod::Optimized(Algorithm::Pso),
+    FitMethod::Optimized(Algorithm::Gsa),
+    FitMethod::Optimized(Algorithm::Lm),
+    FitMethod::Optimized(Algorithm::GsaLm),
+];
+
+/// Settings of [`compare_offsets`]: those of [`FitConfig`] but the method, shared by all rows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CompareConfig {
+    /// Degrees `(p, q)` along and across the sections.
+    pub degree: (usize, usize),
+    /// Control points `(NU, NV)` of the approximations; `None` picks [`default_ctrl`](crate::default_ctrl).
+    pub ctrl: Option<(usize, usize)>,
+    pub param: SkinParameterization,
+    pub optim: OptimSettings,
+}
+
+impl Default for CompareConfig {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl CompareConfig {
+    /// The settings with the default fit configuration (degrees 3, 3).
+    pub fn new() -> Self {
+        let d = FitConfig::default();
+        CompareConfig { degree: d.degree, ctrl: d.ctrl, param: d.param, optim: d.optim }
+    }
+
+    fn fit_config(self, method: FitMethod) -> FitConfig {
+        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim: self.optim }
+    }
+}
+
+/// The range of the Gaussian curvature over a sampled surface.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct CurvatureRange {
+    pub max: f64,
+    pub min: f64,
+    /// Parameters `(u, v)` of the largest and of the smallest value (the first met, u-major).
+    pub max_at: [f64; 2],
+    pub min_at: [f64; 2],
+    /// Points where the curvature was evaluated.
+    pub samples: usize,
+    /// Degenerate points skipped.
+    pub skipped: usize,
+}
+
+/// The sample parameters of one direction: `n` uniform values over the domain and every
+/// distinct interior knot, sorted, without duplicates.
+fn sample_params(knots: &KnotVector, n: usize) -> Vec<f64> {
+    let (a, b) = knots.domain();
+    let n = n.max(2);
+    let mut t: Vec<f64> = (0..n).map(|i| a + (b - a) * i as f64 / (n - 1) as f64).collect();
+    t.extend(knots.interior_breaks().into_iter().map(|(k, _)| k));
+    t.sort_by(f64::total_cmp);
+    t.dedup();
+    t
+}
+
+/// Largest and smallest Gaussian curvature `K = (LN - M^2) / (EG - F^2)` (The NURBS Book's
+/// fundamental forms; `SurfaceDerivatives::curvature`) over a grid of `grid` uniform parameter
+/// values per direction (at least 2) joined with the distinct interior knots of each direction
+/// (the knot lines). A point is skipped as degenerate where the curvature is undefined
+/// (`S_u x S_v = 0`, e.g. along a section collapsed to a point at a stem) or where
+/// `|S_u x S_v|` is round-off: at most `1e-12` ([`COINCIDENT_REL`]) of the square of the
+/// control net's size per unit parameter area. `None` if every point is degenerate.
+pub fn gaussian_curvature_range(surface: &NurbsSurface, grid: usize) -> Option<CurvatureRange> {
+    let us = sample_params(surface.knots_u(), grid);
+    let vs = sample_params(surface.knots_v(), grid);
+    let (lo, hi) = surface.control_bounds();
+    let size = (hi - lo).norm();
+    let (au, bu) = surface.domain_u();
+    let (av, bv) = surface.domain_v();
+    let area_tol = COINCIDENT_REL * size * size / ((bu - au) * (bv - av));
+    let (mut max, mut min) = (f64::NEG_INFINITY, f64::INFINITY);
+    let (mut max_at, mut min_at) = ([0.0; 2], [0.0; 2]);
+    let (mut samples, mut skipped) = (0, 0);
+    for &u in &us {
+        for &v in &vs {
+            let d = surface.derivatives(u, v);
+            let k = if d.su.cross(d.sv).norm() > area_tol { d.curvature().map(|c| c.gaussian) } else { None };
+            match k.filter(|k| k.is_finite()) {
+                Some(k) => {
+                    samples += 1;
+                    if k > max {
+                        (max, max_at) = (k, [u, v]);
+                    }
+                    if k < min {
+                        (min, min_at) = (k, [u, v]);
+                    }
+                }
+                None => skipped += 1,
+            }
+        }
+    }
+    (samples > 0).then_some(CurvatureRange { max, min, max_at, min_at, samples, skipped })
+}
+
+/// The error columns of a row: true distances, plus the parametric RMS at the fit's parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct RowError {
+    pub max: f64,
+    pub mean: f64,
+    pub rms: f64,
+    pub parametric_rms: f64,
+}
+
+/// How a row's run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RowStatus {
+    Done,
+    /// Stopped by the user; the best surface found before is measured.
+    Interrupted,
+    /// The method failed (see `failure`).
+    Failed,
+}
+
+/// One method of the comparison.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CompareRow {
+    pub method: &'static str,
+    pub status: RowStatus,
+    /// The error message of a failed method.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub failure: Option<String>,
+    /// `[NU, NV]` of the surface (asked for, if the method failed).
+    pub control_points: [usize; 2],
+    /// `None` if the method failed.
+    pub error: Option<RowError>,
+    /// `None` if the method failed or the whole surface is degenerate.
+    pub gaussian_curvature: Option<CurvatureRange>,
+    /// Fit time (skinning and optimisation), seconds.
+    pub seconds: f64,
+    /// Error measurement time, seconds.
+    pub error_seconds: f64,
+    pub evaluations: usize,
+    pub iterations: usize,
+    /// The optimisers' seed (`None` for interp and approx).
+    pub seed: Option<u64>,
+    /// The optimiser's objective `[start, final]` (parametric RMS with the log-weight penalty).
+    pub objective: Option<[f64; 2]>,
+}
+
+impl CompareRow {
+    /// The row of a finished fit.
+    pub fn from_outcome(offsets: &Offsets, outcome: &FitOutcome) -> Self {
+        let s = &outcome.surface;
+        let e = &outcome.error.overall;
+        let points: Vec<nurbs::Vec3> = offsets.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
+        let params: Vec<(f64, f64)> = outcome.params.iter().flatten().copied().collect();
+        let r = parametric_residuals(s, &points, &params);
+        let parametric_rms = (r.iter().map(|d| d * d).sum::<f64>() / r.len().max(1) as f64).sqrt();
+        let opt = outcome.optimization.as_ref();
+        CompareRow {
+            method: outcome.config.method.name(),
+            status: match opt.map(|o| o.stop) {
+                Some(StopReason::Interrupted) => RowStatus::Interrupted,
+                _ => RowStatus::Done,
+            },
+            failure: None,
+            control_points: [s.n_u(), s.n_v()],
+            error: Some(RowError { max: e.max, mean: e.mean, rms: e.rms, parametric_rms }),
+            gaussian_curvature: gaussian_curvature_range(s, CURVATURE_GRID),
+            seconds: outcome.fit_seconds,
+            error_seconds: outcome.error_seconds,
+            evaluations: opt.map_or(0, |o| o.evaluations),
+            iterations: opt.map_or(0, |o| o.iterations),
+            seed: opt.map(|o| o.seed),
+            objective: opt.map(|o| [o.start_value, o.final_value]),
+        }
+    }
+
+    /// The row of a method that failed with `error`.
+    pub fn failed(method: FitMethod, control_points: (usize, usize), seed: Option<u64>, error: &HullError) -> Self {
+        CompareRow {
+            method: method.name(),
+            status: RowStatus::Failed,
+            failure: Some(error.to_string()),
+            control_points: [control_points.0, control_points.1],
+            error: None,
+            gaussian_curvature: None,
+            seconds: 0.0,
+            error_seconds: 0.0,
+            evaluations: 0,
+            iterations: 0,
+            seed,
+            objective: None,
+        }
+    }
+
+    fn done_rms(&self) -> Option<f64> {
+        match self.status {
+            RowStatus::Done => self.error.map(|e| e.rms),
+            _ => None,
+        }
+    }
+}
+
+/// One floor of issue 3 on one comparison.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FloorCheck {
+    /// What must hold, e.g. `ga < approx`.
+    pub floor: String,
+    /// `None` when it could not be checked (a method interrupted or not run).
+    pub holds: Option<bool>,
+    /// The left side (RMS error), when known.
+    pub value: Option<f64>,
+    /// The right side (RMS error), when known.
+    pub bound: Option<f64>,
+}
+
+/// The floors of issue 3 on one comparison.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Floors {
+    /// The error compared: `"rms"` (true closest-point RMS).
+    pub metric: &'static str,
+    pub relative_tolerance: f64,
+    /// `Some(true)` if every check holds, `Some(false)` if any fails, `None` otherwise.
+    pub all_hold: Option<bool>,
+    pub checks: Vec<FloorCheck>,
+}
+
+/// The state of one method for the floors: its RMS if done, failed, or unknown.
+#[derive(Clone, Copy)]
+enum Known {
+    Rms(f64),
+    Failed,
+    Unknown,
+}
+
+fn known(rows: &[CompareRow], name: &str) -> Known {
+    match rows.iter().find(|r| r.method == name) {
+        Some(r) if r.status == RowStatus::Failed => Known::Failed,
+        Some(r) => r.done_rms().map_or(Known::Unknown, Known::Rms),
+        None => Known::Unknown,
+    }
+}
+
+/// The smallest RMS of the methods `names` that are done (a failed method has no say), unknown
+/// if `all_needed` and any is unknown (interrupted or not run); failed if none is done and none
+/// unknown.
+fn best(rows: &[CompareRow], names: &[&str], all_needed: bool) -> Known {
+    let mut best: Option<f64> = None;
+    let (mut failed, mut unknown) = (false, false);
+    for n in names {
+        match known(rows, n) {
+            Known::Rms(v) => best = Some(best.map_or(v, |b: f64| b.min(v))),
+            Known::Failed => failed = true,
+            Known::Unknown => unknown = true,
+        }
+    }
+    match (best, failed, unknown) {
+        (_, _, true) if all_needed => Known::Unknown,
+        (Some(b), _, _) => Known::Rms(b),
+        (None, _, true) => Known::Unknown,
+        (None, _, false) => Known::Failed,
+    }
+}
+
+/// Check the floors of issue 3 on `rows` (see the module docs): `ga`, `pso` and `gsa` each
+/// strictly below `approx` in true RMS error; `min(lm, gsa+lm) <= min(ga, pso, gsa)` within
+/// [`FLOOR_RELATIVE_TOLERANCE`]. The best of the three is over those done and needs none
+/// interrupted or missing; the better of the local two needs one of them done, but an
+/// interrupted or missing one leaves a failure unchecked. A failed method fails its floor.
+pub fn check_floors(rows: &[CompareRow]) -> Floors {
+    fn check(floor: String, a: Known, b: Known, holds: impl Fn(f64, f64) -> bool) -> FloorCheck {
+        let (value, bound) =
+            (if let Known::Rms(v) = a { Some(v) } else { None }, if let Known::Rms(v) = b { Some(v) } else { None });
+        let holds = match (a, b) {
+            (Known::Rms(x), Known::Rms(y)) => Some(holds(x, y)),
+            (Known::Failed, _) => Some(false),
+            _ => None,
+        };
+        FloorCheck { floor, holds, value, bound }
+    }
+    let approx = known(rows, "approx");
+    let mut checks: Vec<FloorCheck> = ["ga", "pso", "gsa"]
+        .into_iter()
+        .map(|m| check(format!("{m} < approx"), known(rows, m), approx, |x, y| x < y))
+        .collect();
+    let evo = best(rows, &["ga", "pso", "gsa"], true);
+    let mut local = best(rows, &["lm", "gsa+lm"], false);
+    // One local method unknown and the known one above the bound: not checked yet.
+    let any_local_unknown =
+        matches!(known(rows, "lm"), Known::Unknown) || matches!(known(rows, "gsa+lm"), Known::Unknown);
+    if let (Known::Rms(l), Known::Rms(e), true) = (local, evo, any_local_unknown) {
+        if l > e * (1.0 + FLOOR_RELATIVE_TOLERANCE) {
+            local = Known::Unknown;
+        }
+    }
+    checks.push(check("min(lm, gsa+lm) <= min(ga, pso, gsa)".into(), local, evo, |x, y| {
+        x <= y * (1.0 + FLOOR_RELATIVE_TOLERANCE)
+    }));
+    let all_hold = if checks.iter().any(|c| c.holds == Some(false)) {
+        Some(false)
+    } else if checks.iter().all(|c| c.holds == Some(true)) {
+        Some(true)
+    } else {
+        None
+    };
+    Floors { metric: "rms", relative_tolerance: FLOOR_RELATIVE_TOLERANCE, all_hold, checks }
+}
+
+/// The optimisation settings shared by the rows, for `compare.json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CompareOptimization {
+    /// `None`: each algorithm's default.
+    pub iterations: Option<usize>,
+    pub population: Option<usize>,
+    pub control_points: &'static str,
+    pub weight_layout: &'static str,
+    pub parameter_correction: bool,
+}
+
+/// How the curvature was sampled, for `compare.json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CurvatureSampling {
+    pub grid: usize,
+    pub knot_lines: bool,
+}
+
+/// `compare.json`: the comparison of all methods on one input.
+#[derive(Clone, Debug, Serialize)]
+pub struct Comparison {
+    pub hullskin: &'static str,
+    pub input: InputSummary,
+    pub degree: [usize; 2],
+    /// `[NU, NV]` of the approximations (interp has its own, in its row).
+    pub control_points: [usize; 2],
+    pub parameterization: &'static str,
+    pub seed: u64,
+    pub optimization: CompareOptimization,
+    pub curvature_sampling: CurvatureSampling,
+    /// False if the comparison was interrupted.
+    pub complete: bool,
+    /// Methods not run because of an interruption.
+    pub not_run: Vec<&'static str>,
+    pub methods: Vec<CompareRow>,
+    pub floors: Floors,
+}
+
+/// Run every method of [`COMPARE_METHODS`] on `offsets` without progress reports or stops.
+///
+/// # Errors
+/// As [`compare_offsets_with`].
+pub fn compare_offsets(offsets: &Offsets, config: &CompareConfig) -> Result<Comparison, HullError> {
+    compare_offsets_with(offsets, config, &mut |_, fit| quiet(|c| fit(c)))
+}
+
+/// A runner of one weight optimisation: called with the algorithm and the fit to run, it
+/// calls the fit with a [`Control`] of its choice (a progress bar, a stop flag) and returns
+/// its result.
+pub type OptimRunner<'r> = dyn FnMut(Algorithm, &mut dyn FnMut(&Control<'_>) -> Result<FitOutcome, HullError>) -> Result<FitOutcome, HullError>
+    + 'r;
+
+/// Run every method of [`COMPARE_METHODS`] on `offsets` at the same control points, measure
+/// each, and check the floors. Each weight optimisation goes through `run`, which supplies its
+/// [`Control`]. When a run sees its stop flag raised, its row is measured from the best surface
+/// found before the stop (status `interrupted` if the optimiser was cut short) and the
+/// comparison ends there: the later methods are listed in `not_run`.
+///
+/// A failing interpolation or optimisation is recorded as a `failed` row and the comparison
+/// goes on.
+///
+/// # Errors
+/// [`HullError::Input`] if the offsets are invalid for the degrees, [`HullError::Config`] for
+/// unusable settings, and any error of the plain approximation (e.g. [`HullError::Fit`] for
+/// control-point counts out of range), on which all the optimised rows depend.
+pub fn compare_offsets_with(
+    offsets: &Offsets,
+    config: &CompareConfig,
+    run: &mut OptimRunner<'_>,
+) -> Result<Comparison, HullError> {
+    // The plain approximation first: it validates the input and the settings, and its failure
+    // would fail every optimised row.
+    let approx = fit_offsets(offsets, &config.fit_config(FitMethod::Approx))?;
+    let ctrl = (approx.surface.n_u(), approx.surface.n_v());
+    let degree = [approx.surface.degree_u(), approx.surface.degree_v()];
+    let mut rows = Vec::with_capacity(COMPARE_METHODS.len());
+    let mut not_run = Vec::new();
+    let mut stopped = false;
+    for method in COMPARE_METHODS {
+        if stopped {
+            not_run.push(method.name());
+            continue;
+        }
+        let cfg = config.fit_config(method);
+        let row = match method {
+            FitMethod::Approx => CompareRow::from_outcome(offsets, &approx),
+            FitMethod::Interp => match fit_offsets(offsets, &cfg) {
+                Ok(out) => CompareRow::from_outcome(offsets, &out),
+                Err(e @ (HullError::Input { .. } | HullError::Config(_))) => return Err(e),
+                Err(e) => {
+                    // What interpolation would have used: one pole per offset of the largest
+                    // section, one per section.
+                    let n_max = offsets.sections.iter().map(|s| s.points.len()).max().unwrap_or(0);
+                    CompareRow::failed(method, (n_max, offsets.sections.len()), None, &e)
+                }
+            },
+            FitMethod::Optimized(algorithm) => {
+                let mut saw_stop = false;
+                let result = run(algorithm, &mut |control| {
+                    let r = fit_offsets_with(offsets, &cfg, control);
+                    saw_stop = control.stopped();
+                    r
+                });
+                stopped = saw_stop;
+                match result {
+                    Ok(out) => CompareRow::from_outcome(offsets, &out),
+                    Err(e @ HullError::Config(_)) => return Err(e),
+                    Err(e) => CompareRow::failed(method, ctrl, Some(config.optim.seed), &e),
+                }
+            }
+        };
+        rows.push(row);
+    }
+    let o = &config.optim;
+    Ok(Comparison {
+        hullskin: env!("CARGO_PKG_VERSION"),
+        input: InputSummary {
+            source: offsets.source.clone(),
+            sections: offsets.sections.len(),
+            points: offsets.num_points(),
+            units: offsets.units.symbol(),
+        },
+        degree,
+        control_points: [ctrl.0, ctrl.1],
+        parameterization: config.param.name(),
+        seed: o.seed,
+        optimization: CompareOptimization {
+            iterations: o.iterations,
+            population: o.population,
+            control_points: match o.weights.mode {
+                WeightMode::Resolved => "resolved",
+                WeightMode::Fixed => "fixed",
+            },
+            weight_layout: match o.weights.layout {
+                WeightLayout::Full => "full",
+                WeightLayout::RankOne => "rank_one",
+            },
+            parameter_correction: o.parameter_correction,
+        },
+        curvature_sampling: CurvatureSampling { grid: CURVATURE_GRID, knot_lines: true },
+        complete: not_run.is_empty() && rows.iter().all(|r| r.status != RowStatus::Interrupted),
+        not_run,
+        floors: check_floors(&rows),
+        methods: rows,
+    })
+}
+
+/// `compare.json`, pretty-printed, with a final newline.
+pub fn comparison_json(c: &Comparison) -> String {
+    // Serialising plain structs of numbers and strings cannot fail; non-finite numbers become
+    // `null` (serde_json's rule).
+    let mut s = serde_json::to_string_pretty(c).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"));
+    s.push('\n');
+    s
+}
+
+fn sci(v: f64) -> String {
+    format!("{v:.3e}")
+}
+
+/// Milliseconds with three significant digits (at least one decimal below 1000).
+fn millis(seconds: f64) -> String {
+    let ms = 1e3 * seconds;
+    match ms {
+        m if m >= 100.0 => format!("{m:.0}"),
+        m if m >= 10.0 => format!("{m:.1}"),
+        m if m >= 1.0 => format!("{m:.2}"),
+        m => format!("{m:.3}"),
+    }
+}
+
+/// The Markdown table of a comparison (one row per method run), without headings.
+pub fn comparison_table(c: &Comparison) -> String {
+    let u = c.input.units;
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "| method | control points | max error ({u}) | mean error ({u}) | RMS error ({u}) | max K (1/{u}²) | min K (1/{u}²) | time (ms) | evaluations | seed |"
+    );
+    let _ = writeln!(t, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|");
+    for r in &c.methods {
+        let name = match r.status {
+            RowStatus::Done => r.method.to_string(),
+            RowStatus::Interrupted => format!("{} (interrupted)", r.method),
+            RowStatus::Failed => format!("{} (failed)", r.method),
+        };
+        let (max, mean, rms) = match r.error {
+            Some(e) => (sci(e.max), sci(e.mean), sci(e.rms)),
+            None => ("-".into(), "-".into(), "-".into()),
+        };
+        let (kmax, kmin) = match r.gaussian_curvature {
+            Some(k) => (sci(k.max), sci(k.min)),
+            None => ("-".into(), "-".into()),
+        };
+        let seed = r.seed.map_or_else(|| "-".to_string(), |s| s.to_string());
+        let _ = writeln!(
+            t,
+            "| {name} | {}x{} | {max} | {mean} | {rms} | {kmax} | {kmin} | {} | {} | {seed} |",
+            r.control_points[0],
+            r.control_points[1],
+            millis(r.seconds),
+            r.evaluations
+        );
+    }
+    t
+}
+
+/// The floors as a Markdown list.
+pub fn floors_markdown(f: &Floors) -> String {
+    let mut t = String::new();
+    for c in &f.checks {
+        let verdict = match c.holds {
+            Some(true) => "holds",
+            Some(false) => "**fails**",
+            None => "not checked",
+        };
+        let nums = match (c.value, c.bound) {
+            (Some(v), Some(b)) => format!(" ({} vs {})", sci(v), sci(b)),
+            _ => String::new(),
+        };
+        let _ = writeln!(t, "- `{}`: {verdict}{nums}", c.floor);
+    }
+    t
+}
+
+/// `compare.md`: a heading naming the input and settings, the table, the floors and notes.
+pub fn comparison_markdown(c: &Comparison) -> String {
+    let mut t = String::new();
+    let _ = writeln!(t, "## {}\n", c.input.source);
+    let o = &c.optimization;
+    let budget = |v: Option<usize>| v.map_or_else(|| "default".to_string(), |n| n.to_string());
+    let _ = writeln!(
+        t,
+        "{} sections, {} points ({}); degree {},{}; approximation control points {}x{}; parameterization {}; \
+         seed {}; iterations {}, population {}; control points {}, weights {}{}.\n",
+        c.input.sections,
+        c.input.points,
+        c.input.units,
+        c.degree[0],
+        c.degree[1],
+        c.control_points[0],
+        c.control_points[1],
+        c.parameterization,
+        c.seed,
+        budget(o.iterations),
+        budget(o.population),
+        o.control_points,
+        o.weight_layout,
+        if o.parameter_correction { ", parameter correction" } else { "" },
+    );
+    t.push_str(&comparison_table(c));
+    t.push('\n');
+    let verdict = match c.floors.all_hold {
+        Some(true) => "all hold",
+        Some(false) => "**some fail**",
+        None => "not all checked",
+    };
+    let _ = writeln!(t, "Floors (true RMS error): {verdict}\n");
+    t.push_str(&floors_markdown(&c.floors));
+    for r in c.methods.iter().filter(|r| r.status == RowStatus::Failed) {
+        let _ = writeln!(t, "\n`{}` failed: {}", r.method, r.failure.as_deref().unwrap_or(""));
+    }
+    if !c.complete {
+        let _ = writeln!(
+            t,
+            "\nInterrupted: the interrupted row holds the best surface found before the stop; not run: {}.",
+            if c.not_run.is_empty() { "none".to_string() } else { c.not_run.join(", ") }
+        );
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optimize::Progress;
+    use crate::series60_sample;
+    use nurbs::{assert_near, Vec3};
+    use std::sync::atomic::AtomicBool;
+
+    fn bilinear(p00: Vec3, p01: Vec3, p10: Vec3, p11: Vec3) -> NurbsSurface {
+        let k = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
+        NurbsSurface::try_new(k.clone(), k, &[p00, p01, p10, p11], None).expect("valid")
+    }
+
+    #[test]
+    fn curvature_range_of_the_saddle_z_eq_xy() {
+        // S(u, v) = (u, v, u v): K = -1 / (1 + u^2 + v^2)^2, largest -1/9 at (1, 1), smallest
+        // -1 at (0, 0); both corners are grid points. Round-off of the fundamental forms: 1e-14.
+        let s = bilinear(Vec3::new(0., 0., 0.), Vec3::new(0., 1., 0.), Vec3::new(1., 0., 0.), Vec3::new(1., 1., 1.));
+        let k = gaussian_curvature_range(&s, CURVATURE_GRID).expect("regular surface");
+        assert_near!(k.max, -1.0 / 9.0, 1e-14);
+        assert_near!(k.min, -1.0, 1e-14);
+        assert_eq!((k.max_at, k.min_at), ([1.0, 1.0], [0.0, 0.0]));
+        assert_eq!((k.samples, k.skipped), (41 * 41, 0));
+    }
+
+    #[test]
+    fn degenerate_edge_is_skipped_and_counted() {
+        // A triangle: the edge v = 0 collapses to one point (P00 = P10), so S_u = 0 there; the
+        // rest is a plane (K = 0 exactly: all second derivatives lie in the plane).
+        let o = Vec3::new(0., 0., 0.);
+        let s = bilinear(o, Vec3::new(0., 1., 0.), o, Vec3::new(1., 1., 0.));
+        let k = gaussian_curvature_range(&s, 11).expect("not all degenerate");
+        assert_eq!(k.skipped, 11, "the 11 samples on v = 0");
+        assert_eq!(k.samples, 11 * 10);
+        assert_eq!((k.max, k.min), (0.0, 0.0));
+        // All degenerate: a surface that is one point.
+        let p = bilinear(o, o, o, o);
+        assert!(gaussian_curvature_range(&p, 5).is_none());
+    }
+
+    #[test]
+    fn knot_lines_join_the_grid() {
+        let k = KnotVector::try_new(3, vec![0., 0., 0., 0., 0.3, 0.5, 1., 1., 1., 1.]).expect("valid");
+        let t = sample_params(&k, 3);
+        assert_eq!(t, vec![0.0, 0.3, 0.5, 1.0]);
+    }
+
+    fn row(method: &'static str, status: RowStatus, rms: f64) -> CompareRow {
+        CompareRow {
+            method,
+            status,
+            failure: None,
+            control_points: [4, 4],
+            error: (status != RowStatus::Failed).then_some(RowError { max: rms, mean: rms, rms, parametric_rms: rms }),
+            gaussian_curvature: None,
+            seconds: 0.0,
+            error_seconds: 0.0,
+            evaluations: 0,
+            iterations: 0,
+            seed: None,
+            objective: None,
+        }
+    }
+
+    #[test]
+    fn floors_hold_fail_or_stay_unchecked() {
+        use RowStatus::*;
+        let base = |ga: f64, lm: f64, gl: f64| {
+            vec![
+                row("approx", Done, 1.0),
+                row("ga", Done, ga),
+                row("pso", Done, 0.8),
+                row("gsa", Done, 0.7),
+                row("lm", Done, lm),
+                row("gsa+lm", Done, gl),
+            ]
+        };
+        let f = check_floors(&base(0.9, 0.6, 0.65));
+        assert_eq!(f.all_hold, Some(true));
+        assert_eq!(f.checks.len(), 4);
+        assert_eq!((f.checks[3].value, f.checks[3].bound), (Some(0.6), Some(0.7)));
+        // GA not below approx: fails; equality is not "lower".
+        let f = check_floors(&base(1.0, 0.6, 0.65));
+        assert_eq!((f.checks[0].holds, f.all_hold), (Some(false), Some(false)));
+        // Local solvers above the best evolutionary: fails; equal within round-off: holds.
+        assert_eq!(check_floors(&base(0.9, 0.75, 0.71)).checks[3].holds, Some(false));
+        assert_eq!(check_floors(&base(0.9, 0.75, 0.7 * (1.0 + 1e-12))).checks[3].holds, Some(true));
+        // A failed optimiser fails its floor and has no say in the best of the three; an
+        // interrupted one leaves both unchecked.
+        let mut rows = base(0.9, 0.6, 0.65);
+        rows[3] = row("gsa", Failed, 0.0);
+        let f = check_floors(&rows);
+        assert_eq!((f.checks[2].holds, f.checks[3].holds, f.all_hold), (Some(false), Some(true), Some(false)));
+        assert_eq!(f.checks[3].bound, Some(0.8));
+        let mut rows = base(0.9, 0.6, 0.65);
+        rows[4] = row("lm", Failed, 0.0);
+        rows[5] = row("gsa+lm", Failed, 0.0);
+        assert_eq!(check_floors(&rows).checks[3].holds, Some(false));
+        let mut rows = base(0.9, 0.6, 0.65);
+        rows[3] = row("gsa", Interrupted, 0.5);
+        rows.truncate(4);
+        let f = check_floors(&rows);
+        assert_eq!((f.checks[2].holds, f.checks[3].holds, f.all_hold), (None, None, None));
+        // lm done and below, gsa+lm not run: holds already.
+        let mut rows = base(0.9, 0.6, 0.65);
+        rows.pop();
+        assert_eq!(check_floors(&rows).checks[3].holds, Some(true));
+        // lm done but above, gsa+lm not run: it might still pass, so not checked.
+        let mut rows = base(0.9, 0.75, 0.65);
+        rows.pop();
+        assert_eq!(check_floors(&rows).checks[3].holds, None);
+    }
+
+    fn small_config() -> CompareConfig {
+        let mut c = CompareConfig::new();
+        c.ctrl = Some((5, 8));
+        c.optim.iterations = Some(4);
+        c.optim.population = Some(6);
+        c
+    }
+
+    #[test]
+    fn every_method_is_measured_at_the_same_control_points() {
+        let offsets = series60_sample();
+        let c = compare_offsets(&offsets, &small_config()).expect("sample compares");
+        let names: Vec<&str> = c.methods.iter().map(|r| r.method).collect();
+        assert_eq!(names, ["interp", "approx", "ga", "pso", "gsa", "lm", "gsa+lm"]);
+        assert!(c.complete && c.not_run.is_empty());
+        // Interpolation has its own count (one pole per offset), the rest the asked one.
+        assert_eq!(c.methods[0].control_points, [8, 25]);
+        assert!(c.methods[1..].iter().all(|r| r.control_points == [5, 8]));
+        let approx = c.methods[1].error.expect("measured");
+        for r in &c.methods {
+            let e = r.error.expect("measured");
+            // The projection starts at the fit's parameters: the true distance never exceeds the
+            // parametric residual (1e-12 relative: round-off of two evaluations).
+            assert!(e.rms <= e.parametric_rms * (1.0 + 1e-12), "{}: {e:?}", r.method);
+            // max >= RMS >= mean (power means), up to the round-off of the sums.
+            assert!(e.max * (1.0 + 1e-12) >= e.rms && e.rms * (1.0 + 1e-12) >= e.mean, "{}: {e:?}", r.method);
+            assert!(r.gaussian_curvature.is_some(), "{}", r.method);
+            if let Some([start, end]) = r.objective {
+                // Never worse than the start, which (re-solved control points, weights 1) is the
+                // least-squares optimum at the approximation's parameters, so at most the
+                // approximation's own parametric RMS. 1e-9: different round-off of the banded
+                // solve and of the kernel's evaluation.
+                assert!(end <= start, "{}: {start} -> {end}", r.method);
+                assert!(start <= approx.parametric_rms * (1.0 + 1e-9), "{}: {start} vs {approx:?}", r.method);
+                assert!(e.parametric_rms <= end * (1.0 + 1e-9), "{}: {e:?} vs {end}", r.method);
+                assert!(r.evaluations > 0 && r.seed == Some(1));
+            } else {
+                assert_eq!(r.evaluations, 0);
+            }
+        }
+        // Interpolation passes through the offsets (round-off on a 122 m hull).
+        assert!(c.methods[0].error.expect("measured").max < 1e-9);
+        let md = comparison_markdown(&c);
+        for n in names {
+            assert!(md.lines().any(|l| l.starts_with(&format!("| {n} |"))), "{n}: {md}");
+        }
+        let json: serde_json::Value = serde_json::from_str(&comparison_json(&c)).expect("valid JSON");
+        assert_eq!(json["methods"].as_array().map(Vec::len), Some(7));
+        assert_eq!(json["floors"]["checks"].as_array().map(Vec::len), Some(4));
+    }
+
+    #[test]
+    fn a_stop_ends_the_comparison_and_marks_the_row() {
+        let offsets = series60_sample();
+        let stop = AtomicBool::new(true);
+        let progress = |_: Progress| {};
+        let c = compare_offsets_with(&offsets, &small_config(), &mut |_, fit| {
+            fit(&Control { stop: &stop, progress: &progress })
+        })
+        .expect("compares");
+        let names: Vec<&str> = c.methods.iter().map(|r| r.method).collect();
+        assert_eq!(names, ["interp", "approx", "ga"]);
+        assert_eq!(c.methods[2].status, RowStatus::Interrupted);
+        assert_eq!(c.not_run, ["pso", "gsa", "lm", "gsa+lm"]);
+        assert!(!c.complete);
+        assert_eq!(c.floors.all_hold, None);
+        assert!(comparison_markdown(&c).contains("ga (interrupted)"));
+    }
+
+    #[test]
+    fn bad_control_points_are_an_error_not_a_table() {
+        let offsets = series60_sample();
+        let c = CompareConfig { ctrl: Some((9, 10)), ..CompareConfig::new() };
+        assert!(matches!(compare_offsets(&offsets, &c), Err(HullError::Fit { .. })));
+    }
+}

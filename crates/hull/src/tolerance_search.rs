@@ -1,0 +1,486 @@
+//! The fewest control points for a tolerance: search the counts `(nu, nv)` of a skinning
+//! approximation (plain or weight-optimised) for the smallest surface, `nu nv` control points,
+//! whose true max error (closest-point distance of every offset, `error.overall.max`) is
+//! within a tolerance `T`.
+//!
+//! Strategy. Counts range over `p + 1 <= nu <= N` and `q + 1 <= nv <= K` (`N` offsets in the
+//! largest non-degenerate section, `K` sections, `p`, `q` the degrees the kernel uses); `(N, K)`
+//! is interpolation's count. If the max error `E(nu, nv)` never grew with either count, the
+//! counts within `T` would form a staircase (for each `nu` a least `nv*(nu)`, not growing with
+//! `nu`) found by bisection in about `(N - p) log2 K` fits. It is only roughly so: the knots
+//! and parameters are chosen per count, and on the Series 60 table `E(8, 19) = 12.7 mm` but
+//! `E(8, 20) = 21.4 mm`. So the bisection only supplies a bound, and a scan makes it exact:
+//!
+//! 1. fit `(N, K)`; if it misses `T`, no count is expected to reach it: error, naming the best
+//!    max error found;
+//! 2. bound: for `nu = p + 1, ..., N`, bisect for the least `nv` within `T` over
+//!    `[q + 1, min(nv(nu - 1), (B - 1) / nu)]`, `B` the fewest control points found within `T`
+//!    so far (only strictly smaller surfaces are of interest); stop when `nu (q + 1) >= B`.
+//!    Every success is a fitted, measured surface, so `B` is an upper bound whatever the data;
+//! 3. exact: fit the counts with fewer than `B` control points in increasing order of
+//!    `nu nv`; the first within `T` (with the others of as many control points) is the least,
+//!    as every smaller count was fitted and missed.
+//!
+//! So the answer is the true least count within `T`, with no assumption on `E` beyond step 1, unless the
+//! cap on fits ([`ToleranceSettings::max_fits`]) or a stop (Ctrl-C) cuts the search: then the
+//! best surface found so far is returned (within `T`, possibly not the smallest) and marked
+//! incomplete. Every count is fitted at most once (memoised). Of two surfaces with as many
+//! control points, the one with the smaller max error is kept.
+//!
+//! Measured on the Series 60 table (8 x 25 offsets, 110 counts; release, this 2-core machine):
+//!
+//! | method | T | count (control points) | fits | time |
+//! |---|---|---|---|---|
+//! | approx | 0.05 m | 8 x 11 (88) | 81 | 0.16 s |
+//! | approx | 0.02 m | 8 x 19 (152) | 104 | 0.23 s |
+//! | approx | 0.01 m | 8 x 23 (184) | 109 | 0.25 s |
+//! | lm | 0.05 m | 7 x 9 (63) | 48 | 0.8 s |
+//! | lm | 0.02 m | 6 x 16 (96) | 81 | 1.9 s |
+//! | lm | 0.01 m | 6 x 20 (120) | 87 | 2.3 s |
+//!
+//! The bound alone (bisection) gave 8 x 21 and 7 x 15 at 0.02 m. GSA costs about a second a
+//! fit: there the cap matters (`--iterations` shortens each fit).
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::optimize::Control;
+use crate::{fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, Offsets};
+
+/// Settings of [`fit_to_tolerance`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ToleranceSettings {
+    /// The largest acceptable max error, in the offsets' units.
+    pub tolerance: f64,
+    /// Fits at most (each a whole fit with its error measurement).
+    pub max_fits: usize,
+}
+
+impl ToleranceSettings {
+    /// Fits at most by default: every count of the Series 60 table (110) and then some; on
+    /// larger tables the exact scan may be cut (the bound's surface is still returned).
+    pub const DEFAULT_MAX_FITS: usize = 128;
+
+    /// `tolerance` with the default cap on fits.
+    pub fn new(tolerance: f64) -> Self {
+        ToleranceSettings { tolerance, max_fits: Self::DEFAULT_MAX_FITS }
+    }
+}
+
+/// One count tried by the search.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TriedCount {
+    /// `[nu, nv]`.
+    pub control_points: [usize; 2],
+    /// The true max error, `None` if the fit failed (the kernel refused the count).
+    pub max: Option<f64>,
+    /// Whether `max <= tolerance`.
+    pub within: bool,
+}
+
+/// What the search did: `report.json`'s `"tolerance_search"`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ToleranceSearch {
+    pub tolerance: f64,
+    /// The count chosen, `[nu, nv]`.
+    pub control_points: [usize; 2],
+    /// Interpolation's count `[N, K]`: points of the largest section by sections.
+    pub interp_control_points: [usize; 2],
+    /// `nu nv / (N K)`.
+    pub ratio: f64,
+    /// Fits done.
+    pub fits: usize,
+    /// False when the cap on fits or a stop (Ctrl-C) ended the search before it was done.
+    pub complete: bool,
+    /// Every count fitted, in order.
+    pub tried: Vec<TriedCount>,
+}
+
+impl ToleranceSearch {
+    /// One line for the terminal: the count chosen against interpolation's, e.g.
+    /// `tolerance 1.000e-2 m: 6x12 = 72 control points, 36.0 % of interpolation's 8x25 = 200 (14 fits)`.
+    pub fn summary(&self, units: &str) -> String {
+        let [nu, nv] = self.control_points;
+        let [n, k] = self.interp_control_points;
+        let mut s = format!(
+            "tolerance {:.3e} {units}: {nu}x{nv} = {} control points, {:.1} % of interpolation's {n}x{k} = {} ({} fits",
+            self.tolerance,
+            nu * nv,
+            100.0 * self.ratio,
+            n * k,
+            self.fits
+        );
+        if !self.complete {
+            s.push_str(", search cut short: the count may not be the smallest");
+        }
+        s.push(')');
+        s
+    }
+}
+
+/// The chosen fit and the record of the search.
+#[derive(Clone, Debug)]
+pub struct ToleranceFit {
+    pub outcome: FitOutcome,
+    pub search: ToleranceSearch,
+}
+
+/// The smallest surface (fewest control points `nu nv`) of `config`'s method whose true max
+/// error is within `settings.tolerance`; `config.ctrl` is ignored. See the module docs for the
+/// strategy and its assumption.
+///
+/// # Errors
+/// [`HullError::Config`] for a tolerance that is not a positive finite number or the `interp`
+/// method (whose count is fixed); [`HullError::ToleranceNotReached`] when no count fitted
+/// reaches the tolerance (naming the best max error found); and the errors of
+/// [`fit_offsets`](crate::fit_offsets) other than a refused count (invalid offsets, bad
+/// degrees).
+pub fn fit_to_tolerance(
+    offsets: &Offsets,
+    config: &FitConfig,
+    settings: &ToleranceSettings,
+    control: &Control<'_>,
+) -> Result<ToleranceFit, HullError> {
+    let t = settings.tolerance;
+    if !(t > 0.0 && t.is_finite()) {
+        return Err(HullError::Config(format!("tolerance {t} is not usable (expected a positive number)")));
+    }
+    if config.method == FitMethod::Interp {
+        return Err(HullError::Config(
+            "a tolerance needs a method whose control points can vary (expected approx, ga, pso, gsa, lm or gsa+lm; \
+             interp always has one control point per offset)"
+                .into(),
+        ));
+    }
+    let (big_n, k) = counts(offsets);
+    let nu_lo = config.degree.0.min(big_n.saturating_sub(1)) + 1;
+    let nv_lo = config.degree.1.min(k.saturating_sub(1)) + 1;
+    let mut s = Searcher {
+        offsets,
+        config,
+        control,
+        tolerance: t,
+        max_fits: settings.max_fits.max(1),
+        memo: BTreeMap::new(),
+        tried: Vec::new(),
+        best: None,
+        cut: false,
+    };
+    // 1. Interpolation's count: if it misses, nothing is expected to reach T.
+    if s.probe(big_n, k)? == Some(true) {
+        // 2. The bound: the staircase, nu upward.
+        let mut nv_prev = k;
+        for nu in nu_lo..=big_n {
+            let best = s.best_count();
+            if s.cut || nu * nv_lo >= best {
+                break;
+            }
+            let (mut lo, mut hi) = (nv_lo, nv_prev.min((best - 1) / nu));
+            while lo <= hi {
+                let mid = lo + (hi - lo) / 2;
+                match s.probe(nu, mid)? {
+                    Some(true) => {
+                        nv_prev = mid;
+                        hi = mid - 1;
+                    }
+                    Some(false) => lo = mid + 1,
+                    None => break,
+                }
+            }
+        }
+        // 3. Exact: every count below the bound, fewest control points first.
+        let bound = s.best_count();
+        let mut below: Vec<(usize, usize)> = (nu_lo..=big_n)
+            .flat_map(|nu| (nv_lo..=k).map(move |nv| (nu, nv)))
+            .filter(|&(a, b)| a * b < bound)
+            .collect();
+        below.sort_unstable_by_key(|&(a, b)| (a * b, a));
+        let mut found: Option<usize> = None;
+        for (nu, nv) in below {
+            if found.is_some_and(|c| nu * nv > c) {
+                break;
+            }
+            match s.probe(nu, nv)? {
+                Some(true) => found = Some(nu * nv),
+                Some(false) => {}
+                None => break,
+            }
+        }
+    }
+    let fits = s.tried.len();
+    let Some(outcome) = s.best else {
+        let (best, at) = s
+            .tried
+            .iter()
+            .filter_map(|c| c.max.map(|m| (m, c.control_points)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .unwrap_or((f64::INFINITY, [big_n, k]));
+        return Err(HullError::ToleranceNotReached {
+            tolerance: t,
+            best,
+            control_points: (at[0], at[1]),
+            fits,
+            units: offsets.units.symbol(),
+        });
+    };
+    let (nu, nv) = (outcome.surface.n_u(), outcome.surface.n_v());
+    let search = ToleranceSearch {
+        tolerance: t,
+        control_points: [nu, nv],
+        interp_control_points: [big_n, k],
+        ratio: (nu * nv) as f64 / (big_n * k) as f64,
+        fits,
+        complete: !s.cut,
+        tried: s.tried,
+    };
+    Ok(ToleranceFit { outcome, search })
+}
+
+/// `(N, K)`: points of the largest non-degenerate section (a pointed end carries no shape
+/// along u, as in [`default_ctrl`](crate::default_ctrl)) and sections.
+fn counts(offsets: &Offsets) -> (usize, usize) {
+    let tol = crate::COINCIDENT_REL * offsets.size();
+    let n = offsets.sections.iter().filter(|s| !s.is_point(tol)).map(|s| s.points.len()).max().unwrap_or(0);
+    (n, offsets.sections.len())
+}
+
+struct Searcher<'a, 'c> {
+    offsets: &'a Offsets,
+    config: &'a FitConfig,
+    control: &'a Control<'c>,
+    tolerance: f64,
+    max_fits: usize,
+    /// `(nu, nv)` -> within the tolerance.
+    memo: BTreeMap<(usize, usize), bool>,
+    tried: Vec<TriedCount>,
+    best: Option<FitOutcome>,
+    /// The cap or a stop ended the search.
+    cut: bool,
+}
+
+impl Searcher<'_, '_> {
+    /// Control points of the best surface so far (`usize::MAX` if none).
+    fn best_count(&self) -> usize {
+        self.best.as_ref().map_or(usize::MAX, |b| b.surface.n_u() * b.surface.n_v())
+    }
+
+    /// Fit `(nu, nv)` (once): `Some(within)`, or `None` once the cap or a stop cuts the search.
+    fn probe(&mut self, nu: usize, nv: usize) -> Result<Option<bool>, HullError> {
+        if let Some(&within) = self.memo.get(&(nu, nv)) {
+            return Ok(Some(within));
+        }
+        if self.cut || self.tried.len() >= self.max_fits || self.control.stopped() {
+            self.cut = true;
+            return Ok(None);
+        }
+        let cfg = FitConfig { ctrl: Some((nu, nv)), ..*self.config };
+        let (max, outcome) = match fit_offsets_with(self.offsets, &cfg, self.control) {
+            Ok(out) => (Some(out.error.overall.max), Some(out)),
+            // The kernel refused this count (too few data for it, a singular system): it
+            // does not reach the tolerance.
+            Err(HullError::Fit { .. }) => (None, None),
+            Err(e) => return Err(e),
+        };
+        let within = max.is_some_and(|m| m <= self.tolerance);
+        self.tried.push(TriedCount { control_points: [nu, nv], max, within });
+        self.memo.insert((nu, nv), within);
+        if let (true, Some(out)) = (within, outcome) {
+            let better = match &self.best {
+                None => true,
+                Some(b) => {
+                    let (c, cb) = (nu * nv, b.surface.n_u() * b.surface.n_v());
+                    c < cb || (c == cb && out.error.overall.max < b.error.overall.max)
+                }
+            };
+            if better {
+                self.best = Some(out);
+            }
+        }
+        // A fit stopped part-way still counts (its surface is measured), but the search ends.
+        if self.control.stopped() {
+            self.cut = true;
+        }
+        Ok(Some(within))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optimize::{quiet, Algorithm, OptimSettings};
+    use crate::{fit_offsets, series60_sample, Section, Units};
+    use nurbs::Vec3;
+    use std::sync::atomic::AtomicBool;
+
+    fn search(offsets: &Offsets, config: &FitConfig, t: f64) -> Result<ToleranceFit, HullError> {
+        quiet(|c| fit_to_tolerance(offsets, config, &ToleranceSettings::new(t), c))
+    }
+
+    /// 9 stations of 7 waterlines of `y = b/2 (1 - 0.8 (2x/l)^2) (1 - (1 - z/t)^4)`: 4 x 6 =
+    /// 24 counts, cheap enough to search completely in a debug build.
+    fn small_hull() -> Offsets {
+        let (l, b, t) = (100.0, 16.0, 6.0);
+        let sections = (0..9)
+            .map(|s| {
+                let x = -l / 2.0 + l * s as f64 / 8.0;
+                let pts = (0..7)
+                    .map(|j| {
+                        let z = t * j as f64 / 6.0;
+                        let y = b / 2.0 * (1.0 - 0.8 * (2.0 * x / l).powi(2)) * (1.0 - (1.0 - z / t).powi(4));
+                        Vec3::new(x, y, z)
+                    })
+                    .collect();
+                Section::new(format!("{s}"), pts)
+            })
+            .collect();
+        Offsets { source: "small hull".into(), units: Units::Metre, sections }
+    }
+
+    /// The search's own guarantees, read from its record: the surface is within T, the record
+    /// matches it, every count is fitted once, and (complete) every count with fewer control
+    /// points was fitted and missed, so none is smaller.
+    fn assert_least(
+        r: &ToleranceFit,
+        t: f64,
+        counts: (std::ops::RangeInclusive<usize>, std::ops::RangeInclusive<usize>),
+    ) {
+        let (nu, nv) = (r.outcome.surface.n_u(), r.outcome.surface.n_v());
+        assert_eq!(r.search.control_points, [nu, nv]);
+        assert!(r.outcome.error.overall.max <= t, "{t}: {}", r.outcome.error.overall.max);
+        assert!(r.search.complete);
+        assert_eq!(r.search.fits, r.search.tried.len());
+        let mut seen: Vec<[usize; 2]> = r.search.tried.iter().map(|c| c.control_points).collect();
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), r.search.fits, "a count fitted twice");
+        let chosen = r.search.tried.iter().find(|c| c.control_points == [nu, nv]).expect("recorded");
+        assert_eq!(chosen.max, Some(r.outcome.error.overall.max));
+        for c in &r.search.tried {
+            assert_eq!(c.within, c.max.is_some_and(|m| m <= t));
+        }
+        for a in counts.0.clone() {
+            for b in counts.1.clone() {
+                if a * b < nu * nv {
+                    let c = r.search.tried.iter().find(|c| c.control_points == [a, b]);
+                    assert!(c.is_some_and(|c| !c.within), "{t}: {a}x{b} not fitted or within, {nu}x{nv} chosen");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_least_count_within_the_tolerance_and_its_record() {
+        let offsets = small_hull();
+        // Tolerances between the errors of small and large counts (none hard-coded: the
+        // max errors of the plain fits at 4 x 4 and 6 x 7 and between).
+        let e = |nu, nv| {
+            let cfg = FitConfig { ctrl: Some((nu, nv)), ..FitConfig::default() };
+            fit_offsets(&offsets, &cfg).expect("fits").error.overall.max
+        };
+        let (hi, lo) = (e(4, 4), e(6, 7));
+        assert!(lo < hi);
+        for t in [hi, (hi * lo).sqrt(), lo] {
+            let r = search(&offsets, &FitConfig::default(), t).expect("reachable");
+            assert_least(&r, t, (4..=7, 4..=9));
+            assert_eq!(r.search.interp_control_points, [7, 9]);
+            assert!((r.search.ratio - (r.outcome.surface.n_u() * r.outcome.surface.n_v()) as f64 / 63.0).abs() < 1e-15);
+            // The chosen surface is the plain fit at that count, measured the same way.
+            let [nu, nv] = r.search.control_points;
+            assert_eq!(e(nu, nv), r.outcome.error.overall.max);
+            let line = r.search.summary("m");
+            assert!(line.contains(&format!("{nu}x{nv} = {}", nu * nv)) && line.contains("7x9 = 63"), "{line}");
+        }
+        // The loosest tolerance is met by the smallest count.
+        let r = search(&offsets, &FitConfig::default(), hi).expect("reachable");
+        assert_eq!(r.search.control_points, [4, 4]);
+    }
+
+    #[test]
+    fn exact_where_the_error_is_not_monotone() {
+        // On the sample, E(8, 19) < 0.02 < E(8, 20): bisection along nv at nu = 8 steps over
+        // 19 (over [4, 25] it tries 14, 20, 23, 21 and returns 21), so only the exact scan finds
+        // a count this small.
+        let offsets = series60_sample();
+        let t = 0.02;
+        let e = |nu, nv| {
+            let cfg = FitConfig { ctrl: Some((nu, nv)), ..FitConfig::default() };
+            fit_offsets(&offsets, &cfg).expect("fits").error.overall.max
+        };
+        assert!(e(8, 19) <= t && e(8, 20) > t, "the case this test guards");
+        let r = search(&offsets, &FitConfig::default(), t).expect("reachable");
+        assert_least(&r, t, (4..=8, 4..=25));
+        let [nu, nv] = r.search.control_points;
+        assert!(nu * nv <= 8 * 19, "chose {nu}x{nv}");
+    }
+
+    #[test]
+    fn weight_optimised_methods_are_searched_the_same_way() {
+        let offsets = small_hull();
+        let plain = |nu, nv| {
+            let cfg = FitConfig { ctrl: Some((nu, nv)), ..FitConfig::default() };
+            fit_offsets(&offsets, &cfg).expect("fits").error.overall.max
+        };
+        let t = plain(5, 6);
+        // A short LM (20 iterations) keeps the debug build quick.
+        let optim = OptimSettings { iterations: Some(20), ..OptimSettings::default() };
+        let cfg = FitConfig { method: FitMethod::Optimized(Algorithm::Lm), optim, ..FitConfig::default() };
+        let r = search(&offsets, &cfg, t).expect("reachable");
+        assert_least(&r, t, (4..=7, 4..=9));
+        assert_eq!(r.outcome.optimization.as_ref().map(|o| o.algorithm), Some("lm"));
+    }
+
+    #[test]
+    fn unreachable_and_meaningless_tolerances_are_errors() {
+        let offsets = small_hull();
+        // Interpolation's round-off is about 1e-14 of the 100 m model: 1e-15 m is beyond it.
+        let e = search(&offsets, &FitConfig::default(), 1e-15).expect_err("below round-off");
+        match &e {
+            HullError::ToleranceNotReached { best, control_points, fits, units, .. } => {
+                assert_eq!((*control_points, *fits, *units), ((7, 9), 1, "m"));
+                assert!(*best > 1e-15 && *best < 1e-9, "{best}");
+            }
+            other => panic!("unexpected {other}"),
+        }
+        assert!(e.to_string().contains("best max error"), "{e}");
+        for t in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(matches!(search(&offsets, &FitConfig::default(), t), Err(HullError::Config(_))), "{t}");
+        }
+        let interp = FitConfig { method: FitMethod::Interp, ..FitConfig::default() };
+        let e = search(&offsets, &interp, 0.01).expect_err("interp has one count");
+        assert!(e.to_string().contains("interp"), "{e}");
+    }
+
+    #[test]
+    fn a_cap_or_a_stop_cuts_the_search_and_keeps_a_verified_surface() {
+        let offsets = small_hull();
+        let t = fit_offsets(&offsets, &FitConfig { ctrl: Some((6, 7)), ..FitConfig::default() })
+            .expect("fits")
+            .error
+            .overall
+            .max;
+        let s = ToleranceSettings { tolerance: t, max_fits: 3 };
+        let r = quiet(|c| fit_to_tolerance(&offsets, &FitConfig::default(), &s, c)).expect("corner is within");
+        assert_eq!(r.search.fits, 3);
+        assert!(!r.search.complete);
+        assert!(r.outcome.error.overall.max <= t);
+        assert!(r.search.summary("m").contains("cut short"));
+        // Stopped before the first fit: nothing was fitted, so nothing reached T.
+        let stop = AtomicBool::new(true);
+        let control = Control { stop: &stop, progress: &|_| {} };
+        let e = fit_to_tolerance(&offsets, &FitConfig::default(), &ToleranceSettings::new(t), &control);
+        assert!(matches!(e, Err(HullError::ToleranceNotReached { fits: 0, .. })), "{e:?}");
+    }
+
+    #[test]
+    fn invalid_offsets_are_reported_not_searched() {
+        let sections = vec![
+            Section::new("a", vec![Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 1.0)]),
+            Section::new("b", vec![Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0)]),
+        ];
+        let offsets = Offsets { source: "two points each".into(), units: Units::Metre, sections };
+        // Degree 3 needs 4 points per section: an input error, not "no count reached".
+        let e = search(&offsets, &FitConfig::default(), 0.1).expect_err("invalid");
+        assert!(matches!(e, HullError::Input { .. }), "{e}");
+    }
+}
