@@ -42,6 +42,11 @@ pub struct FitArgs {
     /// Units of the input coordinates, carried to the exports: m, mm, ft or in.
     #[arg(long, default_value = "m", value_parser = parse_units)]
     pub units: Units,
+    /// Search the control-point counts for the fewest control points whose max error (true
+    /// closest-point distance, in the input's units) is within T, for approx or an optimised
+    /// method; report.json gets a "tolerance_search" block.
+    #[arg(long, value_name = "T", conflicts_with = "ctrl")]
+    pub tolerance: Option<f64>,
     #[command(flatten)]
     pub optim: OptimArgs,
 }
@@ -56,6 +61,7 @@ impl Default for FitArgs {
             degree: (3, 3),
             param: SkinParameterization::default(),
             units: Units::Metre,
+            tolerance: None,
             optim: OptimArgs::default(),
         }
     }
@@ -92,12 +98,22 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         param: args.param,
         optim: args.optim.settings(),
     };
-    let outcome = match args.method.algorithm() {
-        Some(a) => progress::with_progress(a.name(), |control| hull::fit_offsets_with(&offsets, &config, control))?,
-        None => hull::fit_offsets(&offsets, &config)?,
+    let fit = |control: &hull::optimize::Control<'_>| match args.tolerance {
+        Some(t) => hull::fit_to_tolerance(&offsets, &config, &hull::ToleranceSettings::new(t), control)
+            .map(|r| (r.outcome, Some(r.search))),
+        None => hull::fit_offsets_with(&offsets, &config, control).map(|o| (o, None)),
     };
-    write_outputs(&args.out, &offsets, &outcome)?;
+    let (outcome, search) = match args.method.algorithm() {
+        Some(a) => progress::with_progress(a.name(), fit)?,
+        None => hull::optimize::quiet(fit)?,
+    };
+    let mut report = hull::Report::new(&offsets, &outcome);
+    report.tolerance_search = search;
+    write_outputs(&args.out, &offsets, &outcome, &report)?;
     print!("{}", hull::summary_table(&offsets, &outcome));
+    if let Some(s) = &report.tolerance_search {
+        println!("{}", s.summary(offsets.units.symbol()));
+    }
     println!("wrote {}", args.out.join("{surface.igs,surface.json,report.json}").display());
     if progress::stopped() {
         eprintln!("hullskin: interrupted: wrote the best surface found before the stop");
@@ -106,9 +122,15 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn write_outputs(dir: &Path, offsets: &hull::Offsets, outcome: &hull::FitOutcome) -> anyhow::Result<()> {
+fn write_outputs(
+    dir: &Path,
+    offsets: &hull::Offsets,
+    outcome: &hull::FitOutcome,
+    report: &hull::Report,
+) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
-    hull::write_fit_outputs(dir, offsets, outcome).with_context(|| format!("cannot write outputs to {}", dir.display()))
+    hull::write_fit_outputs_with_report(dir, offsets, outcome, report)
+        .with_context(|| format!("cannot write outputs to {}", dir.display()))
 }
 
 #[cfg(test)]

@@ -148,8 +148,8 @@ pub fn write_fit_outputs_with_report(
         .map_err(io_err(&dir.join("surface.igs")))?;
     let mut json = Vec::new();
     write_surface_json(&mut json, surface, units.symbol()).map_err(io_err(&dir.join("surface.json")))?;
-    let mut report = serde_json::to_vec_pretty(report)
-        .map_err(|e| io_err(&dir.join("report.json"))(io::Error::other(e)))?;
+    let mut report =
+        serde_json::to_vec_pretty(report).map_err(|e| io_err(&dir.join("report.json"))(io::Error::other(e)))?;
     report.push(b'\n');
     for (name, bytes) in [("surface.igs", &iges), ("surface.json", &json), ("report.json", &report)] {
         let path = dir.join(name);

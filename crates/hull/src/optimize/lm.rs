@@ -19,13 +19,21 @@
 //!
 //! Cost: with Kaufman's Jacobian the normal equations come straight from the problem's
 //! structure ([`WeightProblem::normal_equations`], `J` never formed); with the exact Jacobian
-//! or the data parameters, from the dense `J`. Measured on the Series 60 table at `6 x 19`
-//! (114 weights, release, one core of this 2-core Xeon): 0.65 ms per iteration against 2.0 ms
-//! for the dense `J` and `J^T J`; the run (78 iterations) 61 ms against 190 ms (91 iterations
-//! at the former tolerance `1e-10`). Neither another damping (`μ_0` from `1e-5` to 1, a floor on
-//! `μ`), the exact Jacobian, geodesic acceleration (Transtrum and Sethna 2012) nor a secant
-//! update of the large-residual term (Dennis, Gay and Welsch 1981) cut the iteration count on
-//! that table: its slow middle phase (ϱ about 0.5 with `μ` below `1e-4`) is the functional's.
+//! or the data parameters, from the dense `J`. Measured on the Series 60 table (release, one
+//! core of this 2-core Xeon), against the dense `J` and the former tolerance `1e-10`:
+//!
+//! | control points, layout | iterations | time |
+//! |---|---|---|
+//! | 6 x 19, full (114 weights) | 91 -> 78 | 189 -> 56 ms |
+//! | 6 x 19, rank one | 44 -> 35 | 17.3 -> 6.5 ms |
+//! | 6 x 12, full | 25 -> 18 | 24.7 -> 6.3 ms |
+//! | 6 x 12, rank one | 20 -> 17 | 5.5 -> 2.3 ms |
+//!
+//! with final values within `3e-8` relative. Neither another damping (`μ_0` from `1e-5` to 1,
+//! a floor on `μ`), the exact Jacobian, geodesic acceleration (Transtrum and Sethna 2012) nor
+//! a secant update of the large-residual term (Dennis, Gay and Welsch 1981) cut the iteration
+//! count at 6 x 19: its long middle phase (ϱ about 0.5 with `μ` below `1e-4`, weights reaching
+//! their bounds one by one) is the functional's.
 //!
 //! With [`run_with_parameters`] the unknowns are the log-weights and every offset's `u_k` (and
 //! `v_k`), the control points still eliminated by least squares: this recovers exactly

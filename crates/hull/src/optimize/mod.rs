@@ -30,7 +30,9 @@ pub use ga::GaOptions;
 pub use gsa::{GsaOptions, GsaRandom};
 pub use lm::{LmOptions, ParamFit};
 pub use pso::{PsoOptions, PsoVariant};
-pub use weights::{JacobianKind, Linearization, NormalEquations, ParamFreedom, WeightLayout, WeightMode, WeightOptions, WeightProblem};
+pub use weights::{
+    JacobianKind, Linearization, NormalEquations, ParamFreedom, WeightLayout, WeightMode, WeightOptions, WeightProblem,
+};
 
 /// A function to minimise over a box.
 pub trait Objective: Sync {
