@@ -75,16 +75,26 @@ pub struct WeightOptions {
     /// as an RMS error of `regularization x size`. The default `1e-6` is far below any fit
     /// error of interest (0.1 mm on a 100 m hull) yet pins the scale gauge.
     pub regularization: f64,
+    /// Re-solved mode: a ridge `λ = anchor x max diag(G)` pulling each homogeneous control
+    /// point toward the plain approximation's, `min |H Y - Q|^2 + λ |Y - w P_0|^2`. Control
+    /// points that the offsets do not determine (a support with too few offsets, as where
+    /// sections of unequal counts thin out) stay where the two-stage skinning put them instead
+    /// of making the system singular; where the offsets determine them, the shift is of
+    /// relative size `λ / σ_min(G)`. `0` turns it off. Default `1e-9` (well above the Cholesky
+    /// pivot threshold `1e-12`, far below any fit error of interest).
+    pub anchor: f64,
 }
 
 impl Default for WeightOptions {
-    /// Re-solved control points, full grid, weights in `[0.1, 10]`, regularisation `1e-6`.
+    /// Re-solved control points, full grid, weights in `[0.1, 10]`, regularisation `1e-6`,
+    /// anchor `1e-9`.
     fn default() -> Self {
         WeightOptions {
             mode: WeightMode::Resolved,
             layout: WeightLayout::Full,
             bounds: (0.1, 10.0),
             regularization: 1e-6,
+            anchor: 1e-9,
         }
     }
 }
@@ -915,6 +925,17 @@ impl WeightProblem {
                         yo[2] += hl * qk[2];
                     }
                 }
+                let anchor = self.options.anchor;
+                if anchor > 0.0 {
+                    let max_diag = (0..n).map(|c| sc.band[c * stride + bw]).fold(0.0, f64::max);
+                    let lambda = anchor * max_diag;
+                    for ((c, y), (&w, p)) in sc.y.iter_mut().enumerate().zip(sc.w.iter().zip(&self.fixed)) {
+                        sc.band[c * stride + bw] += lambda;
+                        y[0] += lambda * w * p[0];
+                        y[1] += lambda * w * p[1];
+                        y[2] += lambda * w * p[2];
+                    }
+                }
                 if !band_cholesky(&mut sc.band, n, bw, stride) {
                     return false;
                 }
@@ -1573,12 +1594,47 @@ mod tests {
     }
 
     #[test]
+    fn the_anchor_keeps_undetermined_control_points_at_the_plain_fit() {
+        let (fit, offsets) = sample_fit((6, 12));
+        let (pts, params) = points_and_params(&fit, &offsets);
+        // All offsets at v = 0: only the first column of control points (j = 0) is determined
+        // by the data; the anchor holds the others at the plain approximation's.
+        let squashed: Vec<(f64, f64)> = params.iter().map(|&(u, _)| (u, 0.0)).collect();
+        let p = WeightProblem::new(&fit.surface, &pts, &squashed, WeightOptions::default()).expect("ok");
+        assert!(p.value(&p.start()).is_finite());
+        let s = p.surface(&p.start()).expect("anchored system is regular");
+        let size = p.size();
+        for i in 0..s.n_u() {
+            for j in 2..s.n_v() {
+                // Far from the data the ridge is the whole equation: P = P_0 up to round-off of
+                // the factorization (1e-9 of the model size is generous).
+                let d = s.control_point(i, j).distance(fit.surface.control_point(i, j));
+                assert!(d <= 1e-9 * size, "({i}, {j}) moved {d:e}");
+            }
+        }
+        // Where the offsets determine the points, the anchor changes the fit by a relative
+        // amount of order 1e-9: the value at the start matches the unanchored one.
+        let (pts_all, params_all) = points_and_params(&fit, &offsets);
+        let anchored = WeightProblem::new(&fit.surface, &pts_all, &params_all, WeightOptions::default()).expect("ok");
+        let plain = WeightProblem::new(
+            &fit.surface,
+            &pts_all,
+            &params_all,
+            WeightOptions { anchor: 0.0, ..Default::default() },
+        )
+        .expect("ok");
+        let (a, b) = (anchored.value(&anchored.start()), plain.value(&plain.start()));
+        assert!((a - b).abs() <= 1e-6 * b, "{a} vs {b}");
+    }
+
+    #[test]
     fn singular_systems_give_infinity_not_nan() {
         let (fit, offsets) = sample_fit((6, 12));
         let (pts, params) = points_and_params(&fit, &offsets);
         // Every offset moved to v = 0: most control points have no offset in their support.
         let squashed: Vec<(f64, f64)> = params.iter().map(|&(u, _)| (u, 0.0)).collect();
-        let p = WeightProblem::new(&fit.surface, &pts, &squashed, WeightOptions::default()).expect("ok");
+        let no_anchor = WeightOptions { anchor: 0.0, ..Default::default() };
+        let p = WeightProblem::new(&fit.surface, &pts, &squashed, no_anchor).expect("ok");
         let f = p.value(&p.start());
         assert!(f.is_infinite() && f > 0.0, "{f}");
         assert!(p.residuals(&p.start()).is_none());
@@ -1682,7 +1738,11 @@ mod tests {
         for ctrl in [(8, 5), (6, 12)] {
             for layout in [WeightLayout::Full, WeightLayout::RankOne] {
                 for mode in [WeightMode::Fixed, WeightMode::Resolved] {
-                    let p = problem(ctrl, mode, layout, 1e-3);
+                    // The identity behind both needs the pure least-squares G = H^T H: no anchor
+                    // (with it, both are the same O(anchor) approximation of the exact terms).
+                    let (fit, offsets) = sample_fit(ctrl);
+                    let opts = WeightOptions { mode, layout, regularization: 1e-3, anchor: 0.0, ..Default::default() };
+                    let p = WeightProblem::from_fit(&fit, &offsets, opts).expect("shapes match");
                     let x: Vec<f64> = (0..p.dim()).map(|_| 0.8 * noise(&mut seed)).collect();
                     let lin = p.residuals_and_jacobian(&x, JacobianKind::Kaufman).expect("regular");
                     let ne = p.normal_equations(&x).expect("regular");
