@@ -462,7 +462,7 @@ impl<'a> SurfaceProjector<'a> {
     pub fn project_near(&self, q: Vec3, hint: (f64, f64)) -> SurfaceProjection {
         let global = self.project(q);
         let (u, v) = (self.surface.knots_u().clamp(hint.0), self.surface.knots_v().clamp(hint.1));
-        if !q.is_finite() || !(u.is_finite() && v.is_finite()) {
+        if !(q.is_finite() && u.is_finite() && v.is_finite()) {
             return global;
         }
         let local = self.refine(q, u, v);

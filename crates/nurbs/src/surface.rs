@@ -196,8 +196,12 @@ impl NurbsSurface {
 
     /// The point and partial derivatives up to second order (A3.6 on the homogeneous surface,
     /// then A4.4): with `A^(k,l)` the homogeneous derivatives and `w` their weight part,
-    /// `S^(k,l) = (A^(k,l) - sum_{i=1..k} C(k,i) w^(i,0) S^(k-i,l)
-    ///   - sum_{j=1..l} C(l,j) (w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j))) / w`.
+    ///
+    /// ```text
+    /// S^(k,l) = (A^(k,l) - sum_{i=1..k} C(k,i) w^(i,0) S^(k-i,l)
+    ///            - sum_{j=1..l} C(l,j) (w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j))) / w
+    /// ```
+    ///
     /// At an interior knot the derivatives are those of the span to the right.
     pub fn derivatives(&self, u: f64, v: f64) -> SurfaceDerivatives {
         let (u, v) = (self.ku.clamp(u), self.kv.clamp(v));
