@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Run `hullskin compare` (default settings: default control points, seed 1, each algorithm's
-# default budget) on the real hulls and a free-form case, and regenerate docs/compare.md: a
-# summary table (from each compare.json) followed by every hull's full table (its compare.md).
+# default budget) on the real hulls, a free-form case, the exact Wigley hull and six hulls of
+# BSpline3D-MATLAB (testdata/README.md), and regenerate docs/compare.md: a summary table (from
+# each compare.json) followed by every hull's full table (its compare.md).
 #
-#   tools/compare_hulls.sh            # all cases; outputs in target/compare/<case>/
+#   tools/compare_hulls.sh            # all cases, about 4 min; outputs in target/compare/<case>/
+#                                     # (matlab_wpb ~45 s, matlab_yacht ~70 s of it)
 #
 # Needs jq. Times depend on the machine and its load; errors, curvatures and evaluations are
 # reproducible (same seed, bit-identical whatever the thread count).
@@ -24,6 +26,13 @@ cases=(
   "gunnerus|testdata/gunnerus_offsets.csv"
   "cargo116|testdata/cargo116_offsets.csv"
   "freeform|testdata/peers/freeform.csv"
+  "wigley|testdata/wigley_offsets.csv"
+  "matlab_trawler|testdata/matlab_trawler.csv"
+  "matlab_series60|testdata/matlab_series60.csv"
+  "matlab_dtmb5415_main|testdata/matlab_dtmb5415_main.csv"
+  "matlab_frigate|testdata/matlab_frigate.csv"
+  "matlab_wpb|testdata/matlab_wpb.csv"
+  "matlab_yacht|testdata/matlab_yacht.csv"
 )
 
 for c in "${cases[@]}"; do
@@ -44,17 +53,20 @@ done
   echo "measurement. Floors (issue 3): each of GA, PSO, GSA below approx in RMS; the better of LM"
   echo "and GSA+LM at or below the best of the three."
   echo
-  echo "## Summary (RMS error, mm)"
+  echo "## Summary (RMS error, mm, 4 significant digits)"
   echo
   echo "| case | offsets | ctrl | approx | ga | pso | gsa | lm | gsa+lm | floors |"
   echo "|---|--:|--:|--:|--:|--:|--:|--:|--:|---|"
   for c in "${cases[@]}"; do
     name=${c%%|*}
     jq -r --arg name "$name" '
+      def sig4: if . == 0 then "0" else (fabs | log10 | floor) as $e | (3 - $e) as $d
+        | if $d >= 0 then (. * pow(10; $d) | round) / pow(10; $d) | tostring
+          else round | tostring end end;
       def rms($m): (.methods[] | select(.method == $m)) as $r
         | if $r.status == "failed" then "failed"
           elif $r.error == null then "-"
-          else ($r.error.rms * 1000 * 1000 | round / 1000 | tostring) end;
+          else ($r.error.rms * 1000 | sig4) end;
       def verdict: if .floors.all_hold == true then "all hold"
         elif .floors.all_hold == false then
           "fails: " + ([.floors.checks[] | select(.holds == false) | .floor] | join("; "))
