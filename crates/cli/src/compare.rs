@@ -17,6 +17,7 @@ use hull::{CompareConfig, Units};
 use nurbs::fit::SkinParameterization;
 
 use crate::optim_args::OptimArgs;
+use crate::parse::{parse_pair, parse_param, parse_units};
 use crate::progress;
 
 /// Arguments of `hullskin compare`.
@@ -43,20 +44,6 @@ pub struct CompareArgs {
     pub units: Units,
     #[command(flatten)]
     pub optim: OptimArgs,
-}
-
-fn parse_pair(s: &str) -> Result<(usize, usize), String> {
-    let (a, b) = s.split_once(',').ok_or_else(|| format!("expected two integers like 8,12, got `{s}`"))?;
-    let p = |t: &str| t.trim().parse::<usize>().map_err(|_| format!("`{t}` is not a non-negative integer (in `{s}`)"));
-    Ok((p(a)?, p(b)?))
-}
-
-fn parse_param(s: &str) -> Result<SkinParameterization, String> {
-    s.parse().map_err(|e| format!("{e}"))
-}
-
-fn parse_units(s: &str) -> Result<Units, String> {
-    s.parse().map_err(|e| format!("{e}"))
 }
 
 /// Run `hullskin compare`.

@@ -10,6 +10,7 @@ use clap::{Parser, Subcommand};
 mod compare;
 mod fit;
 mod optim_args;
+mod parse;
 mod progress;
 
 /// Fit one fair NURBS hull surface to offset data by skinning.
