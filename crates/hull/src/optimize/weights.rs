@@ -1593,14 +1593,18 @@ mod tests {
         }
     }
 
+    /// The same parameters with every `v` moved to 0 (all offsets on one edge of the domain).
+    fn at_v0(params: &[(f64, f64)]) -> Vec<(f64, f64)> {
+        params.iter().map(|&(u, _)| (u, 0.0)).collect()
+    }
+
     #[test]
     fn the_anchor_keeps_undetermined_control_points_at_the_plain_fit() {
         let (fit, offsets) = sample_fit((6, 12));
         let (pts, params) = points_and_params(&fit, &offsets);
         // All offsets at v = 0: only the first column of control points (j = 0) is determined
         // by the data; the anchor holds the others at the plain approximation's.
-        let squashed: Vec<(f64, f64)> = params.iter().map(|&(u, _)| (u, 0.0)).collect();
-        let p = WeightProblem::new(&fit.surface, &pts, &squashed, WeightOptions::default()).expect("ok");
+        let p = WeightProblem::new(&fit.surface, &pts, &at_v0(&params), WeightOptions::default()).expect("ok");
         assert!(p.value(&p.start()).is_finite());
         let s = p.surface(&p.start()).expect("anchored system is regular");
         let size = p.size();
@@ -1614,15 +1618,10 @@ mod tests {
         }
         // Where the offsets determine the points, the anchor changes the fit by a relative
         // amount of order 1e-9: the value at the start matches the unanchored one.
-        let (pts_all, params_all) = points_and_params(&fit, &offsets);
-        let anchored = WeightProblem::new(&fit.surface, &pts_all, &params_all, WeightOptions::default()).expect("ok");
-        let plain = WeightProblem::new(
-            &fit.surface,
-            &pts_all,
-            &params_all,
-            WeightOptions { anchor: 0.0, ..Default::default() },
-        )
-        .expect("ok");
+        let anchored = WeightProblem::new(&fit.surface, &pts, &params, WeightOptions::default()).expect("ok");
+        let plain =
+            WeightProblem::new(&fit.surface, &pts, &params, WeightOptions { anchor: 0.0, ..Default::default() })
+                .expect("ok");
         let (a, b) = (anchored.value(&anchored.start()), plain.value(&plain.start()));
         assert!((a - b).abs() <= 1e-6 * b, "{a} vs {b}");
     }
@@ -1632,7 +1631,7 @@ mod tests {
         let (fit, offsets) = sample_fit((6, 12));
         let (pts, params) = points_and_params(&fit, &offsets);
         // Every offset moved to v = 0: most control points have no offset in their support.
-        let squashed: Vec<(f64, f64)> = params.iter().map(|&(u, _)| (u, 0.0)).collect();
+        let squashed = at_v0(&params);
         let no_anchor = WeightOptions { anchor: 0.0, ..Default::default() };
         let p = WeightProblem::new(&fit.surface, &pts, &squashed, no_anchor).expect("ok");
         let f = p.value(&p.start());
