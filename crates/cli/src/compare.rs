@@ -13,47 +13,29 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
-use hull::{CompareConfig, Units};
-use nurbs::fit::SkinParameterization;
+use hull::CompareConfig;
 
 use crate::optim_args::OptimArgs;
-use crate::parse::{parse_pair, parse_param, parse_units};
 use crate::progress;
+use crate::skin_args::SkinArgs;
 
 /// Arguments of `hullskin compare`.
 #[derive(Debug, Args)]
 pub struct CompareArgs {
-    /// Offsets file (sections CSV or offset table CSV). Without it the built-in Series 60
-    /// Cb 0.60 parent hull is compared.
-    pub input: Option<PathBuf>,
+    #[command(flatten)]
+    pub skin: SkinArgs,
     /// Output directory for compare.json and compare.md.
     #[arg(short = 'o', long = "out", default_value = "hullskin-compare")]
     pub out: PathBuf,
-    /// Control points NU,NV of the approximation and of every optimised method. Default: three
-    /// quarters of the offsets in each direction, as `fit`. Interpolation has its own count.
-    #[arg(long, value_parser = parse_pair)]
-    pub ctrl: Option<(usize, usize)>,
-    /// Degrees P,Q in u (along sections) and v (across sections).
-    #[arg(long, default_value = "3,3", value_parser = parse_pair)]
-    pub degree: (usize, usize),
-    /// Parameterization: centripetal, chord, uniform or universal; one name or U,V.
-    #[arg(long, default_value = "centripetal,chord", value_parser = parse_param)]
-    pub param: SkinParameterization,
-    /// Units of the input coordinates (m, mm, ft or in); errors are reported in them.
-    #[arg(long, default_value = "m", value_parser = parse_units)]
-    pub units: Units,
     #[command(flatten)]
     pub optim: OptimArgs,
 }
 
 /// Run `hullskin compare`.
 pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
-    let offsets = match &args.input {
-        Some(path) => hull::read_offsets(path, args.units)?,
-        None => hull::series60_sample(),
-    };
-    let config =
-        CompareConfig { degree: args.degree, ctrl: args.ctrl, param: args.param, optim: args.optim.settings() };
+    let offsets = args.skin.offsets()?;
+    let s = &args.skin;
+    let config = CompareConfig { degree: s.degree, ctrl: s.ctrl, param: s.param, optim: args.optim.settings() };
     let comparison = hull::compare_offsets_with(&offsets, &config, &mut |algorithm, fit| {
         progress::with_progress(algorithm.name(), |control| fit(control))
     })?;
@@ -89,7 +71,7 @@ mod tests {
     fn flags_reach_the_config() {
         let w = Wrap::try_parse_from(["x", "in.csv", "--ctrl", "5,9", "--seed", "7", "--iterations", "3"])
             .expect("valid flags");
-        assert_eq!(w.args.ctrl, Some((5, 9)));
+        assert_eq!(w.args.skin.ctrl, Some((5, 9)));
         assert_eq!(w.args.out, PathBuf::from("hullskin-compare"));
         let s = w.args.optim.settings();
         assert_eq!((s.seed, s.iterations, s.population), (7, Some(3), None));

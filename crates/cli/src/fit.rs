@@ -5,20 +5,17 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
-use hull::{FitConfig, FitMethod, Units};
-use nurbs::fit::SkinParameterization;
+use hull::{FitConfig, FitMethod};
 
 use crate::optim_args::OptimArgs;
-use crate::parse::{parse_pair, parse_param, parse_units};
 use crate::progress;
+use crate::skin_args::SkinArgs;
 
 /// Arguments of `hullskin fit`.
 #[derive(Debug, Args)]
 pub struct FitArgs {
-    /// Offsets file: a sections CSV (header `section,x,y,z`) or an offset table CSV (first row
-    /// station positions, first column waterline heights, cells half-breadths). Without it the
-    /// built-in Series 60 Cb 0.60 parent hull is fitted.
-    pub input: Option<PathBuf>,
+    #[command(flatten)]
+    pub skin: SkinArgs,
     /// Output directory for surface.igs, surface.json and report.json.
     #[arg(short = 'o', long = "out", default_value = "hullskin-out")]
     pub out: PathBuf,
@@ -28,21 +25,6 @@ pub struct FitArgs {
     /// Levenberg-Marquardt, GSA then LM).
     #[arg(long, default_value = "approx", value_parser = parse_method)]
     pub method: FitMethod,
-    /// Control points NU,NV of `approx` (u along each section, v across sections). Default:
-    /// three quarters of the offsets in each direction
-    /// (of the largest section along u, of the sections along v).
-    #[arg(long, value_parser = parse_pair)]
-    pub ctrl: Option<(usize, usize)>,
-    /// Degrees P,Q in u (along sections) and v (across sections).
-    #[arg(long, default_value = "3,3", value_parser = parse_pair)]
-    pub degree: (usize, usize),
-    /// Parameterization of the offsets: centripetal, chord, uniform or universal; one name for
-    /// both directions, or U,V for along the sections (u) and across them (v).
-    #[arg(long, default_value = "centripetal,chord", value_parser = parse_param)]
-    pub param: SkinParameterization,
-    /// Units of the input coordinates, carried to the exports: m, mm, ft or in.
-    #[arg(long, default_value = "m", value_parser = parse_units)]
-    pub units: Units,
     /// Search the control-point counts for the fewest control points whose max error (true
     /// closest-point distance, in the input's units) is within T, for approx or an optimised
     /// method; report.json gets a "tolerance_search" block.
@@ -55,13 +37,9 @@ pub struct FitArgs {
 impl Default for FitArgs {
     fn default() -> Self {
         FitArgs {
-            input: None,
+            skin: SkinArgs::default(),
             out: PathBuf::from("hullskin-out"),
             method: FitMethod::Approx,
-            ctrl: None,
-            degree: (3, 3),
-            param: SkinParameterization::default(),
-            units: Units::Metre,
             tolerance: None,
             optim: OptimArgs::default(),
         }
@@ -74,15 +52,12 @@ fn parse_method(s: &str) -> Result<FitMethod, String> {
 
 /// Run `hullskin fit`.
 pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
-    let offsets = match &args.input {
-        Some(path) => hull::read_offsets(path, args.units)?,
-        None => hull::series60_sample(),
-    };
+    let offsets = args.skin.offsets()?;
     let config = FitConfig {
         method: args.method,
-        degree: args.degree,
-        ctrl: args.ctrl,
-        param: args.param,
+        degree: args.skin.degree,
+        ctrl: args.skin.ctrl,
+        param: args.skin.param,
         optim: args.optim.settings(),
     };
     let fit = |control: &hull::optimize::Control<'_>| match args.tolerance {
@@ -123,7 +98,8 @@ fn write_outputs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nurbs::fit::Parameterization;
+    use crate::parse::parse_param;
+    use nurbs::fit::{Parameterization, SkinParameterization};
 
     #[test]
     fn param_takes_one_name_or_one_per_direction() {
@@ -131,7 +107,7 @@ mod tests {
         assert_eq!((both.u, both.v), (Parameterization::ChordLength, Parameterization::ChordLength));
         let pair = parse_param("centripetal,chord").expect("two names");
         assert_eq!(pair, SkinParameterization::default());
-        assert_eq!(FitArgs::default().param, pair);
+        assert_eq!(FitArgs::default().skin.param, pair);
         let err = parse_param("centripetal,bogus").expect_err("unknown name");
         assert!(err.contains("bogus") && err.contains("universal"), "{err}");
     }

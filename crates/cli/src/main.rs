@@ -12,6 +12,7 @@ mod fit;
 mod optim_args;
 mod parse;
 mod progress;
+mod skin_args;
 
 /// Fit one fair NURBS hull surface to offset data by skinning.
 #[derive(Debug, Parser)]
