@@ -52,7 +52,7 @@ use nurbs::{KnotVector, NurbsSurface};
 use serde::Serialize;
 
 use crate::fit_error::parametric_residuals;
-use crate::optimize::{quiet, Algorithm, Control, OptimSettings, StopReason, WeightLayout, WeightMode};
+use crate::optimize::{quiet, Algorithm, Control, OptimSettings, StopReason};
 use crate::{fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, InputSummary};
 use crate::{Offsets, COINCIDENT_REL};
 
@@ -503,14 +503,8 @@ pub fn compare_offsets_with(
         optimization: CompareOptimization {
             iterations: o.iterations,
             population: o.population,
-            control_points: match o.weights.mode {
-                WeightMode::Resolved => "resolved",
-                WeightMode::Fixed => "fixed",
-            },
-            weight_layout: match o.weights.layout {
-                WeightLayout::Full => "full",
-                WeightLayout::RankOne => "rank_one",
-            },
+            control_points: o.weights.mode.name(),
+            weight_layout: o.weights.layout.name(),
             parameter_correction: o.parameter_correction,
         },
         curvature_sampling: CurvatureSampling { grid: CURVATURE_GRID, knot_lines: true },

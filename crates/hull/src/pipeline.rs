@@ -141,21 +141,25 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     let start = Instant::now();
     let opt = optimize_weights(offsets, &plain, algorithm, &config.optim, control)?;
     let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
+    measured(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))
+}
+
+/// Measure the true error of a fitted surface and assemble the outcome.
+fn measured(
+    offsets: &Offsets,
+    config: &FitConfig,
+    surface: NurbsSurface,
+    params: Vec<Vec<(f64, f64)>>,
+    fit_seconds: f64,
+    optimization: Option<OptimReport>,
+) -> Result<FitOutcome, HullError> {
     let start = Instant::now();
-    let error = measure_fit_error(&opt.surface, offsets, Some(&opt.params));
+    let error = measure_fit_error(&surface, offsets, Some(&params));
     let error_seconds = start.elapsed().as_secs_f64();
     if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
         return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
     }
-    Ok(FitOutcome {
-        config: *config,
-        surface: opt.surface,
-        params: opt.params,
-        error,
-        fit_seconds,
-        error_seconds,
-        optimization: Some(opt.report),
-    })
+    Ok(FitOutcome { config: *config, surface, params, error, fit_seconds, error_seconds, optimization })
 }
 
 /// Skinning interpolation or approximation.
@@ -189,21 +193,7 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullErr
     }
     .map_err(|e| fit_error(config, e))?;
     let fit_seconds = start.elapsed().as_secs_f64();
-    let start = Instant::now();
-    let error = measure_fit_error(&result.surface, offsets, Some(&result.params));
-    let error_seconds = start.elapsed().as_secs_f64();
-    if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
-        return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
-    }
-    Ok(FitOutcome {
-        config: *config,
-        surface: result.surface,
-        params: result.params,
-        error,
-        fit_seconds,
-        error_seconds,
-        optimization: None,
-    })
+    measured(offsets, config, result.surface, result.params, fit_seconds, None)
 }
 
 fn fit_error(config: &FitConfig, source: NurbsError) -> HullError {

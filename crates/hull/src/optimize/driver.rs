@@ -10,7 +10,7 @@ use nurbs::NurbsSurface;
 use serde::Serialize;
 
 use super::lm::{self, LmOptions};
-use super::weights::{ParamFreedom, WeightLayout, WeightMode, WeightOptions, WeightProblem};
+use super::weights::{ParamFreedom, WeightOptions, WeightProblem};
 use super::{ga, gsa, pso, Control, GaOptions, GsaOptions, Objective, OptimResult, PsoOptions, StopReason};
 use crate::{FitOutcome, HullError, Offsets};
 
@@ -217,14 +217,8 @@ pub fn optimize_weights(
     let report = OptimReport {
         algorithm: algorithm.name(),
         seed: settings.seed,
-        control_points: match settings.weights.mode {
-            WeightMode::Resolved => "resolved",
-            WeightMode::Fixed => "fixed",
-        },
-        weight_layout: match settings.weights.layout {
-            WeightLayout::Full => "full",
-            WeightLayout::RankOne => "rank_one",
-        },
+        control_points: settings.weights.mode.name(),
+        weight_layout: settings.weights.layout.name(),
         weight_bounds: [lo, hi],
         weight_range: [wmin, wmax],
         weights_at_bounds: at_bounds,

@@ -51,6 +51,16 @@ pub enum WeightMode {
     Resolved,
 }
 
+impl WeightMode {
+    /// The name in reports: `"resolved"` or `"fixed"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            WeightMode::Resolved => "resolved",
+            WeightMode::Fixed => "fixed",
+        }
+    }
+}
+
 /// How the weights are parameterised.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum WeightLayout {
@@ -60,6 +70,16 @@ pub enum WeightLayout {
     /// Rank one: `w_ij = a_i b_j = exp(α_i + β_j)`, `n_u + n_v` variables `(α, β)`. Fewer
     /// variables, less over-fitting between the offsets.
     RankOne,
+}
+
+impl WeightLayout {
+    /// The name in reports: `"full"` or `"rank_one"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            WeightLayout::Full => "full",
+            WeightLayout::RankOne => "rank_one",
+        }
+    }
 }
 
 /// Settings of a [`WeightProblem`].
