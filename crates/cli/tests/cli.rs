@@ -2,26 +2,9 @@
 //! reported with file, line and column, and earlier results never lost.
 
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-use serde_json::Value;
-
-fn hullskin(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hullskin")).args(args).current_dir(dir).output().expect("run hullskin")
-}
-
-fn testdata(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
-}
-
-fn text(o: &Output) -> (String, String) {
-    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
-}
-
-fn read_json(p: &Path) -> Value {
-    serde_json::from_str(&fs::read_to_string(p).expect("read json")).expect("valid json")
-}
+mod common;
+use common::*;
 
 #[test]
 fn no_arguments_fits_the_builtin_sample_and_prints_a_table() {

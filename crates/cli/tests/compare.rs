@@ -2,24 +2,14 @@
 //! the optimisers' guaranteed relation to the plain approximation, and no output on failure.
 
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
 use serde_json::Value;
 
+mod common;
+use common::*;
+
 const METHODS: [&str; 7] = ["interp", "approx", "ga", "pso", "gsa", "lm", "gsa+lm"];
-
-fn hullskin(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hullskin")).args(args).current_dir(dir).output().expect("run hullskin")
-}
-
-fn testdata(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
-}
-
-fn text(o: &Output) -> (String, String) {
-    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
-}
 
 fn num(v: &Value, what: &str) -> f64 {
     let x = v.as_f64().unwrap_or_else(|| panic!("{what} is not a number: {v}"));
