@@ -5,6 +5,7 @@
 //! the baseline; coordinates stay in the user's [`Units`].
 
 mod compare;
+pub mod drawing;
 mod error;
 pub mod export;
 pub mod fit_error;
