@@ -10,8 +10,8 @@ pub struct OptimArgs {
     /// the thread count.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Iterations (generations) of GA, PSO or GSA, or the iteration cap of LM. Default: each
-    /// algorithm's own (GA 200, PSO 200, GSA 500, LM 100).
+    /// Iterations (generations) of GA, PSO or GSA, or the iteration cap of LM (for gsa+lm: of
+    /// both phases). Default: each algorithm's own (GA 200, PSO 200, GSA 500, LM 200).
     #[arg(long)]
     pub iterations: Option<usize>,
     /// Population of GA, particles of PSO, agents of GSA. Default: 50, 40, 50.
@@ -29,6 +29,11 @@ pub struct OptimArgs {
     /// offset's parameters toward its foot point).
     #[arg(long)]
     pub param_correction: bool,
+    /// Start the weights from the skinning's own parameters of the offsets instead of their
+    /// foot points on the plain approximation (the default; the foot points make the objective
+    /// the true distance at the start).
+    #[arg(long)]
+    pub fitted_params: bool,
 }
 
 impl Default for OptimArgs {
@@ -41,6 +46,7 @@ impl Default for OptimArgs {
             weights: d.weights.layout,
             control_points: d.weights.mode,
             param_correction: false,
+            fitted_params: !d.foot_point_start,
         }
     }
 }
@@ -54,6 +60,7 @@ impl OptimArgs {
             population: self.population,
             weights: WeightOptions { mode: self.control_points, layout: self.weights, ..WeightOptions::default() },
             parameter_correction: self.param_correction,
+            foot_point_start: !self.fitted_params,
         }
     }
 }

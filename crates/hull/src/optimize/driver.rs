@@ -6,7 +6,8 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
-use nurbs::NurbsSurface;
+use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
+use rayon::prelude::*;
 use serde::Serialize;
 
 use super::lm::{self, LmOptions};
@@ -76,6 +77,16 @@ pub struct OptimSettings {
     /// Finish with a joint Gauss-Newton fit of the weights and the offsets' parameters (u per
     /// offset, v per section), which moves every offset's parameters toward its foot point.
     pub parameter_correction: bool,
+    /// Start from the offsets' foot points on the plain approximation instead of its fitted
+    /// parameters (one round of parameter correction before the weights move; not with
+    /// `parameter_correction`, which corrects the parameters itself, section by section).
+    /// The objective is then the true distance at the start, so what the optimisers lower is
+    /// what the report measures: with the fitted parameters, the parametric residual of the
+    /// BSpline3D-MATLAB frigate is 8 times its true RMS, LM lowered the former by 29 % and the
+    /// latter by 11 %, and GA ended below LM in true RMS. And the start is never worse than the
+    /// plain fit in true RMS (its parametric RMS at the foot points is the plain fit's true
+    /// RMS, and the least squares at those parameters can only lower it). Default true.
+    pub foot_point_start: bool,
 }
 
 impl Default for OptimSettings {
@@ -86,6 +97,7 @@ impl Default for OptimSettings {
             population: None,
             weights: WeightOptions::default(),
             parameter_correction: false,
+            foot_point_start: true,
         }
     }
 }
@@ -104,6 +116,11 @@ pub struct OptimReport {
     pub weight_range: [f64; 2],
     /// Weights at a bound (within 1e-9 relative): a sign of over-fitting.
     pub weights_at_bounds: usize,
+    /// The box GA, PSO and GSA searched, in log-weights: `κ` of
+    /// [`WeightOptions::search_scale`] (`None`: the whole bounds) and the smallest and largest
+    /// half-width over the variables.
+    pub search_scale: Option<f64>,
+    pub search_half_width: [f64; 2],
     pub iterations: usize,
     pub evaluations: usize,
     pub stop: StopReason,
@@ -115,6 +132,9 @@ pub struct OptimReport {
     pub history: Vec<f64>,
     /// Whether the offsets' parameters were corrected (jointly with the weights).
     pub parameter_correction: bool,
+    /// `"foot_points"` (the offsets' closest points on the plain approximation) or `"fitted"`
+    /// (the skinning's parameters): where the offsets' parameters started.
+    pub start_parameters: &'static str,
     /// The algorithm's settings as used.
     pub settings: serde_json::Value,
     pub seconds: f64,
@@ -146,9 +166,18 @@ pub fn optimize_weights(
     control: &Control<'_>,
 ) -> Result<Optimized, HullError> {
     let start = Instant::now();
-    let problem = WeightProblem::from_fit(base, offsets, settings.weights)?;
+    let mut problem = WeightProblem::from_fit(base, offsets, settings.weights)?;
+    let foot_start = settings.foot_point_start && !settings.parameter_correction;
+    if foot_start {
+        problem = problem.with_params(&foot_points(offsets, base))?;
+    }
     let x0 = problem.start();
     let start_value = problem.value(&x0);
+    let search_half_width = {
+        let (lo, hi) = problem.search_box();
+        let h = hi.iter().zip(&lo).map(|(h, l)| (h - l) / 2.0);
+        [h.clone().fold(f64::INFINITY, f64::min), h.fold(0.0, f64::max)]
+    };
     let lm_opts = LmOptions {
         max_iterations: settings.iterations.unwrap_or(LmOptions::default().max_iterations),
         ..LmOptions::default()
@@ -173,7 +202,7 @@ pub fn optimize_weights(
             let mut r = gsa::run(&problem, &o, settings.seed, control);
             let mut s = settings_json(&o);
             if algorithm == Algorithm::GsaLm && !control.stopped() {
-                let polish = lm::polish(&problem, &r.x, &LmOptions::default(), control);
+                let polish = lm::polish(&problem, &r.x, &lm_opts, control);
                 if polish.value <= r.value {
                     r.x = polish.x;
                     r.value = polish.value;
@@ -182,7 +211,7 @@ pub fn optimize_weights(
                 r.iterations += polish.iterations;
                 r.history.extend(polish.history.iter().skip(1).map(|&v| v.min(r.value)));
                 r.stop = polish.stop;
-                s = serde_json::json!({ "gsa": s, "lm": lm_settings(&LmOptions::default()) });
+                s = serde_json::json!({ "gsa": s, "lm": lm_settings(&lm_opts) });
             }
             (r, s)
         }
@@ -203,10 +232,12 @@ pub fn optimize_weights(
             result.value = fit.result.value;
             (problem.with_params(&fit.params)?, fit.params)
         } else {
-            (problem, flat_params(base))
+            let params = problem.params().to_vec();
+            (problem, params)
         }
     } else {
-        (problem, flat_params(base))
+        let params = problem.params().to_vec();
+        (problem, params)
     };
     let surface = problem.surface(&result.x)?;
     let w = surface.weights();
@@ -222,6 +253,8 @@ pub fn optimize_weights(
         weight_bounds: [lo, hi],
         weight_range: [wmin, wmax],
         weights_at_bounds: at_bounds,
+        search_scale: settings.weights.search_scale,
+        search_half_width,
         iterations: result.iterations,
         evaluations: result.evaluations,
         stop: result.stop,
@@ -229,6 +262,7 @@ pub fn optimize_weights(
         final_value: result.value,
         history: result.history,
         parameter_correction: settings.parameter_correction,
+        start_parameters: if foot_start { "foot_points" } else { "fitted" },
         settings: settings_value,
         seconds: start.elapsed().as_secs_f64(),
     };
@@ -245,8 +279,20 @@ fn lm_settings(o: &LmOptions) -> serde_json::Value {
     })
 }
 
-fn flat_params(base: &FitOutcome) -> Vec<(f64, f64)> {
-    base.params.iter().flatten().copied().collect()
+/// Each offset's foot point on the plain approximation (its closest point, the fit's own
+/// parameters as a Newton seed).
+fn foot_points(offsets: &Offsets, base: &FitOutcome) -> Vec<(f64, f64)> {
+    let projector = SurfaceProjector::new(&base.surface, ProjectionOptions::default());
+    let points: Vec<Vec3> = offsets.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
+    let hints: Vec<(f64, f64)> = base.params.iter().flatten().copied().collect();
+    points
+        .par_iter()
+        .zip(&hints)
+        .map(|(&q, &hint)| {
+            let foot = projector.project_near(q, hint);
+            (foot.u, foot.v)
+        })
+        .collect()
 }
 
 /// Flat parameters back into one list per section.

@@ -257,8 +257,8 @@ pub(super) struct UnitBox {
 
 impl UnitBox {
     pub(super) fn new(obj: &dyn Objective) -> Self {
-        let lo = obj.lower().to_vec();
-        let span = obj.upper().iter().zip(&lo).map(|(h, l)| h - l).collect();
+        let (lo, hi) = obj.search_box();
+        let span = hi.iter().zip(&lo).map(|(h, l)| h - l).collect();
         UnitBox { lo, span }
     }
 

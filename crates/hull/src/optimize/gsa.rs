@@ -1,7 +1,8 @@
 //! Gravitational Search Algorithm (E. Rashedi, H. Nezamabadi-pour, S. Saryazdi, "GSA: A
 //! Gravitational Search Algorithm", Information Sciences 179 (2009) 2232-2248).
 //!
-//! `N` agents move in the unit cube (`x = lo + t (hi - lo)`, `t` in `[0, 1]`). At iteration `k`
+//! `N` agents move in the unit cube (`x = lo + t (hi - lo)`, `t` in `[0, 1]`, over the
+//! objective's [`Objective::search_box`]). At iteration `k`
 //! (`s = k - 1` moves done, of `T`), with the fitness `f_i` of the agents (minimised):
 //!
 //! - masses: `m_i = (f_i - worst) / (best - worst)`, `M_i = m_i / sum_j m_j`,

@@ -47,6 +47,12 @@ pub trait Objective: Sync {
     fn value(&self, x: &[f64]) -> f64;
     /// The known good starting point (for weights: all 1, i.e. zero log-weights).
     fn start(&self) -> Vec<f64>;
+    /// The box GA, PSO and GSA search, inside the bounds and containing the start (their unit
+    /// cube is this box). Default: the bounds. A problem whose useful moves are far smaller
+    /// than its bounds narrows it (see [`weights::WeightOptions::search_scale`]).
+    fn search_box(&self) -> (Vec<f64>, Vec<f64>) {
+        (self.lower().to_vec(), self.upper().to_vec())
+    }
 }
 
 /// Why a run ended.
