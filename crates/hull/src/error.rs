@@ -93,6 +93,14 @@ pub enum HullError {
     /// A units name that is none of `m`, `mm`, `ft`, `in`.
     #[error("unknown units \"{0}\" (expected m, mm, ft or in)")]
     UnknownUnits(String),
+    /// A draft the hydrostatics cannot use: not finite, or above the top of the surface.
+    #[error("draft {draft}: {reason}")]
+    Draft {
+        /// The draft asked for.
+        draft: f64,
+        /// Why it cannot be used, with what was expected.
+        reason: String,
+    },
     /// No control-point count tried reached the requested max error.
     #[error(
         "no control-point count reaches max error {tolerance:.3e} {units}: the best max error is {best:.3e} {units} at {}x{} control points after {fits} fits (expected a tolerance of at least that)",

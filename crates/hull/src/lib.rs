@@ -4,20 +4,24 @@
 //! Axes everywhere: x forward (aft to fore), y to starboard (half-breadth, >= 0), z up from
 //! the baseline; coordinates stay in the user's [`Units`].
 
+pub mod analysis;
 mod compare;
 pub mod drawing;
 mod error;
 pub mod export;
 pub mod fit_error;
+pub mod hydrostatics;
 mod offsets;
 pub mod optimize;
 mod output;
 mod pipeline;
 pub mod read;
+pub mod render;
 mod report;
 mod sample;
 mod tolerance_search;
 mod units;
+pub mod viewer;
 
 pub use compare::{
     check_floors, compare_offsets, compare_offsets_with, comparison_json, comparison_markdown, comparison_table,
@@ -27,6 +31,10 @@ pub use compare::{
 };
 pub use error::{HullError, InputErrorKind, Location};
 pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
+pub use hydrostatics::{
+    density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
+    HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
+};
 pub use offsets::{Offsets, Section, COINCIDENT_REL, PLANAR_REL};
 pub use output::write_atomic;
 pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome};

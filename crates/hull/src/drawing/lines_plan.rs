@@ -1,0 +1,959 @@
+//! The lines plan of a hull surface: body plan, half-breadth plan and profile on one sheet at
+//! one standard scale, with grid, outline, the offsets coloured by their fit error, optional
+//! curvature combs, a colour legend and a title block.
+//!
+//! # Views
+//!
+//! All three views share one scale `k` (paper millimetres per model unit):
+//!
+//! - **profile** (top left): buttocks cut `y = c`, drawn in `(x, z)`; station and waterline
+//!   grid lines; the baseline `z = 0`;
+//! - **half-breadth plan** (below the profile, same x): waterlines cut `z = c`, drawn in
+//!   `(x, y)` with the centreline at the bottom and starboard up (looking down on the hull with
+//!   x forward, right-handed axes put +y up the page); buttocks as straight grid lines;
+//! - **body plan** (right of the profile, same z): stations cut `x = c`, drawn in `(y, z)`;
+//!   the aft stations (`x <` midship, the middle of the surface's x range) mirrored to the
+//!   LEFT of the centreline, the fore stations on the right, as naval architects draw it.
+//!
+//! Every view also shows the surface's four boundary curves (keel or flat-of-bottom edge,
+//! deck edge, stern and stem profiles) projected onto its plane (layer `outline`).
+//!
+//! # Scale and layout
+//!
+//! The scale is the largest of the standard scales 10:1, 5:1, 2:1, 1:1, 1:2, 1:5, 1:10, 1:20,
+//! 1:25, 1:50, 1:100, 1:200, 1:250, 1:500, 1:1000, ... (`{1, 2, 2.5, 5} x 10^n`, ISO 5455 with
+//! the 1:25 family of ship drawings) at which the views, their labels and the title block fit
+//! inside the frame (margins of ISO 5457: 20 mm left, 10 mm elsewhere). Two arrangements are
+//! tried at each scale: the title block beside the half-breadth plan, else below it.
+//!
+//! # Curvature combs
+//!
+//! On each cut curve, each point `p` with in-plane unit normal `n_L` (the tangent turned
+//! counter-clockwise in the plane's 2-D coordinates) and signed curvature `kappa` (positive
+//! when turning counter-clockwise, [`CutPoint::curvature`]) gets the tooth
+//! `p -> p - g kappa n_L`: it points away from the centre of curvature `p + n_L / kappa`, onto
+//! the convex side, with length proportional to `|kappa|`. One factor `g` for the whole sheet
+//! makes the longest tooth [`LinesPlanOptions::comb_length_mm`] long on paper. The teeth's
+//! ends are joined by the comb's envelope.
+//!
+//! The output is deterministic: no date, no randomness, parallel work gathered in order.
+
+use std::fmt;
+
+use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
+use rayon::prelude::*;
+
+use super::colormap;
+use super::model::{Anchor, Drawing, Item, Rgb, Stroke};
+use crate::analysis::cuts::{cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
+use crate::offsets::{Offsets, PLANAR_REL};
+use crate::units::Units;
+
+/// A3 landscape, 420 x 297 mm.
+pub const A3_LANDSCAPE: (f64, f64) = (420.0, 297.0);
+
+/// Settings of [`lines_plan`]. `None` lists take the defaults described on each field;
+/// non-finite values in a given list are ignored.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinesPlanOptions {
+    /// Station x values. Default: the x of the offsets' sections when every section lies in
+    /// one x plane (labelled with the sections' labels), else 21 stations evenly spaced over
+    /// the surface's x range, ends included (labelled 0 to 20).
+    pub stations: Option<Vec<f64>>,
+    /// Waterline z values. Default: 9, evenly spaced strictly between the bottom and the top of
+    /// the surface (tenths of its height).
+    pub waterlines: Option<Vec<f64>>,
+    /// Buttock y values. Default: 4, at fifths of the largest half-breadth.
+    pub buttocks: Option<Vec<f64>>,
+    /// Draw curvature combs on every station, waterline and buttock.
+    pub combs: bool,
+    /// Length on paper of the longest comb tooth, mm.
+    pub comb_length_mm: f64,
+    /// Sheet width and height, mm.
+    pub paper_mm: (f64, f64),
+    /// Title of the drawing and the title block's first line.
+    pub title: String,
+    /// The source named in the title block; default: the offsets' source, else `surface`.
+    pub source: Option<String>,
+    /// How the cuts are computed.
+    pub cut: CutOptions,
+}
+
+impl Default for LinesPlanOptions {
+    fn default() -> Self {
+        LinesPlanOptions {
+            stations: None,
+            waterlines: None,
+            buttocks: None,
+            combs: false,
+            comb_length_mm: 8.0,
+            paper_mm: A3_LANDSCAPE,
+            title: "Lines plan".into(),
+            source: None,
+            cut: CutOptions::default(),
+        }
+    }
+}
+
+/// A drawing scale `paper : model`, e.g. 1:500 (`paper = 1, model = 500`) or 2:1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Scale {
+    pub paper: u32,
+    pub model: u32,
+}
+
+impl Scale {
+    /// Paper length per model length.
+    pub fn ratio(self) -> f64 {
+        f64::from(self.paper) / f64::from(self.model)
+    }
+
+    /// The standard scales from the largest (10:1) down, `{1, 2, 2.5, 5} x 10^n` for
+    /// reductions, to 1:10^9.
+    pub fn standard() -> Vec<Scale> {
+        let mut v = vec![Scale { paper: 10, model: 1 }, Scale { paper: 5, model: 1 }, Scale { paper: 2, model: 1 }];
+        let mut decade: u32 = 1;
+        while decade <= 100_000_000 {
+            for m in [1, 2, 5] {
+                v.push(Scale { paper: 1, model: m * decade });
+            }
+            if decade >= 10 {
+                // 1:25, 1:250, ... go between 1:20 and 1:50 of the same decade.
+                let n = v.len();
+                v.insert(n - 1, Scale { paper: 1, model: 25 * decade / 10 });
+            }
+            decade *= 10;
+        }
+        v.push(Scale { paper: 1, model: 1_000_000_000 });
+        v
+    }
+}
+
+impl fmt::Display for Scale {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}", self.paper, self.model)
+    }
+}
+
+/// The lines plan of `surface` (a starboard half hull, axes x forward, y to starboard, z up,
+/// lengths in `units`), with `offsets`, when given, drawn in the body plan as markers coloured
+/// by their distance to the surface ([`colormap::sequential`] from the smallest to the largest
+/// distance, with a legend in millimetres).
+///
+/// Layers: `frame`, `title`, `grid`, `stations`, `waterlines`, `buttocks`, `outline`,
+/// `offsets` and `legend` (with offsets), `combs` (with [`LinesPlanOptions::combs`]). Every
+/// branch of every cut is one polyline; a view's grid line is labelled with its value (station
+/// labels above the profile, waterline values beside the profile and the body plan, buttock
+/// values beside the half-breadth plan); the centrelines carry `CL`, the baselines `BL`.
+pub fn lines_plan(
+    surface: &NurbsSurface,
+    offsets: Option<&Offsets>,
+    units: Units,
+    options: &LinesPlanOptions,
+) -> Drawing {
+    let (w, h) = options.paper_mm;
+    let mut d = Drawing::new(w, h, options.title.clone());
+    let bx = surface_box(surface);
+    let lines = Lines::new(bx, offsets, options);
+    let combs_mm = if options.combs { options.comb_length_mm.max(0.0) } else { 0.0 };
+    let errors = offsets.map(|o| offset_errors(surface, o));
+    let layout = Layout::choose(bx, units, (w, h), combs_mm, errors.is_some());
+
+    draw_frame(&mut d, (w, h));
+    draw_grid(&mut d, &layout, bx, &lines);
+    let cuts = cut_all(surface, &lines, &options.cut);
+    draw_cuts(&mut d, &layout, bx, &cuts);
+    draw_outline(&mut d, &layout, bx, surface);
+    if let (Some(o), Some(e)) = (offsets, errors.as_ref()) {
+        draw_offsets(&mut d, &layout, bx, o, e);
+        draw_legend(&mut d, &layout, e, units);
+    }
+    if options.combs {
+        draw_combs(&mut d, &layout, bx, surface, &cuts, combs_mm);
+    }
+    let source =
+        options.source.clone().or_else(|| offsets.map(|o| o.source.clone())).unwrap_or_else(|| "surface".into());
+    draw_title_block(&mut d, &layout, &options.title, &source, units, &lines);
+    d
+}
+
+/// The station, waterline and buttock polylines of the lines plan in model coordinates, one
+/// entry per cut branch, layers `stations`, `waterlines`, `buttocks` (for
+/// [`super::write_dxf_3d_lines`]). Same stations, waterlines and buttocks as [`lines_plan`].
+pub fn lines_3d(
+    surface: &NurbsSurface,
+    offsets: Option<&Offsets>,
+    options: &LinesPlanOptions,
+) -> Vec<(&'static str, Vec<Vec3>)> {
+    let lines = Lines::new(surface_box(surface), offsets, options);
+    let cuts = cut_all(surface, &lines, &options.cut);
+    let mut out = Vec::new();
+    for (layer, curves) in
+        [("stations", &cuts.stations), ("waterlines", &cuts.waterlines), ("buttocks", &cuts.buttocks)]
+    {
+        for c in curves.iter().flatten() {
+            out.push((layer, c.points.iter().map(|p| p.point).collect()));
+        }
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------------------------
+// Styles
+
+const GRID: Rgb = Rgb(150, 150, 150);
+const STATION: Rgb = Rgb(0, 70, 160);
+const WATERLINE: Rgb = Rgb(0, 120, 60);
+const BUTTOCK: Rgb = Rgb(170, 40, 40);
+const COMB: Rgb = Rgb(220, 110, 0);
+const LABEL_MM: f64 = 1.8;
+const MARKER_MM: f64 = 1.0;
+/// Centreline dash-dot, mm.
+const DASH_DOT: [f64; 4] = [6.0, 1.5, 0.5, 1.5];
+
+/// Average advance of a character of a sans-serif face, in cap heights (0.6 em / 0.72).
+const CHAR_WIDTH_PER_CAP: f64 = 0.85;
+
+fn line(points: Vec<[f64; 2]>, color: Rgb, width: f64, layer: &str) -> Item {
+    Item::Polyline { points, closed: false, stroke: Stroke::solid(color, width), layer: layer.into() }
+}
+
+fn text(at: [f64; 2], s: impl Into<String>, size: f64, anchor: Anchor, layer: &str) -> Item {
+    Item::Text { at, text: s.into(), size_mm: size, anchor, color: Rgb::BLACK, layer: layer.into() }
+}
+
+/// A number for a label: at most 3 decimals, trailing zeros dropped.
+fn label_num(x: f64) -> String {
+    let mut s = format!("{x:.3}");
+    if s.contains('.') {
+        let n = s.trim_end_matches('0').trim_end_matches('.').len();
+        s.truncate(n);
+    }
+    if s == "-0" {
+        "0".into()
+    } else {
+        s
+    }
+}
+
+/// `x` with 3 significant digits (plain notation).
+fn sig3(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return "0".into();
+    }
+    let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 12) as usize;
+    format!("{x:.digits$}")
+}
+
+// ---------------------------------------------------------------------------------------------
+// Geometry of the surface
+
+/// Axis-aligned box of the surface: its points on a 65 x 65 parameter grid (boundaries
+/// included). Finer than any drawing needs: between grid lines a hull surface bulges by far
+/// less than a line width at the scales that fit a sheet.
+#[derive(Clone, Copy, Debug)]
+struct Box3 {
+    lo: Vec3,
+    hi: Vec3,
+}
+
+impl Box3 {
+    /// Middle of the x range: the midship that splits the body plan.
+    fn x_mid(&self) -> f64 {
+        0.5 * (self.lo.x + self.hi.x)
+    }
+    /// The body plan side of x: -1 (aft, drawn left) below midship, +1 (fore, right) from
+    /// midship on. A station within 1e-9 of the length of midship (round-off of the box) is
+    /// the midship station and drawn fore.
+    fn side(&self, x: f64) -> f64 {
+        if x < self.x_mid() - 1e-9 * (self.hi.x - self.lo.x) {
+            -1.0
+        } else {
+            1.0
+        }
+    }
+    /// The lowest z drawn: the baseline z = 0 or the bottom of the surface if lower.
+    fn z0(&self) -> f64 {
+        self.lo.z.min(0.0)
+    }
+    /// The largest half-breadth (|y|; the surface is one side).
+    fn half_breadth(&self) -> f64 {
+        self.hi.y.abs().max(self.lo.y.abs())
+    }
+}
+
+fn surface_box(s: &NurbsSurface) -> Box3 {
+    const N: usize = 64;
+    let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
+    let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    let mut hi = -lo;
+    for i in 0..=N {
+        for j in 0..=N {
+            let p = s.point(u0 + (u1 - u0) * i as f64 / N as f64, v0 + (v1 - v0) * j as f64 / N as f64);
+            if p.is_finite() {
+                lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+                hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+            }
+        }
+    }
+    if lo.x > hi.x {
+        lo = Vec3::new(0.0, 0.0, 0.0);
+        hi = lo;
+    }
+    Box3 { lo, hi }
+}
+
+/// The stations, waterlines and buttocks to draw, with their labels.
+struct Lines {
+    stations: Vec<(f64, String)>,
+    waterlines: Vec<f64>,
+    buttocks: Vec<f64>,
+}
+
+impl Lines {
+    fn new(bx: Box3, offsets: Option<&Offsets>, o: &LinesPlanOptions) -> Self {
+        let finite = |v: &Vec<f64>| v.iter().copied().filter(|x| x.is_finite()).collect::<Vec<f64>>();
+        let stations = match &o.stations {
+            Some(v) => finite(v).into_iter().enumerate().map(|(i, x)| (x, i.to_string())).collect(),
+            None => offsets.and_then(section_stations).unwrap_or_else(|| {
+                (0..=20).map(|i| (bx.lo.x + (bx.hi.x - bx.lo.x) * f64::from(i) / 20.0, i.to_string())).collect()
+            }),
+        };
+        let waterlines = match &o.waterlines {
+            Some(v) => finite(v),
+            None => (1..=9).map(|i| bx.lo.z + (bx.hi.z - bx.lo.z) * f64::from(i) / 10.0).collect(),
+        };
+        let buttocks = match &o.buttocks {
+            Some(v) => finite(v),
+            None => (1..=4).map(|i| bx.half_breadth() * f64::from(i) / 5.0).collect(),
+        };
+        Lines { stations, waterlines, buttocks }
+    }
+}
+
+/// The sections' x and labels when every section lies in one x plane (within
+/// [`PLANAR_REL`] of the model size), else `None`.
+fn section_stations(o: &Offsets) -> Option<Vec<(f64, String)>> {
+    let tol = PLANAR_REL * o.size();
+    let mut out = Vec::new();
+    for s in &o.sections {
+        let x = s.mean_x()?;
+        if !x.is_finite() || s.points.iter().any(|p| (p.x - x).abs() > tol) {
+            return None;
+        }
+        out.push((x, s.label.clone()));
+    }
+    (!out.is_empty()).then_some(out)
+}
+
+/// The cut branches of every station, waterline and buttock, in the order of [`Lines`].
+struct Cuts {
+    stations: Vec<Vec<CutCurve>>,
+    waterlines: Vec<Vec<CutCurve>>,
+    buttocks: Vec<Vec<CutCurve>>,
+}
+
+fn cut_all(surface: &NurbsSurface, lines: &Lines, options: &CutOptions) -> Cuts {
+    let mut planes: Vec<CutPlane> = lines.stations.iter().map(|s| CutPlane::Station(s.0)).collect();
+    planes.extend(lines.waterlines.iter().map(|&z| CutPlane::Waterline(z)));
+    planes.extend(lines.buttocks.iter().map(|&y| CutPlane::Buttock(y)));
+    let mut all = cut_surface_many(surface, &planes, options).into_iter();
+    let stations = all.by_ref().take(lines.stations.len()).collect();
+    let waterlines = all.by_ref().take(lines.waterlines.len()).collect();
+    let buttocks = all.collect();
+    Cuts { stations, waterlines, buttocks }
+}
+
+/// Distance of every offset to the surface (closest-point projection), in section order.
+fn offset_errors(surface: &NurbsSurface, o: &Offsets) -> Vec<f64> {
+    let projector = SurfaceProjector::new(surface, ProjectionOptions::default());
+    let points: Vec<Vec3> = o.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
+    points.par_iter().map(|&q| if q.is_finite() { projector.project(q).distance } else { f64::NAN }).collect()
+}
+
+// ---------------------------------------------------------------------------------------------
+// Layout
+
+/// Margins of the frame (ISO 5457: 20 mm on the binding edge, 10 mm elsewhere).
+const MARGIN_LEFT: f64 = 20.0;
+const MARGIN: f64 = 10.0;
+/// Room beside a view for its labels, and above the profile for the station labels.
+const LABEL_W: f64 = 12.0;
+const LABEL_H: f64 = 6.0;
+/// Space between views.
+const GAP: f64 = 10.0;
+const TITLE_W: f64 = 150.0;
+const TITLE_H: f64 = 32.0;
+const LEGEND_W: f64 = 70.0;
+const LEGEND_H: f64 = 16.0;
+
+/// Where the views go: paper positions of the model origins of each view, the scale, and the
+/// title block and legend rectangles `[x, y, w, h]`.
+#[derive(Clone, Debug)]
+struct Layout {
+    scale: Scale,
+    /// Paper mm per model unit.
+    k: f64,
+    /// Paper point of `(x = lo.x, z = z0)` in the profile.
+    profile: [f64; 2],
+    /// Paper point of `(x = lo.x, y = 0)` in the half-breadth plan.
+    plan: [f64; 2],
+    /// Paper point of `(y = 0, z = z0)` in the body plan.
+    body: [f64; 2],
+    title: [f64; 4],
+    legend: Option<[f64; 4]>,
+}
+
+impl Layout {
+    fn choose(bx: Box3, units: Units, paper: (f64, f64), comb: f64, legend: bool) -> Layout {
+        let scales = Scale::standard();
+        let mm_per_unit = units.metres_per_unit() * 1000.0;
+        for &scale in &scales {
+            let k = scale.ratio() * mm_per_unit;
+            if let Some(l) = Layout::fit(bx, paper, comb, legend, scale, k) {
+                return l;
+            }
+        }
+        // Nothing fits (a sheet smaller than the title block): the smallest scale, placed as
+        // well as it goes.
+        let scale = *scales.last().expect("the list of scales is not empty");
+        let k = scale.ratio() * mm_per_unit;
+        Layout::place(bx, paper, comb, legend, scale, k, false, 0.0, 0.0)
+    }
+
+    /// The layout at scale `k` if it fits the frame: the title block beside the half-breadth
+    /// plan if that fits, else below it.
+    fn fit(bx: Box3, paper: (f64, f64), comb: f64, legend: bool, scale: Scale, k: f64) -> Option<Layout> {
+        let (inner_w, inner_h) = (paper.0 - MARGIN_LEFT - MARGIN, paper.1 - 2.0 * MARGIN);
+        let (lp, zp, yp) = ((bx.hi.x - bx.lo.x) * k, (bx.hi.z - bx.z0()) * k, bx.half_breadth() * k);
+        let e = comb;
+        let tb_w = TITLE_W.min(inner_w);
+        let (lg_w, lg_h) = if legend { (LEGEND_W, LEGEND_H + 4.0) } else { (0.0, 0.0) };
+        let row1 = LABEL_W + e + lp + e + GAP + e + 2.0 * yp + e + LABEL_W;
+        let top = LABEL_H + e + zp + e + GAP;
+        // A: title block (and legend above it) beside the half-breadth plan.
+        let row2 = LABEL_W + e + lp + e + GAP + tb_w.max(lg_w);
+        let height_a = top + (yp + e).max(TITLE_H + lg_h);
+        if row1.max(row2) <= inner_w && height_a <= inner_h {
+            let slack_x = (inner_w - row1).min(inner_w - row2);
+            return Some(Layout::place(bx, paper, comb, legend, scale, k, true, slack_x, inner_h - height_a));
+        }
+        // B: title block below the half-breadth plan, legend to its left.
+        let width_b = row1.max(LABEL_W + e + lp + e + LABEL_W).max(tb_w + lg_w + GAP);
+        let height_b = top + yp + e + GAP + TITLE_H;
+        if width_b <= inner_w && height_b <= inner_h {
+            return Some(Layout::place(
+                bx,
+                paper,
+                comb,
+                legend,
+                scale,
+                k,
+                false,
+                inner_w - width_b,
+                inner_h - height_b,
+            ));
+        }
+        None
+    }
+
+    /// Place the views, shifted right and down by half the slack so the drawing sits in the
+    /// middle of the free space; the title block is in the frame's bottom-right corner.
+    #[allow(clippy::too_many_arguments)]
+    fn place(
+        bx: Box3,
+        paper: (f64, f64),
+        comb: f64,
+        legend: bool,
+        scale: Scale,
+        k: f64,
+        beside: bool,
+        slack_x: f64,
+        slack_y: f64,
+    ) -> Layout {
+        let (x0, y0, x1, y1) = (MARGIN_LEFT, MARGIN, paper.0 - MARGIN, paper.1 - MARGIN);
+        let e = comb;
+        let (lp, zp, yp) = ((bx.hi.x - bx.lo.x) * k, (bx.hi.z - bx.z0()) * k, bx.half_breadth() * k);
+        let left = x0 + LABEL_W + e + 0.5 * slack_x.max(0.0);
+        let top = y1 - LABEL_H - e - 0.5 * slack_y.max(0.0);
+        let profile = [left, top - zp];
+        let body = [left + lp + e + GAP + e + yp, top - zp];
+        let plan = [left, profile[1] - e - GAP - e - yp];
+        let tb_w = TITLE_W.min(x1 - x0);
+        let title = [x1 - tb_w, y0, tb_w, TITLE_H];
+        let legend_at = if beside {
+            [x1 - LEGEND_W, y0 + TITLE_H + 4.0, LEGEND_W, LEGEND_H]
+        } else {
+            [x1 - tb_w - GAP - LEGEND_W, y0, LEGEND_W, LEGEND_H]
+        };
+        let legend = legend.then_some(legend_at);
+        Layout { scale, k, profile, plan, body, title, legend }
+    }
+
+    fn profile_pt(&self, bx: Box3, x: f64, z: f64) -> [f64; 2] {
+        [self.profile[0] + (x - bx.lo.x) * self.k, self.profile[1] + (z - bx.z0()) * self.k]
+    }
+
+    fn plan_pt(&self, bx: Box3, x: f64, y: f64) -> [f64; 2] {
+        [self.plan[0] + (x - bx.lo.x) * self.k, self.plan[1] + y * self.k]
+    }
+
+    /// `side` -1 for the aft half (drawn left), +1 for the fore half.
+    fn body_pt(&self, bx: Box3, y: f64, z: f64, side: f64) -> [f64; 2] {
+        [self.body[0] + side * y * self.k, self.body[1] + (z - bx.z0()) * self.k]
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Drawing the parts
+
+fn draw_frame(d: &mut Drawing, (w, h): (f64, f64)) {
+    let (x0, y0, x1, y1) = (MARGIN_LEFT, MARGIN, w - MARGIN, h - MARGIN);
+    d.push(Item::Polyline {
+        points: vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]],
+        closed: true,
+        stroke: Stroke::solid(Rgb::BLACK, 0.5),
+        layer: "frame".into(),
+    });
+}
+
+/// Keep the labels that do not overlap the previous kept one (greedy, from the lowest
+/// position up), `(paper position, text)` along x (`vertical` false: extent the estimated text
+/// width) or along y (extent the cap height), with 0.8 cap height of clearance.
+fn spaced(labels: Vec<(f64, String)>, size: f64, vertical: bool) -> Vec<(f64, String)> {
+    let mut sorted = labels;
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut out = Vec::new();
+    let mut edge = f64::NEG_INFINITY;
+    for (x, s) in sorted {
+        let half = if vertical { 0.5 * size } else { 0.5 * s.chars().count() as f64 * CHAR_WIDTH_PER_CAP * size };
+        if x - half >= edge + 0.8 * size {
+            edge = x + half;
+            out.push((x, s));
+        }
+    }
+    out
+}
+
+fn draw_grid(d: &mut Drawing, l: &Layout, bx: Box3, lines: &Lines) {
+    let g = "grid";
+    let (x0, x1, z0, z1, yb) = (bx.lo.x, bx.hi.x, bx.z0(), bx.hi.z, bx.half_breadth());
+    let thin = 0.13;
+    let centreline = |points: Vec<[f64; 2]>| Item::Polyline {
+        points,
+        closed: false,
+        stroke: Stroke { color: Rgb::BLACK, width_mm: 0.18, dash: Some(DASH_DOT.to_vec()) },
+        layer: g.into(),
+    };
+    // Profile: stations, waterlines, baseline.
+    for &(x, _) in &lines.stations {
+        d.push(line(vec![l.profile_pt(bx, x, z0), l.profile_pt(bx, x, z1)], GRID, thin, g));
+        d.push(line(vec![l.plan_pt(bx, x, 0.0), l.plan_pt(bx, x, yb)], GRID, thin, g));
+    }
+    let labels = lines.stations.iter().map(|(x, s)| (l.profile_pt(bx, *x, z0)[0], s.clone())).collect();
+    let label_y = l.profile_pt(bx, x0, z1)[1] + 1.5;
+    for (px, s) in spaced(labels, LABEL_MM, false) {
+        d.push(text([px, label_y], s, LABEL_MM, Anchor::Middle, g));
+    }
+    for &z in &lines.waterlines {
+        d.push(line(vec![l.profile_pt(bx, x0, z), l.profile_pt(bx, x1, z)], GRID, thin, g));
+        d.push(line(vec![l.body_pt(bx, yb, z, -1.0), l.body_pt(bx, yb, z, 1.0)], GRID, thin, g));
+    }
+    let base = [l.profile_pt(bx, x0, 0.0), l.profile_pt(bx, x1, 0.0)];
+    d.push(line(base.to_vec(), Rgb::BLACK, 0.25, g));
+    let (b0, b1) = (l.body_pt(bx, yb, 0.0, -1.0), l.body_pt(bx, yb, 0.0, 1.0));
+    d.push(line(vec![b0, b1], Rgb::BLACK, 0.25, g));
+    // Waterline values left of the profile and right of the body plan, the baseline's BL first.
+    let mut labels = vec![(base[0][1], "BL".to_string())];
+    labels.extend(lines.waterlines.iter().map(|&z| (l.profile_pt(bx, x0, z)[1], label_num(z))));
+    for (py, s) in spaced(labels, LABEL_MM, true) {
+        let y = py - 0.5 * LABEL_MM;
+        d.push(text([base[0][0] - 1.5, y], s.clone(), LABEL_MM, Anchor::End, g));
+        d.push(text([b1[0] + 1.5, y], s, LABEL_MM, Anchor::Start, g));
+    }
+    // Half-breadth plan: buttocks (also in the body plan), centreline.
+    for &y in &lines.buttocks {
+        d.push(line(vec![l.plan_pt(bx, x0, y), l.plan_pt(bx, x1, y)], GRID, thin, g));
+        for side in [-1.0, 1.0] {
+            d.push(line(vec![l.body_pt(bx, y, z0, side), l.body_pt(bx, y, z1, side)], GRID, thin, g));
+        }
+    }
+    let cl = [l.plan_pt(bx, x0, 0.0), l.plan_pt(bx, x1, 0.0)];
+    d.push(centreline(cl.to_vec()));
+    let mut labels = vec![(cl[0][1], "CL".to_string())];
+    labels.extend(lines.buttocks.iter().map(|&y| (l.plan_pt(bx, x0, y)[1], label_num(y))));
+    for (py, s) in spaced(labels, LABEL_MM, true) {
+        d.push(text([cl[0][0] - 1.5, py - 0.5 * LABEL_MM], s, LABEL_MM, Anchor::End, g));
+    }
+    // Body plan: centreline, labelled CL at its top (anchored on it).
+    let (top, bottom) = (l.body_pt(bx, 0.0, z1, 1.0), l.body_pt(bx, 0.0, z0, 1.0));
+    d.push(centreline(vec![bottom, top]));
+    d.push(text([top[0], top[1] + 1.5], "CL", LABEL_MM, Anchor::Middle, g));
+}
+
+/// A cut branch as paper points: its 2-D coordinates mapped into its view. A closed loop
+/// drops its repeated last point (the polyline is marked closed instead).
+fn cut_paper(l: &Layout, bx: Box3, c: &CutCurve) -> (Vec<[f64; 2]>, bool) {
+    let closed = c.is_closed();
+    let n = if closed { c.points.len() - 1 } else { c.points.len() };
+    let pts = c.points[..n].iter().map(|p| view_pt(l, bx, c.plane, c.plane.coords(p.point))).collect();
+    (pts, closed)
+}
+
+/// Paper point of the 2-D plane coordinates `q` of a cut of `plane` (the body plan side from
+/// the plane's x).
+fn view_pt(l: &Layout, bx: Box3, plane: CutPlane, q: [f64; 2]) -> [f64; 2] {
+    match plane {
+        CutPlane::Station(x) => l.body_pt(bx, q[0], q[1], bx.side(x)),
+        CutPlane::Waterline(_) => l.plan_pt(bx, q[0], q[1]),
+        CutPlane::Buttock(_) => l.profile_pt(bx, q[0], q[1]),
+    }
+}
+
+fn draw_cuts(d: &mut Drawing, l: &Layout, bx: Box3, cuts: &Cuts) {
+    for (layer, color, curves) in [
+        ("stations", STATION, &cuts.stations),
+        ("waterlines", WATERLINE, &cuts.waterlines),
+        ("buttocks", BUTTOCK, &cuts.buttocks),
+    ] {
+        for c in curves.iter().flatten() {
+            let (points, closed) = cut_paper(l, bx, c);
+            if points.len() >= 2 {
+                d.push(Item::Polyline { points, closed, stroke: Stroke::solid(color, 0.25), layer: layer.into() });
+            }
+        }
+    }
+}
+
+/// The four boundary curves, sampled at 129 parameter values each: u = u0, u = u1, v = v0,
+/// v = v1. A boundary collapsed to a point (a pointed end) is dropped.
+fn boundaries(s: &NurbsSurface) -> Vec<Vec<Vec3>> {
+    const N: usize = 128;
+    let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
+    let at = |a: f64, b: f64, t: usize| a + (b - a) * t as f64 / N as f64;
+    let curves = [
+        (0..=N).map(|t| s.point(u0, at(v0, v1, t))).collect::<Vec<_>>(),
+        (0..=N).map(|t| s.point(u1, at(v0, v1, t))).collect(),
+        (0..=N).map(|t| s.point(at(u0, u1, t), v0)).collect(),
+        (0..=N).map(|t| s.point(at(u0, u1, t), v1)).collect(),
+    ];
+    curves
+        .into_iter()
+        .filter(|c| c.iter().all(|p| p.is_finite()) && c.windows(2).any(|w| w[0].distance(w[1]) > 0.0))
+        .collect()
+}
+
+/// Split a 3-D polyline where it crosses `x = x_mid`, inserting the crossing point (linear
+/// interpolation) in both pieces; each piece is tagged with its side (-1 aft, +1 fore).
+fn split_at_midship(points: &[Vec3], x_mid: f64) -> Vec<(f64, Vec<Vec3>)> {
+    let side = |p: &Vec3| if p.x < x_mid { -1.0 } else { 1.0 };
+    let mut out: Vec<(f64, Vec<Vec3>)> = Vec::new();
+    for (i, p) in points.iter().enumerate() {
+        let s = side(p);
+        match out.last_mut() {
+            Some((cur, piece)) if *cur == s => piece.push(*p),
+            Some((_, piece)) => {
+                let a = points[i - 1];
+                let t = if p.x != a.x { (x_mid - a.x) / (p.x - a.x) } else { 0.0 };
+                let m = a + (*p - a) * t.clamp(0.0, 1.0);
+                piece.push(m);
+                out.push((s, vec![m, *p]));
+            }
+            None => out.push((s, vec![*p])),
+        }
+    }
+    out.retain(|(_, p)| p.len() >= 2);
+    out
+}
+
+fn draw_outline(d: &mut Drawing, l: &Layout, bx: Box3, s: &NurbsSurface) {
+    let o = "outline";
+    for b in boundaries(s) {
+        d.push(line(b.iter().map(|p| l.profile_pt(bx, p.x, p.z)).collect(), Rgb::BLACK, 0.35, o));
+        d.push(line(b.iter().map(|p| l.plan_pt(bx, p.x, p.y)).collect(), Rgb::BLACK, 0.35, o));
+        for (side, piece) in split_at_midship(&b, bx.x_mid()) {
+            d.push(line(piece.iter().map(|p| l.body_pt(bx, p.y, p.z, side)).collect(), Rgb::BLACK, 0.35, o));
+        }
+    }
+}
+
+/// The error range `(lo, hi)` of the finite errors, `(0, 0)` without any.
+fn error_range(errors: &[f64]) -> (f64, f64) {
+    let finite = errors.iter().copied().filter(|e| e.is_finite());
+    let lo = finite.clone().fold(f64::INFINITY, f64::min);
+    let hi = finite.fold(f64::NEG_INFINITY, f64::max);
+    if lo <= hi {
+        (lo, hi)
+    } else {
+        (0.0, 0.0)
+    }
+}
+
+fn draw_offsets(d: &mut Drawing, l: &Layout, bx: Box3, o: &Offsets, errors: &[f64]) {
+    let (lo, hi) = error_range(errors);
+    let points = o.sections.iter().flat_map(|s| s.points.iter());
+    for (p, &e) in points.zip(errors) {
+        if !p.is_finite() {
+            continue;
+        }
+        let side = bx.side(p.x);
+        d.push(Item::Marker {
+            at: l.body_pt(bx, p.y, p.z, side),
+            size_mm: MARKER_MM,
+            fill: colormap::sequential(e, lo, hi),
+            layer: "offsets".into(),
+        });
+    }
+}
+
+fn draw_legend(d: &mut Drawing, l: &Layout, errors: &[f64], units: Units) {
+    let Some([x, y, w, _]) = l.legend else { return };
+    let g = "legend";
+    let (lo, hi) = error_range(errors);
+    let mm = units.metres_per_unit() * 1000.0;
+    const STEPS: usize = 32;
+    let (bar_y, bar_h) = (y + 5.0, 4.0);
+    for i in 0..STEPS {
+        let (a, b) = (x + w * i as f64 / STEPS as f64, x + w * (i + 1) as f64 / STEPS as f64);
+        let t = (i as f64 + 0.5) / STEPS as f64;
+        d.push(Item::Polygon {
+            points: vec![[a, bar_y], [b, bar_y], [b, bar_y + bar_h], [a, bar_y + bar_h]],
+            fill: colormap::sequential(t, 0.0, 1.0),
+            layer: g.into(),
+        });
+    }
+    d.push(Item::Polyline {
+        points: vec![[x, bar_y], [x + w, bar_y], [x + w, bar_y + bar_h], [x, bar_y + bar_h]],
+        closed: true,
+        stroke: Stroke::solid(Rgb::BLACK, 0.13),
+        layer: g.into(),
+    });
+    d.push(text([x, bar_y + bar_h + 2.0], "Offset fit error (mm)", 2.2, Anchor::Start, g));
+    d.push(text([x, y + 1.0], sig3(lo * mm), LABEL_MM, Anchor::Start, g));
+    d.push(text([x + 0.5 * w, y + 1.0], sig3(0.5 * (lo + hi) * mm), LABEL_MM, Anchor::Middle, g));
+    d.push(text([x + w, y + 1.0], sig3(hi * mm), LABEL_MM, Anchor::End, g));
+}
+
+/// Left normal (the unit tangent turned counter-clockwise) of a cut at each point, in the
+/// plane's 2-D coordinates. The tangent is the exact one, `axis x N(u, v)` (perpendicular to
+/// the plane normal and to the surface normal), oriented along the polyline; where the surface
+/// normal is undefined or lies along the plane normal, the chord through the neighbours
+/// (one-sided at the ends) stands in. Zero where the neighbours coincide too.
+fn left_normals(surface: &NurbsSurface, c: &CutCurve, q: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let n = q.len();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (q[i.saturating_sub(1)], q[(i + 1).min(n - 1)]);
+            let chord = [b[0] - a[0], b[1] - a[1]];
+            let exact =
+                surface.normal(c.points[i].uv.0, c.points[i].uv.1).map(|nn| c.plane.coords(c.plane.axis().cross(nn)));
+            let t = match exact {
+                Some(t) if t[0].hypot(t[1]) > 1e-6 => {
+                    let sign = if t[0] * chord[0] + t[1] * chord[1] < 0.0 { -1.0 } else { 1.0 };
+                    [sign * t[0], sign * t[1]]
+                }
+                _ => chord,
+            };
+            let len = t[0].hypot(t[1]);
+            if len > 0.0 {
+                [-t[1] / len, t[0] / len]
+            } else {
+                [0.0, 0.0]
+            }
+        })
+        .collect()
+}
+
+fn draw_combs(d: &mut Drawing, l: &Layout, bx: Box3, surface: &NurbsSurface, cuts: &Cuts, comb_mm: f64) {
+    let all: Vec<&CutCurve> = cuts
+        .stations
+        .iter()
+        .chain(&cuts.waterlines)
+        .chain(&cuts.buttocks)
+        .flatten()
+        .filter(|c| c.points.len() >= 2)
+        .collect();
+    let max_kappa = all
+        .iter()
+        .flat_map(|c| c.points.iter())
+        .map(|p: &CutPoint| p.curvature.abs())
+        .filter(|k| k.is_finite())
+        .fold(0.0, f64::max);
+    if !(max_kappa > 0.0) || !(comb_mm > 0.0) {
+        return;
+    }
+    // g kappa_max k = comb_mm: tooth lengths in model units are g |kappa|.
+    let g = comb_mm / (l.k * max_kappa);
+    for c in all {
+        let q = c.coords();
+        let normals = left_normals(surface, c, &q);
+        let mut envelope = Vec::with_capacity(q.len());
+        let mut teeth = Vec::with_capacity(3 * q.len());
+        for ((p, qi), nl) in c.points.iter().zip(&q).zip(&normals) {
+            let kappa = if p.curvature.is_finite() { p.curvature } else { 0.0 };
+            let tip = [qi[0] - g * kappa * nl[0], qi[1] - g * kappa * nl[1]];
+            let (a, b) = (view_pt(l, bx, c.plane, *qi), view_pt(l, bx, c.plane, tip));
+            // Out along the tooth and back: one polyline draws all teeth.
+            teeth.extend([a, b, a]);
+            envelope.push(b);
+        }
+        d.push(line(teeth, COMB, 0.1, "combs"));
+        d.push(line(envelope, COMB, 0.18, "combs"));
+    }
+}
+
+/// Cut `s` to at most `width` mm of text of cap height `size`, ending in `...` when cut.
+fn fit_text(s: &str, width: f64, size: f64) -> String {
+    let max = (width / (CHAR_WIDTH_PER_CAP * size)).floor().max(4.0) as usize;
+    if s.chars().count() <= max {
+        s.to_string()
+    } else {
+        let head: String = s.chars().take(max - 3).collect();
+        format!("{head}...")
+    }
+}
+
+fn draw_title_block(d: &mut Drawing, l: &Layout, title: &str, source: &str, units: Units, lines: &Lines) {
+    let [x, y, w, h] = l.title;
+    let t = "title";
+    let rule = |d: &mut Drawing, yy: f64| d.push(line(vec![[x, yy], [x + w, yy]], Rgb::BLACK, 0.25, t));
+    d.push(Item::Polyline {
+        points: vec![[x, y], [x + w, y], [x + w, y + h], [x, y + h]],
+        closed: true,
+        stroke: Stroke::solid(Rgb::BLACK, 0.5),
+        layer: t.into(),
+    });
+    // Rows from the top: title 12 mm, source 7, units and scale 7, counts and maker 6.
+    let (r1, r2, r3) = (y + h - 12.0, y + h - 19.0, y + h - 26.0);
+    rule(d, r1);
+    rule(d, r2);
+    rule(d, r3);
+    d.push(line(vec![[x + 0.5 * w, r3], [x + 0.5 * w, r2]], Rgb::BLACK, 0.25, t));
+    let pad = 2.5;
+    d.push(text([x + pad, r1 + 3.5], fit_text(title, w - 2.0 * pad, 5.0), 5.0, Anchor::Start, t));
+    d.push(text(
+        [x + pad, r2 + 2.25],
+        fit_text(&format!("Source: {source}"), w - 2.0 * pad, 2.5),
+        2.5,
+        Anchor::Start,
+        t,
+    ));
+    d.push(text([x + pad, r3 + 2.25], format!("Units: {}", units.plural_name()), 2.5, Anchor::Start, t));
+    d.push(text([x + 0.5 * w + pad, r3 + 2.25], format!("Scale {}", l.scale), 2.5, Anchor::Start, t));
+    let counts = format!(
+        "Stations {}, waterlines {}, buttocks {}",
+        lines.stations.len(),
+        lines.waterlines.len(),
+        lines.buttocks.len()
+    );
+    d.push(text([x + pad, y + 1.75], fit_text(&counts, 0.75 * w, 2.5), 2.5, Anchor::Start, t));
+    d.push(text([x + w - pad, y + 1.75], "hullskin", 2.5, Anchor::End, t));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nurbs::KnotVector;
+
+    #[test]
+    fn standard_scales_are_ordered_and_include_the_ship_scales() {
+        let s = Scale::standard();
+        for w in s.windows(2) {
+            assert!(w[0].ratio() > w[1].ratio(), "{} before {}", w[0], w[1]);
+        }
+        let names: Vec<String> = s.iter().take(16).map(|s| s.to_string()).collect();
+        assert_eq!(
+            names,
+            [
+                "10:1", "5:1", "2:1", "1:1", "1:2", "1:5", "1:10", "1:20", "1:25", "1:50", "1:100", "1:200", "1:250",
+                "1:500", "1:1000", "1:2000"
+            ]
+        );
+    }
+
+    #[test]
+    fn label_numbers() {
+        assert_eq!(label_num(3.25), "3.25");
+        assert_eq!(label_num(2.0), "2");
+        assert_eq!(label_num(-0.0001), "0");
+        assert_eq!(sig3(0.012345), "0.0123");
+        assert_eq!(sig3(123.4), "123");
+        assert_eq!(sig3(1.5), "1.50");
+    }
+
+    #[test]
+    fn split_at_midship_inserts_the_crossing() {
+        let pts = [Vec3::new(0.0, 1.0, 0.0), Vec3::new(4.0, 3.0, 0.0), Vec3::new(6.0, 5.0, 0.0)];
+        let pieces = split_at_midship(&pts, 2.0);
+        assert_eq!(pieces.len(), 2);
+        assert_eq!(pieces[0].0, -1.0);
+        // The crossing x = 2 lies halfway along the first segment: y = 2.
+        assert_eq!(pieces[0].1.last(), Some(&Vec3::new(2.0, 2.0, 0.0)));
+        assert_eq!(pieces[1].1.first(), Some(&Vec3::new(2.0, 2.0, 0.0)));
+        assert_eq!(pieces[1].1.len(), 3);
+    }
+
+    #[test]
+    fn spaced_labels_do_not_overlap() {
+        let labels: Vec<(f64, String)> =
+            [(0.0, "10"), (1.0, "11"), (5.0, "12"), (5.5, "13"), (20.0, "14")].map(|(x, s)| (x, s.to_string())).into();
+        let names = |v: Vec<(f64, String)>| v.into_iter().map(|k| k.1).collect::<Vec<_>>();
+        // Two-character labels of cap 2 mm are 3.4 mm wide; 0.8 cap of clearance: 1.6 mm.
+        assert_eq!(names(spaced(labels.clone(), 2.0, false)), ["10", "12", "14"]);
+        // Stacked, each takes its cap height 2 mm plus the 1.6 mm clearance.
+        assert_eq!(names(spaced(labels, 2.0, true)), ["10", "12", "14"]);
+        let stacked: Vec<(f64, String)> = (0..6).map(|i| (1.9 * i as f64, i.to_string())).collect();
+        assert_eq!(names(spaced(stacked, 2.0, true)), ["0", "2", "4"]);
+    }
+
+    /// The quarter circle of radius 2 swept along x as a rational quadratic: every station is
+    /// that circle, so the comb teeth all have the same length, the comb length, and point
+    /// away from the centre.
+    #[test]
+    fn combs_of_a_circle_have_equal_teeth_pointing_outward() {
+        let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
+        let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let mut pts = Vec::new();
+        let mut w = Vec::new();
+        // Section in (y, z): from (0, 0) (keel) round to (2, 2), centre (0, 2).
+        for (y, z, wi) in [(0.0, 0.0, 1.0), (2.0, 0.0, s), (2.0, 2.0, 1.0)] {
+            for x in [0.0, 10.0] {
+                pts.push(Vec3::new(x, y, z));
+                w.push(wi);
+            }
+        }
+        let surf = NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid");
+        let opts = LinesPlanOptions {
+            stations: Some(vec![7.5]),
+            waterlines: Some(vec![]),
+            buttocks: Some(vec![]),
+            combs: true,
+            comb_length_mm: 5.0,
+            ..LinesPlanOptions::default()
+        };
+        let d = lines_plan(&surf, None, Units::Metre, &opts);
+        let teeth: Vec<&Item> = d.layer("combs").collect();
+        assert_eq!(teeth.len(), 2, "teeth and envelope of the one station");
+        let Item::Polyline { points, .. } = teeth[0] else { panic!("a polyline") };
+        let station = d.layer("stations").next().expect("the station");
+        let Item::Polyline { points: st, .. } = station else { panic!("a polyline") };
+        // Paper centre of the circle: the station's points are at distance R k from it; the
+        // centre is at (y, z) = (0, 2), i.e. above the keel point, which is the first point.
+        let keel = st[0];
+        let r = (st.last().expect("points")[1] - keel[1]) / 1.0; // the top is 2 m = R above the keel
+        let centre = [keel[0], keel[1] + r];
+        for tooth in points.chunks(3) {
+            let (a, b) = (tooth[0], tooth[1]);
+            // Curvature 1/R everywhere: every tooth is comb_length_mm long. The cut's
+            // analytic curvature and the exact tangent are right to round-off; 1e-6 mm leaves
+            // room for the cut points' distance from the plane (a hundredth of 1e-12 x size).
+            let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+            assert!((len - 5.0).abs() < 1e-6, "tooth length {len}");
+            // Radially away from the centre: the tip is R + 5 mm from it.
+            let rb = (b[0] - centre[0]).hypot(b[1] - centre[1]);
+            let ra = (a[0] - centre[0]).hypot(a[1] - centre[1]);
+            assert!((rb - ra - 5.0).abs() < 1e-6, "tip {b:?} at {rb}, foot at {ra}");
+        }
+    }
+}

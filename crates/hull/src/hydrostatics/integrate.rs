@@ -1,0 +1,787 @@
+//! The surface integrals behind the hydrostatics: Gauss-Legendre quadrature over the knot-span
+//! cells of the parameter domain, clipped at a level set (`z = T` for the wet surface, `x = x_m`
+//! for the midship section) located by root finding, with the line integrals along the cut.
+//!
+//! A cell cut by the level set `f(u, v) = coord(S(u, v)) - c = 0` is integrated as an iterated
+//! integral: `f` is checked to be monotone along one parameter (the *inner* one) on the cell,
+//! the roots of `f` on the two inner ends of the cell split the *outer* parameter range into
+//! intervals on which the cut is one smooth graph `inner = r(outer)`, and on each interval the
+//! outer Gauss nodes get their root `r` by Brent's method and an inner Gauss rule over the wet
+//! side. The outer integrand is then smooth (analytic inside a span), so the rule converges as
+//! fast as on an uncut cell. A cell monotone in neither direction is split in four, down to
+//! [`MAX_DEPTH`] levels.
+
+use nurbs::basis::{basis_funs, ders_basis_funs, BasisRow};
+use nurbs::{NurbsSurface, Vec3, MAX_DEGREE};
+
+use super::gauss::{brent_max, brent_root, GaussLegendre};
+
+/// Subdivision levels of a cell where the level set is monotone in neither parameter.
+const MAX_DEPTH: usize = 6;
+/// Samples per cell edge when looking for the level set's crossings.
+const EDGE_SAMPLES: usize = 8;
+/// Samples per direction of the derivative sign test of a cell.
+const SIGN_SAMPLES: usize = 4;
+
+/// Which coordinate a level set is taken of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Coord {
+    X,
+    Z,
+}
+
+impl Coord {
+    fn of(self, p: Vec3) -> f64 {
+        match self {
+            Coord::X => p.x,
+            Coord::Z => p.z,
+        }
+    }
+}
+
+/// A parameter direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Dir {
+    U,
+    V,
+}
+
+impl Dir {
+    fn other(self) -> Dir {
+        match self {
+            Dir::U => Dir::V,
+            Dir::V => Dir::U,
+        }
+    }
+}
+
+/// A point with its first partial derivatives.
+#[derive(Clone, Copy, Debug)]
+struct D1 {
+    point: Vec3,
+    su: Vec3,
+    sv: Vec3,
+}
+
+/// A rectangle of the parameter domain.
+#[derive(Clone, Copy, Debug)]
+struct Rect {
+    u: (f64, f64),
+    v: (f64, f64),
+}
+
+impl Rect {
+    fn range(&self, d: Dir) -> (f64, f64) {
+        match d {
+            Dir::U => self.u,
+            Dir::V => self.v,
+        }
+    }
+
+    fn quarters(&self) -> [Rect; 4] {
+        let um = 0.5 * (self.u.0 + self.u.1);
+        let vm = 0.5 * (self.v.0 + self.v.1);
+        [
+            Rect { u: (self.u.0, um), v: (self.v.0, vm) },
+            Rect { u: (um, self.u.1), v: (self.v.0, vm) },
+            Rect { u: (self.u.0, um), v: (vm, self.v.1) },
+            Rect { u: (um, self.u.1), v: (vm, self.v.1) },
+        ]
+    }
+}
+
+/// `(u, v)` from an inner and an outer parameter value.
+fn uv(inner: Dir, i: f64, o: f64) -> (f64, f64) {
+    match inner {
+        Dir::U => (i, o),
+        Dir::V => (o, i),
+    }
+}
+
+/// The orientation factor of a cut traversed with increasing outer parameter, for the
+/// counter-clockwise boundary (u to the right, v up) of the wet region: the wet region
+/// `{u < r(v)}` lies left of a cut traversed upward (+1), `{v < r(u)}` left of a cut
+/// traversed toward -u (-1).
+fn orientation(inner: Dir, wet_low: bool) -> f64 {
+    match (inner, wet_low) {
+        (Dir::U, true) | (Dir::V, false) => 1.0,
+        (Dir::U, false) | (Dir::V, true) => -1.0,
+    }
+}
+
+/// A knot-span cell (or a part of one) with the bounding box of the span's control points,
+/// which holds the surface over the span (convex hull property, positive weights).
+#[derive(Clone, Copy, Debug)]
+struct Cell {
+    rect: Rect,
+    lo: Vec3,
+    hi: Vec3,
+}
+
+/// A piece of one knot span of a domain edge, with its control points' z range.
+#[derive(Clone, Copy, Debug)]
+struct EdgeSeg {
+    /// The parameter held fixed, and its value.
+    fixed: Dir,
+    value: f64,
+    /// The range of the other parameter.
+    range: (f64, f64),
+    /// +1 or -1: the direction of the counter-clockwise boundary of the domain.
+    orient: f64,
+    zlo: f64,
+    zhi: f64,
+}
+
+/// Integrals of one draft over the starboard half, the orientation of the surface not yet
+/// applied (the caller multiplies by the sign of `vol`). With `n = S_u x S_v` and
+/// `x0` the reference abscissa:
+///
+/// * `vol = int y n_y`, `mx = int (x - x0) y n_y`, `mz = int z y n_y`, `area = int |n|`,
+///   `pxy = int -n_z` (the wet surface's signed projection on the waterplane), all over the
+///   wet part of the domain, `du dv`;
+/// * `wa = int y dx`, `wx = int (x - x0) y dx`, `wt = int y^3 / 3 dx`,
+///   `wxx = int (x - x0)^2 y dx` along the waterline cut, counter-clockwise around the wet part.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Sums {
+    pub vol: f64,
+    pub mx: f64,
+    pub mz: f64,
+    pub area: f64,
+    pub pxy: f64,
+    pub wa: f64,
+    pub wx: f64,
+    pub wt: f64,
+    pub wxx: f64,
+}
+
+/// A piece of the waterline, kept to find its extremes.
+#[derive(Clone, Debug)]
+enum Piece {
+    /// The cut across a cell: `inner = r(outer)`, sampled at increasing outer values.
+    Cut { rect: Rect, inner: Dir, samples: Vec<(f64, Vec3)> },
+    /// A domain edge lying on the waterline.
+    Edge { fixed: Dir, value: f64, samples: Vec<(f64, Vec3)> },
+}
+
+impl Piece {
+    fn samples(&self) -> &[(f64, Vec3)] {
+        match self {
+            Piece::Cut { samples, .. } | Piece::Edge { samples, .. } => samples,
+        }
+    }
+}
+
+/// The wet part of the surface at one level.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Wet {
+    pub sums: Sums,
+    pieces: Vec<Piece>,
+    /// Cells still not monotone after [`MAX_DEPTH`] subdivisions (integrated anyway, less
+    /// accurately).
+    pub unresolved: usize,
+}
+
+/// A surface prepared for integration: its cells, edges and extents.
+#[derive(Clone, Debug)]
+pub(crate) struct Integrator<'a> {
+    s: &'a NurbsSurface,
+    gl: GaussLegendre,
+    cells: Vec<Cell>,
+    edges: Vec<EdgeSeg>,
+    /// Highest and lowest z found on a sample grid of the surface.
+    pub top: f64,
+    pub bottom: f64,
+    /// Reference abscissa of the longitudinal moments (middle of the net's x range).
+    pub x0: f64,
+    /// Round-off of a z coordinate: 16 ulps of the largest |z| of the control net.
+    pub eps: f64,
+    /// Diagonal of the control net's bounding box.
+    pub size: f64,
+}
+
+impl<'a> Integrator<'a> {
+    /// Cells of `split x split` per knot span, `order` Gauss points per direction and cell.
+    pub(crate) fn new(s: &'a NurbsSurface, order: usize, split: usize) -> Self {
+        let split = split.max(1);
+        let (p, q) = (s.degree_u(), s.degree_v());
+        let (nu, nv) = (s.n_u(), s.n_v());
+        let ku = s.knots_u().as_slice();
+        let kv = s.knots_v().as_slice();
+        let spans_u: Vec<usize> = (p..nu).filter(|&i| ku[i] < ku[i + 1]).collect();
+        let spans_v: Vec<usize> = (q..nv).filter(|&j| kv[j] < kv[j + 1]).collect();
+        let bounds = |is: std::ops::RangeInclusive<usize>, js: std::ops::RangeInclusive<usize>| {
+            let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+            let mut hi = -lo;
+            for i in is {
+                for j in js.clone() {
+                    let c = s.control_point(i, j);
+                    lo = Vec3::new(lo.x.min(c.x), lo.y.min(c.y), lo.z.min(c.z));
+                    hi = Vec3::new(hi.x.max(c.x), hi.y.max(c.y), hi.z.max(c.z));
+                }
+            }
+            (lo, hi)
+        };
+        let pieces = |a: f64, b: f64| -> Vec<(f64, f64)> {
+            (0..split)
+                .map(|k| {
+                    let lo = a + (b - a) * k as f64 / split as f64;
+                    let hi = if k + 1 == split { b } else { a + (b - a) * (k + 1) as f64 / split as f64 };
+                    (lo, hi)
+                })
+                .collect()
+        };
+        let mut cells = Vec::new();
+        for &i in &spans_u {
+            for &j in &spans_v {
+                let (lo, hi) = bounds(i - p..=i, j - q..=j);
+                for &u in &pieces(ku[i], ku[i + 1]) {
+                    for &v in &pieces(kv[j], kv[j + 1]) {
+                        cells.push(Cell { rect: Rect { u, v }, lo, hi });
+                    }
+                }
+            }
+        }
+        let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
+        let mut edges = Vec::new();
+        for &i in &spans_u {
+            for (jj, value, orient) in [(0, v0, 1.0), (nv - 1, v1, -1.0)] {
+                let (lo, hi) = bounds(i - p..=i, jj..=jj);
+                for &range in &pieces(ku[i], ku[i + 1]) {
+                    edges.push(EdgeSeg { fixed: Dir::V, value, range, orient, zlo: lo.z, zhi: hi.z });
+                }
+            }
+        }
+        for &j in &spans_v {
+            for (ii, value, orient) in [(0, u0, -1.0), (nu - 1, u1, 1.0)] {
+                let (lo, hi) = bounds(ii..=ii, j - q..=j);
+                for &range in &pieces(kv[j], kv[j + 1]) {
+                    edges.push(EdgeSeg { fixed: Dir::U, value, range, orient, zlo: lo.z, zhi: hi.z });
+                }
+            }
+        }
+        let (lo, hi) = s.control_bounds();
+        let eps = 16.0 * f64::EPSILON * lo.z.abs().max(hi.z.abs()).max(f64::MIN_POSITIVE);
+        let size = (hi - lo).norm();
+        // Sampled extent in z: 8 intervals per knot span and direction, span ends included.
+        let samples = |k: &[f64], spans: &[usize]| -> Vec<f64> {
+            let mut out = Vec::new();
+            for &i in spans {
+                for m in 0..8 {
+                    out.push(k[i] + (k[i + 1] - k[i]) * m as f64 / 8.0);
+                }
+            }
+            if let Some(&last) = spans.last() {
+                out.push(k[last + 1]);
+            }
+            out
+        };
+        let (mut top, mut bottom) = (f64::NEG_INFINITY, f64::INFINITY);
+        let sv = samples(kv, &spans_v);
+        for &u in &samples(ku, &spans_u) {
+            for &v in &sv {
+                let z = s.point(u, v).z;
+                top = top.max(z);
+                bottom = bottom.min(z);
+            }
+        }
+        Integrator {
+            s,
+            gl: GaussLegendre::new(order),
+            cells,
+            edges,
+            top,
+            bottom,
+            x0: 0.5 * (lo.x + hi.x),
+            eps,
+            size,
+        }
+    }
+
+    /// The point and first partial derivatives at `(u, v)`: The NURBS Book A3.6 on the
+    /// homogeneous net to first order, then A4.4, `S_u = (A_u - w_u S) / w` (as
+    /// [`NurbsSurface::derivatives`], without the second derivatives this module never uses).
+    fn d1(&self, u: f64, v: f64) -> D1 {
+        let (ku, kv) = (self.s.knots_u(), self.s.knots_v());
+        let (u, v) = (ku.clamp(u), kv.clamp(v));
+        self.iso(Dir::V, u, (ku.find_span(u), kv.find_span(v))).d1(v)
+    }
+
+    /// The knot spans `(i, j)` holding the rectangle `r` (which lies in one span).
+    fn spans(&self, r: &Rect) -> (usize, usize) {
+        (self.s.knots_u().find_span(0.5 * (r.u.0 + r.u.1)), self.s.knots_v().find_span(0.5 * (r.v.0 + r.v.1)))
+    }
+
+    /// The surface along `inner` at the outer parameter `s`, over the knot spans `(su, sv)`:
+    /// the homogeneous net contracted with the outer basis functions and their derivatives.
+    fn iso(&self, inner: Dir, s: f64, (su, sv): (usize, usize)) -> Iso<'a> {
+        let surf = self.s;
+        let (p, q) = (surf.degree_u(), surf.degree_v());
+        let nvn = surf.n_v();
+        let cw = surf.homogeneous();
+        let mut ob: [BasisRow; 2] = [[0.0; MAX_DEGREE + 1]; 2];
+        let mut c0 = [[0.0f64; 4]; MAX_DEGREE + 1];
+        let mut c1 = [[0.0f64; 4]; MAX_DEGREE + 1];
+        match inner {
+            Dir::U => {
+                ders_basis_funs(surf.knots_v().as_slice(), sv, s, q, 1, &mut ob);
+                for r in 0..=p {
+                    let row = &cw[(su - p + r) * nvn + sv - q..][..=q];
+                    for (l, h) in row.iter().enumerate() {
+                        for k in 0..4 {
+                            c0[r][k] += ob[0][l] * h[k];
+                            c1[r][k] += ob[1][l] * h[k];
+                        }
+                    }
+                }
+                Iso { knots: surf.knots_u().as_slice(), deg: p, span: su, inner, c0, c1 }
+            }
+            Dir::V => {
+                ders_basis_funs(surf.knots_u().as_slice(), su, s, p, 1, &mut ob);
+                for r in 0..=p {
+                    let row = &cw[(su - p + r) * nvn + sv - q..][..=q];
+                    for (l, h) in row.iter().enumerate() {
+                        for k in 0..4 {
+                            c0[l][k] += ob[0][r] * h[k];
+                            c1[l][k] += ob[1][r] * h[k];
+                        }
+                    }
+                }
+                Iso { knots: surf.knots_v().as_slice(), deg: q, span: sv, inner, c0, c1 }
+            }
+        }
+    }
+
+    /// `coord(S(u, v)) - c`.
+    fn f(&self, coord: Coord, c: f64, (u, v): (f64, f64)) -> f64 {
+        coord.of(self.s.point(u, v)) - c
+    }
+
+    /// The wet part of the surface below the level `level` (`z <= level`): the surface
+    /// integrals, the waterline integrals and the waterline's pieces. Edges of the domain
+    /// whose control points all lie within `band` below `level` are the waterline (a hull
+    /// whose top edge is the waterline, like the Wigley hull at its draft).
+    pub(crate) fn wet(&self, level: f64, band: f64) -> Wet {
+        let mut wet = Wet::default();
+        for cell in &self.cells {
+            if cell.hi.z <= level {
+                self.full(cell.rect, &mut wet.sums);
+            } else if cell.lo.z <= level {
+                self.cut(cell.rect, level, 0, &mut wet);
+            }
+        }
+        for e in &self.edges {
+            if e.zlo >= level - band && e.zhi <= level {
+                self.edge_waterline(e, &mut wet);
+            }
+        }
+        wet
+    }
+
+    /// Tensor Gauss rule over a wet rectangle (the v basis computed once per node column).
+    fn full(&self, r: Rect, sums: &mut Sums) {
+        let spans = self.spans(&r);
+        let kv = self.s.knots_v().as_slice();
+        let q = self.s.degree_v();
+        let bv: Vec<(f64, [BasisRow; 2])> = self
+            .gl
+            .on(r.v.0, r.v.1)
+            .map(|(v, w)| {
+                let mut b: [BasisRow; 2] = [[0.0; MAX_DEGREE + 1]; 2];
+                ders_basis_funs(kv, spans.1, v, q, 1, &mut b);
+                (w, b)
+            })
+            .collect();
+        for (u, wu) in self.gl.on(r.u.0, r.u.1) {
+            let iso = self.iso(Dir::V, u, spans);
+            for (wv, b) in &bv {
+                self.area_node(iso.d1_with(b), wu * wv, sums);
+            }
+        }
+    }
+
+    fn area_node(&self, d: D1, w: f64, sums: &mut Sums) {
+        let n = d.su.cross(d.sv);
+        let p = d.point;
+        let yn = w * p.y * n.y;
+        sums.vol += yn;
+        sums.mx += (p.x - self.x0) * yn;
+        sums.mz += p.z * yn;
+        sums.area += w * n.norm();
+        sums.pxy -= w * n.z;
+    }
+
+    fn line_node(&self, p: Vec3, dx: f64, w: f64, sums: &mut Sums) {
+        let (xr, yd) = (p.x - self.x0, w * p.y * dx);
+        sums.wa += yd;
+        sums.wx += xr * yd;
+        sums.wt += w * p.y * p.y * p.y / 3.0 * dx;
+        sums.wxx += xr * xr * yd;
+    }
+
+    /// Which parameter the level set of `coord` is monotone along on `r` (the one with the
+    /// larger smallest `|df| * width` on a grid of interior samples), with the outer breaks:
+    /// the outer range split at the level set's crossings of the two inner ends. `None` if `f`
+    /// is monotone along neither parameter (unless `force`).
+    fn plan(&self, r: Rect, coord: Coord, c: f64, force: bool) -> Option<(Dir, Vec<f64>)> {
+        let mut pos = [0usize; 2];
+        let mut neg = [0usize; 2];
+        let mut min = [f64::INFINITY; 2];
+        let mut sum = [0.0f64; 2];
+        let (wu, wv) = (r.u.1 - r.u.0, r.v.1 - r.v.0);
+        let spans = self.spans(&r);
+        for a in 0..SIGN_SAMPLES {
+            let u = r.u.0 + wu * (a as f64 + 0.5) / SIGN_SAMPLES as f64;
+            let iso = self.iso(Dir::V, u, spans);
+            for b in 0..SIGN_SAMPLES {
+                let v = r.v.0 + wv * (b as f64 + 0.5) / SIGN_SAMPLES as f64;
+                let d = iso.d1(v);
+                for (k, g) in [coord.of(d.su) * wu, coord.of(d.sv) * wv].into_iter().enumerate() {
+                    if g > 0.0 {
+                        pos[k] += 1;
+                    } else if g < 0.0 {
+                        neg[k] += 1;
+                    }
+                    min[k] = min[k].min(g.abs());
+                    sum[k] += g.abs();
+                }
+            }
+        }
+        let n = SIGN_SAMPLES * SIGN_SAMPLES;
+        let monotone = |k: usize| pos[k] == n || neg[k] == n;
+        let inner = match (monotone(0), monotone(1)) {
+            (true, true) => {
+                if min[0] >= min[1] {
+                    Dir::U
+                } else {
+                    Dir::V
+                }
+            }
+            (true, false) => Dir::U,
+            (false, true) => Dir::V,
+            (false, false) if force => {
+                if sum[0] >= sum[1] {
+                    Dir::U
+                } else {
+                    Dir::V
+                }
+            }
+            (false, false) => return None,
+        };
+        let (ia, ib) = r.range(inner);
+        let (sa, sb) = r.range(inner.other());
+        let mut breaks = vec![sa, sb];
+        for i in [ia, ib] {
+            let edge = self.iso(inner.other(), i, spans);
+            breaks.extend(segment_roots(|s| coord.of(edge.point(s)) - c, sa, sb));
+        }
+        breaks.sort_by(f64::total_cmp);
+        let tiny = 1e-14 * (sb - sa);
+        breaks.dedup_by(|b, a| *b - *a <= tiny);
+        if let Some(last) = breaks.last_mut() {
+            *last = sb;
+        }
+        Some((inner, breaks))
+    }
+
+    /// A cell cut by the waterline `z = level`.
+    fn cut(&self, r: Rect, level: f64, depth: usize, wet: &mut Wet) {
+        let Some((inner, breaks)) = self.plan(r, Coord::Z, level, depth >= MAX_DEPTH) else {
+            for q in r.quarters() {
+                self.cut(q, level, depth + 1, wet);
+            }
+            return;
+        };
+        if depth >= MAX_DEPTH {
+            wet.unresolved += 1;
+        }
+        let spans = self.spans(&r);
+        let (ia, ib) = r.range(inner);
+        for w in breaks.windows(2) {
+            let (s0, s1) = (w[0], w[1]);
+            if s1 <= s0 {
+                continue;
+            }
+            let mid = 0.5 * (s0 + s1);
+            let wet_a = self.f(Coord::Z, level, uv(inner, ia, mid)) <= 0.0;
+            let wet_b = self.f(Coord::Z, level, uv(inner, ib, mid)) <= 0.0;
+            if wet_a && wet_b {
+                let sub = match inner {
+                    Dir::U => Rect { u: (ia, ib), v: (s0, s1) },
+                    Dir::V => Rect { u: (s0, s1), v: (ia, ib) },
+                };
+                self.full(sub, &mut wet.sums);
+                continue;
+            }
+            if !wet_a && !wet_b {
+                continue;
+            }
+            let omega = orientation(inner, wet_a);
+            let mut samples = Vec::with_capacity(self.gl.len() + 2);
+            let iso0 = self.iso(inner, s0, spans);
+            if let Some(rr) = iso0.root(Coord::Z, level, ia, ib) {
+                samples.push((s0, iso0.point(rr)));
+            }
+            for (s, ws) in self.gl.on(s0, s1) {
+                let iso = self.iso(inner, s, spans);
+                let rr = iso.root_or_end(Coord::Z, level, ia, ib);
+                let (lo, hi) = if wet_a { (ia, rr) } else { (rr, ib) };
+                for (i, wi) in self.gl.on(lo, hi) {
+                    self.area_node(iso.d1(i), ws * wi, &mut wet.sums);
+                }
+                let (p, t) = iso.cut_point(Coord::Z, rr);
+                self.line_node(p, t.x, ws * omega, &mut wet.sums);
+                samples.push((s, p));
+            }
+            let iso1 = self.iso(inner, s1, spans);
+            if let Some(rr) = iso1.root(Coord::Z, level, ia, ib) {
+                samples.push((s1, iso1.point(rr)));
+            }
+            wet.pieces.push(Piece::Cut { rect: r, inner, samples });
+        }
+    }
+
+    /// A domain edge lying on the waterline: its line integrals, counter-clockwise.
+    fn edge_waterline(&self, e: &EdgeSeg, wet: &mut Wet) {
+        let at = |s: f64| match e.fixed {
+            Dir::U => (e.value, s),
+            Dir::V => (s, e.value),
+        };
+        let point = |s: f64| {
+            let (u, v) = at(s);
+            self.s.point(u, v)
+        };
+        let mut samples = vec![(e.range.0, point(e.range.0))];
+        for (s, ws) in self.gl.on(e.range.0, e.range.1) {
+            let (u, v) = at(s);
+            let d = self.d1(u, v);
+            let t = match e.fixed {
+                Dir::U => d.sv,
+                Dir::V => d.su,
+            };
+            self.line_node(d.point, t.x, ws * e.orient, &mut wet.sums);
+            samples.push((s, d.point));
+        }
+        samples.push((e.range.1, point(e.range.1)));
+        wet.pieces.push(Piece::Edge { fixed: e.fixed, value: e.value, samples });
+    }
+
+    /// A point of a waterline piece at its parameter `s`.
+    fn piece_point(&self, piece: &Piece, level: f64, s: f64) -> Option<Vec3> {
+        match piece {
+            Piece::Cut { rect, inner, .. } => {
+                let (ia, ib) = rect.range(*inner);
+                let iso = self.iso(*inner, s, self.spans(rect));
+                iso.root(Coord::Z, level, ia, ib).map(|r| iso.point(r))
+            }
+            Piece::Edge { fixed, value, .. } => Some(match fixed {
+                Dir::U => self.s.point(*value, s),
+                Dir::V => self.s.point(s, *value),
+            }),
+        }
+    }
+
+    /// The largest `g(p)` over the waterline: the best samples of the best four pieces,
+    /// refined by Brent's maximiser between their neighbouring samples. `None` without a
+    /// waterline.
+    pub(crate) fn waterline_max(&self, wet: &Wet, level: f64, g: impl Fn(Vec3) -> f64) -> Option<(f64, Vec3)> {
+        let mut best: Vec<(f64, usize, usize)> = wet
+            .pieces
+            .iter()
+            .enumerate()
+            .filter_map(|(k, piece)| {
+                piece
+                    .samples()
+                    .iter()
+                    .enumerate()
+                    .map(|(m, &(_, p))| (g(p), k, m))
+                    .max_by(|a, b| a.0.total_cmp(&b.0))
+            })
+            .collect();
+        best.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        let mut out: Option<(f64, Vec3)> = None;
+        for &(_, k, m) in best.iter().take(4) {
+            let piece = &wet.pieces[k];
+            let samples = piece.samples();
+            let lo = samples[m.saturating_sub(1)].0;
+            let hi = samples[(m + 1).min(samples.len() - 1)].0;
+            let value = |s: f64| self.piece_point(piece, level, s).map_or(f64::NEG_INFINITY, &g);
+            let (s, _) = brent_max(value, lo, hi, 1e-12 * (hi - lo));
+            let candidates = [Some(samples[m].1), self.piece_point(piece, level, s)];
+            for p in candidates.into_iter().flatten() {
+                let gp = g(p);
+                if out.map_or(true, |(v, _)| gp > v) {
+                    out = Some((gp, p));
+                }
+            }
+        }
+        out
+    }
+
+    /// Half the area of the section `x = xm` below `z = level`: `|int y dz|` along the level set
+    /// `x = xm` of the surface, clipped at the waterline (the centre plane, the waterline and a
+    /// flat bottom at constant z add nothing to `int y dz` around the section).
+    pub(crate) fn half_section_area(&self, xm: f64, level: f64) -> f64 {
+        let mut sum = 0.0;
+        for cell in &self.cells {
+            if cell.lo.x <= xm && xm <= cell.hi.x && cell.lo.z <= level {
+                self.section_cell(cell.rect, xm, level, 0, &mut sum);
+            }
+        }
+        sum.abs()
+    }
+
+    fn section_cell(&self, r: Rect, xm: f64, level: f64, depth: usize, sum: &mut f64) {
+        let Some((inner, breaks)) = self.plan(r, Coord::X, xm, depth >= MAX_DEPTH) else {
+            for q in r.quarters() {
+                self.section_cell(q, xm, level, depth + 1, sum);
+            }
+            return;
+        };
+        let spans = self.spans(&r);
+        let (ia, ib) = r.range(inner);
+        for w in breaks.windows(2) {
+            let (s0, s1) = (w[0], w[1]);
+            if s1 <= s0 {
+                continue;
+            }
+            let mid = 0.5 * (s0 + s1);
+            let aft_a = self.f(Coord::X, xm, uv(inner, ia, mid)) <= 0.0;
+            let aft_b = self.f(Coord::X, xm, uv(inner, ib, mid)) <= 0.0;
+            if aft_a == aft_b {
+                continue;
+            }
+            let omega = orientation(inner, aft_a);
+            let z = |s: f64| {
+                let iso = self.iso(inner, s, spans);
+                iso.point(iso.root_or_end(Coord::X, xm, ia, ib)).z
+            };
+            // The section curve clipped at the waterline: the parts where z <= level.
+            let mut cuts = vec![s0, s1];
+            cuts.extend(segment_roots(|s| z(s) - level, s0, s1));
+            cuts.sort_by(f64::total_cmp);
+            for c in cuts.windows(2) {
+                let (a, b) = (c[0], c[1]);
+                if b <= a || z(0.5 * (a + b)) > level {
+                    continue;
+                }
+                for (s, ws) in self.gl.on(a, b) {
+                    let iso = self.iso(inner, s, spans);
+                    let (p, t) = iso.cut_point(Coord::X, iso.root_or_end(Coord::X, xm, ia, ib));
+                    *sum += ws * omega * p.y * t.z;
+                }
+            }
+        }
+    }
+}
+
+/// The surface along one parameter (`inner`) over one knot span, at a fixed value of the other
+/// (outer) parameter: homogeneous control points `c0` (the net contracted with the outer
+/// basis functions) and `c1` (with their derivatives, for `dS/d outer`).
+struct Iso<'s> {
+    knots: &'s [f64],
+    deg: usize,
+    span: usize,
+    inner: Dir,
+    c0: [[f64; 4]; MAX_DEGREE + 1],
+    c1: [[f64; 4]; MAX_DEGREE + 1],
+}
+
+impl Iso<'_> {
+    /// `S(t)` (A4.1 on the iso-curve).
+    fn point(&self, t: f64) -> Vec3 {
+        let mut n: BasisRow = [0.0; MAX_DEGREE + 1];
+        basis_funs(self.knots, self.span, t, self.deg, &mut n);
+        let mut a = [0.0f64; 4];
+        for (b, c) in n.iter().zip(&self.c0).take(self.deg + 1) {
+            for k in 0..4 {
+                a[k] += b * c[k];
+            }
+        }
+        Vec3::new(a[0] / a[3], a[1] / a[3], a[2] / a[3])
+    }
+
+    /// The point and both first partial derivatives at `t`.
+    fn d1(&self, t: f64) -> D1 {
+        let mut b: [BasisRow; 2] = [[0.0; MAX_DEGREE + 1]; 2];
+        ders_basis_funs(self.knots, self.span, t, self.deg, 1, &mut b);
+        self.d1_with(&b)
+    }
+
+    /// As [`Iso::d1`] with the inner basis functions and derivatives given.
+    fn d1_with(&self, b: &[BasisRow; 2]) -> D1 {
+        let (mut a, mut ai, mut ao) = ([0.0f64; 4], [0.0f64; 4], [0.0f64; 4]);
+        for j in 0..=self.deg {
+            let (n0, n1) = (b[0][j], b[1][j]);
+            let (c0, c1) = (&self.c0[j], &self.c1[j]);
+            for k in 0..4 {
+                a[k] += n0 * c0[k];
+                ai[k] += n1 * c0[k];
+                ao[k] += n0 * c1[k];
+            }
+        }
+        let w = a[3];
+        let point = Vec3::new(a[0] / w, a[1] / w, a[2] / w);
+        // A4.4 to first order: S' = (A' - w' S) / w.
+        let d = |h: [f64; 4]| (Vec3::new(h[0], h[1], h[2]) - point * h[3]) / w;
+        let (s_in, s_out) = (d(ai), d(ao));
+        match self.inner {
+            Dir::U => D1 { point, su: s_in, sv: s_out },
+            Dir::V => D1 { point, su: s_out, sv: s_in },
+        }
+    }
+
+    /// The root of `coord(S(t)) = c` in `[a, b]` if `f` changes sign there ("wet" meaning
+    /// `f <= 0`), by Brent's method to round-off.
+    fn root(&self, coord: Coord, c: f64, a: f64, b: f64) -> Option<f64> {
+        let g = |t: f64| coord.of(self.point(t)) - c;
+        let (ga, gb) = (g(a), g(b));
+        if (ga <= 0.0) == (gb <= 0.0) {
+            return None;
+        }
+        Some(brent_root(g, a, b, ga, gb, 0.0))
+    }
+
+    /// As [`Iso::root`], or without a sign change (round-off next to a break, where the cut
+    /// meets an end) the end where `|f|` is smaller.
+    fn root_or_end(&self, coord: Coord, c: f64, a: f64, b: f64) -> f64 {
+        let g = |t: f64| coord.of(self.point(t)) - c;
+        let (ga, gb) = (g(a), g(b));
+        if (ga <= 0.0) != (gb <= 0.0) {
+            brent_root(g, a, b, ga, gb, 0.0)
+        } else if ga.abs() <= gb.abs() {
+            a
+        } else {
+            b
+        }
+    }
+
+    /// The point and the tangent `dS/ds` (s the outer parameter) of the level set of `coord`
+    /// through the inner parameter `r`: `r' = -f_outer / f_inner`.
+    fn cut_point(&self, coord: Coord, r: f64) -> (Vec3, Vec3) {
+        let d = self.d1(r);
+        let (s_in, s_out) = match self.inner {
+            Dir::U => (d.su, d.sv),
+            Dir::V => (d.sv, d.su),
+        };
+        let f_in = coord.of(s_in);
+        let rp = if f_in != 0.0 { -coord.of(s_out) / f_in } else { 0.0 };
+        (d.point, s_in * rp + s_out)
+    }
+}
+
+/// The roots of `g` on `[a, b]`: sign changes ("wet" meaning `g <= 0`) between
+/// [`EDGE_SAMPLES`] equal intervals, each refined by Brent's method.
+fn segment_roots(g: impl Fn(f64) -> f64, a: f64, b: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    let mut prev = (a, g(a));
+    for k in 1..=EDGE_SAMPLES {
+        let x = if k == EDGE_SAMPLES { b } else { a + (b - a) * k as f64 / EDGE_SAMPLES as f64 };
+        let gx = g(x);
+        if (prev.1 <= 0.0) != (gx <= 0.0) {
+            out.push(brent_root(&g, prev.0, x, prev.1, gx, 0.0));
+        }
+        prev = (x, gx);
+    }
+    out
+}
+
