@@ -11,7 +11,7 @@ pub struct OptimArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Iterations (generations) of GA, PSO or GSA, or the iteration cap of LM (for gsa+lm: of
-    /// both phases). Default: each algorithm's own (GA 200, PSO 200, GSA 500, LM 200).
+    /// both phases). Default: each algorithm's own (GA 200, PSO 200, GSA 500, LM 100).
     #[arg(long)]
     pub iterations: Option<usize>,
     /// Population of GA, particles of PSO, agents of GSA. Default: 50, 40, 50.

@@ -275,6 +275,8 @@ fn lm_settings(o: &LmOptions) -> serde_json::Value {
         "tolerance": o.tolerance,
         "gradient_tolerance": o.gradient_tolerance,
         "step_tolerance": o.step_tolerance,
+        "stall_window": o.stall.0,
+        "stall_relative": o.stall.1,
         "initial_damping": o.initial_damping,
     })
 }
