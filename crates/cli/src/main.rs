@@ -9,10 +9,12 @@ use clap::{Parser, Subcommand};
 
 mod compare;
 mod fit;
+mod hydrostatics;
 mod optim_args;
 mod parse;
 mod progress;
 mod skin_args;
+mod surface_arg;
 
 /// Fit one fair NURBS hull surface to offset data by skinning.
 #[derive(Debug, Parser)]
@@ -30,6 +32,10 @@ enum Command {
     /// Compare interpolation, approximation and every weight optimiser at the same control
     /// points; write compare.json and compare.md and print the table with the floors.
     Compare(compare::CompareArgs),
+    /// Hydrostatics from the surface (a surface.json, or offsets fitted first) at a draft or a
+    /// range of drafts: volume, displacement, centres, coefficients, waterplane, wetted
+    /// surface and metacentres, as text, CSV or JSON.
+    Hydrostatics(hydrostatics::HydrostaticsArgs),
 }
 
 fn main() -> ExitCode {
@@ -47,6 +53,7 @@ fn run() -> anyhow::Result<ExitCode> {
     match cli.command {
         Some(Command::Fit(args)) => fit::run(&args),
         Some(Command::Compare(args)) => compare::run(&args),
+        Some(Command::Hydrostatics(args)) => hydrostatics::run(&args),
         None => fit::run(&fit::FitArgs::default()),
     }
 }

@@ -47,9 +47,7 @@ fn bench(c: &mut Criterion) {
     g.sample_size(20);
     for (name, s, _) in &surfaces[..2] {
         g.bench_with_input(BenchmarkId::from_parameter(name), s, |b, s| {
-            b.iter(|| {
-                Hydrostatics::new(black_box(s), &opts).and_then(|h| h.range(0.65, 6.5, 0.65)).expect("drafts")
-            })
+            b.iter(|| Hydrostatics::new(black_box(s), &opts).and_then(|h| h.range(0.65, 6.5, 0.65)).expect("drafts"))
         });
     }
     g.finish();

@@ -199,7 +199,13 @@ pub(crate) fn brent_max(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, xtol: f64
             e = if x < m { hi - x } else { lo - x };
             d = c * e;
         }
-        let u = if d.abs() >= tol { x + d } else if d > 0.0 { x + tol } else { x - tol };
+        let u = if d.abs() >= tol {
+            x + d
+        } else if d > 0.0 {
+            x + tol
+        } else {
+            x - tol
+        };
         let fu = -f(u);
         if fu <= fx {
             if u < x {

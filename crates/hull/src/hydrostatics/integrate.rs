@@ -284,17 +284,7 @@ impl<'a> Integrator<'a> {
                 bottom = bottom.min(z);
             }
         }
-        Integrator {
-            s,
-            gl: GaussLegendre::new(order),
-            cells,
-            edges,
-            top,
-            bottom,
-            x0: 0.5 * (lo.x + hi.x),
-            eps,
-            size,
-        }
+        Integrator { s, gl: GaussLegendre::new(order), cells, edges, top, bottom, x0: 0.5 * (lo.x + hi.x), eps, size }
     }
 
     /// The point and first partial derivatives at `(u, v)`: The NURBS Book A3.6 on the
@@ -589,12 +579,7 @@ impl<'a> Integrator<'a> {
             .iter()
             .enumerate()
             .filter_map(|(k, piece)| {
-                piece
-                    .samples()
-                    .iter()
-                    .enumerate()
-                    .map(|(m, &(_, p))| (g(p), k, m))
-                    .max_by(|a, b| a.0.total_cmp(&b.0))
+                piece.samples().iter().enumerate().map(|(m, &(_, p))| (g(p), k, m)).max_by(|a, b| a.0.total_cmp(&b.0))
             })
             .collect();
         best.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
@@ -609,8 +594,9 @@ impl<'a> Integrator<'a> {
             let candidates = [Some(samples[m].1), self.piece_point(piece, level, s)];
             for p in candidates.into_iter().flatten() {
                 let gp = g(p);
-                if out.map_or(true, |(v, _)| gp > v) {
-                    out = Some((gp, p));
+                match out {
+                    Some((v, _)) if v >= gp => {}
+                    _ => out = Some((gp, p)),
                 }
             }
         }
@@ -784,4 +770,3 @@ fn segment_roots(g: impl Fn(f64) -> f64, a: f64, b: f64) -> Vec<f64> {
     }
     out
 }
-

@@ -1,0 +1,163 @@
+//! `hullskin hydrostatics`: the hydrostatic table of a surface (a `surface.json` from `fit`, or
+//! offsets fitted first), one draft or a range, as text, CSV or JSON.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{bail, Context};
+use clap::{Args, ValueEnum};
+use hull::{FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, SEA_WATER_DENSITY};
+
+use crate::skin_args::SkinArgs;
+use crate::surface_arg::load_surface;
+
+/// Output format of the table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// Aligned columns with their units.
+    Text,
+    /// A header of the column keys, then one line per draft.
+    Csv,
+    /// `{"source", "units", "density", "rows": [{"draft": .., ...}]}`.
+    Json,
+}
+
+/// Arguments of `hullskin hydrostatics`.
+#[derive(Debug, Args)]
+#[command(mut_arg("input", |a| a
+    .value_name("SURFACE")
+    .help("A surface.json written by `hullskin fit`, or an offsets file (sections CSV or offset table) \
+           fitted first with --method and the skinning flags. Without it the built-in Series 60 \
+           Cb 0.60 sample is fitted")))]
+pub struct HydrostaticsArgs {
+    #[command(flatten)]
+    pub skin: SkinArgs,
+    /// Fit of an offsets input: interp or approx.
+    #[arg(long, default_value = "approx", value_parser = parse_method)]
+    pub method: FitMethod,
+    /// Draft T (z of the waterplane above the baseline, in the surface's length unit); the
+    /// first draft of a range with --to and --step.
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub draft: f64,
+    /// Last draft of a range (included when the steps land on it).
+    #[arg(long, value_name = "T2", requires = "step", allow_negative_numbers = true)]
+    pub to: Option<f64>,
+    /// Step of a range, of the sign of T2 - T.
+    #[arg(long, value_name = "DT", requires = "to", allow_negative_numbers = true)]
+    pub step: Option<f64>,
+    /// Water density in t/m³ (displacement in tonnes whatever the length unit).
+    #[arg(long, value_name = "RHO", default_value_t = SEA_WATER_DENSITY, allow_negative_numbers = true)]
+    pub density: f64,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "text")]
+    pub format: Format,
+    /// Write the table to FILE instead of standard output.
+    #[arg(short = 'o', long = "out", value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+fn parse_method(s: &str) -> Result<FitMethod, String> {
+    match s.parse::<FitMethod>()? {
+        m @ (FitMethod::Interp | FitMethod::Approx) => Ok(m),
+        m => Err(format!(
+            "{} optimises weights: fit with `hullskin fit --method {}` and pass its surface.json \
+             (expected interp or approx)",
+            m.name(),
+            m.name()
+        )),
+    }
+}
+
+/// The drafts asked for: `--draft`, or the range to `--to` by `--step`.
+fn drafts(args: &HydrostaticsArgs) -> anyhow::Result<Vec<f64>> {
+    for (name, value) in [("--draft", Some(args.draft)), ("--to", args.to)] {
+        if let Some(t) = value {
+            if !(t.is_finite() && t > 0.0) {
+                bail!("{name} {t}: expected a draft greater than 0");
+            }
+        }
+    }
+    Ok(match (args.to, args.step) {
+        (Some(to), Some(step)) => hull::draft_range(args.draft, to, step)?,
+        _ => vec![args.draft],
+    })
+}
+
+/// Run `hullskin hydrostatics`.
+pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
+    let drafts = drafts(args)?;
+    if !(args.density.is_finite() && args.density > 0.0) {
+        bail!("--density {}: expected a positive density in t/m³", args.density);
+    }
+    let loaded = load_surface(&args.skin, args.method)?;
+    let options = HydrostaticsOptions {
+        density: hull::density_per_cubic_unit(args.density, loaded.units),
+        ..HydrostaticsOptions::default()
+    };
+    let rows = Hydrostatics::new(&loaded.surface, &options)?
+        .rows(&drafts)
+        .with_context(|| format!("hydrostatics of {}", loaded.source))?;
+    let source = match loaded.fitted {
+        true => format!("{}, fitted by {}", loaded.source, args.method.name()),
+        false => loaded.source,
+    };
+    let table = HydrostaticsTable { source, units: loaded.units, density: args.density, rows };
+    let text = match args.format {
+        Format::Text => table.text(),
+        Format::Csv => table.csv(),
+        Format::Json => table.json(),
+    };
+    match &args.out {
+        Some(path) => {
+            hull::write_atomic(path, |w| w.write_all(text.as_bytes()))
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            println!("wrote {}", path.display());
+        }
+        None => print!("{text}"),
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Debug, Parser)]
+    struct Wrap {
+        #[command(flatten)]
+        args: HydrostaticsArgs,
+    }
+
+    #[test]
+    fn flags_reach_the_arguments() {
+        let w = Wrap::try_parse_from(["x", "s.json", "--draft", "2", "--to", "6", "--step", "0.5", "--format", "csv"])
+            .expect("valid flags");
+        assert_eq!(w.args.skin.input, Some(PathBuf::from("s.json")));
+        assert_eq!((w.args.draft, w.args.to, w.args.step), (2.0, Some(6.0), Some(0.5)));
+        assert_eq!((w.args.format, w.args.density), (Format::Csv, SEA_WATER_DENSITY));
+        assert_eq!(drafts(&w.args).expect("valid range").len(), 9);
+        // --to needs --step and the other way round; the draft is required.
+        assert!(Wrap::try_parse_from(["x", "--draft", "2", "--to", "6"]).is_err());
+        assert!(Wrap::try_parse_from(["x", "--draft", "2", "--step", "1"]).is_err());
+        assert!(Wrap::try_parse_from(["x"]).is_err());
+        assert!(Wrap::try_parse_from(["x", "--draft", "2", "--method", "ga"]).is_err());
+        let down = Wrap::try_parse_from(["x", "--draft", "6", "--to", "2", "--step", "-2"]).expect("downward");
+        assert_eq!(drafts(&down.args).expect("valid"), vec![6.0, 4.0, 2.0]);
+    }
+
+    #[test]
+    fn bad_drafts_are_refused_before_any_fit() {
+        for argv in [
+            &["x", "--draft", "0"][..],
+            &["x", "--draft", "-1"],
+            &["x", "--draft", "NaN"],
+            &["x", "--draft", "1", "--to", "3", "--step", "0"],
+            &["x", "--draft", "1", "--to", "3", "--step", "-1"],
+            &["x", "--draft", "1", "--to", "-3", "--step", "-1"],
+        ] {
+            let w = Wrap::try_parse_from(argv).expect("parses");
+            assert!(drafts(&w.args).is_err(), "{argv:?}");
+        }
+    }
+}
