@@ -33,8 +33,11 @@
 //! when turning counter-clockwise, [`CutPoint::curvature`]) gets the tooth
 //! `p -> p - g kappa n_L`: it points away from the centre of curvature `p + n_L / kappa`, onto
 //! the convex side, with length proportional to `|kappa|`. One factor `g` for the whole sheet
-//! makes the longest tooth [`LinesPlanOptions::comb_length_mm`] long on paper. The teeth's
-//! ends are joined by the comb's envelope.
+//! makes a tooth at the 95th percentile of `|kappa|` over the sheet
+//! [`LinesPlanOptions::comb_length_mm`] long on paper; longer teeth are clipped at 1.5 times
+//! that (on fitted hulls a few points at the stem foot or the keel curve far more sharply than
+//! the rest, and scaling by the largest left every other tooth invisible). The teeth's ends
+//! are joined by the comb's envelope.
 //!
 //! The output is deterministic: no date, no randomness, parallel work gathered in order.
 
@@ -67,7 +70,8 @@ pub struct LinesPlanOptions {
     pub buttocks: Option<Vec<f64>>,
     /// Draw curvature combs on every station, waterline and buttock.
     pub combs: bool,
-    /// Length on paper of the longest comb tooth, mm.
+    /// Length on paper of a comb tooth at the 95th percentile of |curvature| (longer teeth
+    /// are clipped at 1.5 times this), mm.
     pub comb_length_mm: f64,
     /// Sheet width and height, mm.
     pub paper_mm: (f64, f64),
@@ -764,6 +768,11 @@ fn left_normals(surface: &NurbsSurface, c: &CutCurve, q: &[[f64; 2]]) -> Vec<[f6
         .collect()
 }
 
+/// Quantile of |curvature| over the sheet that gets a tooth of the comb length.
+const COMB_PERCENTILE: f64 = 0.95;
+/// Longest tooth, in comb lengths.
+const COMB_CLIP: f64 = 1.5;
+
 fn draw_combs(d: &mut Drawing, l: &Layout, bx: Box3, surface: &NurbsSurface, cuts: &Cuts, comb_mm: f64) {
     let all: Vec<&CutCurve> = cuts
         .stations
@@ -773,17 +782,28 @@ fn draw_combs(d: &mut Drawing, l: &Layout, bx: Box3, surface: &NurbsSurface, cut
         .flatten()
         .filter(|c| c.points.len() >= 2)
         .collect();
-    let max_kappa = all
+    let mut kappas: Vec<f64> = all
         .iter()
         .flat_map(|c| c.points.iter())
         .map(|p: &CutPoint| p.curvature.abs())
         .filter(|k| k.is_finite())
-        .fold(0.0, f64::max);
-    if !(max_kappa > 0.0) || !(comb_mm > 0.0) {
+        .collect();
+    kappas.sort_by(f64::total_cmp);
+    // The comb's scale: the 95th percentile of |kappa| (a few sharp points at the stem foot or
+    // the keel would otherwise shrink every other tooth to nothing); teeth above it are
+    // clipped at COMB_CLIP times the comb length, so those points still stand out.
+    let reference = kappas.get(((kappas.len() as f64 - 1.0) * COMB_PERCENTILE).round() as usize).copied();
+    let reference = match reference {
+        Some(r) if r > 0.0 => r,
+        _ => kappas.last().copied().unwrap_or(0.0),
+    };
+    if !(reference > 0.0) || !(comb_mm > 0.0) {
         return;
     }
-    // g kappa_max k = comb_mm: tooth lengths in model units are g |kappa|.
-    let g = comb_mm / (l.k * max_kappa);
+    // g kappa_ref k = comb_mm: tooth lengths in model units are g |kappa|, at most
+    // COMB_CLIP comb_mm / k.
+    let g = comb_mm / (l.k * reference);
+    let longest = COMB_CLIP * comb_mm / l.k;
     for c in all {
         let q = c.coords();
         let normals = left_normals(surface, c, &q);
@@ -791,7 +811,8 @@ fn draw_combs(d: &mut Drawing, l: &Layout, bx: Box3, surface: &NurbsSurface, cut
         let mut teeth = Vec::with_capacity(3 * q.len());
         for ((p, qi), nl) in c.points.iter().zip(&q).zip(&normals) {
             let kappa = if p.curvature.is_finite() { p.curvature } else { 0.0 };
-            let tip = [qi[0] - g * kappa * nl[0], qi[1] - g * kappa * nl[1]];
+            let len = (g * kappa).clamp(-longest, longest);
+            let tip = [qi[0] - len * nl[0], qi[1] - len * nl[1]];
             let (a, b) = (view_pt(l, bx, c.plane, *qi), view_pt(l, bx, c.plane, tip));
             // Out along the tooth and back: one polyline draws all teeth.
             teeth.extend([a, b, a]);
@@ -955,5 +976,34 @@ mod tests {
             let ra = (a[0] - centre[0]).hypot(a[1] - centre[1]);
             assert!((rb - ra - 5.0).abs() < 1e-6, "tip {b:?} at {rb}, foot at {ra}");
         }
+    }
+
+    /// On the fitted sample hull the curvature ranges over orders of magnitude (the stem foot
+    /// and the bilge): about 5 % of the teeth reach the comb length (those at or above the 95th
+    /// percentile of |curvature|), none is longer than 1.5 comb lengths, and the median tooth
+    /// is still visible (above a tenth of the comb length).
+    #[test]
+    fn comb_teeth_scale_by_the_95th_percentile_and_are_clipped() {
+        let fit = crate::fit_offsets(&crate::series60_sample(), &crate::FitConfig::default()).expect("fits");
+        let opts = LinesPlanOptions { combs: true, comb_length_mm: 8.0, ..LinesPlanOptions::default() };
+        let d = lines_plan(&fit.surface, None, Units::Metre, &opts);
+        let mut lens: Vec<f64> = d
+            .layer("combs")
+            .filter_map(|i| match i {
+                Item::Polyline { points, stroke, .. } if stroke.width_mm < 0.15 => Some(points),
+                _ => None,
+            })
+            .flat_map(|pts| pts.chunks(3).map(|t| (t[1][0] - t[0][0]).hypot(t[1][1] - t[0][1])).collect::<Vec<_>>())
+            .collect();
+        lens.sort_by(f64::total_cmp);
+        let n = lens.len() as f64;
+        assert!(n > 1000.0, "{n} teeth");
+        let longest = *lens.last().expect("teeth");
+        assert!(longest <= 12.0 + 1e-9, "longest tooth {longest} mm");
+        // Teeth at or above the reference (8 mm, to round-off of the paper transform).
+        let full = lens.iter().filter(|&&l| l >= 8.0 - 1e-6).count() as f64 / n;
+        assert!((0.03..=0.08).contains(&full), "{full} of the teeth at full length");
+        let median = lens[lens.len() / 2];
+        assert!(median > 0.8, "median tooth {median} mm");
     }
 }
