@@ -44,7 +44,8 @@ fn check_comparison(json: &Value, md: &str, stdout: &str) {
     assert_eq!(json["complete"], true);
     let ctrl = &json["control_points"];
     let approx = &rows[1];
-    let approx_param_rms = num(&approx["error"]["parametric_rms"], "approx parametric RMS");
+    let approx_rms = num(&approx["error"]["rms"], "approx RMS");
+    assert_eq!(json["optimization"]["start_parameters"], "foot_points");
     for r in rows {
         let m = r["method"].as_str().expect("name");
         assert_eq!(r["status"], "done", "{m}");
@@ -72,17 +73,17 @@ fn check_comparison(json: &Value, md: &str, stdout: &str) {
         // - parametric RMS <= final objective: the objective adds a non-negative log-weight
         //   penalty to the mean square;
         // - final <= start: the optimisers never return worse than their start;
-        // - start <= approx's parametric RMS: the start (weights 1, control points re-solved)
-        //   is the least-squares optimum at approx's parameters, and approx's control points
-        //   are one candidate.
-        // Not guaranteed: true RMS <= approx's *true* RMS, since approx's true RMS can be well
-        // below its parametric RMS (its parameters are not the foot points). So that is what
-        // the floors report, not what this test asserts.
+        // - start <= approx's true RMS: the optimisers start from the offsets' foot points on
+        //   approx (default `start_parameters`), where approx's parametric RMS is its true RMS,
+        //   and the start (weights 1, control points re-solved) is the least-squares optimum
+        //   at those parameters, of which approx's control points are one candidate.
+        // So every optimised surface is at most approx's true RMS; the floors ask for strictly
+        // below, which is measured, not guaranteed.
         let [start, end] = [num(&r["objective"][0], m), num(&r["objective"][1], m)];
         assert!(rms <= param_rms * (1.0 + 1e-12), "{m}: {rms} > {param_rms}");
         assert!(param_rms <= end * (1.0 + 1e-9), "{m}: {param_rms} > {end}");
         assert!(end <= start, "{m}: {end} > {start}");
-        assert!(start <= approx_param_rms * (1.0 + 1e-9), "{m}: {start} > {approx_param_rms}");
+        assert!(start <= approx_rms * (1.0 + 1e-9), "{m}: {start} > approx true RMS {approx_rms}");
     }
     // Interpolation passes through the offsets (round-off).
     assert!(num(&rows[0]["error"]["max"], "interp max") < 1e-9);

@@ -10,7 +10,8 @@
 //!  "input": {"source": "...", "sections": K, "points": N, "units": "m"},
 //!  "degree": [P, Q], "control_points": [NU, NV], "parameterization": "centripetal,chord",
 //!  "seed": 1, "optimization": {"iterations": null, "population": null, "control_points": "resolved",
-//!                              "weight_layout": "full", "parameter_correction": false},
+//!                              "weight_layout": "full", "parameter_correction": false,
+//!                              "start_parameters": "foot_points"},
 //!  "curvature_sampling": {"grid": 41, "knot_lines": true},
 //!  "complete": true, "not_run": [],
 //!  "methods": [{"method": "interp", "status": "done", "control_points": [8, 25],
@@ -383,6 +384,9 @@ pub struct CompareOptimization {
     pub control_points: &'static str,
     pub weight_layout: &'static str,
     pub parameter_correction: bool,
+    /// Where the offsets' parameters started: `"foot_points"` on the plain approximation, or
+    /// `"fitted"` (the skinning's own).
+    pub start_parameters: &'static str,
 }
 
 /// How the curvature was sampled, for `compare.json`.
@@ -506,6 +510,7 @@ pub fn compare_offsets_with(
             control_points: o.weights.mode.name(),
             weight_layout: o.weights.layout.name(),
             parameter_correction: o.parameter_correction,
+            start_parameters: if o.foot_point_start && !o.parameter_correction { "foot_points" } else { "fitted" },
         },
         curvature_sampling: CurvatureSampling { grid: CURVATURE_GRID, knot_lines: true },
         complete: not_run.is_empty() && rows.iter().all(|r| r.status != RowStatus::Interrupted),
