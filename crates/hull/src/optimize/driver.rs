@@ -125,7 +125,9 @@ pub struct OptimReport {
     pub evaluations: usize,
     pub stop: StopReason,
     /// The objective (parametric RMS of the offsets, plus the tiny log-weight penalty) at the
-    /// start (all weights 1) and at the end.
+    /// start (all weights 1, at the start parameters: the foot points by default) and at the
+    /// end (at [`OptimReport::start_parameters`]: LM also runs from the skinning's own
+    /// parameters and keeps the lower objective, so `"fitted"` can win).
     pub start_value: f64,
     pub final_value: f64,
     /// Best objective after each iteration; `gsa+lm` joins both phases.
@@ -166,11 +168,10 @@ pub fn optimize_weights(
     control: &Control<'_>,
 ) -> Result<Optimized, HullError> {
     let start = Instant::now();
-    let mut problem = WeightProblem::from_fit(base, offsets, settings.weights)?;
+    let fitted = WeightProblem::from_fit(base, offsets, settings.weights)?;
     let foot_start = settings.foot_point_start && !settings.parameter_correction;
-    if foot_start {
-        problem = problem.with_params(&foot_points(offsets, base))?;
-    }
+    let mut problem = if foot_start { fitted.with_params(&foot_points(offsets, base))? } else { fitted.clone() };
+    let mut start_parameters = if foot_start { "foot_points" } else { "fitted" };
     let x0 = problem.start();
     let start_value = problem.value(&x0);
     let search_half_width = {
@@ -215,7 +216,33 @@ pub fn optimize_weights(
             }
             (r, s)
         }
-        Algorithm::Lm => (lm::run(&problem, &lm_opts, control), lm_settings(&lm_opts)),
+        Algorithm::Lm => {
+            let mut r = lm::run(&problem, &lm_opts, control);
+            if foot_start && !control.stopped() {
+                // LM also from the skinning's own parameters, keeping the lower objective (an
+                // upper bound of the true RMS either way, so the start's guarantee stands): on
+                // grids of stations and waterlines the structured parameters let the weights
+                // go further (trawler 1.77 mm true RMS against 2.67 from the foot points), on
+                // unevenly sampled stations the foot points do (frigate 1.38 against 4.28).
+                // The history goes on with the second run's values as a best so far over both.
+                let other = lm::run(&fitted, &lm_opts, control);
+                let mut best = r.value;
+                r.history.extend(other.history.iter().skip(1).map(|&v| {
+                    best = best.min(v);
+                    best
+                }));
+                r.evaluations += other.evaluations;
+                r.iterations += other.iterations;
+                if other.value < r.value {
+                    r.x = other.x;
+                    r.value = other.value;
+                    r.stop = other.stop;
+                    problem = fitted.clone();
+                    start_parameters = "fitted";
+                }
+            }
+            (r, serde_json::json!({ "lm": lm_settings(&lm_opts), "starts": if foot_start { 2 } else { 1 } }))
+        }
     };
     // Never worse than the start (the algorithms guarantee it; this guards the contract).
     if !(result.value <= start_value) {
@@ -262,7 +289,7 @@ pub fn optimize_weights(
         final_value: result.value,
         history: result.history,
         parameter_correction: settings.parameter_correction,
-        start_parameters: if foot_start { "foot_points" } else { "fitted" },
+        start_parameters,
         settings: settings_value,
         seconds: start.elapsed().as_secs_f64(),
     };
