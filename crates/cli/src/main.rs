@@ -13,6 +13,7 @@ mod hydrostatics;
 mod optim_args;
 mod parse;
 mod progress;
+mod report;
 mod skin_args;
 mod surface_arg;
 
@@ -36,6 +37,10 @@ enum Command {
     /// range of drafts: volume, displacement, centres, coefficients, waterplane, wetted
     /// surface and metacentres, as text, CSV or JSON.
     Hydrostatics(hydrostatics::HydrostaticsArgs),
+    /// One self-contained HTML report of a surface (a surface.json, or offsets fitted first):
+    /// particulars, fit error, hydrostatics, curvature and fairness, lines plan, curvature
+    /// maps, convergence and the 3-D viewer; writes report.html and the files it is made of.
+    Report(report::ReportArgs),
 }
 
 fn main() -> ExitCode {
@@ -54,6 +59,7 @@ fn run() -> anyhow::Result<ExitCode> {
         Some(Command::Fit(args)) => fit::run(&args),
         Some(Command::Compare(args)) => compare::run(&args),
         Some(Command::Hydrostatics(args)) => hydrostatics::run(&args),
+        Some(Command::Report(args)) => report::run(&args),
         None => fit::run(&fit::FitArgs::default()),
     }
 }

@@ -17,6 +17,7 @@ mod output;
 mod pipeline;
 pub mod read;
 pub mod render;
+pub mod report_html;
 mod report;
 mod sample;
 mod tolerance_search;

@@ -1,0 +1,286 @@
+//! `hullskin report`: one self-contained HTML report of a hull surface, with its pictures and
+//! tables as separate files.
+//!
+//! The input is a `surface.json` (used as it is; offsets for the fit error from `--offsets`)
+//! or offsets, fitted first with the flags of `fit` (the built-in sample without input).
+//! Everything is written into `DIR`, each file atomically; see [`hull::report_html`].
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{bail, Context};
+use clap::Args;
+use hull::report_html::{build_report, write_report, DraftChoice, ReportInputs, ReportOptions};
+use hull::{CompareConfig, Comparison, FitConfig, FitMethod, FitOutcome, Offsets, SEA_WATER_DENSITY};
+
+use crate::optim_args::OptimArgs;
+use crate::progress;
+use crate::skin_args::SkinArgs;
+use crate::surface_arg::load_surface;
+
+/// Arguments of `hullskin report`.
+#[derive(Debug, Args)]
+#[command(mut_arg("input", |a| a
+    .value_name("SURFACE_OR_INPUT")
+    .help("A surface.json written by `hullskin fit` (used as it is), or an offsets file (sections CSV \
+           or offset table) fitted first with --method and the skinning flags. Without it the built-in \
+           Series 60 Cb 0.60 sample is fitted")))]
+pub struct ReportArgs {
+    #[command(flatten)]
+    pub skin: SkinArgs,
+    /// Output directory for report.html and the files it is made of.
+    #[arg(short = 'o', long = "out", default_value = "hullskin-report")]
+    pub out: PathBuf,
+    /// Fit of an offsets input, as `hullskin fit --method`: interp, approx, or approx with its
+    /// weights optimised by ga, pso, gsa, lm or gsa+lm (the report then plots the convergence).
+    #[arg(long, default_value = "approx", value_parser = parse_method)]
+    pub method: FitMethod,
+    #[command(flatten)]
+    pub optim: OptimArgs,
+    /// Design draft T (z of the waterplane above the baseline, in the surface's length unit).
+    /// Without it the hydrostatics are tabulated at 10 drafts from the keel to the top of the
+    /// offsets (of the surface, without offsets).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub draft: Option<f64>,
+    /// Water density in t/m³ (displacement in tonnes whatever the length unit).
+    #[arg(long, value_name = "RHO", default_value_t = SEA_WATER_DENSITY, allow_negative_numbers = true)]
+    pub density: f64,
+    /// Also compare every method at the same control points (as `hullskin compare`) and add
+    /// the table; takes seconds on the sample.
+    #[arg(long)]
+    pub compare: bool,
+    /// Offsets measured against a surface.json input (fit error, markers, --compare), in the
+    /// surface's units.
+    #[arg(long, value_name = "FILE")]
+    pub offsets: Option<PathBuf>,
+}
+
+fn parse_method(s: &str) -> Result<FitMethod, String> {
+    s.parse()
+}
+
+/// The surface to report on, with what came with it.
+struct Loaded {
+    surface: nurbs::NurbsSurface,
+    units: hull::Units,
+    source: String,
+    offsets: Option<Offsets>,
+    fit: Option<FitOutcome>,
+    notes: Vec<String>,
+}
+
+/// Run `hullskin report`.
+pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
+    let start = Instant::now();
+    if let Some(t) = args.draft {
+        if !(t.is_finite() && t > 0.0) {
+            bail!("--draft {t}: expected a draft greater than 0");
+        }
+    }
+    if !(args.density.is_finite() && args.density > 0.0) {
+        bail!("--density {}: expected a positive density in t/m³", args.density);
+    }
+    let loaded = load(args)?;
+    let comparison = match (&loaded.offsets, args.compare) {
+        (Some(offsets), true) => Some(compare(args, offsets)?),
+        (None, true) => bail!("--compare needs offsets: give them with --offsets FILE for a surface.json input"),
+        (_, false) => None,
+    };
+    let inputs = ReportInputs {
+        offsets: loaded.offsets.as_ref(),
+        fit: loaded.fit.as_ref(),
+        comparison: comparison.as_ref(),
+        draft: args.draft,
+        notes: loaded.notes.clone(),
+        ..ReportInputs::new(&loaded.surface, loaded.units, loaded.source.clone())
+    };
+    let options = ReportOptions { density: args.density, ..ReportOptions::default() };
+    let report = build_report(&inputs, &options).with_context(|| format!("cannot report on {}", loaded.source))?;
+    let dir = &args.out;
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    let written =
+        write_report(dir, &report).with_context(|| format!("cannot write the report to {}", dir.display()))?;
+    print_summary(&loaded, &report, &written, start.elapsed().as_secs_f64());
+    if progress::stopped() {
+        eprintln!("hullskin: interrupted: the report shows the best surface found before the stop");
+        return Ok(ExitCode::from(130));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Read the input: a surface.json as it is (with `--offsets` if given), or offsets fitted with
+/// the fit flags.
+fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
+    let offsets_text = match &args.skin.input {
+        Some(path) => {
+            let source = path.display().to_string();
+            let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
+            let text = hull::decode(&bytes, &source)?;
+            if text.trim_start().starts_with('{') {
+                return load_json(args);
+            }
+            Some((text.to_string(), source))
+        }
+        None => None,
+    };
+    if let Some(path) = &args.offsets {
+        bail!(
+            "--offsets {} is for a surface.json input; the input is offsets already (they are fitted and measured)",
+            path.display()
+        );
+    }
+    let offsets = match offsets_text {
+        Some((text, source)) => hull::parse_offsets(&text, &source, args.skin.units)?,
+        None => hull::series60_sample(),
+    };
+    let config = FitConfig {
+        method: args.method,
+        degree: args.skin.degree,
+        ctrl: args.skin.ctrl,
+        param: args.skin.param,
+        optim: args.optim.settings(),
+    };
+    let fit = |control: &hull::optimize::Control<'_>| hull::fit_offsets_with(&offsets, &config, control);
+    let outcome = match args.method.algorithm() {
+        Some(a) => progress::with_progress(a.name(), fit),
+        None => hull::optimize::quiet(fit),
+    }
+    .with_context(|| format!("cannot fit {}", offsets.source))?;
+    Ok(Loaded {
+        surface: outcome.surface.clone(),
+        units: offsets.units,
+        source: offsets.source.clone(),
+        offsets: Some(offsets),
+        fit: Some(outcome),
+        notes: Vec::new(),
+    })
+}
+
+/// A surface.json input, with the offsets of `--offsets` when given.
+fn load_json(args: &ReportArgs) -> anyhow::Result<Loaded> {
+    let loaded = load_surface(&args.skin, FitMethod::Approx)?;
+    let mut notes = vec![format!(
+        "The surface was read from {} as it is (not fitted here): the fit flags play no part.",
+        loaded.source
+    )];
+    let offsets = match &args.offsets {
+        Some(path) => {
+            let o = hull::read_offsets(path, loaded.units)?;
+            notes.push(format!(
+                "Offsets from {}: their distances to the surface are measured here by closest-point projection.",
+                path.display()
+            ));
+            Some(o)
+        }
+        None => {
+            notes.push(
+                "No offsets were given (--offsets FILE adds them): no fit error, and no offset markers in the \
+                 lines plan and the viewer."
+                    .into(),
+            );
+            None
+        }
+    };
+    Ok(Loaded { surface: loaded.surface, units: loaded.units, source: loaded.source, offsets, fit: None, notes })
+}
+
+/// Every method at the same control points, with a progress bar for the optimisers.
+fn compare(args: &ReportArgs, offsets: &Offsets) -> anyhow::Result<Comparison> {
+    let s = &args.skin;
+    let config = CompareConfig { degree: s.degree, ctrl: s.ctrl, param: s.param, optim: args.optim.settings() };
+    let comparison = hull::compare_offsets_with(offsets, &config, &mut |algorithm, fit| {
+        progress::with_progress(algorithm.name(), |control| fit(control))
+    })
+    .with_context(|| format!("cannot compare the methods on {}", offsets.source))?;
+    Ok(comparison)
+}
+
+fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, written: &[PathBuf], seconds: f64) {
+    let u = loaded.units.symbol();
+    println!("report of {}", loaded.source);
+    if let Some(f) = &loaded.fit {
+        let e = &f.error.overall;
+        println!(
+            "fit: {} {}x{} control points, error max {:.3e} {u}, RMS {:.3e} {u}",
+            f.config.method.name(),
+            f.surface.n_u(),
+            f.surface.n_v(),
+            e.max,
+            e.rms
+        );
+    } else if let Some(e) = &report.error {
+        println!("error of the offsets: max {:.3e} {u}, RMS {:.3e} {u}", e.overall.max, e.overall.rms);
+    }
+    match (&report.drafts, report.hydrostatics.rows.last()) {
+        (DraftChoice::Design(t), Some(r)) => {
+            println!("hydrostatics at T {t} {u}: Vol {:.2} {u}³, CB {:.4}, LCB {:.3} {u}", r.vol, r.cb, r.lcb)
+        }
+        (DraftChoice::Range { count, top, limit, .. }, _) => {
+            println!("hydrostatics at {count} drafts up to {limit} ({top:.4} {u})")
+        }
+        _ => {}
+    }
+    let size = |p: &Path| std::fs::metadata(p).map(|m| m.len()).unwrap_or(0);
+    let total: u64 = written.iter().map(|p| size(p)).sum();
+    if let Some(html) = written.first() {
+        println!("wrote {} ({:.2} MB, self-contained) in {seconds:.1} s", html.display(), size(html) as f64 / 1e6);
+    }
+    let names: Vec<String> =
+        written.iter().skip(1).filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
+    println!("and {} ({:.2} MB in all)", names.join(", "), total as f64 / 1e6);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Debug, Parser)]
+    struct Wrap {
+        #[command(flatten)]
+        args: ReportArgs,
+    }
+
+    #[test]
+    fn flags_reach_the_arguments() {
+        let w = Wrap::try_parse_from([
+            "x",
+            "in.csv",
+            "-o",
+            "R",
+            "--draft",
+            "6.5",
+            "--method",
+            "ga",
+            "--iterations",
+            "5",
+            "--compare",
+            "--ctrl",
+            "5,9",
+        ])
+        .expect("valid flags");
+        let a = &w.args;
+        assert_eq!(a.skin.input, Some(PathBuf::from("in.csv")));
+        assert_eq!((a.out.as_path(), a.draft, a.compare), (Path::new("R"), Some(6.5), true));
+        assert_eq!(a.method, FitMethod::Optimized(hull::optimize::Algorithm::Ga));
+        assert_eq!((a.optim.settings().iterations, a.skin.ctrl), (Some(5), Some((5, 9))));
+        let d = Wrap::try_parse_from(["x"]).expect("no flags");
+        assert_eq!(
+            (d.args.out.as_path(), d.args.method, d.args.draft),
+            (Path::new("hullskin-report"), FitMethod::Approx, None)
+        );
+        assert!(Wrap::try_parse_from(["x", "--method", "bogus"]).is_err());
+    }
+
+    #[test]
+    fn bad_values_are_refused_before_any_work() {
+        for argv in
+            [&["x", "--draft", "0"][..], &["x", "--draft", "-2"], &["x", "--draft", "nan"], &["x", "--density", "0"]]
+        {
+            let w = Wrap::try_parse_from(argv).expect("parses");
+            let err = run(&w.args).expect_err("refused");
+            assert!(err.to_string().contains("expected"), "{argv:?}: {err}");
+        }
+    }
+}
