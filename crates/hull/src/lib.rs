@@ -8,6 +8,7 @@ pub mod analysis;
 mod compare;
 pub mod drawing;
 mod error;
+mod markup;
 pub mod export;
 pub mod fit_error;
 pub mod hydrostatics;

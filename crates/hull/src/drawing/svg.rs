@@ -14,6 +14,7 @@ use std::collections::HashSet;
 use std::io::{self, Write};
 
 use super::model::{Anchor, Drawing, Item, Stroke};
+use crate::markup::escape;
 
 /// SVG sizes fonts by the em; the model sizes text by its cap height. The cap height of the
 /// usual sans-serif faces (Helvetica, Arial, DejaVu Sans) is 0.72-0.73 em, so
@@ -149,25 +150,6 @@ pub(crate) fn num(x: f64) -> io::Result<String> {
         s = "0".into();
     }
     Ok(s)
-}
-
-/// XML-escape text content and attribute values (`&`, `<`, `>`, `"`, `'`); control characters
-/// other than tab, which XML 1.0 cannot hold, become spaces.
-pub(crate) fn escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            '\t' => out.push(c),
-            c if c.is_control() => out.push(' '),
-            c => out.push(c),
-        }
-    }
-    out
 }
 
 /// A valid, unique XML id for a layer name: characters other than ASCII letters, digits, `-`

@@ -6,40 +6,7 @@
 
 use std::fmt::Write as _;
 
-/// Text for element content or a quoted attribute: `& < > "` as entities.
-pub(crate) fn esc(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
-/// A whole document for a `srcdoc` attribute: [`esc`], and the white space an XML parser
-/// would normalise in an attribute value (line feed, carriage return, tab) as character
-/// references, so that both an HTML and an XML reader give back exactly `s`.
-pub(crate) fn esc_srcdoc(s: &str) -> String {
-    let mut out = String::with_capacity(s.len() + s.len() / 8);
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\n' => out.push_str("&#10;"),
-            '\r' => out.push_str("&#13;"),
-            '\t' => out.push_str("&#9;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
+pub(crate) use crate::markup::{base64, escape as esc, escape_document as esc_srcdoc};
 
 /// `v` with 4 significant digits (`n/a` if not finite): the report's one number format.
 pub(crate) fn num(v: f64) -> String {
@@ -131,24 +98,6 @@ pub(crate) fn kv_table(id: &str, rows: &[(String, String)]) -> String {
     t
 }
 
-/// Standard base64 (RFC 4648 section 4) with padding.
-pub(crate) fn base64(bytes: &[u8]) -> String {
-    const ABC: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for chunk in bytes.chunks(3) {
-        let b = [chunk[0], chunk.get(1).copied().unwrap_or(0), chunk.get(2).copied().unwrap_or(0)];
-        let n = u32::from(b[0]) << 16 | u32::from(b[1]) << 8 | u32::from(b[2]);
-        for k in 0..4 {
-            if k <= chunk.len() {
-                out.push(char::from(ABC[(n >> (18 - 6 * k) & 63) as usize]));
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
-}
-
 /// An `<img>` of PNG bytes as a `data:` URI, with its pixel size.
 pub(crate) fn png_img(png: &[u8], width: u32, height: u32, alt: &str, id: &str) -> String {
     format!(
@@ -162,39 +111,6 @@ pub(crate) fn png_img(png: &[u8], width: u32, height: u32, alt: &str, id: &str) 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn base64_matches_the_rfc_4648_vectors() {
-        // RFC 4648 section 10.
-        for (plain, coded) in [
-            ("", ""),
-            ("f", "Zg=="),
-            ("fo", "Zm8="),
-            ("foo", "Zm9v"),
-            ("foob", "Zm9vYg=="),
-            ("fooba", "Zm9vYmE="),
-            ("foobar", "Zm9vYmFy"),
-        ] {
-            assert_eq!(base64(plain.as_bytes()), coded);
-        }
-        // Every byte value: 256 bytes give 86 groups, the last with two padding characters.
-        let all: Vec<u8> = (0..=255).collect();
-        let s = base64(&all);
-        assert_eq!(s.len(), 344);
-        assert!(s.ends_with("/w=="), "{}", &s[s.len() - 8..]);
-    }
-
-    #[test]
-    fn srcdoc_escaping_survives_an_xml_reader() {
-        let doc = "<p class=\"a\">x & y\n\tz\r\n</p>";
-        let xml = format!("<r a=\"{}\"/>", esc_srcdoc(doc));
-        let parsed = roxmltree::Document::parse(&xml).expect("well-formed");
-        assert_eq!(parsed.root_element().attribute("a"), Some(doc));
-        // Plain escaping loses the line breaks to attribute-value normalisation.
-        let plain = format!("<r a=\"{}\"/>", esc(doc));
-        let parsed = roxmltree::Document::parse(&plain).expect("well-formed");
-        assert_ne!(parsed.root_element().attribute("a"), Some(doc));
-    }
 
     #[test]
     fn number_cells_carry_the_exact_value() {

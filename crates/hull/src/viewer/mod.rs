@@ -23,6 +23,7 @@ use nurbs::{NurbsSurface, Vec3};
 use serde_json::{json, Value};
 
 use crate::drawing::colormap::{diverging_stops, sequential_stops};
+use crate::markup::{base64, escape};
 use crate::{ErrorStats, Offsets, Units};
 pub use mesh::Resolution;
 
@@ -137,7 +138,7 @@ pub fn write_viewer_html<W: Write + ?Sized>(
         w.write_all(&rest.as_bytes()[..start])?;
         let len = rest[start..].find("}}").expect("the template's markers are closed");
         match &rest[start + 2..start + len] {
-            "TITLE" => w.write_all(escape_html(&options.title).as_bytes())?,
+            "TITLE" => w.write_all(escape(&options.title).as_bytes())?,
             "STYLE" => w.write_all(STYLE.as_bytes())?,
             "THREE_LICENSE" => w.write_all(THREE_LICENSE.replace("--", "- -").as_bytes())?,
             "THREE" => w.write_all(THREE_JS.as_bytes())?,
@@ -148,28 +149,6 @@ pub fn write_viewer_html<W: Write + ?Sized>(
         rest = &rest[start + len + 2..];
     }
     w.write_all(rest.as_bytes())
-}
-
-fn escape_html(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
-}
-
-/// Standard base64 (RFC 4648 section 4) with padding.
-fn base64(bytes: &[u8]) -> String {
-    const ABC: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for chunk in bytes.chunks(3) {
-        let b = [chunk[0], chunk.get(1).copied().unwrap_or(0), chunk.get(2).copied().unwrap_or(0)];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for k in 0..4 {
-            if k <= chunk.len() {
-                out.push(ABC[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
 }
 
 /// Float32 little-endian, base64; non-finite values become 0.
@@ -396,21 +375,7 @@ mod tests {
     use crate::{fit_offsets, series60_sample, FitConfig};
 
     fn unbase64(s: &str) -> Vec<u8> {
-        let val = |c: u8| match c {
-            b'A'..=b'Z' => c - b'A',
-            b'a'..=b'z' => c - b'a' + 26,
-            b'0'..=b'9' => c - b'0' + 52,
-            b'+' => 62,
-            b'/' => 63,
-            _ => panic!("not base64: {c}"),
-        };
-        let mut out = Vec::new();
-        for q in s.as_bytes().chunks(4) {
-            let pad = q.iter().filter(|&&c| c == b'=').count();
-            let n = q.iter().take(4 - pad).enumerate().fold(0u32, |n, (k, &c)| n | (val(c) as u32) << (18 - 6 * k));
-            out.extend_from_slice(&n.to_be_bytes()[1..4 - pad]);
-        }
-        out
+        base64::Engine::decode(&base64::engine::general_purpose::STANDARD, s).expect("base64")
     }
 
     fn f32s(s: &Value) -> Vec<f32> {
@@ -433,20 +398,6 @@ mod tests {
         let mut out = Vec::new();
         write_viewer_html(&mut out, &surface, Some(&offsets), offsets.units, options).expect("writes to memory");
         (String::from_utf8(out).expect("UTF-8"), surface, offsets)
-    }
-
-    #[test]
-    fn base64_round_trips_every_length() {
-        for n in 0..10u8 {
-            let bytes: Vec<u8> = (0..n).map(|i| i.wrapping_mul(97).wrapping_add(200)).collect();
-            let enc = base64(&bytes);
-            assert_eq!(enc.len(), bytes.len().div_ceil(3) * 4);
-            assert_eq!(unbase64(&enc), bytes);
-        }
-        // RFC 4648 section 10 test vectors.
-        assert_eq!(base64(b"foob"), "Zm9vYg==");
-        assert_eq!(base64(b"fooba"), "Zm9vYmE=");
-        assert_eq!(base64(b"foobar"), "Zm9vYmFy");
     }
 
     #[test]
