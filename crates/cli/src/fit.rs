@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
-use hull::{FitConfig, FitMethod};
+use hull::{FitConfig, FitMethod, FitOutcome, HullError, Offsets, ToleranceSearch};
 
 use crate::optim_args::OptimArgs;
 use crate::progress;
@@ -19,6 +19,20 @@ pub struct FitArgs {
     /// Output directory for surface.igs, surface.json and report.json.
     #[arg(short = 'o', long = "out", default_value = "hullskin-out")]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub fit: MethodArgs,
+}
+
+impl Default for FitArgs {
+    fn default() -> Self {
+        FitArgs { skin: SkinArgs::default(), out: PathBuf::from("hullskin-out"), fit: MethodArgs::default() }
+    }
+}
+
+/// How offsets are fitted: the method, `--tolerance` and the weight optimisers' flags (shared
+/// by `fit` and `report`).
+#[derive(Debug, Clone, Args)]
+pub struct MethodArgs {
     /// Method: `interp` passes through every offset; `approx` is a least-squares fit with the
     /// control-point counts of --ctrl; `ga`, `pso`, `gsa`, `lm` and `gsa+lm` then optimise the
     /// approximation's weights (Genetic Algorithm, Particle Swarm, Gravitational Search,
@@ -34,15 +48,23 @@ pub struct FitArgs {
     pub optim: OptimArgs,
 }
 
-impl Default for FitArgs {
+impl Default for MethodArgs {
     fn default() -> Self {
-        FitArgs {
-            skin: SkinArgs::default(),
-            out: PathBuf::from("hullskin-out"),
-            method: FitMethod::Approx,
-            tolerance: None,
-            optim: OptimArgs::default(),
-        }
+        MethodArgs { method: FitMethod::Approx, tolerance: None, optim: OptimArgs::default() }
+    }
+}
+
+impl MethodArgs {
+    /// Fit `offsets` with these flags and the skinning flags `skin`: see [`fit_with_progress`].
+    ///
+    /// # Errors
+    /// Those of [`fit_with_progress`].
+    pub(crate) fn fit(
+        &self,
+        skin: &SkinArgs,
+        offsets: &Offsets,
+    ) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
+        fit_with_progress(offsets, &skin.fit_config(self.method, self.optim.settings()), self.tolerance)
     }
 }
 
@@ -53,22 +75,7 @@ fn parse_method(s: &str) -> Result<FitMethod, String> {
 /// Run `hullskin fit`.
 pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     let offsets = args.skin.offsets()?;
-    let config = FitConfig {
-        method: args.method,
-        degree: args.skin.degree,
-        ctrl: args.skin.ctrl,
-        param: args.skin.param,
-        optim: args.optim.settings(),
-    };
-    let fit = |control: &hull::optimize::Control<'_>| match args.tolerance {
-        Some(t) => hull::fit_to_tolerance(&offsets, &config, &hull::ToleranceSettings::new(t), control)
-            .map(|r| (r.outcome, Some(r.search))),
-        None => hull::fit_offsets_with(&offsets, &config, control).map(|o| (o, None)),
-    };
-    let (outcome, search) = match args.method.algorithm() {
-        Some(a) => progress::with_progress(a.name(), fit)?,
-        None => hull::optimize::quiet(fit)?,
-    };
+    let (outcome, search) = args.fit.fit(&args.skin, &offsets)?;
     let mut report = hull::Report::new(&offsets, &outcome);
     report.tolerance_search = search;
     write_outputs(&args.out, &offsets, &outcome, &report)?;
@@ -84,12 +91,30 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn write_outputs(
-    dir: &Path,
-    offsets: &hull::Offsets,
-    outcome: &hull::FitOutcome,
-    report: &hull::Report,
-) -> anyhow::Result<()> {
+/// Fit `offsets` with `config`, or with the fewest control points whose max error is within
+/// `tolerance` when one is given (then with the record of that search). An optimised method
+/// draws a progress bar and stops on Ctrl-C with its best surface so far
+/// ([`progress::stopped`] then says so); the others run quietly.
+///
+/// # Errors
+/// Those of [`hull::fit_offsets`], and of [`hull::fit_to_tolerance`] with a tolerance.
+pub(crate) fn fit_with_progress(
+    offsets: &Offsets,
+    config: &FitConfig,
+    tolerance: Option<f64>,
+) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
+    let fit = |control: &hull::optimize::Control<'_>| match tolerance {
+        Some(t) => hull::fit_to_tolerance(offsets, config, &hull::ToleranceSettings::new(t), control)
+            .map(|r| (r.outcome, Some(r.search))),
+        None => hull::fit_offsets_with(offsets, config, control).map(|o| (o, None)),
+    };
+    match config.method.algorithm() {
+        Some(a) => progress::with_progress(a.name(), fit),
+        None => hull::optimize::quiet(fit),
+    }
+}
+
+fn write_outputs(dir: &Path, offsets: &Offsets, outcome: &FitOutcome, report: &hull::Report) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
     hull::write_fit_outputs_with_report(dir, offsets, outcome, report)
         .with_context(|| format!("cannot write outputs to {}", dir.display()))
@@ -100,6 +125,17 @@ mod tests {
     use super::*;
     use crate::parse::parse_param;
     use nurbs::fit::{Parameterization, SkinParameterization};
+
+    #[test]
+    fn without_a_tolerance_the_fit_is_the_library_fit() {
+        let offsets = hull::series60_sample();
+        let args = FitArgs::default();
+        let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
+        let direct = hull::fit_offsets(&offsets, &FitConfig::default()).expect("the sample fits");
+        // The same deterministic least-squares fit: bit-identical surfaces.
+        assert_eq!(outcome.surface, direct.surface);
+        assert!(search.is_none());
+    }
 
     #[test]
     fn param_takes_one_name_or_one_per_direction() {

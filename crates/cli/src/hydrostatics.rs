@@ -6,10 +6,12 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
+use hull::optimize::OptimSettings;
 use hull::{FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, SEA_WATER_DENSITY};
 
+use crate::fit::fit_with_progress;
 use crate::skin_args::SkinArgs;
-use crate::surface_arg::load_surface;
+use crate::surface_arg::{read_input, Input};
 
 /// Output format of the table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -89,19 +91,22 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
     if !(args.density.is_finite() && args.density > 0.0) {
         bail!("--density {}: expected a positive density in t/m³", args.density);
     }
-    let loaded = load_surface(&args.skin, args.method)?;
+    let (surface, units, source) = match read_input(&args.skin)? {
+        Input::Surface { surface, units, source } => (surface, units, source),
+        Input::Offsets(offsets) => {
+            let config = args.skin.fit_config(args.method, OptimSettings::default());
+            let (outcome, _) =
+                fit_with_progress(&offsets, &config, None).with_context(|| format!("cannot fit {}", offsets.source))?;
+            (outcome.surface, offsets.units, format!("{}, fitted by {}", offsets.source, args.method.name()))
+        }
+    };
     let options = HydrostaticsOptions {
-        density: hull::density_per_cubic_unit(args.density, loaded.units),
+        density: hull::density_per_cubic_unit(args.density, units),
         ..HydrostaticsOptions::default()
     };
-    let rows = Hydrostatics::new(&loaded.surface, &options)?
-        .rows(&drafts)
-        .with_context(|| format!("hydrostatics of {}", loaded.source))?;
-    let source = match loaded.fitted {
-        true => format!("{}, fitted by {}", loaded.source, args.method.name()),
-        false => loaded.source,
-    };
-    let table = HydrostaticsTable { source, units: loaded.units, density: args.density, rows };
+    let rows =
+        Hydrostatics::new(&surface, &options)?.rows(&drafts).with_context(|| format!("hydrostatics of {source}"))?;
+    let table = HydrostaticsTable { source, units, density: args.density, rows };
     let text = match args.format {
         Format::Text => table.text(),
         Format::Csv => table.csv(),

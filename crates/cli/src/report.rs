@@ -12,12 +12,13 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use clap::Args;
 use hull::report_html::{build_report, write_report, DraftChoice, ReportInputs, ReportOptions};
-use hull::{CompareConfig, Comparison, FitConfig, FitMethod, FitOutcome, Offsets, SEA_WATER_DENSITY};
+use hull::{CompareConfig, Comparison, FitOutcome, Offsets, ToleranceSearch, Units, SEA_WATER_DENSITY};
+use nurbs::NurbsSurface;
 
-use crate::optim_args::OptimArgs;
+use crate::fit::MethodArgs;
 use crate::progress;
 use crate::skin_args::SkinArgs;
-use crate::surface_arg::load_surface;
+use crate::surface_arg::{read_input, Input};
 
 /// Arguments of `hullskin report`.
 #[derive(Debug, Args)]
@@ -25,19 +26,19 @@ use crate::surface_arg::load_surface;
     .value_name("SURFACE_OR_INPUT")
     .help("A surface.json written by `hullskin fit` (used as it is), or an offsets file (sections CSV \
            or offset table) fitted first with --method and the skinning flags. Without it the built-in \
-           Series 60 Cb 0.60 sample is fitted")))]
+           Series 60 Cb 0.60 sample is fitted")),
+    mut_arg("method", |a| a.help("Fit of an offsets input, as `hullskin fit --method`: interp, approx, or approx \
+           with its weights optimised by ga, pso, gsa, lm or gsa+lm (the report then plots the convergence)")),
+    mut_arg("tolerance", |a| a.help("As `hullskin fit --tolerance`: fit an offsets input with the fewest control \
+           points whose max error is within T (approx or an optimised method); the report notes the search")))]
 pub struct ReportArgs {
     #[command(flatten)]
     pub skin: SkinArgs,
     /// Output directory for report.html and the files it is made of.
     #[arg(short = 'o', long = "out", default_value = "hullskin-report")]
     pub out: PathBuf,
-    /// Fit of an offsets input, as `hullskin fit --method`: interp, approx, or approx with its
-    /// weights optimised by ga, pso, gsa, lm or gsa+lm (the report then plots the convergence).
-    #[arg(long, default_value = "approx", value_parser = parse_method)]
-    pub method: FitMethod,
     #[command(flatten)]
-    pub optim: OptimArgs,
+    pub fit: MethodArgs,
     /// Design draft T (z of the waterplane above the baseline, in the surface's length unit).
     /// Without it the hydrostatics are tabulated at 10 drafts from the keel to the top of the
     /// offsets (of the surface, without offsets).
@@ -56,17 +57,15 @@ pub struct ReportArgs {
     pub offsets: Option<PathBuf>,
 }
 
-fn parse_method(s: &str) -> Result<FitMethod, String> {
-    s.parse()
-}
-
 /// The surface to report on, with what came with it.
 struct Loaded {
-    surface: nurbs::NurbsSurface,
-    units: hull::Units,
+    surface: NurbsSurface,
+    units: Units,
     source: String,
     offsets: Option<Offsets>,
     fit: Option<FitOutcome>,
+    /// The search of `--tolerance`.
+    search: Option<ToleranceSearch>,
     notes: Vec<String>,
 }
 
@@ -112,17 +111,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
 /// Read the input: a surface.json as it is (with `--offsets` if given), or offsets fitted with
 /// the fit flags.
 fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
-    let offsets_text = match &args.skin.input {
-        Some(path) => {
-            let source = path.display().to_string();
-            let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
-            let text = hull::decode(&bytes, &source)?;
-            if text.trim_start().starts_with('{') {
-                return load_json(args);
-            }
-            Some((text.to_string(), source))
-        }
-        None => None,
+    let offsets = match read_input(&args.skin)? {
+        Input::Surface { surface, units, source } => return surface_as_is(args, surface, units, source),
+        Input::Offsets(offsets) => offsets,
     };
     if let Some(path) = &args.offsets {
         bail!(
@@ -130,43 +121,32 @@ fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
             path.display()
         );
     }
-    let offsets = match offsets_text {
-        Some((text, source)) => hull::parse_offsets(&text, &source, args.skin.units)?,
-        None => hull::series60_sample(),
-    };
-    let config = FitConfig {
-        method: args.method,
-        degree: args.skin.degree,
-        ctrl: args.skin.ctrl,
-        param: args.skin.param,
-        optim: args.optim.settings(),
-    };
-    let fit = |control: &hull::optimize::Control<'_>| hull::fit_offsets_with(&offsets, &config, control);
-    let outcome = match args.method.algorithm() {
-        Some(a) => progress::with_progress(a.name(), fit),
-        None => hull::optimize::quiet(fit),
-    }
-    .with_context(|| format!("cannot fit {}", offsets.source))?;
+    let (outcome, search) =
+        args.fit.fit(&args.skin, &offsets).with_context(|| format!("cannot fit {}", offsets.source))?;
+    let notes = search
+        .iter()
+        .map(|s| {
+            format!("Fitted with the fewest control points within --tolerance: {}.", s.summary(offsets.units.symbol()))
+        })
+        .collect();
     Ok(Loaded {
         surface: outcome.surface.clone(),
         units: offsets.units,
         source: offsets.source.clone(),
         offsets: Some(offsets),
         fit: Some(outcome),
-        notes: Vec::new(),
+        search,
+        notes,
     })
 }
 
 /// A surface.json input, with the offsets of `--offsets` when given.
-fn load_json(args: &ReportArgs) -> anyhow::Result<Loaded> {
-    let loaded = load_surface(&args.skin, FitMethod::Approx)?;
-    let mut notes = vec![format!(
-        "The surface was read from {} as it is (not fitted here): the fit flags play no part.",
-        loaded.source
-    )];
+fn surface_as_is(args: &ReportArgs, surface: NurbsSurface, units: Units, source: String) -> anyhow::Result<Loaded> {
+    let mut notes =
+        vec![format!("The surface was read from {source} as it is (not fitted here): the fit flags play no part.")];
     let offsets = match &args.offsets {
         Some(path) => {
-            let o = hull::read_offsets(path, loaded.units)?;
+            let o = hull::read_offsets(path, units)?;
             notes.push(format!(
                 "Offsets from {}: their distances to the surface are measured here by closest-point projection.",
                 path.display()
@@ -182,13 +162,13 @@ fn load_json(args: &ReportArgs) -> anyhow::Result<Loaded> {
             None
         }
     };
-    Ok(Loaded { surface: loaded.surface, units: loaded.units, source: loaded.source, offsets, fit: None, notes })
+    Ok(Loaded { surface, units, source, offsets, fit: None, search: None, notes })
 }
 
 /// Every method at the same control points, with a progress bar for the optimisers.
 fn compare(args: &ReportArgs, offsets: &Offsets) -> anyhow::Result<Comparison> {
     let s = &args.skin;
-    let config = CompareConfig { degree: s.degree, ctrl: s.ctrl, param: s.param, optim: args.optim.settings() };
+    let config = CompareConfig { degree: s.degree, ctrl: s.ctrl, param: s.param, optim: args.fit.optim.settings() };
     let comparison = hull::compare_offsets_with(offsets, &config, &mut |algorithm, fit| {
         progress::with_progress(algorithm.name(), |control| fit(control))
     })
@@ -209,6 +189,9 @@ fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, writt
             e.max,
             e.rms
         );
+        if let Some(s) = &loaded.search {
+            println!("{}", s.summary(u));
+        }
     } else if let Some(e) = &report.error {
         println!("error of the offsets: max {:.3e} {u}, RMS {:.3e} {u}", e.overall.max, e.overall.rms);
     }
@@ -235,6 +218,7 @@ fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, writt
 mod tests {
     use super::*;
     use clap::Parser;
+    use hull::FitMethod;
 
     #[derive(Debug, Parser)]
     struct Wrap {
@@ -263,14 +247,30 @@ mod tests {
         let a = &w.args;
         assert_eq!(a.skin.input, Some(PathBuf::from("in.csv")));
         assert_eq!((a.out.as_path(), a.draft, a.compare), (Path::new("R"), Some(6.5), true));
-        assert_eq!(a.method, FitMethod::Optimized(hull::optimize::Algorithm::Ga));
-        assert_eq!((a.optim.settings().iterations, a.skin.ctrl), (Some(5), Some((5, 9))));
+        assert_eq!(a.fit.method, FitMethod::Optimized(hull::optimize::Algorithm::Ga));
+        assert_eq!((a.fit.optim.settings().iterations, a.skin.ctrl), (Some(5), Some((5, 9))));
         let d = Wrap::try_parse_from(["x"]).expect("no flags");
         assert_eq!(
-            (d.args.out.as_path(), d.args.method, d.args.draft),
+            (d.args.out.as_path(), d.args.fit.method, d.args.draft),
             (Path::new("hullskin-report"), FitMethod::Approx, None)
         );
         assert!(Wrap::try_parse_from(["x", "--method", "bogus"]).is_err());
+    }
+
+    #[test]
+    fn tolerance_fits_the_fewest_control_points_within_it_and_notes_the_search() {
+        // 0.2 m on the 121.92 m sample: a loose tolerance, so the search is short (~40 fits).
+        let w = Wrap::try_parse_from(["x", "--tolerance", "0.2"]).expect("valid flags");
+        let loaded = load(&w.args).expect("the sample fits within 0.2 m");
+        let fit = loaded.fit.as_ref().expect("offsets are fitted");
+        let search = loaded.search.as_ref().expect("--tolerance searches");
+        assert!(fit.error.overall.max <= 0.2, "max error {}", fit.error.overall.max);
+        assert_eq!(search.control_points, [fit.surface.n_u(), fit.surface.n_v()]);
+        assert!(search.ratio < 1.0, "fewer control points than interpolation: {}", search.ratio);
+        assert!(loaded.notes.iter().any(|n| n.contains(&search.summary("m"))), "{:?}", loaded.notes);
+        let plain = load(&Wrap::try_parse_from(["x"]).expect("no flags").args).expect("the sample fits");
+        assert!(plain.search.is_none() && plain.notes.is_empty());
+        assert!(Wrap::try_parse_from(["x", "--tolerance", "0.2", "--ctrl", "5,9"]).is_err());
     }
 
     #[test]

@@ -1,9 +1,10 @@
-//! The input and skinning flags shared by `fit` and `compare`.
+//! The input and skinning flags shared by `fit`, `compare`, `hydrostatics` and `report`.
 
 use std::path::PathBuf;
 
 use clap::Args;
-use hull::{Offsets, Units};
+use hull::optimize::OptimSettings;
+use hull::{FitConfig, FitMethod, Offsets, Units};
 use nurbs::fit::SkinParameterization;
 
 use crate::parse::{parse_pair, parse_param, parse_units};
@@ -53,5 +54,11 @@ impl SkinArgs {
             Some(path) => hull::read_offsets(path, self.units)?,
             None => hull::series60_sample(),
         })
+    }
+
+    /// The library's fit settings: these skinning flags with `method` and the weight
+    /// optimisers' `optim`.
+    pub fn fit_config(&self, method: FitMethod, optim: OptimSettings) -> FitConfig {
+        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim }
     }
 }

@@ -1,46 +1,37 @@
-//! The SURFACE argument of the commands that work on a fitted surface (`hydrostatics`, and
-//! later `report`): a `surface.json` written by `hullskin fit`, or offsets fitted first with
-//! the skinning flags of [`SkinArgs`] (the built-in Series 60 sample when no input is given).
+//! The input of the commands that work on a fitted surface (`hydrostatics`, `report`): a
+//! `surface.json` written by `hullskin fit`, or offsets to be fitted first with the skinning
+//! flags of [`SkinArgs`] (the built-in Series 60 sample when no input is given).
 
-use anyhow::{bail, Context};
-use hull::{FitConfig, FitMethod, Offsets, Units};
+use anyhow::Context;
+use hull::{Offsets, Units};
 use nurbs::NurbsSurface;
 
 use crate::skin_args::SkinArgs;
 
-/// A surface ready for analysis, with where it came from.
-pub(crate) struct LoadedSurface {
-    /// The starboard half-hull surface.
-    pub surface: NurbsSurface,
-    /// Its length unit (the JSON's `units`, or `--units` for offsets).
-    pub units: Units,
-    /// The input's name for titles: the path, or the built-in sample's description.
-    pub source: String,
-    /// Whether the surface was fitted here (from offsets) rather than read from a JSON.
-    pub fitted: bool,
+/// What the input holds.
+pub(crate) enum Input {
+    /// A surface read from a JSON as it is (`--units` and the skinning flags play no part).
+    Surface {
+        /// The starboard half-hull surface.
+        surface: NurbsSurface,
+        /// Its length unit: the JSON's `units`.
+        units: Units,
+        /// The input's path, for titles and messages.
+        source: String,
+    },
+    /// Offsets (a file read in `--units`, or the built-in sample), to be fitted.
+    Offsets(Offsets),
 }
 
-/// Load `skin.input`: a surface JSON (recognised by its first non-blank character, `{`) is
-/// read as is (`--units` and the skinning flags then play no part); anything else is read as
-/// offsets and fitted with `method` (interp or approx) and the skinning flags.
-pub(crate) fn load_surface(skin: &SkinArgs, method: FitMethod) -> anyhow::Result<LoadedSurface> {
-    if !matches!(method, FitMethod::Interp | FitMethod::Approx) {
-        bail!(
-            "method {} optimises weights; fit such a surface with `hullskin fit --method {}` and pass its surface.json",
-            method.name(),
-            method.name()
-        );
-    }
-    let fit = |offsets: Offsets, source: String| -> anyhow::Result<LoadedSurface> {
-        let config =
-            FitConfig { method, degree: skin.degree, ctrl: skin.ctrl, param: skin.param, ..FitConfig::default() };
-        let outcome = hull::fit_offsets(&offsets, &config).with_context(|| format!("cannot fit {source}"))?;
-        Ok(LoadedSurface { surface: outcome.surface, units: offsets.units, source, fitted: true })
-    };
+/// Read `skin.input`: a surface JSON (recognised by its first non-blank character, `{`), or
+/// anything else as offsets in `skin.units`; without an input, the built-in sample's offsets.
+///
+/// # Errors
+/// A file that cannot be read or is not text, a JSON that is not a surface (or has unknown
+/// units), and every parse error of the offsets; each names the file.
+pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
     let Some(path) = &skin.input else {
-        let offsets = hull::series60_sample();
-        let source = offsets.source.clone();
-        return fit(offsets, source);
+        return Ok(Input::Offsets(hull::series60_sample()));
     };
     let source = path.display().to_string();
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
@@ -49,10 +40,9 @@ pub(crate) fn load_surface(skin: &SkinArgs, method: FitMethod) -> anyhow::Result
         let (surface, units) =
             hull::export::read_surface_json(text).with_context(|| format!("cannot read the surface {source}"))?;
         let units: Units = units.parse().with_context(|| format!("{source}: \"units\""))?;
-        return Ok(LoadedSurface { surface, units, source, fitted: false });
+        return Ok(Input::Surface { surface, units, source });
     }
-    let offsets = hull::parse_offsets(text, &source, skin.units)?;
-    fit(offsets, source)
+    Ok(Input::Offsets(hull::parse_offsets(text, &source, skin.units)?))
 }
 
 #[cfg(test)]
@@ -64,32 +54,64 @@ mod tests {
         SkinArgs { input, ..SkinArgs::default() }
     }
 
+    fn offsets(input: Input) -> Offsets {
+        match input {
+            Input::Offsets(o) => o,
+            Input::Surface { source, .. } => panic!("{source} read as a surface, expected offsets"),
+        }
+    }
+
     #[test]
     fn a_surface_json_reads_back_the_fitted_surface() {
         let dir = tempfile::tempdir().expect("temp dir");
-        let fitted = load_surface(&skin(None), FitMethod::Approx).expect("the sample fits");
-        assert!(fitted.fitted && fitted.source.contains("Series 60"));
+        let sample = offsets(read_input(&skin(None)).expect("the sample"));
+        assert!(sample.source.contains("Series 60"));
+        let fitted = hull::fit_offsets(&sample, &hull::FitConfig::default()).expect("the sample fits");
         let path = dir.path().join("surface.json");
-        let mut text = Vec::new();
+        // Leading blanks do not hide the JSON.
+        let mut text = b"\n  ".to_vec();
         hull::export::write_surface_json(&mut text, &fitted.surface, "ft").expect("writes");
         std::fs::write(&path, text).expect("write");
-        let read = load_surface(&skin(Some(path)), FitMethod::Approx).expect("reads");
-        assert_eq!(read.surface, fitted.surface);
-        assert_eq!(read.units, Units::Foot);
-        assert!(!read.fitted);
+        match read_input(&skin(Some(path.clone()))).expect("reads") {
+            Input::Surface { surface, units, source } => {
+                // The JSON keeps the surface exactly (shortest round-trip floats).
+                assert_eq!(surface, fitted.surface);
+                assert_eq!(units, Units::Foot);
+                assert_eq!(source, path.display().to_string());
+            }
+            Input::Offsets(_) => panic!("a surface.json read as offsets"),
+        }
+    }
+
+    #[test]
+    fn an_offsets_file_is_read_in_the_units_flag() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("s60.csv");
+        std::fs::write(&path, hull::SERIES60_CB060_CSV).expect("write");
+        let args = SkinArgs { units: Units::Foot, ..skin(Some(path.clone())) };
+        let read = offsets(read_input(&args).expect("reads"));
+        let sample = hull::series60_sample();
+        assert_eq!((read.units, read.source), (Units::Foot, path.display().to_string()));
+        assert_eq!(read.sections.len(), sample.sections.len());
+        // The same table as the sample: only the unit label differs.
+        for (a, b) in read.sections.iter().zip(&sample.sections) {
+            assert_eq!(a.points, b.points);
+        }
     }
 
     #[test]
     fn bad_inputs_say_what_is_wrong() {
         let dir = tempfile::tempdir().expect("temp dir");
         let missing = dir.path().join("none.json");
-        let err = load_surface(&skin(Some(missing)), FitMethod::Approx).err().expect("missing file");
+        let err = read_input(&skin(Some(missing))).err().expect("missing file");
         assert!(format!("{err:#}").contains("none.json"), "{err:#}");
         let bad = dir.path().join("bad.json");
         std::fs::write(&bad, "{\"format\": \"other\"}").expect("write");
-        let err = load_surface(&skin(Some(bad)), FitMethod::Approx).err().expect("not a surface");
+        let err = read_input(&skin(Some(bad))).err().expect("not a surface");
         assert!(format!("{err:#}").contains("bad.json"), "{err:#}");
-        let err = load_surface(&skin(None), FitMethod::Optimized(hull::optimize::Algorithm::Ga)).err();
-        assert!(err.is_some_and(|e| e.to_string().contains("surface.json")));
+        let broken = dir.path().join("broken.csv");
+        std::fs::write(&broken, "section,x,y,z\nA,1,2\n").expect("write");
+        let err = read_input(&skin(Some(broken))).err().expect("not offsets");
+        assert!(format!("{err:#}").contains("broken.csv"), "{err:#}");
     }
 }
