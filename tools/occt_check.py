@@ -1,14 +1,19 @@
 #!/usr/bin/env python3
-"""Check an IGES file written by hullskin with a real CAD kernel (Open CASCADE, via OCP).
+"""Check an IGES or STEP file written by hullskin with a real CAD kernel (Open CASCADE, via OCP).
 
-Usage: occt_check.py FILE.igs EXPECTED.json
+Usage: occt_check.py FILE.igs|FILE.stp EXPECTED.json
 
-EXPECTED.json (written by crates/hull/tests/occt_iges.rs) holds
+The format is taken from the extension (.igs/.iges: IGESControl_Reader, .stp/.step:
+STEPControl_Reader). EXPECTED.json (written by crates/hull/tests/occt_iges.rs and exports.rs)
+holds
   {"surface": <a hullskin-surface JSON document, see crates/hull/src/export/surface_json.rs>,
-   "iges_units": {"flag": 6, "name": "M"},
-   "samples": [[u, v, x, y, z], ...]}   # points of our own evaluator, in the file's units
+   "iges_units": {"flag": 6, "name": "M"},     # IGES: the global section's unit
+   "units": "m" | "mm" | "ft" | "in",           # STEP (or IGES without "iges_units")
+   "samples": [[u, v, x, y, z], ...],           # points of our own evaluator, in the file's units
+   "curves": [{"degree": p, "knots": [...], "control_points": [[x, y, z], ...],
+               "weights": [...], "samples": [[t, x, y, z], ...]}, ...]}   # optional
 
-The file is read twice with IGESControl_Reader:
+The file is read twice:
   * "native": xstep.cascade.unit set to the file's own unit, so OCCT must not scale;
   * "default_mm": xstep.cascade.unit = MM (OCCT's default), so OCCT must scale every
     length by the file unit in millimetres (1000 for M, 1 for MM, 304.8 for FT, 25.4 for IN).
@@ -16,6 +21,11 @@ Each read must give exactly one face whose surface is a Geom_BSplineSurface with
 rational flag, degrees, pole counts, knots, parameter bounds, poles and weights, the face
 bounded by the whole parameter rectangle, and S(u, v) equal to our samples within
 1e-9 of the model size (the diagonal of the control-net box), scaled by the unit factor.
+The file's unit must be the expected one (IGES: global section flag and name; STEP: the
+length unit OCCT finds in the representation context). With "curves", the shape must also
+hold exactly that many free edges (not bounding a face), in order, each a Geom_BSplineCurve
+with our degree, pole count, knots, poles, weights and C(t) at the samples, within the same
+tolerance.
 
 Prints a JSON summary on stdout; exit status 0 if every check passed, 1 on a mismatch,
 2 if the inputs could not be read.
@@ -31,6 +41,9 @@ import sys
 # arithmetic (unit scaling, knot normalisation) while any real error (a transposed net, a
 # lost weight, a wrong range) is orders of magnitude larger.
 REL_TOL = 1e-9
+
+# Our unit symbol -> (IGES 5.3 units flag, STEP length unit name as OCCT reports it).
+SYMBOLS = {"m": (6, "metre"), "mm": (2, "millimetre"), "ft": (4, "FOOT"), "in": (1, "INCH")}
 
 # IGES 5.3 units flag -> (OCCT's xstep.cascade.unit name, millimetres per unit).
 UNITS = {
@@ -68,21 +81,48 @@ def quiet_occt():
         printer.SetTraceLevel(Message_Gravity.Message_Fail)
 
 
-def read_iges(path, cascade_unit):
+def file_format(path):
+    """"step" for .stp/.step, else "iges"."""
+    return "step" if os.path.splitext(path)[1].lower() in (".stp", ".step") else "iges"
+
+
+def read_file(fmt, path, cascade_unit):
     """Read `path` with xstep.cascade.unit = cascade_unit; return (reader, shape, status)."""
     from OCP.IFSelect import IFSelect_RetDone
-    from OCP.IGESControl import IGESControl_Controller, IGESControl_Reader
     from OCP.Interface import Interface_Static
 
-    IGESControl_Controller.Init_s()  # registers the xstep.* parameters
+    if fmt == "step":
+        from OCP.STEPControl import STEPControl_Controller, STEPControl_Reader
+
+        STEPControl_Controller.Init_s()  # registers the xstep.* parameters
+        reader_type = STEPControl_Reader
+    else:
+        from OCP.IGESControl import IGESControl_Controller, IGESControl_Reader
+
+        IGESControl_Controller.Init_s()
+        reader_type = IGESControl_Reader
     if not Interface_Static.SetCVal_s("xstep.cascade.unit", cascade_unit):
         raise RuntimeError(f"OCCT refused xstep.cascade.unit = {cascade_unit}")
-    reader = IGESControl_Reader()
+    reader = reader_type()
     status = reader.ReadFile(path)
     if status != IFSelect_RetDone:
         return reader, None, str(status)
     reader.TransferRoots()
     return reader, reader.OneShape(), str(status)
+
+
+def read_iges(path, cascade_unit):
+    """Read an IGES file (see read_file)."""
+    return read_file("iges", path, cascade_unit)
+
+
+def step_length_units(reader):
+    """The length unit names OCCT finds in a STEP file's representation contexts."""
+    from OCP.collections import Sequence_TCollection_AsciiString as Names
+
+    length, angle, solid = Names(), Names(), Names()
+    reader.FileUnits(length, angle, solid)
+    return [length.Value(k).ToCString() for k in range(1, length.Length() + 1)]
 
 
 def faces(shape):
@@ -98,12 +138,93 @@ def faces(shape):
     return out
 
 
+def free_edges(shape):
+    """Edges that bound no face, in the order of the shape."""
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    out = []
+    explorer = TopExp_Explorer(shape, TopAbs_EDGE, TopAbs_FACE)
+    while explorer.More():
+        out.append(TopoDS.Edge(explorer.Current()))
+        explorer.Next()
+    return out
+
+
 def rel_err(a, b, scale):
     return abs(a - b) / scale
 
 
+def expected_units(expected, fmt):
+    """(cascade unit name, mm per unit, IGES flag, IGES name, STEP name) of the expectation."""
+    if "iges_units" in expected:
+        flag = expected["iges_units"]["flag"]
+        name = expected["iges_units"]["name"]
+        step_name = next((n for f, n in SYMBOLS.values() if f == flag), None)
+    else:
+        flag, step_name = SYMBOLS[expected["units"]]
+        name = UNITS[flag][0]
+    cascade, mm = UNITS[flag]
+    return cascade, mm, flag, name, step_name
+
+
+def knot_sequence(seq):
+    return [seq.Value(k) for k in range(1, seq.Length() + 1)]
+
+
+def check_curves(checks, label, shape, factor, expected, size):
+    """The free edges against expected["curves"]; returns the largest point error."""
+    from OCP.BRep import BRep_Tool
+    from OCP.Geom import Geom_BSplineCurve, Geom_TrimmedCurve
+
+    curves = expected.get("curves") or []
+    edges = free_edges(shape)
+    if not checks.add(f"{label}: curve count", len(edges) == len(curves), f"OCCT {len(edges)}, ours {len(curves)}"):
+        return None
+    worst = 0.0
+    compared = 0
+    for k, (edge, ours) in enumerate(zip(edges, curves)):
+        c, _first, _last = BRep_Tool.Curve_s(edge, 0.0, 0.0)
+        if isinstance(c, Geom_TrimmedCurve):
+            c = c.BasisCurve()
+        if not checks.add(f"{label}: curve {k} is a B-spline", isinstance(c, Geom_BSplineCurve), type(c).__name__):
+            continue
+        p, knots, pts = ours["degree"], ours["knots"], ours["control_points"]
+        weights = ours.get("weights") or [1.0] * len(pts)
+        same_shape = c.Degree() == p and c.NbPoles() == len(pts)
+        checks.add(f"{label}: curve {k} degree and poles", same_shape, f"OCCT {(c.Degree(), c.NbPoles())}")
+        if not same_shape:
+            continue
+        span = knots[-1] - knots[0] or 1.0
+        kk = knot_sequence(c.KnotSequence())
+        ok = len(kk) == len(knots) and all(rel_err(a, b, span) <= REL_TOL for a, b in zip(kk, knots))
+        checks.add(f"{label}: curve {k} knots", ok, None if ok else f"OCCT {kk}, ours {knots}")
+        pole_err = weight_err = 0.0
+        w0 = c.Weight(1)
+        for i, ours_pt in enumerate(pts):
+            pole = c.Pole(i + 1)
+            for a, b in zip((pole.X(), pole.Y(), pole.Z()), ours_pt):
+                pole_err = max(pole_err, rel_err(a, b * factor, size * factor))
+            weight_err = max(weight_err, abs(c.Weight(i + 1) * weights[0] - weights[i] * w0))
+        checks.add(f"{label}: curve {k} poles", pole_err <= REL_TOL, f"max error {pole_err:.3e} of size")
+        checks.add(f"{label}: curve {k} weights", weight_err <= REL_TOL * weights[0] * w0, f"{weight_err:.3e}")
+        for t, x, y, z in ours["samples"]:
+            pt = c.Value(t)
+            for a, b in zip((pt.X(), pt.Y(), pt.Z()), (x, y, z)):
+                worst = max(worst, rel_err(a, b * factor, size * factor))
+            compared += 1
+    checks.add(
+        f"{label}: curve points at {compared} samples",
+        worst <= REL_TOL and compared > 0,
+        f"max error {worst:.3e} of size {size}",
+    )
+    return worst
+
+
 def check_read(checks, label, path, cascade_unit, factor, expected):
     """All checks of one read; `factor` = OCCT length / our length."""
+    fmt = file_format(path)
     from OCP.BRep import BRep_Tool
     from OCP.BRepTools import BRepTools
     from OCP.Geom import Geom_BSplineSurface
@@ -123,17 +244,26 @@ def check_read(checks, label, path, cascade_unit, factor, expected):
     span = max(dom_u[1] - dom_u[0], dom_v[1] - dom_v[0])
     info = {"cascade_unit": cascade_unit, "expected_scale": factor}
 
-    reader, shape, status = read_iges(path, cascade_unit)
+    reader, shape, status = read_file(fmt, path, cascade_unit)
     if not checks.add(f"{label}: read", shape is not None, status):
         return info
-    gs = reader.IGESModel().GlobalSection()
-    info["file_unit_flag"] = gs.UnitFlag()
-    info["file_unit_name"] = gs.UnitName().ToCString()
-    checks.add(
-        f"{label}: global units",
-        gs.UnitFlag() == expected["iges_units"]["flag"] and info["file_unit_name"] == expected["iges_units"]["name"],
-        f"flag {gs.UnitFlag()} name {info['file_unit_name']!r}",
-    )
+    _, _, flag, name, step_name = expected_units(expected, fmt)
+    if fmt == "step":
+        names = step_length_units(reader)
+        info["file_length_units"] = names
+        checks.add(f"{label}: length unit", names == [step_name], f"OCCT {names}, ours {step_name!r}")
+    else:
+        gs = reader.IGESModel().GlobalSection()
+        info["file_unit_flag"] = gs.UnitFlag()
+        info["file_unit_name"] = gs.UnitName().ToCString()
+        checks.add(
+            f"{label}: global units",
+            gs.UnitFlag() == flag and info["file_unit_name"] == name,
+            f"flag {gs.UnitFlag()} name {info['file_unit_name']!r}",
+        )
+    if "curves" in expected:
+        info["curves"] = len(expected["curves"])
+        info["max_curve_point_error_rel"] = check_curves(checks, label, shape, factor, expected, size)
     fs = faces(shape)
     if not checks.add(f"{label}: exactly one face", len(fs) == 1, f"{len(fs)} faces"):
         return info
@@ -215,8 +345,7 @@ def main(argv):
     try:
         with open(expected_path, encoding="utf-8") as f:
             expected = json.load(f)
-        flag = expected["iges_units"]["flag"]
-        cascade_name, mm_per_unit = UNITS[flag]
+        cascade_name, mm_per_unit, _, _, _ = expected_units(expected, file_format(iges_path))
     except (OSError, ValueError, KeyError) as e:
         print(json.dumps({"ok": False, "error": f"cannot read {expected_path}: {e!r}"}))
         return 2
@@ -244,6 +373,7 @@ def main(argv):
         os.close(saved_stdout)
     summary = {
         "file": iges_path,
+        "format": file_format(iges_path),
         "ok": checks.ok,
         "ocp_version": getattr(OCP, "__version__", "unknown"),
         "tolerance_rel": REL_TOL,

@@ -8,6 +8,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod compare;
+mod digitize;
 mod fit;
 mod hydrostatics;
 mod optim_args;
@@ -15,6 +16,7 @@ mod parse;
 mod progress;
 mod report;
 mod skin_args;
+mod slice;
 mod surface_arg;
 
 /// Fit one fair NURBS hull surface to offset data by skinning.
@@ -41,6 +43,13 @@ enum Command {
     /// particulars, fit error, hydrostatics, curvature and fairness, lines plan, curvature
     /// maps, convergence and the 3-D viewer; writes report.html and the files it is made of.
     Report(report::ReportArgs),
+    /// Digitise a body plan drawn as DXF or SVG: read its station curves with the drawing's
+    /// scale and datum, and write them as offsets (a sections CSV).
+    Digitize(digitize::DigitizeArgs),
+    /// Slice a hull mesh (STL or OBJ, optionally gzipped) at stations into sections, keel to
+    /// deck edge on the starboard side, and write them as a sections CSV; optionally the
+    /// mesh's hydrostatics at a draft and a fitted surface measured against the mesh.
+    Slice(slice::SliceArgs),
 }
 
 fn main() -> ExitCode {
@@ -60,6 +69,8 @@ fn run() -> anyhow::Result<ExitCode> {
         Some(Command::Compare(args)) => compare::run(&args),
         Some(Command::Hydrostatics(args)) => hydrostatics::run(&args),
         Some(Command::Report(args)) => report::run(&args),
+        Some(Command::Digitize(args)) => digitize::run(&args),
+        Some(Command::Slice(args)) => slice::run(&args),
         None => fit::run(&fit::FitArgs::default()),
     }
 }

@@ -13,7 +13,9 @@ use crate::parse::{parse_pair, parse_param, parse_units};
 #[derive(Debug, Clone, Args)]
 pub struct SkinArgs {
     /// Offsets file: a sections CSV (header `section,x,y,z`) or an offset table CSV (first row
-    /// station positions, first column waterline heights, cells half-breadths). Without it the
+    /// station positions, first column waterline heights, cells half-breadths), or any format
+    /// of `hull::read` (Series 60 table, long CSV, JSON table, point cloud, FREE!ship text),
+    /// recognised by its content. Without it the
     /// built-in Series 60 Cb 0.60 parent hull is used.
     pub input: Option<PathBuf>,
     /// Control points NU,NV of the approximation and of the weight-optimised methods (u along
@@ -33,6 +35,17 @@ pub struct SkinArgs {
     /// ft or in.
     #[arg(long, default_value = "m", value_parser = parse_units)]
     pub units: Units,
+    /// Length between perpendiculars, breadth and design draft (in `--units`) that scale a
+    /// dimensionless Series 60 table (default: the Cb 0.60 parent's 121.92, 16.26, 6.50 m);
+    /// `--lpp` alone also gives the station spacing (Lpp / 20) of an OpenHull JSON table.
+    #[arg(long)]
+    pub lpp: Option<f64>,
+    /// Moulded breadth B for a Series 60 table (with `--lpp` and `--design-draft`).
+    #[arg(long, requires_all = ["lpp", "design_draft"])]
+    pub beam: Option<f64>,
+    /// Design draft T (the 1.0 waterline) for a Series 60 table (with `--lpp` and `--beam`).
+    #[arg(long, requires_all = ["lpp", "beam"])]
+    pub design_draft: Option<f64>,
 }
 
 impl Default for SkinArgs {
@@ -43,6 +56,9 @@ impl Default for SkinArgs {
             degree: (3, 3),
             param: SkinParameterization::default(),
             units: Units::Metre,
+            lpp: None,
+            beam: None,
+            design_draft: None,
         }
     }
 }
@@ -51,14 +67,43 @@ impl SkinArgs {
     /// The offsets: the input file read in `units`, or the built-in sample.
     pub fn offsets(&self) -> anyhow::Result<Offsets> {
         Ok(match &self.input {
-            Some(path) => hull::read_offsets(path, self.units)?,
+            Some(path) => report_reading(hull::read_offsets_with(path, &self.read_options())?),
             None => hull::series60_sample(),
         })
+    }
+
+    /// The readers' options: `--units`, and `--lpp`, `--beam`, `--design-draft` as the dimensions
+    /// (breadth and draft of an `--lpp` alone are unused: only an OpenHull table reads it).
+    pub fn read_options(&self) -> hull::ReadOptions {
+        let dimensions = self.lpp.map(|lpp| hull::MainDimensions {
+            lpp,
+            beam: self.beam.unwrap_or(f64::NAN),
+            draft: self.design_draft.unwrap_or(f64::NAN),
+        });
+        // Sections too short for the degree along them are left out (noted) by the readers of
+        // the formats where they are a property of the source (end stations beyond a stem).
+        let min_points = self.degree.0 + 1;
+        hull::ReadOptions { units: self.units, dimensions, min_points, ..hull::ReadOptions::default() }
     }
 
     /// The library's fit settings: these skinning flags with `method` and the weight
     /// optimisers' `optim`.
     pub fn fit_config(&self, method: FitMethod, optim: OptimSettings) -> FitConfig {
-        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim }
+        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim, ..FitConfig::default() }
     }
+}
+
+/// Prints what a reader assumed and found (axes, notes, suspicious values, disagreements
+/// between views) on stderr, one `hullskin: note:` line each, and returns the offsets.
+pub fn report_reading(outcome: hull::ReadOutcome) -> Offsets {
+    if outcome.format != hull::InputFormat::SectionsCsv && outcome.format != hull::InputFormat::OffsetTable
+        || !outcome.notes.is_empty()
+        || !outcome.suspicious.is_empty()
+        || !outcome.disagreements.is_empty()
+    {
+        for m in outcome.messages() {
+            eprintln!("hullskin: note: {m}");
+        }
+    }
+    outcome.offsets
 }

@@ -23,7 +23,8 @@ pub(crate) enum Input {
     Offsets(Offsets),
 }
 
-/// Read `skin.input`: a surface JSON (recognised by its first non-blank character, `{`), or
+/// Read `skin.input`: a surface JSON (recognised by its first non-blank character, `{`, unless
+/// it holds a JSON offset table, see `hull::read::json_table`), or
 /// anything else as offsets in `skin.units`; without an input, the built-in sample's offsets.
 ///
 /// # Errors
@@ -36,13 +37,13 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
     let source = path.display().to_string();
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
     let text = hull::decode(&bytes, &source)?;
-    if text.trim_start().starts_with('{') {
+    if text.trim_start().starts_with('{') && !hull::read::json_table::is_offset_json(text) {
         let (surface, units) =
             hull::export::read_surface_json(text).with_context(|| format!("cannot read the surface {source}"))?;
         let units: Units = units.parse().with_context(|| format!("{source}: \"units\""))?;
         return Ok(Input::Surface { surface, units, source });
     }
-    Ok(Input::Offsets(hull::parse_offsets(text, &source, skin.units)?))
+    Ok(Input::Offsets(crate::skin_args::report_reading(hull::read_offsets_with(path, &skin.read_options())?)))
 }
 
 #[cfg(test)]

@@ -100,7 +100,14 @@ impl CompareConfig {
     }
 
     fn fit_config(self, method: FitMethod) -> FitConfig {
-        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim: self.optim }
+        FitConfig {
+            method,
+            degree: self.degree,
+            ctrl: self.ctrl,
+            param: self.param,
+            optim: self.optim,
+            ..FitConfig::default()
+        }
     }
 }
 

@@ -358,6 +358,39 @@ pub enum InputErrorKind {
         /// The direction set by the first two sections.
         increasing: bool,
     },
+
+    // ----- meshes (STL, OBJ) -----
+    /// A mesh file that breaks its format, or a mesh that cannot be sliced: what was found
+    /// (with the byte offset for binary files) and what was expected.
+    #[error("{found} (expected {expected})")]
+    Mesh {
+        /// What was found, e.g. `"vertx"` or `the header claims 1000 triangles, 3 fit`.
+        found: String,
+        /// What the format asks for there.
+        expected: String,
+    },
+
+    // ----- offset formats of `read` (Series 60 tables, long CSV, JSON, point clouds, FREE!ship) -----
+    /// A value, line or structure that the format does not allow: what was found and what the
+    /// format asks for there.
+    #[error("{found} (expected {expected})")]
+    Unexpected {
+        /// What was found, e.g. `station 21 lies beyond the AP`.
+        found: String,
+        /// What the format asks for there.
+        expected: String,
+    },
+
+    // ----- drawings read by `digitize` (DXF and SVG body plans) -----
+    /// A drawing that breaks its format, or a drawn curve that cannot be a station: what was
+    /// found and what was expected.
+    #[error("{found} (expected {expected})")]
+    Drawing {
+        /// What was found, e.g. `group code "abc" is not an integer`.
+        found: String,
+        /// What the format or the digitiser asks for there.
+        expected: String,
+    },
 }
 
 fn separator_name(c: char) -> String {

@@ -6,9 +6,11 @@
 
 pub mod analysis;
 mod compare;
+pub mod digitize;
 pub mod drawing;
 mod error;
 mod markup;
+pub mod mesh;
 pub mod export;
 pub mod fit_error;
 pub mod hydrostatics;
@@ -39,9 +41,13 @@ pub use hydrostatics::{
 };
 pub use offsets::{Offsets, Section, COINCIDENT_REL, PLANAR_REL};
 pub use output::write_atomic;
-pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome};
+pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome, Knuckles};
 pub use read::{
     decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
+};
+pub use read::{
+    parse_offsets_with, read_offsets_with, Disagreement, MainDimensions, ReadOptions, ReadOutcome, SuspiciousPolicy,
+    SuspiciousValue, ThreeViews,
 };
 pub use report::{
     summary_table, write_fit_outputs, write_fit_outputs_with_report, InputSummary, Report, SurfaceSummary,

@@ -5,7 +5,10 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
-use nurbs::fit::{skin_approximate, skin_interpolate, SkinOptions, SkinParameterization};
+use nurbs::fit::{
+    find_knuckle_lines, knuckle_indices, skin_approximate_with_knuckles, skin_interpolate_with_knuckles, CornerOptions,
+    KnuckleLine, SkinOptions, SkinParameterization,
+};
 use nurbs::{NurbsError, NurbsSurface};
 
 use crate::fit_error::{measure_fit_error, FitError};
@@ -62,6 +65,38 @@ impl FromStr for FitMethod {
     }
 }
 
+/// Whether the fitted surface keeps the knuckles (chines) of the sections.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Knuckles {
+    /// One smooth surface: no knuckle is looked for.
+    Off,
+    /// Knuckle lines found by [`find_knuckle_lines`] with these settings are kept as tangent
+    /// discontinuities (a knot of multiplicity `p` along the sections,
+    /// [`skin_interpolate_with_knuckles`]); without any, the fit is the plain skin.
+    Auto(CornerOptions),
+}
+
+impl Default for Knuckles {
+    /// [`Knuckles::Auto`] with [`CornerOptions::default`], which finds no knuckle line on any
+    /// table of `testdata/` (round bilges, bulbs and transoms) and finds the chine of a
+    /// hard-chine hull.
+    fn default() -> Self {
+        Knuckles::Auto(CornerOptions::default())
+    }
+}
+
+impl Knuckles {
+    /// The name used on the command line: `off`, or `auto` (with the angle when it is not
+    /// the default, `auto(25 deg)`).
+    pub fn name(self) -> String {
+        match self {
+            Knuckles::Off => "off".into(),
+            Knuckles::Auto(o) if o == CornerOptions::default() => "auto".into(),
+            Knuckles::Auto(o) => format!("auto({} deg)", o.min_angle_deg),
+        }
+    }
+}
+
 /// Settings of [`fit_offsets`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FitConfig {
@@ -75,6 +110,8 @@ pub struct FitConfig {
     pub param: SkinParameterization,
     /// Settings of the weight optimisation (optimised methods only).
     pub optim: OptimSettings,
+    /// Knuckles (chines) kept as tangent discontinuities; the default looks for them.
+    pub knuckles: Knuckles,
 }
 
 impl Default for FitConfig {
@@ -85,6 +122,7 @@ impl Default for FitConfig {
             ctrl: None,
             param: SkinParameterization::default(),
             optim: OptimSettings::default(),
+            knuckles: Knuckles::default(),
         }
     }
 }
@@ -103,6 +141,8 @@ pub struct FitOutcome {
     pub error_seconds: f64,
     /// What the weight optimisation did (optimised methods only).
     pub optimization: Option<OptimReport>,
+    /// The knuckle lines kept in the surface (empty without any, or with [`Knuckles::Off`]).
+    pub knuckle_lines: Vec<KnuckleLine>,
 }
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
@@ -141,7 +181,9 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     let start = Instant::now();
     let opt = optimize_weights(offsets, &plain, algorithm, &config.optim, control)?;
     let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
-    measured(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))
+    let mut out = measured(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
+    out.knuckle_lines = plain.knuckle_lines;
+    Ok(out)
 }
 
 /// Measure the true error of a fitted surface and assemble the outcome.
@@ -159,7 +201,16 @@ fn measured(
     if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
         return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
     }
-    Ok(FitOutcome { config: *config, surface, params, error, fit_seconds, error_seconds, optimization })
+    Ok(FitOutcome {
+        config: *config,
+        surface,
+        params,
+        error,
+        fit_seconds,
+        error_seconds,
+        optimization,
+        knuckle_lines: Vec::new(),
+    })
 }
 
 /// Skinning interpolation or approximation.
@@ -184,16 +235,32 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullErr
         .collect();
     let opts = SkinOptions { degree_u: p, degree_v: q, param: config.param };
     let start = Instant::now();
+    let lines = match config.knuckles {
+        Knuckles::Off => Vec::new(),
+        Knuckles::Auto(corner) => find_knuckle_lines(&sections, &corner).map_err(|e| fit_error(config, e))?,
+    };
+    let knuckles = knuckle_indices(&lines, sections.len());
     let result = match config.method {
-        FitMethod::Interp => skin_interpolate(&sections, &opts),
+        FitMethod::Interp => skin_interpolate_with_knuckles(&sections, &knuckles, &opts),
         FitMethod::Approx | FitMethod::Optimized(_) => {
             let (nu, nv) = config.ctrl.unwrap_or_else(|| default_ctrl(offsets, config.degree));
-            skin_approximate(&sections, nu, nv, &opts)
+            match skin_approximate_with_knuckles(&sections, &knuckles, nu, nv, &opts) {
+                // The default count may be too few for the pieces between knuckles (each needs
+                // p + 1 poles) or too many (knuckle poles are shared): take the nearest that fits.
+                Err(NurbsError::BadControlPointCount { count, min, max, .. })
+                    if config.ctrl.is_none() && !lines.is_empty() && count == nu && min <= max =>
+                {
+                    skin_approximate_with_knuckles(&sections, &knuckles, nu.clamp(min, max), nv, &opts)
+                }
+                other => other,
+            }
         }
     }
     .map_err(|e| fit_error(config, e))?;
     let fit_seconds = start.elapsed().as_secs_f64();
-    measured(offsets, config, result.surface, result.params, fit_seconds, None)
+    let mut out = measured(offsets, config, result.surface, result.params, fit_seconds, None)?;
+    out.knuckle_lines = lines;
+    Ok(out)
 }
 
 fn fit_error(config: &FitConfig, source: NurbsError) -> HullError {

@@ -1,18 +1,17 @@
 //! The 3-D viewer page opened in a real browser: headless Chromium loads the page written for
 //! the built-in Series 60 hull, and we read back what it did (the DOM it left, a screenshot).
 //!
-//! Chromium comes from `HULLSKIN_CHROMIUM`, else `/usr/bin/chromium`, else
-//! `tools/setup-chromium.sh` (Debian's package, installed by the test itself when needed). If
-//! none can be had the tests fail (the check cannot vanish silently) unless
-//! `HULLSKIN_SKIP_BROWSER=1`. WebGL runs without a GPU on SwiftShader. Set
-//! `HULLSKIN_VIEWER_OUT=<dir>` to keep the page and the screenshots there.
+//! Chromium is found and run by `common::browser` (`HULLSKIN_CHROMIUM`, `/usr/bin/chromium` or
+//! `tools/setup-chromium.sh`; the tests fail without one unless `HULLSKIN_SKIP_BROWSER=1`).
+//! WebGL runs without a GPU on SwiftShader. Set `HULLSKIN_VIEWER_OUT=<dir>` to keep the page
+//! and the screenshots there.
 
-use std::io::Read;
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 use std::sync::OnceLock;
-use std::time::{Duration, Instant};
 
+use common::browser::{chromium, keep, run_chromium};
 use hull::drawing::colormap::diverging_stops;
 use hull::viewer::{write_viewer_html, ViewerOptions};
 
@@ -21,46 +20,6 @@ const WIDTH: u32 = 1280;
 const HEIGHT: u32 = 800;
 /// The page's background colour (`scene.background` in viewer.js, `body` in viewer.css).
 const BACKGROUND: [u8; 3] = [0xe9, 0xed, 0xf2];
-/// How long one browser run may take before the test gives up on it.
-const BROWSER_TIMEOUT: Duration = Duration::from_secs(120);
-
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// The Chromium to run, or `None` if the browser checks are explicitly skipped.
-fn chromium() -> Option<PathBuf> {
-    static FOUND: OnceLock<Result<PathBuf, String>> = OnceLock::new();
-    if let Ok(p) = std::env::var("HULLSKIN_CHROMIUM") {
-        if !p.is_empty() {
-            return Some(PathBuf::from(p));
-        }
-    }
-    if Path::new("/usr/bin/chromium").exists() {
-        return Some(PathBuf::from("/usr/bin/chromium"));
-    }
-    if std::env::var("HULLSKIN_SKIP_BROWSER").as_deref() == Ok("1") {
-        eprintln!("SKIPPED: the viewer in headless Chromium (HULLSKIN_SKIP_BROWSER=1)");
-        return None;
-    }
-    let found = FOUND.get_or_init(|| {
-        let script = workspace_root().join("tools/setup-chromium.sh");
-        let out =
-            Command::new("bash").arg(&script).output().map_err(|e| format!("cannot run {}: {e}", script.display()))?;
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        match stdout.lines().last() {
-            Some(p) if out.status.success() => Ok(PathBuf::from(p.trim())),
-            _ => Err(format!("{} failed:\n{}", script.display(), String::from_utf8_lossy(&out.stderr))),
-        }
-    });
-    match found {
-        Ok(p) => Some(p.clone()),
-        Err(e) => panic!(
-            "{e}\nThe 3-D viewer is checked in headless Chromium (Debian package chromium). Point \
-             HULLSKIN_CHROMIUM at a Chromium, or set HULLSKIN_SKIP_BROWSER=1 to skip the check."
-        ),
-    }
-}
 
 /// The sample hull fitted by the default method.
 fn sample_surface() -> &'static (nurbs::NurbsSurface, hull::Offsets) {
@@ -100,76 +59,6 @@ fn sample_page() -> &'static Path {
     path
 }
 
-/// Copy `file` into `HULLSKIN_VIEWER_OUT` when set.
-fn keep(file: &Path) {
-    if let Ok(dir) = std::env::var("HULLSKIN_VIEWER_OUT") {
-        let dir = PathBuf::from(dir);
-        std::fs::create_dir_all(&dir).expect("create HULLSKIN_VIEWER_OUT");
-        std::fs::copy(file, dir.join(file.file_name().expect("a file"))).expect("copy to HULLSKIN_VIEWER_OUT");
-    }
-}
-
-/// Run headless Chromium on `page` with the `#hash` options and `extra` arguments; returns
-/// its standard output. Panics (with Chromium's stderr) if it fails or hangs.
-fn run_chromium(page: &Path, hash: &str, extra: &[String]) -> String {
-    let browser = chromium().expect("only called when not skipped");
-    let profile = tempfile::tempdir().expect("temp profile dir");
-    let url = format!("file://{}#{hash}", page.canonicalize().expect("page exists").display());
-    let mut child = Command::new(&browser)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--disable-extensions",
-            "--hide-scrollbars",
-            "--use-angle=swiftshader",
-            "--enable-unsafe-swiftshader",
-            "--force-device-scale-factor=1",
-            &format!("--window-size={WIDTH},{HEIGHT}"),
-            "--virtual-time-budget=10000",
-            &format!("--user-data-dir={}", profile.path().display()),
-        ])
-        .args(extra)
-        .arg(&url)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap_or_else(|e| panic!("cannot start {}: {e}", browser.display()));
-    let mut stdout = child.stdout.take().expect("piped");
-    let mut stderr = child.stderr.take().expect("piped");
-    let out_reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        stdout.read_to_string(&mut s).map(|_| s)
-    });
-    let err_reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        stderr.read_to_string(&mut s).map(|_| s)
-    });
-    let start = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("wait for chromium") {
-            break status;
-        }
-        if start.elapsed() > BROWSER_TIMEOUT {
-            // Only the child we started, by its own handle.
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("chromium did not finish within {BROWSER_TIMEOUT:?} on {url}");
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    };
-    let out = out_reader.join().expect("stdout reader").unwrap_or_default();
-    let err = err_reader.join().expect("stderr reader").unwrap_or_default();
-    assert!(status.success(), "chromium failed ({status}) on {url}:\n{err}");
-    out
-}
-
 /// The attributes of the page's `<output id="status" ...>` element in a DOM dump.
 fn status_attributes(dom: &str) -> Vec<(String, String)> {
     let start = dom.find("<output id=\"status\"").unwrap_or_else(|| panic!("no status element in the DOM:\n{dom}"));
@@ -195,18 +84,8 @@ fn screenshot(name: &str, hash: &str) -> (u32, u32, Vec<[u8; 3]>) {
 }
 
 fn screenshot_of(page: &Path, name: &str, hash: &str) -> (u32, u32, Vec<[u8; 3]>) {
-    let shot = page.with_file_name(format!("{name}.png"));
-    run_chromium(page, hash, &[format!("--screenshot={}", shot.display())]);
-    keep(&shot);
-    let file = std::fs::File::open(&shot).unwrap_or_else(|e| panic!("no screenshot {}: {e}", shot.display()));
-    let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
-    decoder.set_transformations(png::Transformations::normalize_to_color8());
-    let mut reader = decoder.read_info().expect("a PNG");
-    let mut buf = vec![0; reader.output_buffer_size().expect("size fits")];
-    let info = reader.next_frame(&mut buf).expect("decodes");
-    let channels = info.color_type.samples();
-    let px = buf[..info.buffer_size()].chunks(channels).map(|c| [c[0], c[1], c[2]]).collect();
-    (info.width, info.height, px)
+    let (shot, _) = common::browser::screenshot(page, name, hash, [WIDTH, HEIGHT], &[]);
+    (shot.width, shot.height, shot.px)
 }
 
 fn is_background(p: [u8; 3]) -> bool {
@@ -241,7 +120,7 @@ fn viewer_loads_without_errors_and_draws_the_mirrored_hull() {
         return;
     }
     let page = sample_page();
-    let dom = run_chromium(page, "", &["--dump-dom".into()]);
+    let dom = run_chromium(page, "", [WIDTH, HEIGHT], &["--dump-dom".into()]).stdout;
     let a = status_attributes(&dom);
     let errors = dom.find("<pre id=\"errors\"").map(|k| &dom[k..k + dom[k..].find("</pre>").unwrap_or(0)]);
     assert_eq!(attr(&a, "data-state"), "ok", "the page reported errors: {errors:?}\n{a:?}");

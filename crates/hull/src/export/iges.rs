@@ -1,4 +1,5 @@
-//! IGES 5.3 export of one NURBS surface as a Rational B-Spline Surface entity (type 128).
+//! IGES 5.3 export of one NURBS surface as a Rational B-Spline Surface entity (type 128),
+//! optionally with curves (the skinned sections) as Rational B-Spline Curve entities (type 126).
 //!
 //! The file has the five fixed-format sections of IGES 5.3 (ANS US PRO/IPO-100-1996,
 //! chapter 2), every record 80 columns, the section letter in column 73 and the sequence
@@ -23,6 +24,12 @@
 //!   `for j in 0..n_v { for i in 0..n_u }`, the transpose of the kernel's u-major storage
 //!   `i * n_v + j`. The last four numbers are the parameter ranges `[U(0), U(1)] x [V(0), V(1)]`,
 //!   the knot-vector domains (readers trim the surface to them).
+//! * With curves ([`write_iges_model`]), each curve follows as one more directory entry (D
+//!   records `2k + 1` and `2k + 2`) and its parameter records (section 4.23):
+//!   `126, K, M, PROP1..PROP4, T(-M)..T(N+M), W(0)..W(K), X(0), Y(0), Z(0) .. Z(K), V(0), V(1),
+//!   XNORM, YNORM, ZNORM;` (see `curve_fields`); every P record points back to its entity's
+//!   first D record, and the global section's maximum coordinate and resolution cover the
+//!   curves too.
 //! * **T** (terminate): the record counts of S, G, D and P.
 //!
 //! Reals are written by [`super::float::real`] (shortest round-trip, always with a decimal
@@ -30,7 +37,7 @@
 
 use std::io::{self, Write};
 
-use nurbs::NurbsSurface;
+use nurbs::{NurbsCurve, NurbsSurface, Vec3};
 
 use super::float::real;
 
@@ -101,6 +108,13 @@ pub const MAX_STRING_LEN: usize = 64;
 /// `1_000_000_000 -> "20010909.014640"`. Civil date from the day count by H. Hinnant's
 /// `civil_from_days` algorithm (proleptic Gregorian calendar).
 pub fn iges_timestamp(unix_seconds: i64) -> String {
+    let (year, month, day, h, m, s) = civil_time(unix_seconds);
+    format!("{year:04}{month:02}{day:02}.{h:02}{m:02}{s:02}")
+}
+
+/// `(year, month, day, hour, minute, second)` (UTC) of a Unix time in seconds, by
+/// H. Hinnant's `civil_from_days` (proleptic Gregorian calendar).
+pub(crate) fn civil_time(unix_seconds: i64) -> (i64, i64, i64, i64, i64, i64) {
     let days = unix_seconds.div_euclid(86_400);
     let secs = unix_seconds.rem_euclid(86_400);
     let z = days + 719_468;
@@ -112,14 +126,12 @@ pub fn iges_timestamp(unix_seconds: i64) -> String {
     let day = doy - (153 * mp + 2) / 5 + 1;
     let month = if mp < 10 { mp + 3 } else { mp - 9 };
     let year = yoe + era * 400 + i64::from(month <= 2);
-    format!("{year:04}{month:02}{day:02}.{:02}{:02}{:02}", secs / 3600, secs / 60 % 60, secs % 60)
+    (year, month, day, secs / 3600, secs / 60 % 60, secs % 60)
 }
 
 /// Columns of data in an S or G record, and in a P record.
 const SG_WIDTH: usize = 72;
 const P_WIDTH: usize = 64;
-/// Sequence number of the one directory entry, which every P record points back to.
-const DE_POINTER: usize = 1;
 /// Largest sequence number that fits columns 74-80.
 const MAX_SEQUENCE: usize = 9_999_999;
 
@@ -132,19 +144,66 @@ const MAX_SEQUENCE: usize = 9_999_999;
 /// [`io::ErrorKind::InvalidInput`] if the surface needs more than 9,999,999 parameter
 /// records (about 2.5 million control points).
 pub fn write_iges<W: Write>(w: &mut W, surface: &NurbsSurface, meta: &IgesMeta) -> io::Result<()> {
+    write_iges_model(w, Some(surface), &[], meta)
+}
+
+/// Write an IGES 5.3 file holding `surface` as entity 128 (when given) followed by every curve
+/// of `curves` as a rational B-spline curve, entity 126 (see the module docs). Directory
+/// entries are numbered 1, 3, 5, .. in that order; the surface is labelled `SURFACE`, the
+/// curves `SECTION` with subscripts 1, 2, ...
+///
+/// # Errors
+/// As [`write_iges`]; also [`io::ErrorKind::InvalidInput`] if there is nothing to write.
+pub fn write_iges_model<W: Write>(
+    w: &mut W,
+    surface: Option<&NurbsSurface>,
+    curves: &[NurbsCurve],
+    meta: &IgesMeta,
+) -> io::Result<()> {
+    struct Entity {
+        kind: u32,
+        label: &'static str,
+        subscript: usize,
+        params: Vec<String>,
+    }
+    let mut entities = Vec::new();
+    if let Some(s) = surface {
+        entities.push(Entity {
+            kind: 128,
+            label: "SURFACE",
+            subscript: 0,
+            params: pack_fields(&parameter_fields(s)?, P_WIDTH),
+        });
+    }
+    for (k, c) in curves.iter().enumerate() {
+        entities.push(Entity {
+            kind: 126,
+            label: "SECTION",
+            subscript: k + 1,
+            params: pack_fields(&curve_fields(c)?, P_WIDTH),
+        });
+    }
+    if entities.is_empty() {
+        return Err(io::Error::new(io::ErrorKind::InvalidInput, "nothing to write: no surface and no curve"));
+    }
+    let what = match (surface.is_some(), curves.len()) {
+        (true, 0) => "one IGES 5.3 rational B-spline surface (entity 128)".to_string(),
+        (true, n) => {
+            format!("one IGES 5.3 rational B-spline surface (entity 128) and {n} rational B-spline curves (entity 126)")
+        }
+        (false, n) => format!("{n} IGES 5.3 rational B-spline curves (entity 126)"),
+    };
     let start = wrap_text(
-        &format!(
-            "{} {}: {} written as one IGES 5.3 rational B-spline surface (entity 128).",
-            meta.system_id, meta.preprocessor_version, meta.product_id
-        ),
+        &format!("{} {}: {} written as {what}.", meta.system_id, meta.preprocessor_version, meta.product_id),
         SG_WIDTH,
     );
-    let global = pack_fields(&global_fields(surface, meta)?, SG_WIDTH);
-    let params = pack_fields(&parameter_fields(surface)?, P_WIDTH);
-    if params.len() > MAX_SEQUENCE {
+    let (lo, hi) = model_bounds(surface, curves);
+    let global = pack_fields(&global_fields(lo, hi, meta)?, SG_WIDTH);
+    let p_total: usize = entities.iter().map(|e| e.params.len()).sum();
+    if p_total > MAX_SEQUENCE || 2 * entities.len() > MAX_SEQUENCE {
         return Err(io::Error::new(
             io::ErrorKind::InvalidInput,
-            format!("surface needs {} IGES parameter records; sequence numbers stop at {MAX_SEQUENCE}", params.len()),
+            format!("the model needs {p_total} IGES parameter records; sequence numbers stop at {MAX_SEQUENCE}"),
         ));
     }
 
@@ -154,34 +213,65 @@ pub fn write_iges<W: Write>(w: &mut W, surface: &NurbsSurface, meta: &IgesMeta) 
     for (k, text) in global.iter().enumerate() {
         writeln!(w, "{text:<72}G{:>7}", k + 1)?;
     }
-    // Directory entry: 20 fields of 8 columns over two records (IGES 5.3 section 2.2.4.4).
+    // Directory entries: 20 fields of 8 columns over two records (IGES 5.3 section 2.2.4.4).
     let status = "00000000"; // visible, independent, geometry, global top-down
-    writeln!(w, "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}", 128, 1, 0, 0, 0, 0, 0, 0, status, 1)?;
-    writeln!(
-        w,
-        "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
-        128,
-        0,
-        0,
-        params.len(),
-        0,
-        "",
-        "",
-        "SURFACE",
-        0,
-        2
-    )?;
-    for (k, text) in params.iter().enumerate() {
-        writeln!(w, "{text:<64}{DE_POINTER:>8}P{:>7}", k + 1)?;
+    let mut first_p = 1;
+    for (k, e) in entities.iter().enumerate() {
+        let d = 2 * k + 1;
+        writeln!(
+            w,
+            "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
+            e.kind, first_p, 0, 0, 0, 0, 0, 0, status, d
+        )?;
+        writeln!(
+            w,
+            "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
+            e.kind,
+            0,
+            0,
+            e.params.len(),
+            0,
+            "",
+            "",
+            e.label,
+            e.subscript,
+            d + 1
+        )?;
+        first_p += e.params.len();
     }
-    let counts = format!("S{:>7}G{:>7}D{:>7}P{:>7}", start.len(), global.len(), 2, params.len());
+    let mut seq = 0;
+    for (k, e) in entities.iter().enumerate() {
+        for text in &e.params {
+            seq += 1;
+            writeln!(w, "{text:<64}{:>8}P{seq:>7}", 2 * k + 1)?;
+        }
+    }
+    let counts = format!("S{:>7}G{:>7}D{:>7}P{:>7}", start.len(), global.len(), 2 * entities.len(), p_total);
     writeln!(w, "{counts:<72}T{:>7}", 1)?;
     Ok(())
 }
 
+/// Box of every control point of the surface and the curves.
+fn model_bounds(surface: Option<&NurbsSurface>, curves: &[NurbsCurve]) -> (Vec3, Vec3) {
+    let inf = f64::INFINITY;
+    let (mut lo, mut hi) = (Vec3::new(inf, inf, inf), Vec3::new(-inf, -inf, -inf));
+    let mut add = |p: Vec3| {
+        lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+        hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+    };
+    if let Some(s) = surface {
+        let (a, b) = s.control_bounds();
+        add(a);
+        add(b);
+    }
+    for c in curves {
+        c.control_points().into_iter().for_each(&mut add);
+    }
+    (lo, hi)
+}
+
 /// The global-section fields, each already formatted, in order 1..=25.
-fn global_fields(surface: &NurbsSurface, meta: &IgesMeta) -> io::Result<Vec<String>> {
-    let (lo, hi) = surface.control_bounds();
+fn global_fields(lo: Vec3, hi: Vec3, meta: &IgesMeta) -> io::Result<Vec<String>> {
     let max_coord = [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z].iter().fold(0.0f64, |m, c| m.max(c.abs()));
     let size = (hi - lo).norm();
     let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
@@ -262,6 +352,97 @@ fn parameter_fields(s: &NurbsSurface) -> io::Result<Vec<String>> {
     Ok(f)
 }
 
+/// The parameter-data fields of entity 126 (IGES 5.3 section 4.23), in order:
+/// `126, K, M, PROP1..PROP4, T(-M)..T(N+M), W(0)..W(K), X(0), Y(0), Z(0) .. Z(K), V(0), V(1),
+/// XNORM, YNORM, ZNORM` with `K = n - 1`, `M = p`, PROP1 = planar (every control point within
+/// `1e-9` of the polygon's size of one plane, whose unit normal ends the list; `0, 0, 0`
+/// otherwise), PROP2 = closed (first and last control points equal), PROP3 = polynomial (all
+/// weights equal), PROP4 = 0 (not periodic), and `[V(0), V(1)]` the knot domain.
+fn curve_fields(c: &NurbsCurve) -> io::Result<Vec<String>> {
+    let h = c.homogeneous();
+    let n = h.len();
+    let polynomial = h.iter().all(|x| x[3] == h[0][3]);
+    let pts = c.control_points();
+    let closed = h[0] == h[n - 1];
+    let normal = plane_normal(&pts);
+    let flag = |b: bool| if b { "1".to_string() } else { "0".to_string() };
+    let mut f = vec![
+        "126".to_string(),
+        (n - 1).to_string(),
+        c.degree().to_string(),
+        flag(normal.is_some()),
+        flag(closed),
+        flag(polynomial),
+        "0".into(),
+    ];
+    for &k in c.knots().as_slice() {
+        f.push(real(k)?);
+    }
+    for x in h {
+        f.push(real(x[3])?);
+    }
+    for p in &pts {
+        for x in [p.x, p.y, p.z] {
+            f.push(real(x)?);
+        }
+    }
+    let (t0, t1) = c.domain();
+    let nrm = normal.unwrap_or(Vec3::new(0.0, 0.0, 0.0));
+    for x in [t0, t1, nrm.x, nrm.y, nrm.z] {
+        f.push(real(x)?);
+    }
+    Ok(f)
+}
+
+/// Unit normal of the plane holding every point of `pts` within `1e-9` of their spread, or
+/// `None` if they are not planar or are collinear. The plane passes through the centroid `c`
+/// and is spanned by `a - c` (`a` the point farthest from `c`) and the point `b` farthest from
+/// that line.
+fn plane_normal(pts: &[Vec3]) -> Option<Vec3> {
+    let c = pts.iter().fold(Vec3::new(0.0, 0.0, 0.0), |s, &p| s + p) * (1.0 / pts.len() as f64);
+    let a = *pts.iter().max_by(|p, q| p.distance(c).total_cmp(&q.distance(c)))?;
+    let spread = a.distance(c);
+    let b = *pts.iter().max_by(|p, q| (**p - c).cross(a - c).norm().total_cmp(&(**q - c).cross(a - c).norm()))?;
+    let n = (a - c).cross(b - c);
+    if !(n.norm() > 1e-9 * spread * spread) {
+        return None;
+    }
+    let n = n.normalized()?;
+    pts.iter().all(|&p| (p - c).dot(n).abs() <= 1e-9 * spread).then_some(n)
+}
+
+/// The iso-curves `C_k(u) = S(u, v_k)` at each of `vs` (exact, [`NurbsSurface::iso_curve_u`]):
+/// the skinned sections when `vs` are the sections' parameters ([`section_parameters`]).
+/// Curves that collapse to a point (every control point within `1e-12` of the surface's
+/// size of the first: a pointed stem) are left out, as IGES cannot hold them as entity 126.
+pub fn section_curves(surface: &NurbsSurface, vs: &[f64]) -> Vec<NurbsCurve> {
+    let (lo, hi) = surface.control_bounds();
+    let tol = 1e-12 * (hi - lo).norm();
+    vs.iter()
+        .map(|&v| surface.iso_curve_u(v))
+        .filter(|c| {
+            let pts = c.control_points();
+            pts.iter().any(|p| p.distance(pts[0]) > tol)
+        })
+        .collect()
+}
+
+/// The v parameter of every section of a fit: the mean of its offsets' v (they share one v
+/// when the sections were interpolated). Empty sections are skipped.
+pub fn section_parameters(params: &[Vec<(f64, f64)>]) -> Vec<f64> {
+    params.iter().filter(|p| !p.is_empty()).map(|p| p.iter().map(|uv| uv.1).sum::<f64>() / p.len() as f64).collect()
+}
+
+/// The Greville abscissae of the v knots, `v_j = (v_(j+1) + .. + v_(j+q)) / q` (de Boor, *A
+/// Practical Guide to Splines*, the node values): one parameter per control column, near
+/// where each column acts most; stand-ins for the section parameters when only the surface is
+/// known.
+pub fn greville_v(surface: &NurbsSurface) -> Vec<f64> {
+    let q = surface.degree_v();
+    let k = surface.knots_v().as_slice();
+    (0..surface.n_v()).map(|j| k[j + 1..=j + q].iter().sum::<f64>() / q as f64).collect()
+}
+
 /// `nH...` with non-printable-ASCII characters replaced by `?` and the string cut to
 /// [`MAX_STRING_LEN`]; an empty string is an empty (defaulted) field.
 fn hollerith(s: &str) -> String {
@@ -301,7 +482,7 @@ fn wrap_text(text: &str, width: usize) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nurbs::{assert_near, KnotVector, Vec3};
+    use nurbs::{assert_near, KnotVector};
 
     /// A 5 x 4 control net, bicubic in u and quadratic in v, non-uniform knots, non-unit
     /// weights: every count differs between u and v, so a transposition error shows.
@@ -525,6 +706,96 @@ mod tests {
         assert_eq!(IgesUnits::from(crate::Units::Millimetre), IgesUnits::MILLIMETRE);
         assert_eq!(IgesUnits::from(crate::Units::Foot), IgesUnits::FOOT);
         assert_eq!(IgesUnits::from(crate::Units::Inch), IgesUnits::INCH);
+    }
+
+    /// The P fields of the entity whose directory entry starts at D record `d`.
+    fn entity_fields(text: &str, d: usize) -> Vec<String> {
+        let data: String = section(text, 'P')
+            .iter()
+            .filter(|l| l[64..72].trim().parse::<usize>().expect("DE pointer") == d)
+            .map(|l| &l[..64])
+            .collect();
+        split_fields(&data)
+    }
+
+    #[test]
+    fn curves_follow_the_surface_as_entity_126() {
+        let s = sample_surface();
+        let curves = section_curves(&s, &[-1.0, 0.5, 2.0]);
+        assert_eq!(curves.len(), 3);
+        let meta = IgesMeta::new(IgesUnits::METRE, "c.igs", "20240102.030405");
+        let mut out = Vec::new();
+        write_iges_model(&mut out, Some(&s), &curves, &meta).expect("writes");
+        let text = String::from_utf8(out).expect("ASCII");
+        assert!(text.lines().all(|l| l.len() == 80));
+        let d = section(&text, 'D');
+        assert_eq!(d.len(), 8);
+        let field = |line: &str, k: usize| line[8 * k..8 * k + 8].trim().to_string();
+        // Each entry's P pointer and count tile the P section in order.
+        let mut next = 1;
+        for k in 0..4 {
+            assert_eq!(field(d[2 * k], 0), if k == 0 { "128" } else { "126" });
+            assert_eq!(field(d[2 * k], 1).parse::<usize>().expect("pointer"), next);
+            next += field(d[2 * k + 1], 3).parse::<usize>().expect("count");
+            assert_eq!(field(d[2 * k + 1], 7), if k == 0 { "SURFACE" } else { "SECTION" });
+            assert_eq!(field(d[2 * k + 1], 8), k.to_string());
+        }
+        assert_eq!(next - 1, section(&text, 'P').len());
+        // The surface's fields are unchanged by the curves.
+        let mut alone = Vec::new();
+        write_iges(&mut alone, &s, &meta).expect("writes");
+        assert_eq!(entity_fields(&text, 1), p_fields(&String::from_utf8(alone).expect("ASCII")));
+        for (k, c) in curves.iter().enumerate() {
+            let f = entity_fields(&text, 2 * k + 3);
+            let n = c.num_control_points();
+            let ints: Vec<i64> = f[..7].iter().map(|x| x.parse().expect("integer")).collect();
+            // The sample's iso-curves are neither planar, closed nor polynomial.
+            assert_eq!(ints, [126, n as i64 - 1, c.degree() as i64, 0, 0, 0, 0], "curve {k}");
+            let nums: Vec<f64> = f[7..].iter().map(|x| num(x)).collect();
+            let knots = c.knots().as_slice();
+            assert_eq!(nums.len(), knots.len() + 4 * n + 5);
+            assert_eq!(&nums[..knots.len()], knots);
+            assert_eq!(&nums[knots.len()..knots.len() + n], c.weights().as_slice());
+            for (i, p) in c.control_points().iter().enumerate() {
+                assert_eq!(nums[knots.len() + n + 3 * i..][..3], [p.x, p.y, p.z]);
+            }
+            assert_eq!(nums[nums.len() - 5..], [0.0, 1.0, 0.0, 0.0, 0.0]);
+        }
+    }
+
+    #[test]
+    fn planar_curves_carry_their_normal() {
+        // A section in the plane x = 3: planar, normal +-x.
+        let k = KnotVector::uniform(2, 4).expect("valid");
+        let pts =
+            [Vec3::new(3.0, 0.0, 0.0), Vec3::new(3.0, 1.0, 0.2), Vec3::new(3.0, 2.0, 1.0), Vec3::new(3.0, 2.1, 3.0)];
+        let c = NurbsCurve::try_new(k, &pts, None).expect("valid");
+        let n = plane_normal(&pts).expect("planar");
+        assert!((n.x.abs() - 1.0).abs() < 1e-15 && n.y.abs() < 1e-15 && n.z.abs() < 1e-15);
+        let f = curve_fields(&c).expect("fields");
+        assert_eq!(&f[3..6], ["1", "0", "1"]);
+        assert_eq!(num(&f[f.len() - 3]).abs(), 1.0);
+        // Collinear and skew points have no plane.
+        assert!(plane_normal(&[Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0), Vec3::new(2.0, 2.0, 2.0)]).is_none());
+        let skew =
+            [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 0.0, 1.0)];
+        assert!(plane_normal(&skew).is_none());
+    }
+
+    #[test]
+    fn section_parameters_and_collapsed_sections() {
+        assert_eq!(section_parameters(&[vec![(0.0, 0.25), (1.0, 0.25)], vec![], vec![(0.5, 1.0)]]), [0.25, 1.0]);
+        // A surface whose v = 1 column collapses to one point: that iso-curve is left out.
+        let ku = KnotVector::uniform(1, 3).expect("valid");
+        let kv = KnotVector::uniform(1, 2).expect("valid");
+        let pts: Vec<Vec3> = (0..3).flat_map(|i| [Vec3::new(0.0, i as f64, 0.0), Vec3::new(5.0, 0.0, 0.0)]).collect();
+        let s = NurbsSurface::try_new(ku, kv, &pts, None).expect("valid");
+        assert_eq!(section_curves(&s, &[0.0, 0.5, 1.0]).len(), 2);
+        // Greville abscissae of a clamped cubic: the ends and the knot averages.
+        let g = greville_v(&sample_surface());
+        assert_eq!(g.len(), sample_surface().n_v());
+        assert_eq!((g[0], g[g.len() - 1]), (-1.0, 2.0));
+        assert!(g.windows(2).all(|w| w[0] < w[1]));
     }
 
     #[test]

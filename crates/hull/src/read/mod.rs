@@ -1,6 +1,16 @@
-//! Readers of offset data: a sections CSV or an offset table, told apart by the header.
+//! Readers of offset data, told apart by their content.
 //!
-//! Both formats are comma-separated text, UTF-8 (a byte-order mark is skipped), with `\n`,
+//! | format | module | recognised by |
+//! |---|---|---|
+//! | sections CSV `section,x,y,z` | [`sections_csv`] | first field `section` |
+//! | offset table (stations across, waterlines down) | [`offset_table`] | any other CSV |
+//! | Todd's Series 60 table (fractions, `MaxBm` row) | [`series60_table`] | a `MaxBm` row |
+//! | long CSV, one point a row, columns by name (`x,z,y`, ...) | [`long_csv`] | a header naming x, y and z columns |
+//! | JSON offset tables (vessel.js ship, OpenHull table) | [`json_table`] | first character `{` |
+//! | station point clouds (`x y z` or `y z` blocks) | [`point_cloud`] | whitespace-separated numbers |
+//! | FREE!ship offsets export and curve import text | [`freeship`] | a `Station 1.000` line, or a first line `0`/`1` |
+//!
+//! The CSV formats are comma-separated text, UTF-8 (a byte-order mark is skipped), with `\n`,
 //! `\r\n` or `\r` line ends. Fields are trimmed of spaces and tabs; a field may be quoted with
 //! `"` (a doubled `""` inside stands for one quote; a quoted field ends on its own line).
 //! Blank lines, lines of empty fields only (`,,,` as spreadsheets export them), and lines whose
@@ -8,17 +18,25 @@
 //! are refused.
 //!
 //! Errors point at `file:line:column`, with 1-based line numbers of the file and 1-based
-//! field numbers as columns (see [`crate::Location`]).
+//! field numbers as columns (CSV fields; whitespace-separated tokens in the text formats;
+//! characters in JSON) (see [`crate::Location`]).
 //!
-//! - [`sections_csv`]: header `section,x,y,z`, one row per point.
-//! - [`offset_table`]: station positions across the first row, waterline heights down the
-//!   first column, half-breadths in the cells.
+//! Every reader converts to hullskin's axes (x forward from the aft end or AP, y the
+//! half-breadth >= 0, z up from the baseline) and [`read_offsets_with`] says in
+//! [`ReadOutcome::axes`] which axes it assumed or how it converted, with notes, suspicious
+//! values and disagreements between the views of a lines plan.
 //!
 //! The readers parse; they do not check the data can be skinned: call
 //! [`Offsets::validate`] with the fit's degree + 1 for that.
 
+pub mod freeship;
+pub mod json_table;
+pub mod long_csv;
 pub mod offset_table;
+pub mod point_cloud;
 pub mod sections_csv;
+pub mod series60_table;
+pub mod views;
 
 use std::borrow::Cow;
 use std::path::Path;
@@ -29,61 +47,340 @@ use crate::units::Units;
 
 pub use offset_table::parse_offset_table;
 pub use sections_csv::parse_sections_csv;
+pub use series60_table::{parse_series60_table, MainDimensions, Series60Table};
+pub use views::{Disagreement, MergeOptions, Merged, Station, ThreeViews, View, ViewLine};
 
-/// The two input formats.
+/// The input formats.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum InputFormat {
     /// Header `section,x,y,z`, one row per point.
     SectionsCsv,
     /// Stations across, waterlines down, half-breadths in the cells.
     OffsetTable,
+    /// Todd's dimensionless Series 60 table with its `MaxBm` row ([`series60_table`]).
+    Series60Table,
+    /// One point a row, columns found by name ([`long_csv`]).
+    LongCsv,
+    /// A JSON offset table ([`json_table`]).
+    JsonTable,
+    /// Whitespace-separated `x y z` (or `y z`) points in station blocks ([`point_cloud`]).
+    PointCloud,
+    /// FREE!ship's "Offsets as 3D points" export ([`freeship`]).
+    FreeshipOffsets,
+    /// FREE!ship's curve-import text: a units line, then `x y z` curves ([`freeship`]).
+    FreeshipCurves,
 }
 
-/// Tells the format from the first data line: a first field `section` (case-insensitive,
-/// trimmed) means a sections CSV, anything else an offset table. Undecodable text is called
-/// an offset table; its reader reports the problem.
+impl InputFormat {
+    /// Every format, in the order of the enum.
+    pub const ALL: [InputFormat; 8] = [
+        InputFormat::SectionsCsv,
+        InputFormat::OffsetTable,
+        InputFormat::Series60Table,
+        InputFormat::LongCsv,
+        InputFormat::JsonTable,
+        InputFormat::PointCloud,
+        InputFormat::FreeshipOffsets,
+        InputFormat::FreeshipCurves,
+    ];
+
+    /// A short name for messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            InputFormat::SectionsCsv => "sections CSV",
+            InputFormat::OffsetTable => "offset table CSV",
+            InputFormat::Series60Table => "Series 60 table (Todd 1963)",
+            InputFormat::LongCsv => "long CSV",
+            InputFormat::JsonTable => "JSON offset table",
+            InputFormat::PointCloud => "station point cloud",
+            InputFormat::FreeshipOffsets => "FREE!ship offsets export",
+            InputFormat::FreeshipCurves => "FREE!ship curve text",
+        }
+    }
+}
+
+/// Tells the format from the content (see the module table). Undecodable or unrecognised
+/// text is called an offset table; its reader reports the problem.
 pub fn detect_format(text: &str) -> InputFormat {
     let text = text.strip_prefix('\u{FEFF}').unwrap_or(text);
-    for line in split_lines(text) {
-        let trimmed = line.trim();
-        if trimmed.is_empty() || trimmed.starts_with('#') {
-            continue;
-        }
-        let Ok(fields) = split_fields(line, "", 0) else { return InputFormat::OffsetTable };
-        match fields.first() {
-            _ if fields.iter().all(|f| f.text.is_empty()) => continue,
-            Some(f) if f.text.eq_ignore_ascii_case("section") => return InputFormat::SectionsCsv,
-            _ => return InputFormat::OffsetTable,
-        }
+    if text.trim_start().starts_with('{') {
+        return InputFormat::JsonTable;
+    }
+    let mut data =
+        split_lines(text).map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#') && !l.starts_with('%'));
+    let Some(first) = data.next() else { return InputFormat::OffsetTable };
+    if first.contains(',') || first.contains(';') {
+        return detect_csv(text);
+    }
+    let toks: Vec<&str> = first.split_whitespace().collect();
+    let numeric = |t: &&str| t.parse::<f64>().is_ok_and(f64::is_finite);
+    let next_is_points = |line: Option<&str>, n: std::ops::RangeInclusive<usize>| {
+        line.is_some_and(|l| {
+            let t: Vec<&str> = l.split_whitespace().collect();
+            n.contains(&t.len()) && t.iter().all(numeric)
+        })
+    };
+    let second = data.next();
+    if (toks == ["0"] || toks == ["1"]) && next_is_points(second, 3..=3) {
+        return InputFormat::FreeshipCurves;
+    }
+    if freeship::is_header(first) {
+        return InputFormat::FreeshipOffsets;
+    }
+    if first.contains('\t') && !toks.iter().all(numeric) {
+        return InputFormat::OffsetTable; // a tab-separated table: its reader names the separator
+    }
+    if (2..=3).contains(&toks.len()) && toks.iter().all(numeric) {
+        return InputFormat::PointCloud;
+    }
+    if !toks.first().is_some_and(numeric) && next_is_points(second, 2..=3) {
+        return InputFormat::PointCloud;
     }
     InputFormat::OffsetTable
 }
 
-/// Reads the offsets in `path`, either format (see [`detect_format`]), in `units`.
-/// The `source` of the result is `path` as given.
+/// The CSV family: Series 60 (a `MaxBm` row), sections CSV (`section` first), long CSV (a
+/// header naming x, y and z columns), else an offset table.
+fn detect_csv(text: &str) -> InputFormat {
+    let Ok(recs) = records(text, "") else { return InputFormat::OffsetTable };
+    let Some(header) = recs.first() else { return InputFormat::OffsetTable };
+    if series60_table::looks_like_series60(&recs) {
+        return InputFormat::Series60Table;
+    }
+    if header.fields[0].text.eq_ignore_ascii_case("section") {
+        return InputFormat::SectionsCsv;
+    }
+    if long_csv::Columns::find(header).is_some() {
+        return InputFormat::LongCsv;
+    }
+    InputFormat::OffsetTable
+}
+
+/// What a reader does with a value it finds suspicious (a Series 60 fraction above 1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SuspiciousPolicy {
+    /// Replace it by the linear interpolation of its sound neighbours along its station, and
+    /// report it (the default).
+    #[default]
+    Interpolate,
+    /// Leave it out (a missing offset), and report it.
+    Omit,
+    /// Stop with an error at its place.
+    Refuse,
+}
+
+/// A value read that cannot be right, where it is, and what was done with it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SuspiciousValue {
+    /// Its place in the file.
+    pub at: Location,
+    /// What it is (`station 0, waterline z/T = 0.25`).
+    pub what: String,
+    /// The value as read.
+    pub value: f64,
+    /// Why it is suspicious.
+    pub reason: String,
+    /// The value used instead, `None` when it was left out.
+    pub replacement: Option<f64>,
+    /// What was done, in words.
+    pub action: String,
+}
+
+impl std::fmt::Display for SuspiciousValue {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: suspicious value {} at {}: {}; {}", self.at, self.value, self.what, self.reason, self.action)
+    }
+}
+
+/// How to read an input: [`ReadOptions::default`] reads any format in metres.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ReadOptions {
+    /// The units of the coordinates (for formats whose units the file states, the unit the
+    /// coordinates are converted to).
+    pub units: Units,
+    /// The format; `None` to detect it ([`detect_format`]).
+    pub format: Option<InputFormat>,
+    /// Lpp, B, T: the scale of a Series 60 table (default [`MainDimensions::SERIES60_CB060`],
+    /// right for the Cb 0.60 parent only, with a note) and the station spacing `Lpp / 20` of an
+    /// OpenHull table when no `principals.json` lies beside it.
+    pub dimensions: Option<MainDimensions>,
+    /// What to do with suspicious values.
+    pub suspicious: SuspiciousPolicy,
+    /// The disagreement tolerance of the three-view merge ([`MergeOptions::tolerance`]).
+    pub tolerance: Option<f64>,
+    /// Sections with fewer points are left out, with a note (0: keep all). Applies to the
+    /// formats other than the sections CSV and the offset table, whose short sections are
+    /// reported by [`Offsets::validate`] as before: end stations beyond the stem of a table
+    /// (Gunnerus) or a stem head of two points (the frigate cloud) are a property of those
+    /// sources, not a typing error. Pass the fit's degree + 1.
+    pub min_points: usize,
+}
+
+/// Offsets read, with what the reader assumed and found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReadOutcome {
+    /// The sections, in hullskin's axes.
+    pub offsets: Offsets,
+    /// The format read.
+    pub format: InputFormat,
+    /// The axes assumed or the conversion made, in words.
+    pub axes: String,
+    /// What was left out or assumed, in words.
+    pub notes: Vec<String>,
+    /// Values that cannot be right, and what was done with them.
+    pub suspicious: Vec<SuspiciousValue>,
+    /// Places where the views of a lines plan disagree (left out of the sections).
+    pub disagreements: Vec<Disagreement>,
+}
+
+impl ReadOutcome {
+    /// Offsets read as written, nothing to note.
+    pub(crate) fn plain(offsets: Offsets, format: InputFormat, axes: impl Into<String>) -> Self {
+        ReadOutcome {
+            offsets,
+            format,
+            axes: axes.into(),
+            notes: Vec::new(),
+            suspicious: Vec::new(),
+            disagreements: Vec::new(),
+        }
+    }
+
+    /// The outcome of merging three views.
+    pub(crate) fn merged(m: Merged, format: InputFormat, axes: impl Into<String>, mut notes: Vec<String>) -> Self {
+        notes.extend(m.notes);
+        ReadOutcome {
+            offsets: m.offsets,
+            format,
+            axes: axes.into(),
+            notes,
+            suspicious: Vec::new(),
+            disagreements: m.disagreements,
+        }
+    }
+
+    /// Every note, suspicious value and disagreement, one line each, for a user.
+    pub fn messages(&self) -> Vec<String> {
+        let mut out = vec![format!("{}: read as {}; axes: {}", self.offsets.source, self.format.name(), self.axes)];
+        out.extend(self.notes.iter().map(|n| format!("{}: {n}", self.offsets.source)));
+        out.extend(self.suspicious.iter().map(ToString::to_string));
+        out.extend(self.disagreements.iter().map(|d| format!("views disagree: {d}")));
+        out
+    }
+}
+
+/// The axes note of the formats read as they are written.
+pub(crate) const AS_WRITTEN: &str = "as written: x forward, y half-breadth >= 0, z up (no conversion)";
+
+/// Reads the offsets in `path`, any format (see [`detect_format`]), in `units`.
+/// The `source` of the result is `path` as given. Notes and reports are dropped: see
+/// [`read_offsets_with`] for them.
+///
+/// # Errors
+///
+/// As [`read_offsets_with`].
+pub fn read_offsets(path: &Path, units: Units) -> Result<Offsets, HullError> {
+    read_offsets_with(path, &ReadOptions { units, ..ReadOptions::default() }).map(|o| o.offsets)
+}
+
+/// Reads the offsets in `path` with `options`, with what the reader assumed and found.
+/// An OpenHull JSON table takes its station spacing from a `principals.json` beside it when
+/// [`ReadOptions::dimensions`] is not given.
 ///
 /// # Errors
 ///
 /// [`HullError::Io`] when the file cannot be read; [`HullError::Input`] for a binary or
-/// UTF-16 file and for every parse error of [`parse_sections_csv`] and
-/// [`parse_offset_table`].
-pub fn read_offsets(path: &Path, units: Units) -> Result<Offsets, HullError> {
+/// UTF-16 file and for every parse error of the format's reader.
+pub fn read_offsets_with(path: &Path, options: &ReadOptions) -> Result<ReadOutcome, HullError> {
     let bytes = std::fs::read(path).map_err(|error| HullError::Io { path: path.to_path_buf(), error })?;
     let source = path.display().to_string();
     let text = decode(&bytes, &source)?;
-    parse_offsets(text, &source, units)
+    parse_with(text, &source, options, path.parent())
 }
 
-/// Parses offsets held in a string, either format (see [`detect_format`]); `source` names
+/// Parses offsets held in a string, any format (see [`detect_format`]); `source` names
 /// the input in messages.
 ///
 /// # Errors
 ///
-/// Every error of [`parse_sections_csv`] or [`parse_offset_table`].
+/// Every error of the format's reader.
 pub fn parse_offsets(text: &str, source: &str, units: Units) -> Result<Offsets, HullError> {
-    match detect_format(text) {
-        InputFormat::SectionsCsv => parse_sections_csv(text, source, units),
-        InputFormat::OffsetTable => parse_offset_table(text, source, units),
+    parse_offsets_with(text, source, &ReadOptions { units, ..ReadOptions::default() }).map(|o| o.offsets)
+}
+
+/// Parses offsets held in a string with `options`, with what the reader assumed and found.
+///
+/// # Errors
+///
+/// Every error of the format's reader.
+pub fn parse_offsets_with(text: &str, source: &str, options: &ReadOptions) -> Result<ReadOutcome, HullError> {
+    parse_with(text, source, options, None)
+}
+
+fn parse_with(text: &str, source: &str, options: &ReadOptions, dir: Option<&Path>) -> Result<ReadOutcome, HullError> {
+    let mut out = parse_format(text, source, options, dir)?;
+    if options.min_points > 0 && !matches!(out.format, InputFormat::SectionsCsv | InputFormat::OffsetTable) {
+        let short: Vec<String> = out
+            .offsets
+            .sections
+            .iter()
+            .filter(|s| s.points.len() < options.min_points)
+            .map(|s| format!("{} ({})", s.label, s.points.len()))
+            .collect();
+        if !short.is_empty() {
+            out.offsets.sections.retain(|s| s.points.len() >= options.min_points);
+            out.notes.push(format!(
+                "sections with fewer than {} points left out: {}",
+                options.min_points,
+                short.join(", ")
+            ));
+        }
+    }
+    Ok(out)
+}
+
+fn parse_format(text: &str, source: &str, options: &ReadOptions, dir: Option<&Path>) -> Result<ReadOutcome, HullError> {
+    let units = options.units;
+    let format = options.format.unwrap_or_else(|| detect_format(text));
+    match format {
+        InputFormat::SectionsCsv => {
+            Ok(ReadOutcome::plain(parse_sections_csv(text, source, units)?, format, AS_WRITTEN))
+        }
+        InputFormat::OffsetTable => {
+            Ok(ReadOutcome::plain(parse_offset_table(text, source, units)?, format, AS_WRITTEN))
+        }
+        InputFormat::Series60Table => {
+            let (dims, mut notes) = match options.dimensions {
+                Some(d) => (d, Vec::new()),
+                None => (
+                    MainDimensions::SERIES60_CB060,
+                    vec![format!(
+                        "no Lpp, B, T given: the Cb 0.60 parent's Lpp {} m, B {} m, T {} m assumed (L/B 7.5, B/T 2.5; right for the Cb 0.60 parent only)",
+                        MainDimensions::SERIES60_CB060.lpp,
+                        MainDimensions::SERIES60_CB060.beam,
+                        MainDimensions::SERIES60_CB060.draft
+                    )],
+                ),
+            };
+            let t = parse_series60_table(text, source, dims, units, options.suspicious)?;
+            notes.push("the SAR column (sectional area ratios) is not an offset and is not read".into());
+            Ok(ReadOutcome {
+                offsets: t.offsets,
+                format,
+                axes: format!(
+                    "converted from Todd's stations: x = (1 - station/20) Lpp from the AP, forward; y = cell x MaxBm x B/2; z = (z/T) T; with Lpp {}, B {}, T {} {}",
+                    dims.lpp, dims.beam, dims.draft, units
+                ),
+                notes,
+                suspicious: t.suspicious,
+                disagreements: Vec::new(),
+            })
+        }
+        InputFormat::LongCsv => long_csv::parse_long_csv(text, source, options),
+        InputFormat::JsonTable => json_table::parse_json_table(text, source, options, dir),
+        InputFormat::PointCloud => point_cloud::parse_point_cloud(text, source, units),
+        InputFormat::FreeshipOffsets => freeship::parse_freeship_offsets(text, source, options),
+        InputFormat::FreeshipCurves => freeship::parse_freeship_curves(text, source, units),
     }
 }
 
@@ -179,7 +476,7 @@ pub(crate) fn records<'a>(text: &'a str, source: &str) -> Result<Vec<Record<'a>>
 
 /// Lines of `text`, ended by `\r\n`, `\n` or a lone `\r`; a final line end does not start
 /// one more (empty) line.
-fn split_lines(text: &str) -> impl Iterator<Item = &str> {
+pub(crate) fn split_lines(text: &str) -> impl Iterator<Item = &str> {
     let mut rest = Some(text);
     std::iter::from_fn(move || {
         let s = rest?;
@@ -395,7 +692,17 @@ mod tests {
         assert_eq!(detect_format("z\\x,0,1\n0,1,2\n"), InputFormat::OffsetTable);
         assert_eq!(detect_format(""), InputFormat::OffsetTable);
         assert_eq!(detect_format(",,\n\n# section,x,y,z\nsection,x,y,z\n"), InputFormat::SectionsCsv);
-        assert_eq!(detect_format("sections,x,y,z\n"), InputFormat::OffsetTable);
+        // A header naming x, y and z columns (and a label column) is a long CSV.
+        assert_eq!(detect_format("sections,x,y,z\n"), InputFormat::LongCsv);
+        assert_eq!(detect_format("x,z,y\n1,2,3\n"), InputFormat::LongCsv);
+        assert_eq!(detect_format(",0,0.5,1,SAR\n0,0,0,0,0\nMaxBm,1,1,1\n"), InputFormat::Series60Table);
+        assert_eq!(detect_format("{\"a\": 1}"), InputFormat::JsonTable);
+        assert_eq!(detect_format("  1.0  2.0  3.0\n"), InputFormat::PointCloud);
+        assert_eq!(detect_format("station 3 x = 1\n0 0\n1 1\n"), InputFormat::PointCloud);
+        assert_eq!(detect_format("0\n1 2 3\n"), InputFormat::FreeshipCurves);
+        assert_eq!(detect_format("Station 12.000\n  12.0 0.0 1.0\n"), InputFormat::FreeshipOffsets);
+        assert_eq!(detect_format("section\tx\ty\tz\n"), InputFormat::OffsetTable);
+        assert_eq!(detect_format("section;x;y;z\n"), InputFormat::OffsetTable);
     }
 
     fn testdata(name: &str) -> std::path::PathBuf {
@@ -426,6 +733,18 @@ mod tests {
         for (a, b) in csv.sections.iter().zip(&table.sections) {
             assert_eq!((&a.label, &a.points), (&b.label, &b.points));
         }
+    }
+
+    #[test]
+    fn min_points_drops_short_sections_of_the_new_formats_only() {
+        let cloud = "0 0 0\n0 1 1\n0 2 2\n5 0 0\n5 1 1\n";
+        let options = ReadOptions { min_points: 3, ..ReadOptions::default() };
+        let o = parse_offsets_with(cloud, "c.dat", &options).expect("valid");
+        assert_eq!(o.offsets.sections.len(), 1);
+        assert!(o.notes.iter().any(|n| n == "sections with fewer than 3 points left out: x5 (2)"), "{:?}", o.notes);
+        let csv = "section,x,y,z\na,0,0,0\na,0,1,1\na,0,2,2\nb,5,0,0\nb,5,1,1\n";
+        let o = parse_offsets_with(csv, "s.csv", &options).expect("valid");
+        assert_eq!(o.offsets.sections.len(), 2, "a sections CSV keeps them for validate to report");
     }
 
     #[test]
@@ -462,6 +781,14 @@ mod fuzz {
             let _ = parse_offset_table(text, "f", units);
             let _ = parse_offsets(text, "f", units);
         }
+        for format in InputFormat::ALL {
+            let options = ReadOptions {
+                format: Some(format),
+                dimensions: Some(MainDimensions { lpp: 100.0, beam: 10.0, draft: 5.0 }),
+                ..ReadOptions::default()
+            };
+            let _ = parse_offsets_with(text, "f", &options);
+        }
         if let Ok(o) = parse_offsets(text, "f", Units::Metre) {
             let _ = o.validate(4);
             let _ = o.validate(0);
@@ -484,10 +811,28 @@ mod fuzz {
             all_readers(&String::from_utf8_lossy(&bytes));
         }
 
+        /// Text of the whitespace formats reaches their deeper paths.
+        #[test]
+        fn point_text_never_panics(
+            head in prop_oneof![Just("0\n"), Just("Station 1.000\n"), Just("station x = 2\n"), Just("")],
+            body in "([0-9\\. \\-e]{0,14}(\n|SEGMENT 1\n|2 segments.\n|Waterline 1.0\n|Buttock 0.5\n)){0,12}",
+        ) {
+            all_readers(&format!("{head}{body}"));
+        }
+
+        /// JSON-like text reaches the JSON readers' deeper paths.
+        #[test]
+        fn json_like_text_never_panics(
+            body in "\\{(\"[0-9a-zA-Z站号WL]{0,5}\": ?(\\[[0-9null, .\\-]{0,12}\\]|[0-9.\\-]{0,4}|\\{\\}),? ?){0,6}\\}",
+        ) {
+            all_readers(&body);
+            all_readers(&format!("{{\"structure\": {{\"hull\": {{\"attributes\": {{\"LOA\": 1, \"BOA\": 1, \"Depth\": 1}}, \"halfBreadths\": {body}}}}}}}"));
+        }
+
         /// CSV-like text reaches the deeper paths (numbers, order checks, validation).
         #[test]
         fn csv_like_text_never_panics(
-            head in prop_oneof![Just("section,x,y,z\n"), Just("z\\x,0,1,2\n"), Just("")],
+            head in prop_oneof![Just("section,x,y,z\n"), Just("z\\x,0,1,2\n"), Just(",0,0.5,1,SAR\nMaxBm,1,1,1\n"), Just("x,z,y,kind\n"), Just("")],
             body in "([0-9a-z\\.,\"# \\-+e]{0,12}(\n|\r\n|\r)){0,12}",
         ) {
             all_readers(&format!("{head}{body}"));

@@ -740,7 +740,7 @@ impl Page<'_, '_> {
                 (false, cells)
             })
             .collect();
-        s.push_str(&table("hydrostatics-table", "numbers", &head, &rows));
+        s.push_str(&table("hydrostatics-table", "numbers wide", &head, &rows));
         s.push_str(&format!(
             "<p class=\"muted\">Every figure to full precision in <code>{HYDROSTATICS_CSV_FILE}</code> and \
              <code>{HYDROSTATICS_JSON_FILE}</code>.</p>\n"
@@ -897,11 +897,15 @@ impl Page<'_, '_> {
             s.push_str(&format!(
                 "<figure>\n{}\n<figcaption>{} {} (<code>{file}</code>): profile (x right, z up) and bottom view; \
                  colours from blue (−{lim}) through white (0) to red (+{lim} {unit}), the 98th percentile of the \
-                 magnitude; {range}; {} of {} grid points beyond the scale, {} undefined (grey).</figcaption>\n\
+                 magnitude; {range} on this picture's own {} × {} grid (the table above and the 3-D viewer sample \
+                 other grids, so their extremes differ slightly); {} of {} grid points beyond the scale, {} \
+                 undefined (grey).</figcaption>\n\
                  </figure>\n",
                 png_img(png, map.image.width(), map.image.height(), &alt, &id),
                 esc(&capitalise(field.name())),
                 field.symbol(),
+                map.grid.0,
+                map.grid.1,
                 map.clipped,
                 map.grid.0 * map.grid.1,
                 map.undefined,

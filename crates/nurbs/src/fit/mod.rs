@@ -12,6 +12,7 @@ use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
 
 mod banded;
 mod constrained;
+mod features;
 mod interp;
 mod knots;
 mod lsq;
@@ -26,7 +27,14 @@ pub use knots::{
 };
 pub use lsq::{approximate_curve, approximate_curve_auto, LeastSquaresSolver};
 pub use param::{common_parameters, parameterize, Parameterization, SkinParameterization, UnknownParameterization};
-pub use skin::{skin_approximate, skin_interpolate, SkinOptions, SkinResult};
+pub use features::{
+    find_knuckle_lines, join_knot_vectors, knot_multiplicity, knuckle_indices, section_corners, turning_angles,
+    Continuity, CornerOptions, KnuckleLine, SectionCorner,
+};
+pub use skin::{
+    skin_approximate, skin_approximate_with_knuckles, skin_interpolate, skin_interpolate_with_knuckles, SkinOptions,
+    SkinResult,
+};
 
 /// The shared tail of every curve solver: check the points, solve for their coordinates and
 /// return the control points.

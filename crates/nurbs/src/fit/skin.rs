@@ -20,6 +20,7 @@
 use std::collections::HashMap;
 
 use super::constrained::EnergyGram;
+use super::features::join_knot_vectors;
 use super::interp::InterpolationSolver;
 use super::knots::{
     approximation_knots, centred_approximation_knots, check_ctrl_count, knots_for_approximation,
@@ -372,38 +373,361 @@ fn interpolate_ragged(
     q: usize,
     opts: &SkinOptions,
 ) -> Result<(NurbsSurface, Vec<f64>, UParams), NurbsError> {
-    let kind = opts.param.u;
     let n = max_count(secs);
     let p = opts.degree_u.min(n - 1);
+    let along = interpolate_along(secs, p, opts.param.u)?;
+    let v = cross_params(n, secs.len(), |i, k| along.rows[k][i], opts.param.v, q)?;
+    let (kv, net) = interpolate_across(&along.rows, &v, opts.param.v, q)?;
+    Ok((NurbsSurface::from_parts_unchecked(along.knots, kv, net), v, along.u_of))
+}
+
+/// Steps 1-2 of [`skin_interpolate`] along the sections with degree `p`: one knot vector with
+/// `N = max(max_k n_k, p + 1)` basis functions, the full sections (`n_k = N`) interpolated at
+/// their mean parameters, the others by their least-energy curves. When no section is full
+/// (fewer than `p + 1` points in every section: a short piece between knuckles) the knots are
+/// those of one Bezier segment, and every section is interpolated by its least-energy curve
+/// (a straight line through two points).
+fn interpolate_along(secs: &[Section], p: usize, kind: Parameterization) -> Result<AlongFit, NurbsError> {
+    let n = max_count(secs).max(p + 1);
     let own = own_params(secs, kind, p)?;
     let full: Vec<Vec<f64>> = own.iter().flatten().filter(|t| t.len() == n).cloned().collect();
-    let u = common_parameters(&full)?;
-    let ku = knots_for_interpolation(&u, p, kind)?;
-    let solver = InterpolationSolver::new(&u, &ku)?;
+    let (ku, solver, u) = if full.is_empty() {
+        (KnotVector::uniform(p, n)?, None, Vec::new())
+    } else {
+        let u = common_parameters(&full)?;
+        let ku = knots_for_interpolation(&u, p, kind)?;
+        let solver = InterpolationSolver::new(&u, &ku)?;
+        (ku, Some(solver), u)
+    };
     let mut fits = SectionFits::new(&ku);
     let mut rows: Vec<Vec<Vec3>> = Vec::with_capacity(secs.len());
     let mut u_of: UParams = Vec::with_capacity(secs.len());
     for (k, (s, t)) in secs.iter().zip(own).enumerate() {
-        match (s, t) {
-            (Section::Regular(pts), _) if pts.len() == n => {
+        match (s, t, &solver) {
+            (Section::Regular(pts), _, Some(solver)) if pts.len() == n => {
                 rows.push(solver.control_points(pts).map_err(|e| in_section(e, k))?);
                 u_of.push(Some(u.clone()));
             }
-            (Section::Regular(pts), Some(t)) => {
+            (Section::Regular(pts), Some(t), _) => {
                 let (_, cp, used) = fits.interpolate(pts, t, k)?;
                 rows.push(cp);
                 u_of.push(Some(used));
             }
-            (Section::Point(c, count), _) => {
+            (Section::Point(c, count), _, _) => {
                 rows.push(vec![*c; n]);
-                u_of.push((*count == n).then(|| u.clone()));
+                u_of.push((*count == n && !u.is_empty()).then(|| u.clone()));
             }
-            (Section::Regular(_), None) => unreachable!("own_params gives every regular section parameters"),
+            (Section::Regular(_), None, _) => unreachable!("own_params gives every regular section parameters"),
         }
     }
-    let v = cross_params(n, secs.len(), |i, k| rows[k][i], opts.param.v, q)?;
-    let (kv, net) = interpolate_across(&rows, &v, opts.param.v, q)?;
-    Ok((NurbsSurface::from_parts_unchecked(ku, kv, net), v, u_of))
+    drop(fits);
+    Ok(AlongFit { knots: ku, rows, u_of })
+}
+
+/// The sections cut at their knuckles: `cuts[k]` are section `k`'s knuckle indices (strictly
+/// increasing, interior, the same count `c` for every section with extent; ignored for a
+/// degenerate one).
+struct KnucklePlan {
+    cuts: Vec<Vec<usize>>,
+    /// The number of knuckles `c` of every section with extent.
+    count: usize,
+}
+
+impl KnucklePlan {
+    /// Check `knuckles` against the sections.
+    ///
+    /// # Errors
+    /// [`NurbsError::Incompatible`] naming the section whose knuckle list is not one entry per
+    /// section, not strictly increasing, not interior, or of another count than the first
+    /// section with extent.
+    fn new(secs: &[Section], knuckles: &[Vec<usize>]) -> Result<Self, NurbsError> {
+        if knuckles.len() != secs.len() {
+            return Err(NurbsError::Incompatible {
+                what: format!("knuckles: {} lists for {} sections (one list per section)", knuckles.len(), secs.len()),
+            });
+        }
+        let mut count = None;
+        let mut cuts = Vec::with_capacity(secs.len());
+        for (k, (s, cut)) in secs.iter().zip(knuckles).enumerate() {
+            let Section::Regular(pts) = s else {
+                cuts.push(Vec::new());
+                continue;
+            };
+            let interior = cut.iter().all(|&i| i >= 1 && i + 1 < pts.len());
+            if !interior || cut.windows(2).any(|w| w[1] <= w[0]) {
+                return Err(NurbsError::Incompatible {
+                    what: format!(
+                        "section {k}: knuckle indices {cut:?} must strictly increase between 1 and {} \
+                         (interior points of its {} points)",
+                        pts.len().saturating_sub(2),
+                        pts.len()
+                    ),
+                });
+            }
+            match count {
+                None => count = Some(cut.len()),
+                Some(c) if c != cut.len() => {
+                    return Err(NurbsError::Incompatible {
+                        what: format!(
+                            "section {k}: {} knuckles where the sections before have {c} \
+                             (a knuckle line must run through every section with extent)",
+                            cut.len()
+                        ),
+                    })
+                }
+                Some(_) => {}
+            }
+            cuts.push(cut.clone());
+        }
+        Ok(KnucklePlan { cuts, count: count.unwrap_or(0) })
+    }
+
+    /// Piece `j` (`0..=count`) of every section: the points from knuckle `j - 1` (or the
+    /// first point) to knuckle `j` (or the last), both included; degenerate sections whole.
+    fn piece<'a>(&self, secs: &[Section<'a>], j: usize) -> Vec<Section<'a>> {
+        secs.iter()
+            .zip(&self.cuts)
+            .map(|(s, cut)| match s {
+                Section::Regular(pts) => {
+                    let a = if j == 0 { 0 } else { cut[j - 1] };
+                    let b = if j == self.count { pts.len() - 1 } else { cut[j] };
+                    Section::Regular(&pts[a..=b])
+                }
+                Section::Point(c, n) => Section::Point(*c, *n),
+            })
+            .collect()
+    }
+
+    /// The breakpoints `0 = a_0 < a_1 < ... < a_c < a_{c+1} = 1`: `a_j` is the mean over the
+    /// sections with extent of the whole section's own parameter (of `kind`) at its knuckle
+    /// `j - 1`, as The NURBS Book eq. 9.18 averages the parameters of a column of points.
+    fn breaks(&self, secs: &[Section], kind: Parameterization, p: usize) -> Result<Vec<f64>, NurbsError> {
+        let own = own_params(secs, kind, p)?;
+        let mut sum = vec![0.0; self.count];
+        let mut used = 0usize;
+        for (t, cut) in own.iter().zip(&self.cuts) {
+            if let Some(t) = t {
+                used += 1;
+                sum.iter_mut().zip(cut).for_each(|(s, &i)| *s += t[i]);
+            }
+        }
+        let mut b = Vec::with_capacity(self.count + 2);
+        b.push(0.0);
+        b.extend(sum.iter().map(|s| s / used.max(1) as f64));
+        b.push(1.0);
+        Ok(b)
+    }
+
+    /// Join the pieces' fits (each on `[0, 1]`) into one along `u` ([`join_knot_vectors`]):
+    /// piece `j` on `[a_j, a_{j+1}]`, the shared control point at a knuckle set to the
+    /// section's knuckle point (both pieces interpolate it at their ends), the parameters
+    /// mapped the same way and the knuckle's given once, exactly `a_j`.
+    fn join(&self, secs: &[Section], breaks: &[f64], pieces: Vec<AlongFit>) -> Result<AlongFit, NurbsError> {
+        let knots = join_knot_vectors(&pieces.iter().map(|f| f.knots.clone()).collect::<Vec<_>>(), breaks)?;
+        let mut rows = Vec::with_capacity(secs.len());
+        let mut u_of: UParams = Vec::with_capacity(secs.len());
+        for (k, (s, cut)) in secs.iter().zip(&self.cuts).enumerate() {
+            let mut row: Vec<Vec3> = Vec::with_capacity(knots.num_basis());
+            let mut t: Vec<f64> = Vec::new();
+            for (j, piece) in pieces.iter().enumerate() {
+                let (a, b) = (breaks[j], breaks[j + 1]);
+                let skip = usize::from(j > 0);
+                row.extend_from_slice(&piece.rows[k][skip..]);
+                if let Some(pt) = &piece.u_of[k] {
+                    t.extend(pt[skip..].iter().map(|&x| if x >= 1.0 { b } else { a + x * (b - a) }));
+                }
+                if let (Section::Regular(pts), Some(&i)) = (s, cut.get(j)) {
+                    // The knuckle: the last control point of this piece (the first of the next).
+                    let last = row.len() - 1;
+                    row[last] = pts[i];
+                }
+            }
+            rows.push(row);
+            u_of.push(match s {
+                Section::Regular(_) => Some(t),
+                Section::Point(..) => None,
+            });
+        }
+        Ok(AlongFit { knots, rows, u_of })
+    }
+}
+
+/// The degree along the sections and the knuckle plan, or `None` when no section has a
+/// knuckle (the plain skin then applies).
+fn knuckle_setup(
+    secs: &[Section],
+    knuckles: &[Vec<usize>],
+    opts: &SkinOptions,
+) -> Result<Option<(KnucklePlan, usize, Vec<f64>)>, NurbsError> {
+    let plan = KnucklePlan::new(secs, knuckles)?;
+    if plan.count == 0 {
+        return Ok(None);
+    }
+    let p = opts.degree_u.min(max_count(secs) - 1);
+    let breaks = plan.breaks(secs, opts.param.u, p)?;
+    Ok(Some((plan, p, breaks)))
+}
+
+/// [`skin_interpolate`] keeping knuckles (chines): `knuckles[k]` lists the indices of the
+/// knuckle points of section `k` (strictly increasing, interior; the same count `c` for every
+/// section with extent, ignored for a degenerate one; see
+/// [`crate::fit::find_knuckle_lines`] and [`crate::fit::knuckle_indices`]).
+///
+/// Each section is cut at its knuckles into `c + 1` pieces; piece `j` of every section is
+/// fitted along `u` as a section of its own (as [`skin_interpolate`] steps 1-2, with the
+/// whole surface's degree `p = min(degree_u, N - 1)`; a piece with fewer than `p + 1` points in
+/// every section becomes one Bezier segment through its points, of least bending energy:
+/// straight between two points), its parameters mapped to `[a_j, a_{j+1}]`, where `a_j` is the
+/// mean over the sections of the whole section's parameter at knuckle `j - 1`; the pieces are
+/// joined with a knot of multiplicity `p` at each `a_j` ([`crate::fit::join_knot_vectors`])
+/// and the knuckle point as the shared control point. Across the sections the columns are
+/// interpolated as in [`skin_interpolate`]. The surface is then `C^0` along `u = a_j`, an
+/// iso-curve through every section's knuckle point, and as smooth as the plain skin
+/// elsewhere; it passes through every offset. With no knuckle (`c = 0`) it is
+/// [`skin_interpolate`].
+///
+/// # Errors
+/// As [`skin_interpolate`], and [`NurbsError::Incompatible`] for a knuckle list that does not
+/// fit its section (one list per section, interior indices strictly increasing, the same count
+/// in every section with extent).
+pub fn skin_interpolate_with_knuckles(
+    sections: &[Vec<Vec3>],
+    knuckles: &[Vec<usize>],
+    opts: &SkinOptions,
+) -> Result<SkinResult, NurbsError> {
+    let secs = classify(sections, opts)?;
+    let Some((plan, p, breaks)) = knuckle_setup(&secs, knuckles, opts)? else {
+        return skin_interpolate(sections, opts);
+    };
+    let q = opts.degree_v.min(secs.len() - 1);
+    let pieces = (0..=plan.count)
+        .map(|j| interpolate_along(&plan.piece(&secs, j), p, opts.param.u))
+        .collect::<Result<Vec<_>, _>>()?;
+    let along = plan.join(&secs, &breaks, pieces)?;
+    let n = along.knots.num_basis();
+    let v = cross_params(n, secs.len(), |i, k| along.rows[k][i], opts.param.v, q)?;
+    let (kv, net) = interpolate_across(&along.rows, &v, opts.param.v, q)?;
+    let surface = NurbsSurface::from_parts_unchecked(along.knots, kv, net);
+    Ok(SkinResult { params: data_params(&secs, &v, along.u_of), surface })
+}
+
+/// [`skin_approximate`] keeping knuckles (chines), `knuckles` as in
+/// [`skin_interpolate_with_knuckles`]; `nu` counts the control points of the whole surface
+/// along `u`, knuckle points included.
+///
+/// The sections are cut into pieces as for interpolation. Piece `j`, whose largest section
+/// has `N_j` points, gets `nu_j` control points with `sum_j nu_j - c = nu` and
+/// `p + 1 <= nu_j <= max(N_j, p + 1)`, as near to `N_j (nu + c) / sum_j N_j` as those bounds
+/// allow (the control points follow the data; ties and rounding resolved in piece order).
+/// A piece with `nu_j = max(N_j, p + 1)` is interpolated (as in
+/// [`skin_interpolate_with_knuckles`]); any other is fitted by least squares as in
+/// [`skin_approximate`] step 1 (its ends, the knuckle points, interpolated), on own and, with
+/// equal counts, on averaged parameters, keeping the fit with the least penalized residual.
+/// The pieces are joined as for interpolation, and the columns fitted across the sections as
+/// in [`skin_approximate`] step 2 with `nv` control points. With no knuckle it is
+/// [`skin_approximate`].
+///
+/// # Errors
+/// As [`skin_approximate`] and [`skin_interpolate_with_knuckles`];
+/// [`NurbsError::BadControlPointCount`] when `nu` cannot be shared out under those bounds (it
+/// names the range).
+pub fn skin_approximate_with_knuckles(
+    sections: &[Vec<Vec3>],
+    knuckles: &[Vec<usize>],
+    nu: usize,
+    nv: usize,
+    opts: &SkinOptions,
+) -> Result<SkinResult, NurbsError> {
+    let secs = classify(sections, opts)?;
+    let Some((plan, p, breaks)) = knuckle_setup(&secs, knuckles, opts)? else {
+        return skin_approximate(sections, nu, nv, opts);
+    };
+    let q = opts.degree_v.min(secs.len() - 1);
+    check_ctrl_count(nv, secs.len(), q, "skinning across the sections")?;
+    let piece_secs: Vec<Vec<Section>> = (0..=plan.count).map(|j| plan.piece(&secs, j)).collect();
+    let counts: Vec<usize> = piece_secs.iter().map(|s| max_count(s)).collect();
+    let shares = share_control_points(nu, &counts, p)?;
+    let mut pieces = Vec::with_capacity(piece_secs.len());
+    for (piece, (&n_j, &nu_j)) in piece_secs.iter().zip(counts.iter().zip(&shares)) {
+        if nu_j == n_j.max(p + 1) {
+            pieces.push(interpolate_along(piece, p, opts.param.u)?);
+            continue;
+        }
+        let own = own_params(piece, opts.param.u, p)?;
+        let equal = piece.iter().all(|s| matches!(s, Section::Point(..)) || s.len() == n_j);
+        let mut candidates = vec![(own.clone(), false)];
+        if equal {
+            let mean = common_parameters(&own.iter().flatten().cloned().collect::<Vec<_>>())?;
+            candidates.push((own.iter().map(|t| t.as_ref().map(|_| mean.clone())).collect(), true));
+        }
+        let mut best: Option<(f64, AlongFit)> = None;
+        let mut first_error = None;
+        for (u_of, shared) in candidates {
+            match fit_along(piece, u_of, nu_j, p, opts.param.u, shared) {
+                Ok((score, fit)) => {
+                    if best.as_ref().is_none_or(|(b, _)| score < *b) {
+                        best = Some((score, fit));
+                    }
+                }
+                Err(e) => {
+                    first_error.get_or_insert(e);
+                }
+            }
+        }
+        match (best, first_error) {
+            (Some((_, fit)), _) => pieces.push(fit),
+            (None, Some(e)) => return Err(e),
+            (None, None) => unreachable!("the own-parameter candidate is always tried"),
+        }
+    }
+    let along = plan.join(&secs, &breaks, pieces)?;
+    let across = fit_across(&along.rows, nv, q, opts.param.v)?;
+    let surface = NurbsSurface::from_parts_unchecked(along.knots, across.knots, across.net);
+    Ok(SkinResult { params: data_params(&secs, &across.v, along.u_of), surface })
+}
+
+/// Share `nu` control points (knuckle points counted once) among pieces whose largest sections
+/// have `counts[j]` points: `nu_j` in `[p + 1, max(N_j, p + 1)]`, `sum nu_j = nu + c`, each
+/// as near to `N_j (nu + c) / sum N_j` as the bounds allow (see
+/// [`skin_approximate_with_knuckles`]).
+///
+/// # Errors
+/// [`NurbsError::BadControlPointCount`] with the feasible range of `nu`.
+fn share_control_points(nu: usize, counts: &[usize], p: usize) -> Result<Vec<usize>, NurbsError> {
+    let c = counts.len() - 1;
+    let lo = p + 1;
+    let hi: Vec<usize> = counts.iter().map(|&n| n.max(lo)).collect();
+    let (min_total, max_total) = (lo * counts.len(), hi.iter().sum::<usize>());
+    let total = nu + c;
+    if total < min_total || total > max_total {
+        return Err(NurbsError::BadControlPointCount {
+            what: format!("skinning along the sections with {c} knuckle line(s) ({} pieces)", counts.len()),
+            count: nu,
+            min: min_total - c,
+            max: max_total - c,
+        });
+    }
+    let sum_n: usize = counts.iter().sum();
+    let ideal: Vec<f64> = counts.iter().map(|&n| n as f64 * total as f64 / sum_n as f64).collect();
+    let mut share: Vec<usize> =
+        ideal.iter().zip(&hi).map(|(&x, &h)| (x.round() as usize).clamp(lo, h)).collect();
+    // Move one at a time where the share is furthest from its ideal, first piece on a tie.
+    while share.iter().sum::<usize>() != total {
+        let grow = share.iter().sum::<usize>() < total;
+        let pick = (0..share.len())
+            .filter(|&j| if grow { share[j] < hi[j] } else { share[j] > lo })
+            .max_by(|&a, &b| {
+                let gap = |j: usize| if grow { ideal[j] - share[j] as f64 } else { share[j] as f64 - ideal[j] };
+                gap(a).total_cmp(&gap(b)).then(b.cmp(&a))
+            })
+            .expect("the total lies within the bounds");
+        if grow {
+            share[pick] += 1;
+        } else {
+            share[pick] -= 1;
+        }
+    }
+    Ok(share)
 }
 
 /// The blend weights `w` of the candidate parameters `(1 - w) t + w m` of a section fitted on
@@ -658,7 +982,7 @@ pub fn skin_approximate(
     let mut first_error = None;
     for (u_of, shared) in candidates.into_iter().zip(shared) {
         let fit = fit_along(&secs, u_of, nu, p, opts.param.u, shared)
-            .and_then(|along| fit_across(&along.rows, nv, q, opts.param.v).map(|across| (along, across)));
+            .and_then(|(_, along)| fit_across(&along.rows, nv, q, opts.param.v).map(|across| (along, across)));
         let (along, across) = match fit {
             Ok(f) => f,
             Err(e) => {
@@ -730,7 +1054,7 @@ fn fit_along(
     p: usize,
     kind: Parameterization,
     shared: bool,
-) -> Result<AlongFit, NurbsError> {
+) -> Result<(f64, AlongFit), NurbsError> {
     let mut best: Option<(f64, AlongFit)> = None;
     let mut first_error = None;
     for &placement in placements(kind) {
@@ -753,7 +1077,7 @@ fn fit_along(
         }
     }
     match (best, first_error) {
-        (Some((_, fit)), _) => Ok(fit),
+        (Some(fit), _) => Ok(fit),
         (None, Some(e)) => Err(e),
         (None, None) => unreachable!("placements() is never empty"),
     }
@@ -1186,7 +1510,7 @@ mod tests {
                     along_own(&secs, own.clone(), nu, ku).expect("valid").0
                 })
                 .collect();
-            let chosen = fit_along(&secs, own.clone(), nu, 3, kind, false).expect("valid");
+            let (_, chosen) = fit_along(&secs, own.clone(), nu, 3, kind, false).expect("valid");
             let (chosen_score, _) = along_own(&secs, own.clone(), nu, chosen.knots).expect("valid");
             let best = scores.iter().copied().fold(f64::INFINITY, f64::min);
             assert_eq!(chosen_score, best, "{nu}x{nv}: {scores:?}");
@@ -1587,5 +1911,155 @@ mod tests {
                 assert!(b < 0.25, "nu {nu} section {k}: {b}");
             }
         }
+    }
+
+    /// A hard-chine hull over `k` stations, length 20: straight bottom from the keel `(x, 0, 0)`
+    /// to the chine `(x, b, b tan β)` in `n_bottom` chords, straight side to the sheer
+    /// `(x, b + 0.3, b tan β + 1.5)` in `n_side` chords; `b = 2 + 0.5 sin(π x / 20)`, deadrise
+    /// `β` from 12 degrees aft to 30 degrees forward.
+    fn chine_hull(k: usize, n_bottom: usize, n_side: usize) -> Vec<Vec<Vec3>> {
+        (0..k)
+            .map(|s| {
+                let x = 20.0 * s as f64 / (k - 1) as f64;
+                let (b, beta) = (2.0 + 0.5 * (std::f64::consts::PI * x / 20.0).sin(), (12.0 + 0.9 * x).to_radians());
+                let h = b * beta.tan();
+                let mut pts: Vec<Vec3> =
+                    (0..=n_bottom).map(|i| i as f64 / n_bottom as f64).map(|t| Vec3::new(x, b * t, h * t)).collect();
+                pts.extend(
+                    (1..=n_side).map(|i| i as f64 / n_side as f64).map(|t| Vec3::new(x, b + 0.3 * t, h + 1.5 * t)),
+                );
+                pts
+            })
+            .collect()
+    }
+
+    /// The angle in degrees between the surface normals just before and just after `u`.
+    fn normal_jump(s: &NurbsSurface, u: f64, v: f64) -> f64 {
+        let eps = 1e-9;
+        let (a, b) = (s.normal(u - eps, v).expect("regular"), s.normal(u + eps, v).expect("regular"));
+        a.dot(b).clamp(-1.0, 1.0).acos().to_degrees()
+    }
+
+    #[test]
+    fn knuckled_interpolation_keeps_the_chine() {
+        let s = chine_hull(11, 3, 4);
+        let knuckles = vec![vec![3]; s.len()];
+        let opts = SkinOptions::default();
+        let r = skin_interpolate_with_knuckles(&s, &knuckles, &opts).expect("valid");
+        // Model size ~20: banded solves, round-off ~1e-13.
+        assert_passes_through(&r, &s, 1e-10);
+        // One pole per offset, the knuckle pole shared: 8 along u; a knot of multiplicity 3.
+        assert_eq!((r.surface.n_u(), r.surface.n_v()), (8, 11));
+        let a = r.params[0][3].0;
+        assert_eq!(r.surface.knots_u().multiplicity(a), 3);
+        let plain = skin_interpolate(&s, &opts).expect("valid");
+        for (k, sec) in s.iter().enumerate() {
+            let v = r.params[k][0].1;
+            // Every section's knuckle point sits on the knot.
+            assert_eq!(r.params[k][3].0, a);
+            // The true dihedral angle between the bottom and side planes at the chine: the
+            // normals of the planes through the section's chords and the chine line's tangent
+            // (central difference of the true chine over a tiny step).
+            let x = sec[3].x;
+            let chine = |x: f64| {
+                let (b, beta) = (2.0 + 0.5 * (std::f64::consts::PI * x / 20.0).sin(), (12.0 + 0.9 * x).to_radians());
+                Vec3::new(x, b, b * beta.tan())
+            };
+            let t = (chine(x + 1e-6) - chine(x - 1e-6)).normalized().expect("non-zero");
+            let unit = |w: Vec3| w.normalized().expect("non-zero");
+            let (nb, ns) = (unit((sec[3] - sec[0]).cross(t)), unit((sec[7] - sec[3]).cross(t)));
+            let truth = nb.dot(ns).clamp(-1.0, 1.0).acos().to_degrees();
+            // The skin's chine line interpolates the true one across 11 stations: its tangent
+            // is off by a fraction of a degree, so the normals agree to 0.5 degrees.
+            assert_near!(normal_jump(&r.surface, a, v), truth, 0.5, "section {k}");
+            // The plain skin is C2 there: no jump (two normals 2e-9 apart in u).
+            assert!(normal_jump(&plain.surface, plain.params[k][3].0, v) < 1e-4, "section {k}");
+            // Collinear bottom offsets give a straight bottom: the midpoint of the first chord
+            // lies on the chord (the plain skin bulges off it).
+            let mid = r.surface.point(0.5 * r.params[k][1].0, v);
+            let off = (mid - sec[0]).cross(unit(sec[3] - sec[0])).norm();
+            assert!(off < 1e-9, "section {k}: {off}");
+        }
+    }
+
+    #[test]
+    fn knuckled_approximation_keeps_the_chine_and_converges() {
+        let s = chine_hull(15, 5, 6);
+        let knuckles = vec![vec![5]; s.len()];
+        let opts = SkinOptions::default();
+        let mut worst_all = 0.0f64;
+        for nu in [8, 10, 12] {
+            let r = skin_approximate_with_knuckles(&s, &knuckles, nu, 10, &opts).expect("valid");
+            assert_eq!((r.surface.n_u(), r.surface.n_v()), (nu, 10));
+            let a = r.params[0][5].0;
+            assert_eq!(r.surface.knots_u().multiplicity(a), 3);
+            for (sec, par) in s.iter().zip(&r.params) {
+                for (q, &(u, v)) in sec.iter().zip(par) {
+                    worst_all = worst_all.max(r.surface.point(u, v).distance(*q));
+                }
+                // The knuckle stays sharp: the section's corner turns by 79 - β degrees, 67
+                // aft to 49 forward (measured 66.9 to 48.7 at every nu).
+                let jump = normal_jump(&r.surface, a, par[5].1);
+                assert!(jump > 45.0, "nu {nu}: {jump}");
+            }
+        }
+        // Straight bottoms and sides lie in each piece's spline space, so the fit along is
+        // exact; what is left is the across fit of 15 stations by 10 poles (measured 4e-5).
+        assert!(worst_all < 1e-3, "{worst_all}");
+        // The plain approximation with 8 of 12 poles rounds the chine off, by far more (with
+        // 12 it would interpolate along the sections).
+        let plain = skin_approximate(&s, 8, 10, &opts).expect("valid");
+        let plain_worst = s
+            .iter()
+            .zip(&plain.params)
+            .flat_map(|(sec, par)| sec.iter().zip(par).map(|(q, &(u, v))| plain.surface.point(u, v).distance(*q)))
+            .fold(0.0, f64::max);
+        assert!(plain_worst > 10.0 * worst_all, "{plain_worst} vs {worst_all}");
+    }
+
+    #[test]
+    fn knuckle_lists_are_checked_and_empty_lists_change_nothing() {
+        let s = chine_hull(6, 3, 4);
+        let opts = SkinOptions::default();
+        let none = vec![Vec::new(); s.len()];
+        assert_eq!(
+            skin_interpolate_with_knuckles(&s, &none, &opts).expect("valid"),
+            skin_interpolate(&s, &opts).expect("valid")
+        );
+        assert_eq!(
+            skin_approximate_with_knuckles(&s, &none, 6, 5, &opts).expect("valid"),
+            skin_approximate(&s, 6, 5, &opts).expect("valid")
+        );
+        let mut uneven = vec![vec![3]; s.len()];
+        uneven[4] = vec![2, 3];
+        for bad in [vec![vec![3]; 5], uneven, vec![vec![0]; s.len()], vec![vec![7]; s.len()], vec![vec![3, 3]; s.len()]] {
+            let e = skin_interpolate_with_knuckles(&s, &bad, &opts).expect_err("bad list");
+            assert!(matches!(e, NurbsError::Incompatible { .. }), "{e}");
+        }
+        // Two pieces of at least 4 poles share a pole: 7 to 8 along u.
+        let k = vec![vec![3]; s.len()];
+        for nu in [6, 9] {
+            let e = skin_approximate_with_knuckles(&s, &k, nu, 5, &opts).expect_err("out of range");
+            assert!(matches!(e, NurbsError::BadControlPointCount { min: 7, max: 8, .. }), "{e}");
+        }
+        // A degenerate stem keeps its pole row and its knuckle list is ignored.
+        let mut stem = s.clone();
+        stem.push(vec![Vec3::new(22.0, 0.0, 2.0); 3]);
+        let mut ks = k.clone();
+        ks.push(Vec::new());
+        let r = skin_interpolate_with_knuckles(&stem, &ks, &opts).expect("valid");
+        assert_passes_through(&r, &stem, 1e-10);
+    }
+
+    #[test]
+    fn control_points_are_shared_by_data_count() {
+        // 4 + 9 points, 10 poles (11 with the knuckle's counted twice): 4 and 7.
+        assert_eq!(share_control_points(10, &[4, 9], 3).expect("valid"), vec![4, 7]);
+        // Two points below the chine still get a cubic's 4 poles.
+        assert_eq!(share_control_points(9, &[2, 12], 3).expect("valid"), vec![4, 6]);
+        assert_eq!(share_control_points(13, &[2, 12], 3).expect("valid"), vec![4, 10]);
+        let shares = share_control_points(20, &[8, 8, 8], 3).expect("valid");
+        assert_eq!(shares.iter().sum::<usize>(), 22);
+        assert!(shares.iter().all(|&n| (7..=8).contains(&n)), "{shares:?}");
     }
 }

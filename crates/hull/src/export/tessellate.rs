@@ -1,0 +1,495 @@
+//! Triangulation of a NURBS surface to a chordal tolerance, for the mesh exports (STL, OBJ,
+//! glTF).
+//!
+//! **Grid.** The surface is sampled on a tensor grid of parameters `u_0 < .. < u_m`,
+//! `v_0 < .. < v_n` that contains every distinct knot (so no triangle straddles a knot, where
+//! the surface may be only C^0) and starts with every knot span cut in two. Each grid cell
+//! `[u_i, u_i+1] x [v_j, v_j+1]` becomes two triangles, split along the diagonal whose
+//! midpoint is nearer the surface. A tensor grid keeps the mesh conforming (no T-junctions,
+//! so no cracks) at the price of some triangles where a direction is refined across the
+//! whole surface.
+//!
+//! **Refinement.** The deviation of a chord `P_a P_b` (a triangle edge) is measured at its
+//! parametric midpoint: `e = |S((u_a + u_b) / 2, (v_a + v_b) / 2) - (P_a + P_b) / 2|`, an upper
+//! bound of the distance from that point of the chord to the surface and of the surface
+//! point to the chord. Every u-interval with an edge of `e > 3/4 T` (along u, or a cell
+//! diagonal) and every such v-interval is bisected, and the grid is measured again, until no
+//! edge deviates by more than `3/4 T` (`T` the tolerance). Why 3/4: over a cell small enough
+//! for the surface to be quadratic in `(u, v)`, the parametric error of a linear triangle is
+//! a quadratic vanishing at the corners, `e(l) = a l2 l3 + b l1 l3 + c l1 l2` in barycentric
+//! coordinates `l`, with `|a| / 4`, `|b| / 4`, `|c| / 4` its values at the edge midpoints;
+//! since `l2 l3 + l1 l3 + l1 l2 <= 1/3`, `|e| <= 4/3 max(edge midpoint errors) <= T`.
+//!
+//! **Orientation.** Normals are `S_u x S_v` turned so that the area-weighted mean of their y
+//! component is positive: for a starboard half hull (y >= 0) closed by the centre plane
+//! (outward normal -y) and the deck, `sum n dA = 0` over the closed surface, so the hull's
+//! `integral n_y dA` equals the centre-plane area and is positive for the outward side.
+//! Triangles are wound counter-clockwise seen from that side. The mirrored port half
+//! (`y -> -y`) has its winding reversed so that it too faces outward.
+
+use std::collections::HashMap;
+
+use nurbs::{NurbsSurface, Vec3};
+use rayon::prelude::*;
+
+use crate::HullError;
+
+/// Factor on the tolerance for the edge-midpoint deviation (see the module docs).
+pub const MIDPOINT_FACTOR: f64 = 0.75;
+
+/// Largest number of grid lines per direction before the tessellation gives up.
+pub const MAX_GRID_LINES: usize = 8192;
+
+/// Settings of [`tessellate`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TessellationOptions {
+    /// Largest distance between the triangles and the surface, in the surface's length unit.
+    pub tolerance: f64,
+    /// Add the mirrored port half (`y -> -y`): the full hull.
+    pub mirror: bool,
+}
+
+impl TessellationOptions {
+    /// The default tolerance of a surface: `1e-4` of the diagonal of its control-net box
+    /// (12 mm on a 122 m hull).
+    pub fn for_surface(surface: &NurbsSurface) -> Self {
+        let (lo, hi) = surface.control_bounds();
+        TessellationOptions { tolerance: 1e-4 * (hi - lo).norm(), mirror: false }
+    }
+}
+
+/// A triangle mesh of a surface: positions, outward unit normals and the Gaussian curvature
+/// at every vertex, and counter-clockwise (seen from outside) triangles of vertex indices.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TriangleMesh {
+    pub positions: Vec<Vec3>,
+    /// Unit normals, outward (see the module docs).
+    pub normals: Vec<Vec3>,
+    /// Gaussian curvature `K` at every vertex (orientation-free; at a collapsed boundary the
+    /// limit from inside the domain); NaN where it is undefined.
+    pub gaussian: Vec<f64>,
+    /// The surface parameters `(u, v)` of every vertex (a mirrored vertex has those of its
+    /// starboard twin).
+    pub params: Vec<(f64, f64)>,
+    /// Triangles, counter-clockwise seen from outside. Triangles with two coincident corners
+    /// (at a boundary collapsed to a point) are left out.
+    pub triangles: Vec<[u32; 3]>,
+    /// The grid parameters along u and v.
+    pub grid_u: Vec<f64>,
+    pub grid_v: Vec<f64>,
+    /// Largest edge-midpoint deviation measured (at most `3/4` of the tolerance).
+    pub max_midpoint_deviation: f64,
+    /// The tolerance the mesh was made for.
+    pub tolerance: f64,
+    /// True if the outward normal is `-(S_u x S_v)`.
+    pub flipped: bool,
+}
+
+impl TriangleMesh {
+    /// Unit normal of triangle `t` from its corners (counter-clockwise, so outward).
+    pub fn face_normal(&self, t: usize) -> Vec3 {
+        let [a, b, c] = self.triangles[t].map(|k| self.positions[k as usize]);
+        (b - a).cross(c - a).normalized().unwrap_or(Vec3::new(0.0, 0.0, 0.0))
+    }
+}
+
+/// The distinct knots of `knots` within `domain`, each span cut in two.
+fn initial_params(knots: &[f64], domain: (f64, f64)) -> Vec<f64> {
+    let (a, b) = domain;
+    let mut breaks = vec![a];
+    for &k in knots {
+        if k > a && k < b && breaks.last().is_some_and(|&last| k > last) {
+            breaks.push(k);
+        }
+    }
+    breaks.push(b);
+    let mut out = Vec::with_capacity(2 * breaks.len());
+    for w in breaks.windows(2) {
+        out.push(w[0]);
+        out.push(0.5 * (w[0] + w[1]));
+    }
+    out.push(b);
+    out
+}
+
+/// Surface points by exact parameter bits, evaluated once.
+struct PointCache<'a> {
+    surface: &'a NurbsSurface,
+    points: HashMap<(u64, u64), Vec3>,
+}
+
+impl PointCache<'_> {
+    /// Evaluate (in parallel) every `(u, v)` not seen yet.
+    fn fill(&mut self, uv: &[(f64, f64)]) {
+        let mut todo: Vec<(f64, f64)> =
+            uv.iter().copied().filter(|&(u, v)| !self.points.contains_key(&(u.to_bits(), v.to_bits()))).collect();
+        todo.sort_by(|a, b| a.partial_cmp(b).expect("finite parameters"));
+        todo.dedup();
+        let s = self.surface;
+        let new: Vec<Vec3> = todo.par_iter().map(|&(u, v)| s.point(u, v)).collect();
+        for ((u, v), p) in todo.into_iter().zip(new) {
+            self.points.insert((u.to_bits(), v.to_bits()), p);
+        }
+    }
+
+    fn get(&self, u: f64, v: f64) -> Vec3 {
+        self.points[&(u.to_bits(), v.to_bits())]
+    }
+}
+
+/// Deviations of the current grid: per u-interval and per v-interval the largest edge
+/// midpoint error charged to it, and per cell whether the `(i, j)-(i+1, j+1)` diagonal is
+/// the better one.
+struct GridErrors {
+    u: Vec<f64>,
+    v: Vec<f64>,
+    main_diagonal: Vec<bool>,
+}
+
+fn measure(cache: &mut PointCache, gu: &[f64], gv: &[f64]) -> GridErrors {
+    let mid = |a: f64, b: f64| 0.5 * (a + b);
+    let mut uv = Vec::new();
+    for &u in gu {
+        for &v in gv {
+            uv.push((u, v));
+        }
+        for w in gv.windows(2) {
+            uv.push((u, mid(w[0], w[1])));
+        }
+    }
+    for wu in gu.windows(2) {
+        let um = mid(wu[0], wu[1]);
+        for &v in gv {
+            uv.push((um, v));
+        }
+        for w in gv.windows(2) {
+            uv.push((um, mid(w[0], w[1])));
+        }
+    }
+    cache.fill(&uv);
+    let (m, n) = (gu.len(), gv.len());
+    let mut eu = vec![0.0f64; m - 1];
+    let mut ev = vec![0.0f64; n - 1];
+    let mut main_diagonal = vec![true; (m - 1) * (n - 1)];
+    let dev = |p: Vec3, a: Vec3, b: Vec3| p.distance((a + b) * 0.5);
+    for i in 0..m - 1 {
+        let um = mid(gu[i], gu[i + 1]);
+        for j in 0..n {
+            let e = dev(cache.get(um, gv[j]), cache.get(gu[i], gv[j]), cache.get(gu[i + 1], gv[j]));
+            eu[i] = eu[i].max(e);
+        }
+    }
+    for j in 0..n - 1 {
+        let vm = mid(gv[j], gv[j + 1]);
+        for i in 0..m {
+            let e = dev(cache.get(gu[i], vm), cache.get(gu[i], gv[j]), cache.get(gu[i], gv[j + 1]));
+            ev[j] = ev[j].max(e);
+        }
+    }
+    for i in 0..m - 1 {
+        for j in 0..n - 1 {
+            let c = cache.get(mid(gu[i], gu[i + 1]), mid(gv[j], gv[j + 1]));
+            let (p00, p10) = (cache.get(gu[i], gv[j]), cache.get(gu[i + 1], gv[j]));
+            let (p01, p11) = (cache.get(gu[i], gv[j + 1]), cache.get(gu[i + 1], gv[j + 1]));
+            let (d_main, d_anti) = (dev(c, p00, p11), dev(c, p10, p01));
+            let main = d_main <= d_anti;
+            main_diagonal[i * (n - 1) + j] = main;
+            let e = d_main.min(d_anti);
+            eu[i] = eu[i].max(e);
+            ev[j] = ev[j].max(e);
+        }
+    }
+    GridErrors { u: eu, v: ev, main_diagonal }
+}
+
+/// Bisect the intervals whose error exceeds `limit`; returns whether any was.
+fn refine(grid: &mut Vec<f64>, errors: &[f64], limit: f64) -> bool {
+    let mut out = Vec::with_capacity(2 * grid.len());
+    let mut changed = false;
+    for (k, w) in grid.windows(2).enumerate() {
+        out.push(w[0]);
+        let m = 0.5 * (w[0] + w[1]);
+        // A bisection that rounds onto an end point would never end.
+        if errors[k] > limit && m > w[0] && m < w[1] {
+            out.push(m);
+            changed = true;
+        }
+    }
+    out.push(grid[grid.len() - 1]);
+    *grid = out;
+    changed
+}
+
+/// A point slightly inside the domain, toward its middle, where the normal and curvature of a
+/// degenerate point (a collapsed stem or keel edge) are taken as limits.
+fn nudged(s: &NurbsSurface, u: f64, v: f64) -> (f64, f64) {
+    let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
+    let (eu, ev) = (1e-6 * (u1 - u0), 1e-6 * (v1 - v0));
+    (u.clamp(u0 + eu, u1 - eu), v.clamp(v0 + ev, v1 - ev))
+}
+
+/// Triangulate `surface` so that no triangle is farther than `options.tolerance` from it (see
+/// the module docs for the grid, the bound and the orientation).
+///
+/// # Errors
+/// [`HullError::Config`] if the tolerance is not a positive finite number, or if meeting it
+/// would take more than [`MAX_GRID_LINES`] grid lines in a direction (a tolerance far below
+/// the surface's size).
+pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Result<TriangleMesh, HullError> {
+    let tol = options.tolerance;
+    if !(tol.is_finite() && tol > 0.0) {
+        return Err(HullError::Config(format!("tessellation tolerance {tol}: expected a positive length")));
+    }
+    let mut gu = initial_params(surface.knots_u().as_slice(), surface.domain_u());
+    let mut gv = initial_params(surface.knots_v().as_slice(), surface.domain_v());
+    let mut cache = PointCache { surface, points: HashMap::new() };
+    let limit = MIDPOINT_FACTOR * tol;
+    let errors = loop {
+        let e = measure(&mut cache, &gu, &gv);
+        let changed_u = refine(&mut gu, &e.u, limit);
+        let changed_v = refine(&mut gv, &e.v, limit);
+        if !changed_u && !changed_v {
+            break e;
+        }
+        if gu.len() > MAX_GRID_LINES || gv.len() > MAX_GRID_LINES {
+            return Err(HullError::Config(format!(
+                "tessellation tolerance {tol} needs more than {MAX_GRID_LINES} grid lines (expected a tolerance \
+                 nearer the surface's size)"
+            )));
+        }
+    };
+    let max_midpoint_deviation = errors.u.iter().chain(&errors.v).fold(0.0f64, |m, &e| m.max(e));
+    let (m, n) = (gu.len(), gv.len());
+
+    // Vertices of the starboard half: points, raw normals S_u x S_v and curvature.
+    struct Vertex {
+        n: Vec3,
+        k: f64,
+    }
+    let uv: Vec<(f64, f64)> = gu.iter().flat_map(|&u| gv.iter().map(move |&v| (u, v))).collect();
+    let verts: Vec<Vertex> = uv
+        .par_iter()
+        .map(|&(u, v)| {
+            let d = surface.derivatives(u, v);
+            let (un, vn) = nudged(surface, u, v);
+            let n = d.normal().or_else(|| surface.normal(un, vn)).unwrap_or(Vec3::new(0.0, 0.0, 0.0));
+            let k = d.curvature().or_else(|| surface.curvature(un, vn)).map_or(f64::NAN, |c| c.gaussian);
+            Vertex { n, k }
+        })
+        .collect();
+    let positions: Vec<Vec3> = uv.iter().map(|&(u, v)| cache.get(u, v)).collect();
+
+    // Triangles in (u, v) order: counter-clockwise about S_u x S_v.
+    let id = |i: usize, j: usize| (i * n + j) as u32;
+    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(2 * (m - 1) * (n - 1));
+    for i in 0..m - 1 {
+        for j in 0..n - 1 {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if errors.main_diagonal[i * (n - 1) + j] {
+                triangles.extend([[a, b, c], [a, c, d]]);
+            } else {
+                triangles.extend([[a, b, d], [b, c, d]]);
+            }
+        }
+    }
+    let (lo, hi) = surface.control_bounds();
+    let eps = 1e-12 * (hi - lo).norm();
+    triangles.retain(|t| {
+        let [a, b, c] = t.map(|k| positions[k as usize]);
+        a.distance(b) > eps && b.distance(c) > eps && c.distance(a) > eps
+    });
+    // Orientation: the sign of integral n_y dA over the triangles (twice the area each).
+    let ny: f64 = triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|k| positions[k as usize]);
+            (b - a).cross(c - a).y
+        })
+        .sum();
+    let flipped = ny < 0.0;
+    let sign = if flipped { -1.0 } else { 1.0 };
+    if flipped {
+        for t in &mut triangles {
+            t.swap(1, 2);
+        }
+    }
+    let mut mesh = TriangleMesh {
+        normals: verts.iter().map(|v| v.n * sign).collect(),
+        gaussian: verts.iter().map(|v| v.k).collect(),
+        positions,
+        params: uv,
+        triangles,
+        grid_u: gu,
+        grid_v: gv,
+        max_midpoint_deviation,
+        tolerance: tol,
+        flipped,
+    };
+    if options.mirror {
+        mirror(&mut mesh);
+    }
+    Ok(mesh)
+}
+
+/// Append the port half: every vertex with `y -> -y`, every triangle with its winding
+/// reversed (a reflection turns counter-clockwise into clockwise).
+fn mirror(mesh: &mut TriangleMesh) {
+    let count = mesh.positions.len();
+    let offset = count as u32;
+    let flip = |p: Vec3| Vec3::new(p.x, -p.y, p.z);
+    let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| flip(p)).collect();
+    let normals: Vec<Vec3> = mesh.normals.iter().map(|&p| flip(p)).collect();
+    mesh.positions.extend(positions);
+    mesh.normals.extend(normals);
+    mesh.gaussian.extend_from_within(..count);
+    mesh.params.extend_from_within(..count);
+    let port: Vec<[u32; 3]> = mesh.triangles.iter().map(|&[a, b, c]| [a + offset, c + offset, b + offset]).collect();
+    mesh.triangles.extend(port);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nurbs::{KnotVector, ProjectionOptions, SurfaceProjector};
+
+    /// The exact quarter cylinder `y^2 + z^2 = r^2`, `y >= 0`, `z <= 0`, of length `h` along x.
+    fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
+        let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
+        let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let mut pts = Vec::new();
+        let mut w = Vec::new();
+        for (y, z, wi) in [(0.0, -r, 1.0), (r, -r, s), (r, 0.0, 1.0)] {
+            for x in [0.0, h] {
+                pts.push(Vec3::new(x, y, z));
+                w.push(wi);
+            }
+        }
+        NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+    }
+
+    fn opts(tolerance: f64) -> TessellationOptions {
+        TessellationOptions { tolerance, mirror: false }
+    }
+
+    #[test]
+    fn cylinder_chords_stay_within_the_tolerance() {
+        let r = 2.0;
+        let s = quarter_cylinder(r, 3.0);
+        for tol in [1e-2, 1e-3, 1e-4] {
+            let mesh = tessellate(&s, &opts(tol)).expect("tessellates");
+            // Vertices on the cylinder (exact evaluation, rounding only).
+            for p in &mesh.positions {
+                assert!(((p.y * p.y + p.z * p.z).sqrt() - r).abs() < 1e-12, "{p:?}");
+            }
+            // The farthest point of a chord of angle a from the circle is its middle, at
+            // r (1 - cos(a / 2)); every point of a triangle is inside the circle, at most
+            // the largest such sagitta away, which must be within the tolerance.
+            let mut worst = 0.0f64;
+            for t in &mesh.triangles {
+                let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
+                for (w0, w1, w2) in [(1.0, 1.0, 1.0), (1.0, 1.0, 0.0), (0.0, 1.0, 1.0), (1.0, 0.0, 1.0)] {
+                    let q = (a * w0 + b * w1 + c * w2) * (1.0 / (w0 + w1 + w2));
+                    worst = worst.max(r - (q.y * q.y + q.z * q.z).sqrt());
+                }
+            }
+            assert!(worst <= tol, "deviation {worst} > {tol}");
+            // Not grossly over-refined: the number of arcs is within a factor 2.5 of the
+            // fewest equal arcs meeting the tolerance, n = ceil((pi/2) / (2 acos(1 - tol/r))).
+            let fewest = (std::f64::consts::FRAC_PI_2 / (2.0 * (1.0 - tol / r).acos())).ceil();
+            let arcs = (mesh.grid_u.len() - 1) as f64;
+            assert!(arcs >= fewest && arcs <= 2.5 * fewest, "{arcs} arcs, fewest {fewest} at tolerance {tol}");
+            // A cylinder is straight along x: no refinement there beyond the initial split.
+            assert_eq!(mesh.grid_v.len(), 3);
+            assert!(mesh.max_midpoint_deviation <= MIDPOINT_FACTOR * tol);
+        }
+    }
+
+    #[test]
+    fn normals_are_unit_outward_and_match_the_winding() {
+        let s = quarter_cylinder(2.0, 3.0);
+        for mirror in [false, true] {
+            let mesh = tessellate(&s, &TessellationOptions { tolerance: 1e-3, mirror }).expect("tessellates");
+            for (p, nrm) in mesh.positions.iter().zip(&mesh.normals) {
+                // Outward from the cylinder's axis (the x axis): n = (0, y, z) / r.
+                let radial = Vec3::new(0.0, p.y, p.z) * 0.5;
+                assert!((nrm.norm() - 1.0).abs() < 1e-12);
+                assert!(nrm.distance(radial) < 1e-9, "normal {nrm:?} at {p:?}");
+            }
+            for t in 0..mesh.triangles.len() {
+                let f = mesh.face_normal(t);
+                let [a, b, c] = mesh.triangles[t].map(|k| mesh.positions[k as usize]);
+                let centroid = (a + b + c) * (1.0 / 3.0);
+                assert!(f.dot(Vec3::new(0.0, centroid.y, centroid.z)) > 0.0, "triangle {t} faces inward");
+            }
+            let half = mesh.positions.len() / if mirror { 2 } else { 1 };
+            if mirror {
+                for k in 0..half {
+                    let (a, b) = (mesh.positions[k], mesh.positions[k + half]);
+                    assert_eq!((a.x, -a.y, a.z), (b.x, b.y, b.z));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn orientation_does_not_depend_on_the_parameterization() {
+        // The transposed surface has S_u x S_v reversed; the mesh must face the same way.
+        let s = quarter_cylinder(2.0, 3.0);
+        let a = tessellate(&s, &opts(1e-3)).expect("tessellates");
+        let b = tessellate(&s.transposed(), &opts(1e-3)).expect("tessellates");
+        assert_ne!(a.flipped, b.flipped);
+        for mesh in [a, b] {
+            let t = mesh.triangles.len() / 2;
+            let [p, _, _] = mesh.triangles[t].map(|k| mesh.positions[k as usize]);
+            assert!(mesh.face_normal(t).dot(Vec3::new(0.0, p.y, p.z)) > 0.0);
+        }
+    }
+
+    #[test]
+    fn collapsed_boundary_triangles_are_dropped_and_vertices_lie_on_a_rational_surface() {
+        // A rational bicubic patch whose v = v1 boundary collapses to one point.
+        let ku = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0]).expect("valid");
+        let kv = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0]).expect("valid");
+        let (nu, nv) = (ku.num_basis(), kv.num_basis());
+        let mut pts = Vec::new();
+        let mut w = Vec::new();
+        for i in 0..nu {
+            for j in 0..nv {
+                let t = 1.0 - j as f64 / (nv - 1) as f64;
+                pts.push(Vec3::new(5.0 * j as f64, t * (1.0 + i as f64), t * (i * i) as f64 * 0.4 - 2.0));
+                w.push(1.0 + 0.2 * ((i + 2 * j) % 3) as f64);
+            }
+        }
+        let s = NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid");
+        let tol = 2e-3;
+        let mesh = tessellate(&s, &opts(tol)).expect("tessellates");
+        let (m, n) = (mesh.grid_u.len(), mesh.grid_v.len());
+        // The last column of every cell row is a fan onto the tip: one triangle per cell.
+        assert_eq!(mesh.triangles.len(), 2 * (m - 1) * (n - 1) - (m - 1));
+        for k in 0..mesh.triangles.len() {
+            assert!(mesh.face_normal(k).norm() > 0.5, "degenerate triangle {k}");
+        }
+        assert!(mesh.normals.iter().all(|v| (v.norm() - 1.0).abs() < 1e-9), "a normal is missing");
+        assert!(mesh.gaussian.iter().all(|k| k.is_finite()));
+        // Triangle centroids and edge midpoints within the tolerance of the surface.
+        let projector = SurfaceProjector::new(&s, ProjectionOptions::default());
+        let mut worst = 0.0f64;
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
+            for q in [(a + b + c) * (1.0 / 3.0), (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5] {
+                worst = worst.max(projector.project(q).distance);
+            }
+        }
+        assert!(worst <= tol, "deviation {worst} > {tol}");
+    }
+
+    #[test]
+    fn bad_tolerances_are_refused() {
+        let s = quarter_cylinder(2.0, 3.0);
+        for t in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(matches!(tessellate(&s, &opts(t)), Err(HullError::Config(_))), "{t}");
+        }
+        assert!(matches!(tessellate(&s, &opts(1e-300)), Err(HullError::Config(_))));
+    }
+}

@@ -1,0 +1,557 @@
+//! Triangle meshes of a hull (STL, OBJ): reading, slicing into sections for the fit, and
+//! measuring a fitted surface against the mesh.
+//!
+//! - [`read_mesh`] / [`parse_mesh`]: ASCII and binary STL ([`stl`]), Wavefront OBJ ([`obj`]),
+//!   either gzip-compressed (recognised by the gzip magic bytes, whatever the file name);
+//!   the triangles are welded into an indexed [`TriMesh`].
+//! - [`slice::slice_mesh`]: cuts at stations `x = const`, each chained into one polyline on
+//!   the starboard side from the keel to the deck edge, resampled, as [`crate::Offsets`].
+//! - [`hydrostatics::mesh_hydrostatics`]: volume, centres, wetted surface and waterplane of the
+//!   mesh at a draft, by the divergence theorem on the triangles clipped at the waterplane.
+//! - [`distance::mesh_distance`]: the distance of the mesh's vertices to a fitted surface.
+//!
+//! # Axes and units
+//!
+//! The mesh is expected in hullskin's axes (see [`crate::Offsets`]): **x forward** (from the
+//! aft perpendicular or any origin), **y across** with the centre plane at `y = 0` (the mesh
+//! holds both sides, or only the starboard side `y >= 0`), **z up** (from the keel or any
+//! origin). Meshes in other axes are brought to these by [`MeshReadOptions::axes`], a signed
+//! permutation applied first, and [`MeshReadOptions::shift`], a translation applied after it:
+//! the point `p` of the file becomes `axes(p) + shift`. For instance a mesh with z forward and
+//! y up (common in graphics) is read with axes `z,x,y`; a mesh whose bow points to -x with
+//! `-x,-y,z` (a half turn about z, which keeps the frame right-handed).
+//!
+//! Coordinates are not converted: as for offsets, the units (`--units`) are a label carried
+//! to the outputs ([`crate::Units`]).
+
+pub mod distance;
+pub mod hydrostatics;
+pub mod obj;
+pub mod slice;
+pub mod stl;
+
+use std::collections::HashMap;
+use std::fmt;
+use std::io::Read;
+use std::path::Path;
+use std::str::FromStr;
+
+use nurbs::Vec3;
+
+use crate::error::{HullError, InputErrorKind, Location};
+
+pub use distance::{mesh_distance, MeshDistance, VertexFilter};
+pub use hydrostatics::{mesh_hydrostatics, MeshHydrostatics};
+pub use slice::{
+    slice_mesh, station_positions, write_sections_csv, DroppedStation, Resample, SliceOptions, SliceOutcome, Spacing,
+    Stations,
+};
+
+/// Largest decompressed size of a gzip-compressed mesh, bytes (1 GiB: a 20-million-triangle
+/// ASCII STL); a larger stream is refused rather than exhausting memory.
+pub const MAX_DECOMPRESSED: u64 = 1 << 30;
+
+/// An indexed triangle mesh: shared vertices and triangles as triples of vertex indices.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TriMesh {
+    /// Where the mesh came from (a file path or a name), for messages.
+    pub source: String,
+    /// The vertices, in hullskin's axes (after [`MeshReadOptions::axes`] and `shift`).
+    pub vertices: Vec<Vec3>,
+    /// The triangles, counter-clockwise seen from outside for a well-oriented mesh (nothing
+    /// here depends on the orientation).
+    pub triangles: Vec<[u32; 3]>,
+    /// Triangles of the file dropped because two of their corners are the same vertex after
+    /// welding (zero area: they cut no plane and bound no volume).
+    pub degenerate: usize,
+}
+
+/// How the edges of a mesh are shared (see [`TriMesh::edge_counts`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EdgeCounts {
+    /// Distinct edges.
+    pub edges: usize,
+    /// Edges of exactly one triangle: the mesh is open there.
+    pub open: usize,
+    /// Edges of three or more triangles.
+    pub non_manifold: usize,
+}
+
+impl TriMesh {
+    /// A mesh from vertices and triangles.
+    ///
+    /// # Errors
+    /// [`InputErrorKind::Mesh`] (located at the file `source`) for a non-finite vertex or a
+    /// triangle index out of range.
+    pub fn try_new(source: &str, vertices: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Result<Self, HullError> {
+        if let Some(i) = vertices.iter().position(|v| !v.is_finite()) {
+            return Err(mesh_error(
+                Location::file(source),
+                format!("vertex {} is ({}, {}, {})", i + 1, vertices[i].x, vertices[i].y, vertices[i].z),
+                "finite coordinates",
+            ));
+        }
+        let n = vertices.len();
+        if let Some((t, tri)) = triangles.iter().enumerate().find(|(_, t)| t.iter().any(|&i| i as usize >= n)) {
+            return Err(mesh_error(
+                Location::file(source),
+                format!("triangle {} refers to vertex indices {:?}", t + 1, tri),
+                &format!("indices below the vertex count {n}"),
+            ));
+        }
+        Ok(TriMesh { source: source.to_string(), vertices, triangles, degenerate: 0 })
+    }
+
+    /// The three corners of triangle `t`.
+    pub fn corners(&self, t: usize) -> [Vec3; 3] {
+        let [a, b, c] = self.triangles[t];
+        [self.vertices[a as usize], self.vertices[b as usize], self.vertices[c as usize]]
+    }
+
+    /// The axis-aligned bounding box `(min, max)` of the vertices used by triangles, `None`
+    /// for a mesh without triangles.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let mut it = self.triangles.iter().flatten().map(|&i| self.vertices[i as usize]);
+        let first = it.next()?;
+        Some(it.fold((first, first), |(lo, hi), p| {
+            (
+                Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
+                Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
+            )
+        }))
+    }
+
+    /// The model size: the diagonal of [`TriMesh::bounds`], 0 without triangles.
+    pub fn size(&self) -> f64 {
+        self.bounds().map_or(0.0, |(lo, hi)| (hi - lo).norm())
+    }
+
+    /// Counts the distinct edges and how many triangles share each: a closed (watertight)
+    /// 2-manifold mesh has `open == 0` and `non_manifold == 0`.
+    pub fn edge_counts(&self) -> EdgeCounts {
+        let mut count: HashMap<u64, u32> = HashMap::with_capacity(self.triangles.len() * 3 / 2);
+        for tri in &self.triangles {
+            for k in 0..3 {
+                *count.entry(edge_key(tri[k], tri[(k + 1) % 3])).or_insert(0) += 1;
+            }
+        }
+        let mut out = EdgeCounts { edges: count.len(), ..EdgeCounts::default() };
+        for &c in count.values() {
+            match c {
+                1 => out.open += 1,
+                2 => {}
+                _ => out.non_manifold += 1,
+            }
+        }
+        out
+    }
+
+    /// The mesh with every vertex moved by `f` (the triangles unchanged).
+    pub fn map_vertices(mut self, f: impl Fn(Vec3) -> Vec3) -> Self {
+        for v in &mut self.vertices {
+            *v = f(*v);
+        }
+        self
+    }
+}
+
+/// The key of the undirected edge `{a, b}`: the smaller index in the high 32 bits.
+pub(crate) fn edge_key(a: u32, b: u32) -> u64 {
+    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+    (u64::from(lo) << 32) | u64::from(hi)
+}
+
+/// A signed permutation of the axes: which coordinate of the file (and with which sign) gives
+/// hullskin's x, y and z. Written `x,y,z` (the identity), `z,x,y`, `-x,-y,z`, ...; it must
+/// name each of x, y, z once. An odd permutation or an odd number of minus signs mirrors
+/// the mesh (its triangles then turn the other way, which nothing here depends on).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Axes {
+    /// `(source axis 0..3, negate)` for hullskin's x, y, z.
+    map: [(usize, bool); 3],
+}
+
+impl Default for Axes {
+    /// The identity `x,y,z`.
+    fn default() -> Self {
+        Axes { map: [(0, false), (1, false), (2, false)] }
+    }
+}
+
+impl Axes {
+    /// True for the identity `x,y,z`.
+    pub fn is_identity(&self) -> bool {
+        *self == Axes::default()
+    }
+
+    /// The point of the file `p` in hullskin's axes.
+    pub fn apply(&self, p: Vec3) -> Vec3 {
+        let c = |(axis, neg): (usize, bool)| if neg { -p[axis] } else { p[axis] };
+        Vec3::new(c(self.map[0]), c(self.map[1]), c(self.map[2]))
+    }
+}
+
+impl FromStr for Axes {
+    type Err = HullError;
+
+    /// Parses `x,y,z`, `-z,x,y`, ... (case and spaces ignored).
+    fn from_str(s: &str) -> Result<Self, HullError> {
+        let bad = || {
+            HullError::Config(format!(
+                "axes \"{s}\": expected three comma-separated axes naming each of x, y, z once, each optionally \
+                 negated, giving hullskin's x (forward), y (starboard) and z (up), e.g. x,y,z or z,x,y or -x,-y,z"
+            ))
+        };
+        let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+        if parts.len() != 3 {
+            return Err(bad());
+        }
+        let mut map = [(0, false); 3];
+        let mut seen = [false; 3];
+        for (slot, part) in map.iter_mut().zip(&parts) {
+            let lower = part.to_ascii_lowercase();
+            let (neg, name) = match lower.strip_prefix('-') {
+                Some(rest) => (true, rest.trim()),
+                None => (false, lower.strip_prefix('+').unwrap_or(&lower).trim()),
+            };
+            let axis = match name {
+                "x" => 0,
+                "y" => 1,
+                "z" => 2,
+                _ => return Err(bad()),
+            };
+            if seen[axis] {
+                return Err(bad());
+            }
+            seen[axis] = true;
+            *slot = (axis, neg);
+        }
+        Ok(Axes { map })
+    }
+}
+
+impl fmt::Display for Axes {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (k, &(axis, neg)) in self.map.iter().enumerate() {
+            if k > 0 {
+                f.write_str(",")?;
+            }
+            if neg {
+                f.write_str("-")?;
+            }
+            f.write_str(["x", "y", "z"][axis])?;
+        }
+        Ok(())
+    }
+}
+
+/// The mesh file formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// STL, ASCII or binary (told apart by [`stl::parse_stl`]).
+    Stl,
+    /// Wavefront OBJ.
+    Obj,
+}
+
+impl MeshFormat {
+    /// The format named by a file name's extension (`.stl`, `.obj`, either followed by `.gz`;
+    /// case-insensitive), `None` for another name.
+    pub fn from_path(path: &Path) -> Option<MeshFormat> {
+        let name = path.file_name()?.to_string_lossy().to_ascii_lowercase();
+        let name = name.strip_suffix(".gz").unwrap_or(&name);
+        if name.ends_with(".stl") {
+            Some(MeshFormat::Stl)
+        } else if name.ends_with(".obj") {
+            Some(MeshFormat::Obj)
+        } else {
+            None
+        }
+    }
+
+    /// The format told from the content: STL if the text starts with `solid` or the size fits
+    /// a binary STL's triangle count, OBJ if the first statement is an OBJ keyword; `None`
+    /// otherwise.
+    pub fn sniff(bytes: &[u8]) -> Option<MeshFormat> {
+        if stl::looks_binary(bytes) || stl::starts_with_solid(bytes) {
+            return Some(MeshFormat::Stl);
+        }
+        let text = &bytes[..bytes.len().min(4096)];
+        for line in text.split(|&b| b == b'\n') {
+            let word = line.split(|b| b.is_ascii_whitespace()).find(|w| !w.is_empty());
+            match word {
+                None => continue,
+                Some(w) if w.starts_with(b"#") => continue,
+                Some(w) => {
+                    return [&b"v"[..], b"vn", b"vt", b"f", b"o", b"g", b"mtllib", b"usemtl", b"s"]
+                        .contains(&w)
+                        .then_some(MeshFormat::Obj)
+                }
+            }
+        }
+        None
+    }
+}
+
+/// Settings of [`read_mesh`] and [`parse_mesh`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshReadOptions {
+    /// The file's axes as hullskin's (default identity `x,y,z`).
+    pub axes: Axes,
+    /// Added to every vertex after `axes` (default 0): e.g. `(0, 0, T)` brings a mesh with
+    /// z = 0 at the waterline to z = 0 at the keel.
+    pub shift: Vec3,
+    /// Vertices closer than this (in the file's units) are merged into one. The default 0
+    /// merges only exactly equal coordinates, which is right for STL writers that print every
+    /// vertex the same way each time it appears; raise it for meshes whose shared corners
+    /// differ by round-off.
+    pub weld_tolerance: f64,
+}
+
+impl Default for MeshReadOptions {
+    fn default() -> Self {
+        MeshReadOptions { axes: Axes::default(), shift: Vec3::new(0.0, 0.0, 0.0), weld_tolerance: 0.0 }
+    }
+}
+
+/// Reads a mesh file: STL (ASCII or binary) or OBJ, optionally gzip-compressed. The format is
+/// taken from the extension (`.stl`, `.stl.gz`, `.obj`, `.obj.gz`), else from the content
+/// ([`MeshFormat::sniff`]); a gzip stream is recognised by its magic bytes.
+///
+/// # Errors
+/// [`HullError::Io`] when the file cannot be read; [`HullError::Input`] for a corrupt gzip
+/// stream, an unknown format, and every error of [`parse_mesh`].
+pub fn read_mesh(path: &Path, options: &MeshReadOptions) -> Result<TriMesh, HullError> {
+    let bytes = std::fs::read(path).map_err(|error| HullError::Io { path: path.to_path_buf(), error })?;
+    let source = path.display().to_string();
+    parse_mesh(&bytes, &source, MeshFormat::from_path(path), options)
+}
+
+/// True if `bytes` start with the gzip magic number `1f 8b` (RFC 1952, 2.3.1).
+pub fn is_gzip(bytes: &[u8]) -> bool {
+    bytes.starts_with(&[0x1f, 0x8b])
+}
+
+/// Decompresses a gzip stream (all its members), up to [`MAX_DECOMPRESSED`] bytes.
+///
+/// # Errors
+/// [`InputErrorKind::Mesh`] for a corrupt or truncated stream, or one that decompresses to
+/// more than [`MAX_DECOMPRESSED`] bytes.
+pub fn gunzip(bytes: &[u8], source: &str) -> Result<Vec<u8>, HullError> {
+    // The trailer's ISIZE (size mod 2^32) is a good first guess of the capacity.
+    let hint = bytes
+        .len()
+        .checked_sub(4)
+        .map_or(0, |i| u32::from_le_bytes([bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]) as usize);
+    let mut out = Vec::with_capacity(hint.min(MAX_DECOMPRESSED as usize));
+    let mut reader = flate2::read::MultiGzDecoder::new(bytes).take(MAX_DECOMPRESSED + 1);
+    reader.read_to_end(&mut out).map_err(|e| {
+        mesh_error(
+            Location::file(source),
+            format!("corrupt gzip stream after {} decompressed bytes: {e}", out.len()),
+            "a complete gzip file (RFC 1952)",
+        )
+    })?;
+    if out.len() as u64 > MAX_DECOMPRESSED {
+        return Err(mesh_error(
+            Location::file(source),
+            format!("the gzip stream decompresses to more than {MAX_DECOMPRESSED} bytes"),
+            "a mesh of at most 1 GiB uncompressed",
+        ));
+    }
+    Ok(out)
+}
+
+/// Parses a mesh held in memory; `source` names it in messages, `format` is the format when
+/// known (else sniffed from the content). Gzip-compressed bytes are decompressed first.
+///
+/// # Errors
+/// [`InputErrorKind::Mesh`] located at the line (text formats) or naming the byte offset
+/// (binary STL) of the first problem: see [`stl::parse_stl`] and [`obj::parse_obj`]; and for a
+/// mesh whose format cannot be told, or that has no triangle.
+pub fn parse_mesh(
+    bytes: &[u8],
+    source: &str,
+    format: Option<MeshFormat>,
+    options: &MeshReadOptions,
+) -> Result<TriMesh, HullError> {
+    let inflated;
+    let bytes = if is_gzip(bytes) {
+        inflated = gunzip(bytes, source)?;
+        &inflated[..]
+    } else {
+        bytes
+    };
+    let format = format.or_else(|| MeshFormat::sniff(bytes)).ok_or_else(|| {
+        mesh_error(
+            Location::file(source),
+            "a file that is neither STL nor OBJ".to_string(),
+            "an STL file (starting with \"solid\", or binary) or an OBJ file (v and f lines), optionally gzipped",
+        )
+    })?;
+    let soup = match format {
+        MeshFormat::Stl => stl::parse_stl(bytes, source)?,
+        MeshFormat::Obj => obj::parse_obj(bytes, source)?,
+    };
+    if soup.triangles.is_empty() {
+        return Err(mesh_error(Location::file(source), "no triangle".to_string(), "at least one facet"));
+    }
+    if !(options.weld_tolerance >= 0.0 && options.weld_tolerance.is_finite()) {
+        return Err(HullError::Config(format!(
+            "weld tolerance {}: expected a finite distance >= 0",
+            options.weld_tolerance
+        )));
+    }
+    let points: Vec<Vec3> = soup.vertices.iter().map(|&p| options.axes.apply(p) + options.shift).collect();
+    let (vertices, remap) = weld(&points, options.weld_tolerance);
+    let mut triangles = Vec::with_capacity(soup.triangles.len());
+    let mut degenerate = 0;
+    for t in &soup.triangles {
+        let [a, b, c] = t.map(|i| remap[i as usize]);
+        if a == b || b == c || c == a {
+            degenerate += 1;
+        } else {
+            triangles.push([a, b, c]);
+        }
+    }
+    Ok(TriMesh { source: source.to_string(), vertices, triangles, degenerate })
+}
+
+/// Triangles as read from a file, before welding: vertex positions and index triples (STL
+/// gives three new vertices per facet; OBJ its own vertex list).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriangleSoup {
+    /// Vertex positions in the file's axes.
+    pub vertices: Vec<Vec3>,
+    /// Triangles as indices into `vertices`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Merges points closer than `tol` (exactly equal ones for `tol == 0`; `-0.0` equals `0.0`):
+/// returns the distinct points, in order of first appearance, and for every input point the
+/// index of the point it became. With `tol > 0` each point joins the first earlier kept point
+/// within `tol` (found through a hash grid of cell `tol`), so the result does not depend on
+/// anything but the input order.
+pub fn weld(points: &[Vec3], tol: f64) -> (Vec<Vec3>, Vec<u32>) {
+    let mut kept: Vec<Vec3> = Vec::new();
+    let mut remap = Vec::with_capacity(points.len());
+    if tol > 0.0 {
+        let cell = |p: Vec3| [p.x, p.y, p.z].map(|c| (c / tol).floor() as i64);
+        let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+        for &p in points {
+            let c = cell(p);
+            let mut found: Option<u32> = None;
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    for dz in -1..=1 {
+                        for &i in grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]).into_iter().flatten() {
+                            if kept[i as usize].distance(p) <= tol && found.is_none_or(|f| i < f) {
+                                found = Some(i);
+                            }
+                        }
+                    }
+                }
+            }
+            let index = match found {
+                Some(i) => i,
+                None => {
+                    let i = kept.len() as u32;
+                    kept.push(p);
+                    grid.entry(c).or_default().push(i);
+                    i
+                }
+            };
+            remap.push(index);
+        }
+    } else {
+        let key = |p: Vec3| [p.x, p.y, p.z].map(|c| if c == 0.0 { 0 } else { c.to_bits() });
+        let mut map: HashMap<[u64; 3], u32> = HashMap::with_capacity(points.len() / 4);
+        for &p in points {
+            let next = kept.len() as u32;
+            let index = *map.entry(key(p)).or_insert(next);
+            if index == next {
+                kept.push(p);
+            }
+            remap.push(index);
+        }
+    }
+    (kept, remap)
+}
+
+/// An [`InputErrorKind::Mesh`] error at `at`.
+pub(crate) fn mesh_error(at: Location, found: String, expected: &str) -> HullError {
+    HullError::input(at, InputErrorKind::Mesh { found, expected: expected.to_string() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axes_parse_print_and_apply() {
+        let a: Axes = " -X , z,y ".parse().expect("valid axes");
+        assert_eq!(a.to_string(), "-x,z,y");
+        let p = a.apply(Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(p, Vec3::new(-1.0, 3.0, 2.0));
+        assert!(Axes::default().is_identity());
+        assert_eq!("x,y,z".parse::<Axes>().expect("identity"), Axes::default());
+        for bad in ["x,y", "x,x,z", "x,y,w", "x,y,z,x", "", "--x,y,z"] {
+            let e = bad.parse::<Axes>().expect_err(bad).to_string();
+            assert!(e.contains("each of x, y, z once"), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn exact_weld_merges_equal_points_and_signed_zeros() {
+        let p = |x, y, z| Vec3::new(x, y, z);
+        let pts = [p(0.0, 0.0, 0.0), p(1.0, 0.0, 0.0), p(-0.0, 0.0, 0.0), p(1.0, 0.0, 1e-300), p(1.0, 0.0, 0.0)];
+        let (kept, remap) = weld(&pts, 0.0);
+        assert_eq!(kept, vec![pts[0], pts[1], pts[3]]);
+        assert_eq!(remap, vec![0, 1, 0, 2, 1]);
+    }
+
+    #[test]
+    fn tolerance_weld_joins_the_first_earlier_point_within_reach() {
+        let p = |x: f64| Vec3::new(x, 0.5, 0.5);
+        // -0.009 joins 0.0 across a grid cell boundary (cells of 0.01); 0.025 does not
+        // (0.025 > 0.01 from both); 0.0305 joins 0.025.
+        let pts = [p(0.0), p(0.025), p(-0.009), p(0.0305), p(0.009)];
+        let (kept, remap) = weld(&pts, 0.01);
+        assert_eq!(kept, vec![p(0.0), p(0.025)]);
+        assert_eq!(remap, vec![0, 1, 0, 1, 0]);
+    }
+
+    #[test]
+    fn format_from_name_and_content() {
+        assert_eq!(MeshFormat::from_path(Path::new("a/Hull.STL.gz")), Some(MeshFormat::Stl));
+        assert_eq!(MeshFormat::from_path(Path::new("hull.obj")), Some(MeshFormat::Obj));
+        assert_eq!(MeshFormat::from_path(Path::new("hull.csv")), None);
+        assert_eq!(MeshFormat::sniff(b"  solid hull\nfacet"), Some(MeshFormat::Stl));
+        assert_eq!(MeshFormat::sniff(b"# made by hand\n\nv 0 0 0\n"), Some(MeshFormat::Obj));
+        assert_eq!(MeshFormat::sniff(b"section,x,y,z\n"), None);
+    }
+
+    #[test]
+    fn corrupt_gzip_is_an_error_naming_the_file() {
+        let e = parse_mesh(&[0x1f, 0x8b, 8, 0, 1, 2, 3], "hull.stl.gz", None, &MeshReadOptions::default())
+            .expect_err("corrupt");
+        let s = e.to_string();
+        assert!(s.starts_with("hull.stl.gz: corrupt gzip stream"), "{s}");
+    }
+
+    #[test]
+    fn edge_counts_of_a_tetrahedron_and_of_an_open_one() {
+        let v = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.0),
+        ];
+        let closed = TriMesh::try_new("t", v.clone(), vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]).expect("ok");
+        assert_eq!(closed.edge_counts(), EdgeCounts { edges: 6, open: 0, non_manifold: 0 });
+        let open = TriMesh::try_new("t", v.clone(), vec![[0, 2, 1], [0, 1, 3]]).expect("ok");
+        assert_eq!(open.edge_counts(), EdgeCounts { edges: 5, open: 4, non_manifold: 0 });
+        let e = TriMesh::try_new("t", v, vec![[0, 1, 4]]).expect_err("index 4 of 4 vertices");
+        assert!(e.to_string().contains("below the vertex count 4"), "{e}");
+    }
+}
