@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 use hull::optimize::OptimSettings;
-use hull::{FitConfig, FitMethod, Offsets, Units};
-use nurbs::fit::SkinParameterization;
+use hull::{FitConfig, FitMethod, Knuckles, Offsets, Units};
+use nurbs::fit::{CornerOptions, SkinParameterization};
 
 use crate::parse::{parse_pair, parse_param, parse_units};
 
@@ -46,6 +46,33 @@ pub struct SkinArgs {
     /// Design draft T (the 1.0 waterline) for a Series 60 table (with `--lpp` and `--beam`).
     #[arg(long, requires_all = ["lpp", "beam"])]
     pub design_draft: Option<f64>,
+    /// Knuckles (chines) of the sections: `auto` keeps every knuckle line found (a corner of
+    /// at least `--corner-angle` degrees, sharper than its neighbours, running through three
+    /// quarters of the sections) as a crease of the surface; `off` fits one smooth surface.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub knuckles: KnuckleMode,
+    /// Least turning angle, in degrees, of a section's corner for `--knuckles auto`.
+    #[arg(long, default_value = "30", value_parser = parse_corner_angle)]
+    pub corner_angle: f64,
+}
+
+/// The values of `--knuckles`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum KnuckleMode {
+    /// Keep the knuckle lines found in the sections.
+    Auto,
+    /// One smooth surface.
+    Off,
+}
+
+/// An angle in degrees strictly between 0 and 180.
+fn parse_corner_angle(s: &str) -> Result<f64, String> {
+    let a: f64 = s.trim().parse().map_err(|_| format!("`{s}` is not a number (expected degrees, e.g. 30)"))?;
+    if a > 0.0 && a < 180.0 {
+        Ok(a)
+    } else {
+        Err(format!("{a} is out of range (expected degrees between 0 and 180, exclusive)"))
+    }
 }
 
 impl Default for SkinArgs {
@@ -59,6 +86,8 @@ impl Default for SkinArgs {
             lpp: None,
             beam: None,
             design_draft: None,
+            knuckles: KnuckleMode::Auto,
+            corner_angle: CornerOptions::default().min_angle_deg,
         }
     }
 }
@@ -89,7 +118,13 @@ impl SkinArgs {
     /// The library's fit settings: these skinning flags with `method` and the weight
     /// optimisers' `optim`.
     pub fn fit_config(&self, method: FitMethod, optim: OptimSettings) -> FitConfig {
-        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim, ..FitConfig::default() }
+        let knuckles = match self.knuckles {
+            KnuckleMode::Off => Knuckles::Off,
+            KnuckleMode::Auto => {
+                Knuckles::Auto(CornerOptions { min_angle_deg: self.corner_angle, ..CornerOptions::default() })
+            }
+        };
+        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim, knuckles }
     }
 }
 

@@ -171,7 +171,7 @@ pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
     }
     let points: usize = out.offsets.sections.iter().map(|s| s.points.len()).sum();
     println!(
-        "{} sections of {} points ({} stations dropped), keel to deck edge on the starboard side",
+        "{} sections of {} points ({} stations dropped), keel to deck edge (or the mesh's top) on the starboard side",
         out.offsets.sections.len(),
         points / out.offsets.sections.len().max(1),
         out.dropped.len()

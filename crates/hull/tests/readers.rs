@@ -87,7 +87,13 @@ fn the_cb060_typo_is_reported_at_its_place_and_the_default_particulars_are_noted
         &ReadOptions { suspicious: SuspiciousPolicy::Refuse, ..ReadOptions::default() },
     );
     let e = refuse.err().map(|e| e.to_string()).unwrap_or_default();
-    assert!(e.ends_with("cb0p6.csv:2:4: half-breadth fraction 10 at station 0, waterline z/T = 0.25 (expected a fraction of the waterline's maximum half-breadth in [0, 1])"), "{e}");
+    assert!(
+        e.ends_with(
+            "cb0p6.csv:2:4: half-breadth fraction 10 at station 0, waterline z/T = 0.25 (expected \
+        a fraction of the waterline's maximum half-breadth in [0, 1])"
+        ),
+        "{e}"
+    );
 }
 
 /// The sections of `o` at the x of `want`'s sections (labels differ between the formats).

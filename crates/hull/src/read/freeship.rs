@@ -193,7 +193,8 @@ pub fn parse_freeship_offsets(text: &str, source: &str, options: &ReadOptions) -
         return Err(unexpected(
             Location::line(source, lineno),
             format!("line \"{line}\""),
-            "a FREE!ship offsets line: Station/Buttock/Waterline/Diagonal <position>, CONTROLCURVE, N segments., SEGMENT i, or a point x y z [KNUCKLE]",
+            "a FREE!ship offsets line: Station/Buttock/Waterline/Diagonal <position>, CONTROLCURVE, N \
+                segments., SEGMENT i, or a point x y z [KNUCKLE]",
         ));
     }
 

@@ -27,7 +27,7 @@
 //! ```
 //!
 //! - `站号`: the station number, 0 at the AP; `x = station spacing`, the spacing being
-//!   [`super::MainDimensions::lpp`]` / 20` when given, else `station_spacing_m` (or `lpp_m / 20`)
+//!   `Lpp / 20` when [`super::ReadOptions::dimensions`] are given, else `station_spacing_m` (or `lpp_m / 20`)
 //!   of a `principals.json` beside the file;
 //! - `NNNNWL`: the half-breadth on the waterline NNNN mm above the baseline;
 //! - `NNNN纵剖线`: the height of the buttock NNNN mm off the centreline;
@@ -132,7 +132,8 @@ pub fn parse_json_table(
     Err(unexpected(
         Location::file(source),
         found,
-        "a vessel.js ship with structure.hull.halfBreadths {waterlines, stations, table}, or an OpenHull table of stations each with a 站号 key",
+        "a vessel.js ship with structure.hull.halfBreadths {waterlines, stations, table}, or an OpenHull \
+            table of stations each with a 站号 key",
     ))
 }
 
@@ -267,7 +268,8 @@ fn vessel_js(hull: &Value, text: &str, source: &str, units: Units) -> Result<Rea
         Offsets { source: source.to_string(), units, sections },
         InputFormat::JsonTable,
         format!(
-            "vessel.js: x = station x LOA ({loa} m) from the aft end, forward; y = cell x BOA/2 ({boa} m); z = waterline x Depth ({depth} m) from the baseline; metres converted to {}",
+            "vessel.js: x = station x LOA ({loa} m) from the aft end, forward; y = cell x BOA/2 ({boa} m); z \
+                = waterline x Depth ({depth} m) from the baseline; metres converted to {}",
             units.plural_name()
         ),
     );
@@ -396,7 +398,8 @@ fn openhull(
                         return Err(unexpected(
                             at(k),
                             format!("key \"{k}\""),
-                            "OpenHull keys: 站号, NNNNWL, NNNN纵剖线, 船底线, 主甲板宽, 主甲边高, 主甲中高, 船楼甲板宽, 楼甲边高, 楼甲中高, 舷墙宽, 舷墙高",
+                            "OpenHull keys: 站号, NNNNWL, NNNN纵剖线, 船底线, 主甲板宽, 主甲边高, 主甲中高, 船楼甲板宽, 楼甲边高, 楼甲中高, \
+                                舷墙宽, 舷墙高",
                         ))
                     }
                 }
@@ -422,7 +425,8 @@ fn openhull(
         merged,
         InputFormat::JsonTable,
         format!(
-            "OpenHull: x = station x {spacing_m} m from the AP (station 0), forward; y, z from millimetres, z above the baseline; converted to {}",
+            "OpenHull: x = station x {spacing_m} m from the AP (station 0), forward; y, z from millimetres, z \
+                above the baseline; converted to {}",
             units.plural_name()
         ),
         notes,

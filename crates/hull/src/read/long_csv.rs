@@ -129,7 +129,9 @@ pub fn parse_long_csv(text: &str, source: &str, options: &ReadOptions) -> Result
             Location::line(source, header.line),
             InputErrorKind::Unexpected {
                 found: "a header without x, y and z columns".into(),
-                expected: "a long CSV header naming an x column (x or x_...), a z column (z or z_...) and a half-breadth column (y, y_... or ...halfbreadth...)".into(),
+                expected: "a long CSV header naming an x column (x or x_...), a z column (z or z_...) and a \
+                    half-breadth column (y, y_... or ...halfbreadth...)"
+                    .into(),
             },
         ));
     };
@@ -199,7 +201,9 @@ pub fn parse_long_csv(text: &str, source: &str, options: &ReadOptions) -> Result
                     row.at(source, k + 1),
                     InputErrorKind::Unexpected {
                         found: format!("kind of point \"{}\"", field(k)),
-                        expected: "a kind naming a waterline, buttock, keel (profile, stem, stern) or deck edge point, or a centreline deck, raised deck or bulwark point (not read)".into(),
+                        expected: "a kind naming a waterline, buttock, keel (profile, stem, stern) or deck \
+                            edge point, or a centreline deck, raised deck or bulwark point (not read)"
+                            .into(),
                     },
                 ));
             }

@@ -355,7 +355,8 @@ fn parse_format(text: &str, source: &str, options: &ReadOptions, dir: Option<&Pa
                 None => (
                     MainDimensions::SERIES60_CB060,
                     vec![format!(
-                        "no Lpp, B, T given: the Cb 0.60 parent's Lpp {} m, B {} m, T {} m assumed (L/B 7.5, B/T 2.5; right for the Cb 0.60 parent only)",
+                        "no Lpp, B, T given: the Cb 0.60 parent's Lpp {} m, B {} m, T {} m assumed (L/B 7.5, \
+                            B/T 2.5; right for the Cb 0.60 parent only)",
                         MainDimensions::SERIES60_CB060.lpp,
                         MainDimensions::SERIES60_CB060.beam,
                         MainDimensions::SERIES60_CB060.draft
@@ -368,7 +369,8 @@ fn parse_format(text: &str, source: &str, options: &ReadOptions, dir: Option<&Pa
                 offsets: t.offsets,
                 format,
                 axes: format!(
-                    "converted from Todd's stations: x = (1 - station/20) Lpp from the AP, forward; y = cell x MaxBm x B/2; z = (z/T) T; with Lpp {}, B {}, T {} {}",
+                    "converted from Todd's stations: x = (1 - station/20) Lpp from the AP, forward; y = cell \
+                        x MaxBm x B/2; z = (z/T) T; with Lpp {}, B {}, T {} {}",
                     dims.lpp, dims.beam, dims.draft, units
                 ),
                 notes,

@@ -118,8 +118,8 @@ pub(crate) fn looks_like_series60(recs: &[Record<'_>]) -> bool {
 /// [`HullError::Config`] for dimensions that are not finite and positive; [`HullError::Input`]
 /// at `source:line:column` for: an empty text, a header without waterlines, a waterline z/T or
 /// station number that is not a number, stations outside 0..20 or repeated, no `MaxBm` row or
-/// more than one, a `MaxBm` value outside (0, 1], a negative cell, a cell beyond the waterline
-/// columns, and (with [`SuspiciousPolicy::Refuse`]) a cell above 1.
+/// more than one, a `MaxBm` value outside (0, 1], a negative cell, fewer than two stations,
+/// and (with [`SuspiciousPolicy::Refuse`]) a cell above 1.
 pub fn parse_series60_table(
     text: &str,
     source: &str,
@@ -238,7 +238,8 @@ pub fn parse_series60_table(
                         || row.at(source, col),
                         || {
                             format!(
-                                "the half-breadth at station {label}, waterline z/T = {} as a fraction of the waterline's maximum, or an empty cell",
+                                "the half-breadth at station {label}, waterline z/T = {} as a fraction of the \
+                                    waterline's maximum, or an empty cell",
                                 zt[k]
                             )
                         },
@@ -298,7 +299,8 @@ pub fn parse_series60_table(
                         (
                             Some(r),
                             format!(
-                                "replaced by {r}, the linear interpolation in z of its station's cells {u0} (z/T = {}) and {u1} (z/T = {})",
+                                "replaced by {r}, the linear interpolation in z of its station's cells {u0} \
+                                    (z/T = {}) and {u1} (z/T = {})",
                                 zt[j0], zt[j1]
                             ),
                         )

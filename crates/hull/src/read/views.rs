@@ -29,7 +29,8 @@
 //! point (a horizontal run of the curve at exactly that height, such as a flat of bottom, gives
 //! the point's own `y` clamped to the run). A difference above the tolerance is a
 //! [`Disagreement`]. The keel point is put before the curve when the curve does not start on
-//! it (farther than the tolerance) and it is not above the curve's lowest point, the deck edge after it when it lies above its highest point, and curve points
+//! it (farther than the tolerance) and it is not above the curve's lowest point, the deck edge
+//! after it when it lies above its highest point, and curve points
 //! above the deck edge are cut off.
 //!
 //! **Without a body-plan curve** (offset tables) the section is built from the half-breadth
@@ -398,7 +399,8 @@ impl ThreeViews {
                     let above = frame.iter().find(|c| key(c) > key(b));
                     let (Some(lo), Some(hi)) = (below, above) else {
                         notes.push(format!(
-                            "station {}: {} point (y = {}, z = {}) has no keel or waterline point {} it; left out, not compared",
+                            "station {}: {} point (y = {}, z = {}) has no keel or waterline point {} it; left \
+                                out, not compared",
                             st.label,
                             b.label,
                             b.y,

@@ -456,14 +456,16 @@ mod tests {
     /// A chine section: keel `(0, 0)` to chine `(b, h)` in `n_bottom` chords, chine to sheer
     /// `(b + f, h + d)` in `n_side` chords, at `x`.
     fn chine_section(x: f64, b: f64, h: f64, f: f64, d: f64, n_bottom: usize, n_side: usize) -> Vec<Vec3> {
-        let mut pts: Vec<Vec3> = (0..=n_bottom).map(|i| i as f64 / n_bottom as f64).map(|t| Vec3::new(x, b * t, h * t)).collect();
+        let mut pts: Vec<Vec3> =
+            (0..=n_bottom).map(|i| i as f64 / n_bottom as f64).map(|t| Vec3::new(x, b * t, h * t)).collect();
         pts.extend((1..=n_side).map(|i| i as f64 / n_side as f64).map(|t| Vec3::new(x, b + f * t, h + d * t)));
         pts
     }
 
     #[test]
     fn turning_angles_of_a_square_corner_and_a_line() {
-        let q = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.0), Vec3::new(1.0, 3.0, 0.0)];
+        let q =
+            [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.0), Vec3::new(1.0, 3.0, 0.0)];
         let t = turning_angles(&q);
         // acos of an exact 0 and an exact 1: pi/2 and 0 to the last bit of acos.
         assert_near!(t[1], std::f64::consts::FRAC_PI_2, 1e-15);
@@ -557,7 +559,10 @@ mod tests {
             assert!(matches!(find_knuckle_lines(&s, &bad), Err(NurbsError::Incompatible { .. })), "{bad:?}");
         }
         let nan = vec![vec![Vec3::new(0.0, 0.0, 0.0), Vec3::new(f64::NAN, 0.0, 0.0)]];
-        assert!(matches!(find_knuckle_lines(&nan, &CornerOptions::default()), Err(NurbsError::NonFinitePoint { index: 1 })));
+        assert!(matches!(
+            find_knuckle_lines(&nan, &CornerOptions::default()),
+            Err(NurbsError::NonFinitePoint { index: 1 })
+        ));
         assert!(find_knuckle_lines(&[], &CornerOptions::default()).expect("nothing to find").is_empty());
     }
 

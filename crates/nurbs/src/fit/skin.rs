@@ -709,8 +709,7 @@ fn share_control_points(nu: usize, counts: &[usize], p: usize) -> Result<Vec<usi
     }
     let sum_n: usize = counts.iter().sum();
     let ideal: Vec<f64> = counts.iter().map(|&n| n as f64 * total as f64 / sum_n as f64).collect();
-    let mut share: Vec<usize> =
-        ideal.iter().zip(&hi).map(|(&x, &h)| (x.round() as usize).clamp(lo, h)).collect();
+    let mut share: Vec<usize> = ideal.iter().zip(&hi).map(|(&x, &h)| (x.round() as usize).clamp(lo, h)).collect();
     // Move one at a time where the share is furthest from its ideal, first piece on a tie.
     while share.iter().sum::<usize>() != total {
         let grow = share.iter().sum::<usize>() < total;
@@ -2032,7 +2031,8 @@ mod tests {
         );
         let mut uneven = vec![vec![3]; s.len()];
         uneven[4] = vec![2, 3];
-        for bad in [vec![vec![3]; 5], uneven, vec![vec![0]; s.len()], vec![vec![7]; s.len()], vec![vec![3, 3]; s.len()]] {
+        for bad in [vec![vec![3]; 5], uneven, vec![vec![0]; s.len()], vec![vec![7]; s.len()], vec![vec![3, 3]; s.len()]]
+        {
             let e = skin_interpolate_with_knuckles(&s, &bad, &opts).expect_err("bad list");
             assert!(matches!(e, NurbsError::Incompatible { .. }), "{e}");
         }
