@@ -15,7 +15,8 @@ pub struct SkinArgs {
     /// Offsets file: a sections CSV (header `section,x,y,z`) or an offset table CSV (first row
     /// station positions, first column waterline heights, cells half-breadths), or any format
     /// of `hull::read` (Series 60 table, long CSV, JSON table, point cloud, FREE!ship text),
-    /// recognised by its content. Without it the
+    /// recognised by its content; or a hull mesh (`.stl`, `.stl.gz`, `.obj`), sliced at
+    /// stations first (`--stations`, `--spacing`, `--at`, ...). Without it the
     /// built-in Series 60 Cb 0.60 parent hull is used.
     pub input: Option<PathBuf>,
     /// Control points NU,NV of the approximation and of the weight-optimised methods (u along
@@ -54,6 +55,9 @@ pub struct SkinArgs {
     /// Least turning angle, in degrees, of a section's corner for `--knuckles auto`.
     #[arg(long, default_value = "30", value_parser = parse_corner_angle)]
     pub corner_angle: f64,
+    /// How a mesh input (`.stl`, `.stl.gz`, `.obj`) is sliced into sections first.
+    #[command(flatten)]
+    pub mesh: crate::slice::MeshArgs,
 }
 
 /// The values of `--knuckles`.
@@ -88,6 +92,7 @@ impl Default for SkinArgs {
             design_draft: None,
             knuckles: KnuckleMode::Auto,
             corner_angle: CornerOptions::default().min_angle_deg,
+            mesh: crate::slice::MeshArgs::default(),
         }
     }
 }
@@ -96,6 +101,7 @@ impl SkinArgs {
     /// The offsets: the input file read in `units`, or the built-in sample.
     pub fn offsets(&self) -> anyhow::Result<Offsets> {
         Ok(match &self.input {
+            Some(path) if crate::slice::is_mesh_path(path) => crate::slice::mesh_offsets(path, &self.mesh, self.units)?,
             Some(path) => report_reading(hull::read_offsets_with(path, &self.read_options())?),
             None => hull::series60_sample(),
         })

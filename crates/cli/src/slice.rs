@@ -201,7 +201,8 @@ fn print_mesh_hydrostatics(m: &MeshHydrostatics, units: Units) {
     }
     if m.open_edges_below > 0 {
         eprintln!(
-            "hullskin: warning: the mesh has {} open edges below the waterline: its volume is not that of a closed hull",
+            "hullskin: warning: the mesh has {} open edges below the waterline: its volume is not that of a \
+             closed hull",
             m.open_edges_below
         );
     }

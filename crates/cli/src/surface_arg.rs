@@ -34,6 +34,9 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
     let Some(path) = &skin.input else {
         return Ok(Input::Offsets(hull::series60_sample()));
     };
+    if crate::slice::is_mesh_path(path) {
+        return Ok(Input::Offsets(crate::slice::mesh_offsets(path, &skin.mesh, skin.units)?));
+    }
     let source = path.display().to_string();
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
     let text = hull::decode(&bytes, &source)?;

@@ -104,3 +104,31 @@ fn bad_meshes_are_refused_naming_the_file_and_the_place() {
     assert!(!o.status.success());
     assert!(text(&o).1.contains("each of x, y, z once"), "{}", text(&o).1);
 }
+
+#[test]
+fn fit_and_hydrostatics_slice_a_mesh_input_with_the_mesh_flags() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mesh = testdata("mesh/wigley.stl.gz");
+    let mesh = mesh.to_str().expect("utf-8 path");
+    let flags = ["--shift", SHIFT, "--stations", "15", "--spacing", "uniform", "--points", "10"];
+    let o = hullskin(dir.path(), &[&["fit", mesh, "--method", "interp", "-o", "out"][..], &flags].concat());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let r = read_json(&dir.path().join("out/report.json"));
+    assert_eq!((r["input"]["sections"].as_u64(), r["input"]["points"].as_u64()), (Some(15), Some(150)), "{r}");
+    // The same sections as `slice` writes: fitting its CSV gives the same surface, bit for bit.
+    let o = hullskin(dir.path(), &[&["slice", mesh, "-o", "s.csv"][..], &flags].concat());
+    assert!(o.status.success(), "{}", text(&o).1);
+    let o = hullskin(dir.path(), &["fit", "s.csv", "--method", "interp", "-o", "csv"]);
+    assert!(o.status.success(), "{}", text(&o).1);
+    let surface = |d: &str| read_json(&dir.path().join(d).join("surface.json"));
+    assert_eq!(surface("out")["control_points"], surface("csv")["control_points"]);
+    // `hydrostatics` fits a mesh input too: the Wigley's volume at T within its faceting.
+    let o =
+        hullskin(dir.path(), &[&["hydrostatics", mesh, "--draft", "0.0625", "--format", "json"][..], &flags].concat());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let vol = v["rows"][0]["vol"].as_f64().unwrap_or_else(|| panic!("{v}"));
+    assert!((vol / (4.0 / 9.0 * 0.1 * T) - 1.0).abs() < 0.0065, "{vol}");
+}

@@ -749,8 +749,9 @@ mod tests {
             let f = entity_fields(&text, 2 * k + 3);
             let n = c.num_control_points();
             let ints: Vec<i64> = f[..7].iter().map(|x| x.parse().expect("integer")).collect();
-            // The sample's iso-curves are neither planar, closed nor polynomial.
-            assert_eq!(ints, [126, n as i64 - 1, c.degree() as i64, 0, 0, 0, 0], "curve {k}");
+            // The sample's iso-curves are neither closed nor polynomial.
+            let planar = i64::from(plane_normal(&c.control_points()).is_some());
+            assert_eq!(ints, [126, n as i64 - 1, c.degree() as i64, planar, 0, 0, 0], "curve {k}");
             let nums: Vec<f64> = f[7..].iter().map(|x| num(x)).collect();
             let knots = c.knots().as_slice();
             assert_eq!(nums.len(), knots.len() + 4 * n + 5);
@@ -759,7 +760,9 @@ mod tests {
             for (i, p) in c.control_points().iter().enumerate() {
                 assert_eq!(nums[knots.len() + n + 3 * i..][..3], [p.x, p.y, p.z]);
             }
-            assert_eq!(nums[nums.len() - 5..], [0.0, 1.0, 0.0, 0.0, 0.0]);
+            assert_eq!(nums[nums.len() - 5..nums.len() - 3], [0.0, 1.0]);
+            let normal = plane_normal(&c.control_points()).unwrap_or(Vec3::new(0.0, 0.0, 0.0));
+            assert_eq!(nums[nums.len() - 3..], [normal.x, normal.y, normal.z]);
         }
     }
 

@@ -26,6 +26,10 @@ use rayon::prelude::*;
 
 use crate::HullError;
 
+/// Smallest tolerance accepted, relative to the diagonal of the control-net box: ten thousand
+/// times the rounding of a coordinate.
+pub const MIN_TOLERANCE_REL: f64 = 1e-12;
+
 /// Largest control-point count per direction before the approximation gives up.
 pub const MAX_CONTROL_POINTS: usize = 4096;
 
@@ -108,6 +112,46 @@ fn fit(s: &NurbsSurface, ku: &KnotVector, kv: &KnotVector) -> Result<NurbsSurfac
     NurbsSurface::try_new(ku.clone(), kv.clone(), &pts, None).map_err(fail)
 }
 
+/// The error of the fit in each direction alone, per knot span: along u, the largest
+/// `|S(u, v) - C_v(u)|` over the check grid, `C_v` the least-squares polynomial curve on `ku`
+/// through the samples of the iso-curve `S(., v)` (for every check `v`); along v likewise.
+/// The tensor-product fit's error is about their sum, so a direction whose error is small
+/// needs no knots.
+fn directional_errors(
+    s: &NurbsSurface,
+    ku: &KnotVector,
+    kv: &KnotVector,
+    cu: &[f64],
+    cv: &[f64],
+) -> Result<(Vec<f64>, Vec<f64>), HullError> {
+    let fail = |e: nurbs::NurbsError| HullError::Fit { method: "polynomial approximation", reason: e };
+    // Errors along `k` (a knot vector of the first parameter of `eval`) for every `other`.
+    let along = |k: &KnotVector, checks: &[f64], others: &[f64], eval: &(dyn Fn(f64, f64) -> nurbs::Vec3 + Sync)| {
+        let b = breaks(k);
+        let params = spread(&b, k.degree() + 1);
+        let solver = LeastSquaresSolver::new(&params, k).map_err(fail)?;
+        let per_line: Vec<Vec<f64>> = others
+            .par_iter()
+            .map(|&o| {
+                let data: Vec<[f64; 3]> = params.iter().map(|&t| eval(t, o).to_array()).collect();
+                let ctrl: Vec<nurbs::Vec3> = solver.solve(&data)?.into_iter().map(nurbs::Vec3::from_array).collect();
+                let curve = nurbs::NurbsCurve::try_new(k.clone(), &ctrl, None)?;
+                let mut e = vec![0.0f64; b.len() - 1];
+                for &t in checks {
+                    let i = span_of(&b, t);
+                    e[i] = e[i].max(eval(t, o).distance(curve.point(t)));
+                }
+                Ok(e)
+            })
+            .collect::<Result<_, nurbs::NurbsError>>()
+            .map_err(fail)?;
+        Ok::<Vec<f64>, HullError>((0..b.len() - 1).map(|i| per_line.iter().fold(0.0f64, |m, e| m.max(e[i]))).collect())
+    };
+    let eu = along(ku, cu, cv, &|u, v| s.point(u, v))?;
+    let ev = along(kv, cv, cu, &|v, u| s.point(u, v))?;
+    Ok((eu, ev))
+}
+
 /// A polynomial surface within `tolerance` (a length in the surface's unit) of `s` (see the
 /// module docs).
 ///
@@ -117,8 +161,13 @@ fn fit(s: &NurbsSurface, ku: &KnotVector, kv: &KnotVector) -> Result<NurbsSurfac
 /// least-squares system fails (cannot happen with the samples used, which satisfy the
 /// Schoenberg-Whitney condition).
 pub fn polynomial_approximation(s: &NurbsSurface, tolerance: f64) -> Result<PolynomialApproximation, HullError> {
-    if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(HullError::Config(format!("approximation tolerance {tolerance}: expected a positive length")));
+    let (lo, hi) = s.control_bounds();
+    let floor = MIN_TOLERANCE_REL * (hi - lo).norm();
+    if !(tolerance.is_finite() && tolerance > 0.0 && tolerance >= floor) {
+        return Err(HullError::Config(format!(
+            "approximation tolerance {tolerance}: expected a length of at least {floor:.3e} ({MIN_TOLERANCE_REL:e} of \
+             the surface's size; below that rounding dominates)"
+        )));
     }
     let w = s.weights();
     if w.iter().all(|&x| x == w[0]) {
@@ -157,12 +206,17 @@ pub fn polynomial_approximation(s: &NurbsSurface, tolerance: f64) -> Result<Poly
                 refinements,
             });
         }
-        let mut split_u = vec![false; bu.len() - 1];
-        let mut split_v = vec![false; bv.len() - 1];
-        for &(i, j, e) in &errors {
-            if e > tolerance {
-                split_u[i] = true;
-                split_v[j] = true;
+        // Split the spans whose one-directional error exceeds half the tolerance; if none
+        // does, every span of every offending cell.
+        let (eu, ev) = directional_errors(s, &ku, &kv, &cu, &cv)?;
+        let mut split_u: Vec<bool> = eu.iter().map(|&e| e > 0.5 * tolerance).collect();
+        let mut split_v: Vec<bool> = ev.iter().map(|&e| e > 0.5 * tolerance).collect();
+        if !split_u.iter().chain(&split_v).any(|&b| b) {
+            for &(i, j, e) in &errors {
+                if e > tolerance {
+                    split_u[i] = true;
+                    split_v[j] = true;
+                }
             }
         }
         let insert = |k: &KnotVector, b: &[f64], split: &[bool]| -> Result<KnotVector, HullError> {
@@ -258,9 +312,8 @@ mod tests {
     #[test]
     fn bad_tolerances_are_refused() {
         let s = quarter_cylinder(1.0);
-        for t in [0.0, -1.0, f64::NAN] {
-            assert!(matches!(polynomial_approximation(&s, t), Err(HullError::Config(_))));
+        for t in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-300] {
+            assert!(matches!(polynomial_approximation(&s, t), Err(HullError::Config(_))), "{t}");
         }
-        assert!(matches!(polynomial_approximation(&s, 1e-300), Err(HullError::Config(_))));
     }
 }

@@ -37,6 +37,10 @@ use crate::HullError;
 /// Factor on the tolerance for the edge-midpoint deviation (see the module docs).
 pub const MIDPOINT_FACTOR: f64 = 0.75;
 
+/// Smallest tolerance accepted, relative to the diagonal of the control-net box: the mesh
+/// formats hold f32 coordinates (relative precision 6e-8), so a tighter chord is pointless.
+pub const MIN_TOLERANCE_REL: f64 = 1e-7;
+
 /// Largest number of grid lines per direction before the tessellation gives up.
 pub const MAX_GRID_LINES: usize = 8192;
 
@@ -237,8 +241,13 @@ fn nudged(s: &NurbsSurface, u: f64, v: f64) -> (f64, f64) {
 /// the surface's size).
 pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Result<TriangleMesh, HullError> {
     let tol = options.tolerance;
-    if !(tol.is_finite() && tol > 0.0) {
-        return Err(HullError::Config(format!("tessellation tolerance {tol}: expected a positive length")));
+    let (lo, hi) = surface.control_bounds();
+    let floor = MIN_TOLERANCE_REL * (hi - lo).norm();
+    if !(tol.is_finite() && tol > 0.0 && tol >= floor) {
+        return Err(HullError::Config(format!(
+            "tessellation tolerance {tol}: expected a length of at least {floor:.3e} ({MIN_TOLERANCE_REL:e} of the \
+             surface's size)"
+        )));
     }
     let mut gu = initial_params(surface.knots_u().as_slice(), surface.domain_u());
     let mut gv = initial_params(surface.knots_v().as_slice(), surface.domain_v());
@@ -292,7 +301,6 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
             }
         }
     }
-    let (lo, hi) = surface.control_bounds();
     let eps = 1e-12 * (hi - lo).norm();
     triangles.retain(|t| {
         let [a, b, c] = t.map(|k| positions[k as usize]);
@@ -487,9 +495,8 @@ mod tests {
     #[test]
     fn bad_tolerances_are_refused() {
         let s = quarter_cylinder(2.0, 3.0);
-        for t in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        for t in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-300] {
             assert!(matches!(tessellate(&s, &opts(t)), Err(HullError::Config(_))), "{t}");
         }
-        assert!(matches!(tessellate(&s, &opts(1e-300)), Err(HullError::Config(_))));
     }
 }

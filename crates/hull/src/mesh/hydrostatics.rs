@@ -1,13 +1,13 @@
 //! Hydrostatics of a mesh at a draft, to compare with those of a fitted surface
-//! ([`crate::hydrostatics`]).
+//! ([`crate::hydrostatics`](mod@crate::hydrostatics)).
 //!
 //! # Method
 //!
 //! Every triangle is clipped to the wet side `z <= T` (Sutherland-Hodgman against one plane;
-//! a triangle lying in the waterplane counts as dry) and the figures are sums over the clipped triangles, by the divergence theorem as in
-//! [`crate::hydrostatics`]: with `F = (0, y g, 0)`, `div F = g`, and `F . n = 0` on the
-//! centre plane (`y = 0`), on the waterplane and on any transom at constant x (`n_y = 0`), so
-//! the body needs no closing faces there:
+//! a triangle lying in the waterplane counts as dry) and the figures are sums over the clipped
+//! triangles, by the divergence theorem as in [`crate::hydrostatics`](mod@crate::hydrostatics): with `F = (0, y g, 0)`,
+//! `div F = g`, and `F . n = 0` on the centre plane (`y = 0`), on the waterplane and on any
+//! transom at constant x (`n_y = 0`), so the body needs no closing faces there:
 //!
 //! ```text
 //! V      = sum ∫ y n_y dA           V LCB = sum ∫ x y n_y dA       V KB = sum ∫ z y n_y dA

@@ -444,7 +444,9 @@ pub fn weld(points: &[Vec3], tol: f64) -> (Vec<Vec3>, Vec<u32>) {
             for dx in -1..=1 {
                 for dy in -1..=1 {
                     for dz in -1..=1 {
-                        for &i in grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]).into_iter().flatten() {
+                        // Wrapping: cells of coordinates beyond i64 (saturated) never panic.
+                        let key = [c[0].wrapping_add(dx), c[1].wrapping_add(dy), c[2].wrapping_add(dz)];
+                        for &i in grid.get(&key).into_iter().flatten() {
                             if kept[i as usize].distance(p) <= tol && found.is_none_or(|f| i < f) {
                                 found = Some(i);
                             }
