@@ -79,7 +79,8 @@ def check_stl(path, checks, out):
         corners = stored["v"].astype(float)
     else:
         text = data.decode("ascii")
-        checks.add("ASCII STL solid ... endsolid", text.startswith("solid") and text.rstrip().split("\n")[-1].startswith("endsolid"))
+        last = text.rstrip().split("\n")[-1]
+        checks.add("ASCII STL solid ... endsolid", text.startswith("solid") and last.startswith("endsolid"))
         normals, verts = [], []
         for line in text.splitlines():
             t = line.split()
@@ -154,7 +155,8 @@ def check_glb(path, checks, out):
 
     checks.add("asset.version 2.0", doc.get("asset", {}).get("version") == "2.0", doc.get("asset"))
     buffers = doc.get("buffers", [])
-    ok = len(buffers) == 1 and "uri" not in buffers[0] and buffers[0]["byteLength"] <= blen <= buffers[0]["byteLength"] + 3
+    ok = len(buffers) == 1 and "uri" not in buffers[0]
+    ok = ok and buffers[0]["byteLength"] <= blen <= buffers[0]["byteLength"] + 3
     checks.add("one buffer, the BIN chunk", ok, buffers)
     views = doc.get("bufferViews", [])
     for k, v in enumerate(views):

@@ -11,7 +11,8 @@ holds
    "units": "m" | "mm" | "ft" | "in",           # STEP (or IGES without "iges_units")
    "samples": [[u, v, x, y, z], ...],           # points of our own evaluator, in the file's units
    "curves": [{"degree": p, "knots": [...], "control_points": [[x, y, z], ...],
-               "weights": [...], "samples": [[t, x, y, z], ...]}, ...]}   # optional
+               "weights": [...], "samples": [[t, x, y, z], ...]}, ...],   # optional
+   "reference": {"samples": [[u, v, x, y, z], ...], "tolerance": t}}     # optional
 
 The file is read twice:
   * "native": xstep.cascade.unit set to the file's own unit, so OCCT must not scale;
@@ -25,7 +26,9 @@ The file's unit must be the expected one (IGES: global section flag and name; ST
 length unit OCCT finds in the representation context). With "curves", the shape must also
 hold exactly that many free edges (not bounding a face), in order, each a Geom_BSplineCurve
 with our degree, pole count, knots, poles, weights and C(t) at the samples, within the same
-tolerance.
+tolerance. With "reference" (the rational surface a polynomial export approximates), OCCT's
+S(u, v) must be within "tolerance" (a length in the file's units) of every reference point;
+the largest distance is reported as reference_deviation.
 
 Prints a JSON summary on stdout; exit status 0 if every check passed, 1 on a mismatch,
 2 if the inputs could not be read.
@@ -185,7 +188,7 @@ def check_curves(checks, label, shape, factor, expected, size):
     worst = 0.0
     compared = 0
     for k, (edge, ours) in enumerate(zip(edges, curves)):
-        c, _first, _last = BRep_Tool.Curve_s(edge, 0.0, 0.0)
+        c = BRep_Tool.Curve_s(edge, 0.0, 0.0)
         if isinstance(c, Geom_TrimmedCurve):
             c = c.BasisCurve()
         if not checks.add(f"{label}: curve {k} is a B-spline", isinstance(c, Geom_BSplineCurve), type(c).__name__):
@@ -325,6 +328,20 @@ def check_read(checks, label, path, cascade_unit, factor, expected):
         point_err <= REL_TOL and len(expected["samples"]) > 0,
         f"max error {point_err:.3e} of size {size}",
     )
+    # A second surface the file approximates (the rational original of a polynomial export):
+    # OCCT's S(u, v) within the given tolerance (file units) of its points.
+    reference = expected.get("reference")
+    if reference:
+        dev = 0.0
+        for u, v, x, y, z in reference["samples"]:
+            pt = s.Value(u, v)
+            dev = max(dev, math.dist((pt.X(), pt.Y(), pt.Z()), (x * factor, y * factor, z * factor)) / factor)
+        info["reference_deviation"] = dev
+        checks.add(
+            f"{label}: within {reference['tolerance']} of the reference at {len(reference['samples'])} points",
+            dev <= reference["tolerance"] and len(reference["samples"]) > 0,
+            f"max deviation {dev:.3e}",
+        )
     # The scale OCCT applied, measured: the largest pole coordinate over ours.
     ours_max = max(abs(c) for pt in points for c in pt)
     occ_max = max(

@@ -9,6 +9,7 @@ use clap::{Parser, Subcommand};
 
 mod compare;
 mod digitize;
+mod export;
 mod fit;
 mod hydrostatics;
 mod optim_args;
@@ -50,6 +51,9 @@ enum Command {
     /// deck edge on the starboard side, and write them as a sections CSV; optionally the
     /// mesh's hydrostatics at a draft and a fitted surface measured against the mesh.
     Slice(slice::SliceArgs),
+    /// Export a surface (a surface.json, or offsets fitted first) as STEP, IGES (with section
+    /// curves, or a polynomial approximation), DXF 3-D lines, STL, OBJ or binary glTF.
+    Export(export::ExportArgs),
 }
 
 fn main() -> ExitCode {
@@ -71,6 +75,7 @@ fn run() -> anyhow::Result<ExitCode> {
         Some(Command::Report(args)) => report::run(&args),
         Some(Command::Digitize(args)) => digitize::run(&args),
         Some(Command::Slice(args)) => slice::run(&args),
+        Some(Command::Export(args)) => export::run(&args),
         None => fit::run(&fit::FitArgs::default()),
     }
 }

@@ -13,9 +13,14 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use hull::export::{write_step, StepMeta, SurfaceFile};
+use hull::export::mesh_out::{curvature_colors, srgb_to_linear};
+use hull::export::{
+    greville_v, polynomial_approximation, section_curves, section_parameters, tessellate, write_glb, write_iges,
+    write_iges_model, write_obj, write_step, write_stl_ascii, write_stl_binary, IgesMeta, StepMeta, SurfaceFile,
+    TessellationOptions, TriangleMesh,
+};
 use hull::Units;
-use nurbs::{KnotVector, NurbsCurve, NurbsSurface, Vec3};
+use nurbs::{KnotVector, NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
 
 fn workspace_root() -> PathBuf {
@@ -294,4 +299,443 @@ fn occt_step_check_detects_a_mismatch() {
     assert_eq!(code, 1, "{summary}");
     let failed = summary["failed"].to_string();
     assert!(failed.contains("length unit") && failed.contains("default_mm: poles"), "{failed}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// IGES: section curves and the polynomial approximation
+
+fn iges_meta(units: Units, name: &str) -> IgesMeta {
+    let mut m = IgesMeta::new(units.into(), name, "20240102.030405");
+    m.author = "hullskin test".into();
+    m
+}
+
+/// The surface and its skinned sections (entity 126) read back by OCCT: one face, then as many
+/// free B-spline edges as sections, each equal to ours at 21 points; the sections of an
+/// interpolated fit pass through the offsets.
+#[test]
+fn occt_reads_iges_section_curves() {
+    let Some(python) = occt_python() else { return };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let offsets = hull::series60_sample();
+    let fit = hull::fit_offsets(&offsets, &hull::FitConfig { method: hull::FitMethod::Interp, ..Default::default() })
+        .expect("fits");
+    let s = &fit.surface;
+    let vs = section_parameters(&fit.params);
+    assert_eq!(vs.len(), offsets.sections.len());
+    let curves = section_curves(s, &vs);
+    // The sample's stem section is one point, which no curve entity can hold.
+    let collapsed = offsets.sections.iter().filter(|sec| sec.points.windows(2).all(|w| w[0] == w[1])).count();
+    assert_eq!(curves.len(), vs.len() - collapsed);
+    // Interpolation: the section at v_k passes through its offsets at their u.
+    let size = size(s);
+    let mut worst = 0.0f64;
+    for (sec, params) in offsets.sections.iter().zip(&fit.params) {
+        let c = s.iso_curve_u(params[0].1);
+        for (p, uv) in sec.points.iter().zip(params) {
+            worst = worst.max(c.point(uv.0).distance(*p) / size);
+        }
+    }
+    assert!(worst < 1e-9, "a section curve misses its offsets by {worst:.2e} of the size");
+
+    for (name, surface, curves) in [
+        ("s60_sections", s.clone(), curves.clone()),
+        (
+            "rational_sections",
+            rational_bicubic(),
+            section_curves(&rational_bicubic(), &greville_v(&rational_bicubic())),
+        ),
+    ] {
+        let igs = dir.path().join(format!("{name}.igs"));
+        let mut out = Vec::new();
+        write_iges_model(&mut out, Some(&surface), &curves, &iges_meta(Units::Metre, "c.igs")).expect("writes");
+        std::fs::write(&igs, out).expect("write");
+        let exp = dir.path().join(format!("{name}.json"));
+        write_expected(&exp, &surface, Units::Metre, Some(&curves));
+        let (code, summary) = run_tool(&python, "occt_check.py", &[&igs, &exp]);
+        assert_passed(name, code, &summary);
+        let r = &summary["reads"]["native"];
+        assert_eq!(r["curves"].as_u64(), Some(curves.len() as u64));
+        eprintln!(
+            "{name}: OCCT read {} curves, curve point err {:.1e}, surface point err {:.1e} of the size",
+            curves.len(),
+            r["max_curve_point_error_rel"].as_f64().unwrap_or(f64::NAN),
+            r["max_point_error_rel"].as_f64().unwrap_or(f64::NAN)
+        );
+    }
+}
+
+/// The polynomial approximation of rational surfaces, written as a polynomial entity 128:
+/// OCCT reads it exactly, and its points are within the tolerance of the rational original.
+#[test]
+fn occt_reads_the_polynomial_approximation() {
+    let Some(python) = occt_python() else { return };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (_, s60_rational) = series60();
+    for (name, s, rel) in [
+        ("s60_rational", s60_rational.clone(), 1e-5),
+        ("rational_bicubic", rational_bicubic(), 1e-6),
+        ("quarter_cylinder", quarter_cylinder(2.0, 3.0), 1e-7),
+    ] {
+        let tol = rel * size(&s);
+        let approx = polynomial_approximation(&s, tol).expect("approximates");
+        assert!(!approx.exact && !approx.surface.is_rational() && approx.max_deviation <= tol);
+        let igs = dir.path().join(format!("{name}.igs"));
+        let mut out = Vec::new();
+        write_iges(&mut out, &approx.surface, &iges_meta(Units::Metre, "p.igs")).expect("writes");
+        std::fs::write(&igs, out).expect("write");
+        let exp = dir.path().join(format!("{name}.json"));
+        write_expected(&exp, &approx.surface, Units::Metre, None);
+        // The rational original at points off the approximation's check grid.
+        let mut doc: Value = serde_json::from_str(&std::fs::read_to_string(&exp).expect("read")).expect("JSON");
+        doc["reference"] = json!({"samples": samples(&s), "tolerance": tol});
+        std::fs::write(&exp, doc.to_string()).expect("write");
+        let (code, summary) = run_tool(&python, "occt_check.py", &[&igs, &exp]);
+        assert_passed(name, code, &summary);
+        eprintln!(
+            "{name}: {}x{} -> {}x{} polynomial poles after {} refinements; deviation {:.2e} (ours, {} points), \
+             {:.2e} (OCCT, 88 points), tolerance {tol:.2e}",
+            s.n_u(),
+            s.n_v(),
+            approx.surface.n_u(),
+            approx.surface.n_v(),
+            approx.refinements,
+            approx.max_deviation,
+            approx.check_points,
+            summary["reads"]["native"]["reference_deviation"].as_f64().unwrap_or(f64::NAN)
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Meshes
+
+fn mesh_python() -> Option<String> {
+    tools_python("HULLSKIN_SKIP_MESH", "trimesh/pygltflib check of the mesh exports")
+}
+
+/// The file's vertices, faces and per-vertex or per-face normals as the Python readers see
+/// them, mapped back to model axes and units.
+struct ReadMesh {
+    vertices: Vec<Vec3>,
+    faces: Vec<[usize; 3]>,
+    face_normals: Vec<Vec3>,
+    vertex_normals: Vec<Vec3>,
+    colors: Vec<[f64; 3]>,
+}
+
+fn vec3s(v: &Value, map: impl Fn([f64; 3]) -> Vec3) -> Vec<Vec3> {
+    v.as_array()
+        .map(|a| {
+            a.iter()
+                .map(|p| {
+                    let c: Vec<f64> =
+                        p.as_array().expect("a triple").iter().map(|x| x.as_f64().expect("num")).collect();
+                    map([c[0], c[1], c[2]])
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+fn read_mesh(python: &str, path: &Path, units: Units) -> ReadMesh {
+    let (code, summary) = run_tool(python, "mesh_check.py", &[path]);
+    assert_passed(&path.display().to_string(), code, &summary);
+    let glb = summary["format"] == "glb";
+    let k = units.metres_per_unit();
+    // glTF: (X, Y, Z) = (y, z, x) in metres.
+    let point = |c: [f64; 3]| if glb { Vec3::new(c[2] / k, c[0] / k, c[1] / k) } else { Vec3::new(c[0], c[1], c[2]) };
+    let dir = |c: [f64; 3]| if glb { Vec3::new(c[2], c[0], c[1]) } else { Vec3::new(c[0], c[1], c[2]) };
+    let faces = summary["faces"]
+        .as_array()
+        .expect("faces")
+        .iter()
+        .map(|f| {
+            let i: Vec<usize> =
+                f.as_array().expect("a face").iter().map(|x| x.as_u64().expect("index") as usize).collect();
+            [i[0], i[1], i[2]]
+        })
+        .collect();
+    ReadMesh {
+        vertices: vec3s(&summary["vertices"], point),
+        faces,
+        face_normals: vec3s(&summary["face_normals"], dir),
+        vertex_normals: vec3s(&summary["vertex_normals"], dir),
+        colors: vec3s(&summary["colors"], |c| Vec3::new(c[0], c[1], c[2])).iter().map(|c| [c.x, c.y, c.z]).collect(),
+    }
+}
+
+/// Distance from `q` to the triangle `abc` (Ericson, *Real-Time Collision Detection* 5.1.5).
+fn point_triangle_distance(q: Vec3, a: Vec3, b: Vec3, c: Vec3) -> f64 {
+    let (ab, ac, ap) = (b - a, c - a, q - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return q.distance(a);
+    }
+    let bp = q - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return q.distance(b);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return q.distance(a + ab * (d1 / (d1 - d3)));
+    }
+    let cp = q - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return q.distance(c);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return q.distance(a + ac * (d2 / (d2 - d6)));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return q.distance(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    q.distance(a + ab * (vb * denom) + ac * (vc * denom))
+}
+
+#[derive(Default, Debug)]
+struct MeshDeviation {
+    /// Largest |vertex read - S(u, v)| over the size.
+    vertex_rel: f64,
+    /// Largest distance from a triangle's centroid or edge midpoint to the surface.
+    chord: f64,
+    /// Largest distance from a surface sample to the mesh.
+    surface_to_mesh: f64,
+}
+
+/// The surface point of mesh vertex `k`, mirrored for the port half.
+fn vertex_on_surface(s: &NurbsSurface, mesh: &TriangleMesh, mirror: bool, k: usize) -> Vec3 {
+    let (u, v) = mesh.params[k];
+    let p = s.point(u, v);
+    if mirror && k >= mesh.positions.len() / 2 {
+        Vec3::new(p.x, -p.y, p.z)
+    } else {
+        p
+    }
+}
+
+/// Compare a mesh read back with the surface it was made from: every vertex with the surface
+/// at its parameters, chords (triangle centroids and edge midpoints) projected onto the
+/// surface, and surface points against the triangles.
+fn compare_mesh(
+    s: &NurbsSurface,
+    mesh: &TriangleMesh,
+    mirror: bool,
+    read: &ReadMesh,
+    per_corner: bool,
+) -> MeshDeviation {
+    let size = size(s);
+    let on_surface = |k: usize| vertex_on_surface(s, mesh, mirror, k);
+    let mut dev = MeshDeviation::default();
+    // Vertices: STL has three per triangle in triangle order; OBJ and glTF keep ours.
+    let corner_ids: Vec<usize> = if per_corner {
+        mesh.triangles.iter().flat_map(|t| t.map(|k| k as usize)).collect()
+    } else {
+        (0..mesh.positions.len()).collect()
+    };
+    assert_eq!(read.vertices.len(), corner_ids.len(), "vertex count");
+    for (q, &k) in read.vertices.iter().zip(&corner_ids) {
+        dev.vertex_rel = dev.vertex_rel.max(q.distance(on_surface(k)) / size);
+    }
+    assert_eq!(read.faces.len(), mesh.triangles.len(), "triangle count");
+    // Chords: centroid and edge midpoints of every 7th triangle, projected onto the surface
+    // (or its mirror image).
+    let projector = SurfaceProjector::new(s, ProjectionOptions::default());
+    let corners = |f: &[usize; 3]| f.map(|k| read.vertices[k]);
+    let starboard_faces = read.faces.len() / if mirror { 2 } else { 1 };
+    for (t, f) in read.faces.iter().enumerate().step_by(7) {
+        let [a, b, c] = corners(f);
+        for q in [(a + b + c) * (1.0 / 3.0), (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5] {
+            // The port half (appended after the starboard triangles) is the mirror image.
+            let q = if t >= starboard_faces { Vec3::new(q.x, -q.y, q.z) } else { q };
+            dev.chord = dev.chord.max(projector.project(q).distance);
+        }
+    }
+    // Surface to mesh: 60 surface points off the grid, each against every triangle.
+    let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
+    for k in 0..60 {
+        let (a, b) = ((k as f64 * 0.618_034 + 0.1).fract(), (k as f64 * 0.414_214 + 0.3).fract());
+        let p = s.point(u0 + (u1 - u0) * a, v0 + (v1 - v0) * b);
+        let d = read.faces.iter().map(|f| {
+            let [a, b, c] = corners(f);
+            point_triangle_distance(p, a, b, c)
+        });
+        dev.surface_to_mesh = dev.surface_to_mesh.max(d.fold(f64::INFINITY, f64::min));
+    }
+    dev
+}
+
+/// Outward: the area-weighted y component of the normals of the starboard half is positive
+/// (it is the hull's projected area on the centre plane); every stored normal agrees with
+/// its triangle's winding (STL) or its vertex's surface normal (OBJ, glTF).
+fn check_orientation(name: &str, s: &NurbsSurface, mesh: &TriangleMesh, mirror: bool, read: &ReadMesh) {
+    let mut ny_area = 0.0;
+    let starboard_faces = read.faces.len() / if mirror { 2 } else { 1 };
+    for f in &read.faces[..starboard_faces] {
+        let [a, b, c] = f.map(|k| read.vertices[k]);
+        ny_area += (b - a).cross(c - a).y;
+    }
+    assert!(ny_area > 0.0, "{name}: the starboard half faces inward");
+    for (t, n) in read.face_normals.iter().enumerate() {
+        let [a, b, c] = read.faces[t].map(|k| read.vertices[k]);
+        let w = (b - a).cross(c - a).normalized().expect("no degenerate triangle");
+        assert!(n.dot(w) > 0.99, "{name}: facet {t} normal {n:?} against its winding {w:?}");
+    }
+    let half = mesh.positions.len() / if mirror { 2 } else { 1 };
+    for (k, n) in read.vertex_normals.iter().enumerate() {
+        let (u, v) = mesh.params[k];
+        let Some(sn) = s.normal(u, v) else { continue };
+        let sn = if mesh.flipped { -sn } else { sn };
+        let sn = if k >= half { Vec3::new(sn.x, -sn.y, sn.z) } else { sn };
+        assert!((n.norm() - 1.0).abs() < 1e-4, "{name}: normal {k} {n:?} not unit (ours {:?})", mesh.normals[k]);
+        assert!(n.dot(sn) > 0.999, "{name}: vertex normal {k} {n:?} is not the surface's {sn:?}");
+    }
+}
+
+/// STL (binary and ASCII), OBJ and glTF of three surfaces read back: vertices on the surface
+/// within 1e-6 of its size, chords within the tolerance, normals outward, glTF colours those
+/// of the Gaussian curvature, glTF in metres whatever the units.
+#[test]
+fn meshes_read_back_by_trimesh_and_pygltflib() {
+    let Some(python) = mesh_python() else { return };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (_, s60_rational) = series60();
+    let cases = [
+        ("quarter_cylinder", quarter_cylinder(2.0, 3.0), Units::Metre, false, 1e-3),
+        ("s60_rational", s60_rational.clone(), Units::Metre, true, 1e-4),
+        ("pointed_ft", scaled(&pointed(&rational_bicubic()), 1.0 / 0.3048), Units::Foot, false, 2e-4),
+    ];
+    for (name, s, units, mirror, rel) in &cases {
+        let tol = rel * size(s);
+        let mesh = tessellate(s, &TessellationOptions { tolerance: tol, mirror: *mirror }).expect("tessellates");
+        for (ext, kind) in [("stl", "binary"), ("stl", "ascii"), ("obj", "obj"), ("glb", "glb")] {
+            let path = dir.path().join(format!("{name}_{kind}.{ext}"));
+            let mut out = Vec::new();
+            match kind {
+                "binary" => write_stl_binary(&mut out, &mesh, name, *units),
+                "ascii" => write_stl_ascii(&mut out, &mesh, name),
+                "obj" => write_obj(&mut out, &mesh, name, *units),
+                _ => write_glb(&mut out, &mesh, name, *units),
+            }
+            .expect("writes");
+            std::fs::write(&path, out).expect("write");
+            let read = read_mesh(&python, &path, *units);
+            let case = format!("{name} {kind}");
+            let dev = compare_mesh(s, &mesh, *mirror, &read, ext == "stl");
+            check_orientation(&case, s, &mesh, *mirror, &read);
+            eprintln!(
+                "{case}: {} triangles; vertices {:.1e} of the size; chords {:.2e}, surface to mesh {:.2e}, tolerance \
+                 {tol:.2e}",
+                mesh.triangles.len(),
+                dev.vertex_rel,
+                dev.chord,
+                dev.surface_to_mesh
+            );
+            // f32 coordinates: 6e-8 of the largest coordinate, well within 1e-6 of the size.
+            assert!(dev.vertex_rel <= 1e-6, "{case}: a vertex is {:.2e} of the size off the surface", dev.vertex_rel);
+            // The chord bound holds to f32 rounding of the corners (1e-6 of the size).
+            assert!(dev.chord <= tol + 1e-6 * size(s), "{case}: a chord deviates by {} > {tol}", dev.chord);
+            assert!(dev.surface_to_mesh <= tol + 1e-6 * size(s), "{case}: surface to mesh {}", dev.surface_to_mesh);
+            if kind == "glb" {
+                let want = curvature_colors(&mesh);
+                assert_eq!(read.colors.len(), want.len());
+                for (c, w) in read.colors.iter().zip(&want) {
+                    assert_eq!(*c, w.map(f64::from), "{case}: colour");
+                }
+            }
+        }
+        // The cylinder's Gaussian curvature is zero: every colour is the map's white.
+        if *name == "quarter_cylinder" {
+            let white = srgb_to_linear(247);
+            assert!(mesh.gaussian.iter().all(|k| k.abs() < 1e-9));
+            assert!(curvature_colors(&mesh).iter().all(|c| *c == [white; 3]));
+        } else {
+            // A hull bends both ways: both ends of the map appear.
+            assert!(mesh.gaussian.iter().any(|&k| k > 0.0) && mesh.gaussian.iter().any(|&k| k < 0.0));
+        }
+    }
+}
+
+/// Where `npm install` put the Khronos glTF-Validator (npm `gltf-validator`, pinned), or
+/// `None` if `HULLSKIN_SKIP_GLTF_VALIDATOR=1`. Needs `node` and `npm` (the npm registry the
+/// first time); fails loudly without them.
+fn gltf_validator() -> Option<PathBuf> {
+    const PACKAGE: &str = "gltf-validator@2.0.0-dev.3.10";
+    static DIR: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    if std::env::var("HULLSKIN_SKIP_GLTF_VALIDATOR").as_deref() == Ok("1") {
+        eprintln!("SKIPPED: Khronos glTF-Validator check (HULLSKIN_SKIP_GLTF_VALIDATOR=1)");
+        return None;
+    }
+    let found = DIR.get_or_init(|| {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gltf-validator");
+        if dir.join("node_modules/gltf-validator/package.json").is_file() {
+            return Ok(dir);
+        }
+        let out = Command::new("npm")
+            .args(["install", "--no-audit", "--no-fund", "--prefix"])
+            .arg(&dir)
+            .arg(PACKAGE)
+            .output()
+            .map_err(|e| format!("cannot run npm: {e}"))?;
+        if out.status.success() {
+            Ok(dir)
+        } else {
+            Err(format!("npm install {PACKAGE} failed:\n{}", String::from_utf8_lossy(&out.stderr)))
+        }
+    });
+    match found {
+        Ok(d) => Some(d.clone()),
+        Err(e) => panic!("{e}\nSet HULLSKIN_SKIP_GLTF_VALIDATOR=1 to skip the Khronos validator."),
+    }
+}
+
+fn run_validator(prefix: &Path, glb: &Path) -> (i32, Value) {
+    let script = workspace_root().join("tools/gltf_validate.mjs");
+    let out = Command::new("node").arg(&script).arg(prefix).arg(glb).output().expect("run node");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let summary = serde_json::from_str(&stdout).unwrap_or_else(|e| {
+        panic!("gltf_validate.mjs printed no JSON ({e}):\n{stdout}\n{}", String::from_utf8_lossy(&out.stderr))
+    });
+    (out.status.code().unwrap_or(-1), summary)
+}
+
+/// The Khronos glTF-Validator finds no error, warning, info or hint in our glTF (mirrored
+/// rational hull, feet converted to metres), and does find the error in a corrupted copy (an
+/// index past the last vertex), as does `tools/mesh_check.py`.
+#[test]
+fn khronos_validator_accepts_the_gltf() {
+    let Some(prefix) = gltf_validator() else { return };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (_, s60_rational) = series60();
+    let s = scaled(s60_rational, 1.0 / 0.3048);
+    let mesh = tessellate(&s, &TessellationOptions { tolerance: 1e-4 * size(&s), mirror: true }).expect("tessellates");
+    let mut bytes = Vec::new();
+    write_glb(&mut bytes, &mesh, "hull", Units::Foot).expect("writes");
+    let glb = dir.path().join("hull.glb");
+    std::fs::write(&glb, &bytes).expect("write");
+    let (code, summary) = run_validator(&prefix, &glb);
+    let issues = &summary["files"][0]["issues"];
+    assert!(code == 0 && summary["ok"] == true, "{summary}");
+    for k in ["numErrors", "numWarnings", "numInfos", "numHints"] {
+        assert_eq!(issues[k], 0, "{k}: {issues}");
+    }
+    eprintln!("glTF-Validator {}: no issue in {} triangles", summary["validator"], mesh.triangles.len());
+
+    // The last index is the file's last 4 bytes: point it past the vertices.
+    let n = bytes.len();
+    bytes[n - 4..].copy_from_slice(&u32::MAX.wrapping_sub(7).to_le_bytes());
+    let bad = dir.path().join("bad.glb");
+    std::fs::write(&bad, &bytes).expect("write");
+    let (code, summary) = run_validator(&prefix, &bad);
+    assert_eq!(code, 1, "{summary}");
+    assert!(summary["files"][0]["issues"]["numErrors"].as_u64() > Some(0), "{summary}");
+    if let Some(python) = mesh_python() {
+        let (code, summary) = run_tool(&python, "mesh_check.py", &[&bad]);
+        assert_ne!(code, 0, "mesh_check.py accepted a corrupted file: {}", summary["failed"]);
+    }
 }

@@ -767,6 +767,23 @@ mod tests {
     }
 
     #[test]
+    fn curves_alone_and_nothing_at_all() {
+        let s = sample_surface();
+        let curves = section_curves(&s, &[0.0, 1.0]);
+        let meta = IgesMeta::new(IgesUnits::METRE, "c.igs", "20240102.030405");
+        let mut out = Vec::new();
+        write_iges_model(&mut out, None, &curves, &meta).expect("writes");
+        let text = String::from_utf8(out).expect("ASCII");
+        let d = section(&text, 'D');
+        assert_eq!(d.len(), 4);
+        assert!(d.iter().all(|l| l[..8].trim() == "126"));
+        let start: String = section(&text, 'S').iter().map(|l| &l[..72]).collect();
+        assert!(start.contains("2 IGES 5.3 rational B-spline curves (entity 126)"), "{start}");
+        let err = write_iges_model(&mut Vec::new(), None, &[], &meta).expect_err("nothing to write");
+        assert_eq!(err.kind(), io::ErrorKind::InvalidInput);
+    }
+
+    #[test]
     fn planar_curves_carry_their_normal() {
         // A section in the plane x = 3: planar, normal +-x.
         let k = KnotVector::uniform(2, 4).expect("valid");

@@ -494,7 +494,7 @@ mod tests {
             }
         }
         body[start..end]
-            .split(|c| c == ',' || c == '(' || c == ')')
+            .split([',', '(', ')'])
             .filter(|t| !t.is_empty() && !t.starts_with('#') && !t.starts_with('.'))
             .map(|t| t.parse().unwrap_or_else(|_| panic!("not a number: {t:?}")))
             .collect()

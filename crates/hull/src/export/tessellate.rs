@@ -9,16 +9,20 @@
 //! so no cracks) at the price of some triangles where a direction is refined across the
 //! whole surface.
 //!
-//! **Refinement.** The deviation of a chord `P_a P_b` (a triangle edge) is measured at its
-//! parametric midpoint: `e = |S((u_a + u_b) / 2, (v_a + v_b) / 2) - (P_a + P_b) / 2|`, an upper
-//! bound of the distance from that point of the chord to the surface and of the surface
-//! point to the chord. Every u-interval with an edge of `e > 3/4 T` (along u, or a cell
-//! diagonal) and every such v-interval is bisected, and the grid is measured again, until no
-//! edge deviates by more than `3/4 T` (`T` the tolerance). Why 3/4: over a cell small enough
-//! for the surface to be quadratic in `(u, v)`, the parametric error of a linear triangle is
-//! a quadratic vanishing at the corners, `e(l) = a l2 l3 + b l1 l3 + c l1 l2` in barycentric
-//! coordinates `l`, with `|a| / 4`, `|b| / 4`, `|c| / 4` its values at the edge midpoints;
-//! since `l2 l3 + l1 l3 + l1 l2 <= 1/3`, `|e| <= 4/3 max(edge midpoint errors) <= T`.
+//! **Refinement.** The deviation of a chord `P_a P_b` (a triangle edge, diagonals included)
+//! is measured at its parametric midpoint `m`: `e` = the distance from `S(m)` to the line
+//! `P_a P_b`. On an arc that is quadratic in its parameter, `C(t) = C_0 + a t + b t^2`, the
+//! distance to the chord is `|b_perp| t (1 - t)`, largest at `t = 1/2` whatever the speed, so
+//! this is the chord's sagitta; unlike the distance to the chord's midpoint it ignores the
+//! harmless slide along the chord of an uneven parameterization. Every u-interval with an
+//! edge along u of `e > 3/4 T` and every such v-interval is bisected (a cell whose edges are
+//! all within `3/4 T` but whose diagonal is not, a twisted cell, has both its intervals
+//! bisected), and the grid is measured again, until no edge deviates by more than `3/4 T`
+//! (`T` the tolerance). Why 3/4: over a cell small enough for the surface to be quadratic in
+//! `(u, v)`, the deviation of the surface from a triangle's plane is a quadratic vanishing at
+//! the corners, `e(l) = a l2 l3 + b l1 l3 + c l1 l2` in barycentric coordinates `l`, whose
+//! values at the edge midpoints, `a / 4`, `b / 4`, `c / 4`, are at most the edges' `e`;
+//! since `l2 l3 + l1 l3 + l1 l2 <= 1/3`, `|e| <= 4/3 max(edge deviations) <= T`.
 //!
 //! **Orientation.** Normals are `S_u x S_v` turned so that the area-weighted mean of their y
 //! component is positive: for a starboard half hull (y >= 0) closed by the centre plane
@@ -76,7 +80,8 @@ pub struct TriangleMesh {
     /// starboard twin).
     pub params: Vec<(f64, f64)>,
     /// Triangles, counter-clockwise seen from outside. Triangles with two coincident corners
-    /// (at a boundary collapsed to a point) are left out.
+    /// (at a boundary collapsed to a point) are left out, and so are the vertices no triangle
+    /// uses.
     pub triangles: Vec<[u32; 3]>,
     /// The grid parameters along u and v.
     pub grid_u: Vec<f64>,
@@ -142,15 +147,16 @@ impl PointCache<'_> {
 }
 
 /// Deviations of the current grid: per u-interval and per v-interval the largest edge
-/// midpoint error charged to it, and per cell whether the `(i, j)-(i+1, j+1)` diagonal is
-/// the better one.
+/// midpoint error charged to it, per cell whether the `(i, j)-(i+1, j+1)` diagonal is the
+/// better one, and the largest deviation of any edge (diagonals included).
 struct GridErrors {
     u: Vec<f64>,
     v: Vec<f64>,
     main_diagonal: Vec<bool>,
+    max: f64,
 }
 
-fn measure(cache: &mut PointCache, gu: &[f64], gv: &[f64]) -> GridErrors {
+fn measure(cache: &mut PointCache, gu: &[f64], gv: &[f64], limit: f64) -> GridErrors {
     let mid = |a: f64, b: f64| 0.5 * (a + b);
     let mut uv = Vec::new();
     for &u in gu {
@@ -175,35 +181,61 @@ fn measure(cache: &mut PointCache, gu: &[f64], gv: &[f64]) -> GridErrors {
     let mut eu = vec![0.0f64; m - 1];
     let mut ev = vec![0.0f64; n - 1];
     let mut main_diagonal = vec![true; (m - 1) * (n - 1)];
-    let dev = |p: Vec3, a: Vec3, b: Vec3| p.distance((a + b) * 0.5);
+    let mut max = 0.0f64;
+    let dev = chord_deviation;
+    // Edge deviations: along u at (i, j) for the edge (i, j)-(i+1, j); along v likewise.
+    let mut edge_u = vec![0.0f64; (m - 1) * n];
+    let mut edge_v = vec![0.0f64; m * (n - 1)];
     for i in 0..m - 1 {
         let um = mid(gu[i], gu[i + 1]);
         for j in 0..n {
             let e = dev(cache.get(um, gv[j]), cache.get(gu[i], gv[j]), cache.get(gu[i + 1], gv[j]));
+            edge_u[i * n + j] = e;
             eu[i] = eu[i].max(e);
         }
     }
-    for j in 0..n - 1 {
-        let vm = mid(gv[j], gv[j + 1]);
-        for i in 0..m {
+    for i in 0..m {
+        for j in 0..n - 1 {
+            let vm = mid(gv[j], gv[j + 1]);
             let e = dev(cache.get(gu[i], vm), cache.get(gu[i], gv[j]), cache.get(gu[i], gv[j + 1]));
+            edge_v[i * (n - 1) + j] = e;
             ev[j] = ev[j].max(e);
         }
     }
+    max = eu.iter().chain(&ev).fold(max, |a, &b| a.max(b));
+    // Diagonals: the better one is kept. Its deviation is charged to both directions only when
+    // no edge of the cell exceeds the limit (a twisted cell); otherwise splitting the
+    // offending edges' intervals comes first and the diagonal is measured again after.
     for i in 0..m - 1 {
         for j in 0..n - 1 {
             let c = cache.get(mid(gu[i], gu[i + 1]), mid(gv[j], gv[j + 1]));
             let (p00, p10) = (cache.get(gu[i], gv[j]), cache.get(gu[i + 1], gv[j]));
             let (p01, p11) = (cache.get(gu[i], gv[j + 1]), cache.get(gu[i + 1], gv[j + 1]));
             let (d_main, d_anti) = (dev(c, p00, p11), dev(c, p10, p01));
-            let main = d_main <= d_anti;
-            main_diagonal[i * (n - 1) + j] = main;
+            main_diagonal[i * (n - 1) + j] = d_main <= d_anti;
             let e = d_main.min(d_anti);
-            eu[i] = eu[i].max(e);
-            ev[j] = ev[j].max(e);
+            max = max.max(e);
+            let edges =
+                [edge_u[i * n + j], edge_u[i * n + j + 1], edge_v[i * (n - 1) + j], edge_v[(i + 1) * (n - 1) + j]];
+            if e > limit && edges.iter().all(|&x| x <= limit) {
+                eu[i] = eu[i].max(e);
+                ev[j] = ev[j].max(e);
+            }
         }
     }
-    GridErrors { u: eu, v: ev, main_diagonal }
+    GridErrors { u: eu, v: ev, main_diagonal, max }
+}
+
+/// Distance from `p` to the line through `a` and `b` (to `a` if they coincide).
+fn chord_deviation(p: Vec3, a: Vec3, b: Vec3) -> f64 {
+    let d = b - a;
+    let len2 = d.norm_squared();
+    let r = p - a;
+    if len2 > 0.0 {
+        (r - d * (r.dot(d) / len2)).norm()
+    } else {
+        r.norm()
+    }
 }
 
 /// Bisect the intervals whose error exceeds `limit`; returns whether any was.
@@ -254,7 +286,7 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
     let mut cache = PointCache { surface, points: HashMap::new() };
     let limit = MIDPOINT_FACTOR * tol;
     let errors = loop {
-        let e = measure(&mut cache, &gu, &gv);
+        let e = measure(&mut cache, &gu, &gv, limit);
         let changed_u = refine(&mut gu, &e.u, limit);
         let changed_v = refine(&mut gv, &e.v, limit);
         if !changed_u && !changed_v {
@@ -267,7 +299,14 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
             )));
         }
     };
-    let max_midpoint_deviation = errors.u.iter().chain(&errors.v).fold(0.0f64, |m, &e| m.max(e));
+    let max_midpoint_deviation = errors.max;
+    if max_midpoint_deviation > limit {
+        // Only when a bisection rounded onto an end point: the tolerance is at the rounding.
+        return Err(HullError::Config(format!(
+            "tessellation tolerance {tol} cannot be met in double precision (a chord deviates by \
+             {max_midpoint_deviation:.3e}; expected a larger tolerance)"
+        )));
+    }
     let (m, n) = (gu.len(), gv.len());
 
     // Vertices of the starboard half: points, raw normals S_u x S_v and curvature.
@@ -321,11 +360,29 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
             t.swap(1, 2);
         }
     }
+    // Keep only the vertices some triangle uses (a collapsed boundary leaves unused copies of
+    // its point), renumbered in order.
+    let mut new_index = vec![u32::MAX; positions.len()];
+    for t in &triangles {
+        for &k in t {
+            new_index[k as usize] = 0;
+        }
+    }
+    let mut kept = Vec::with_capacity(positions.len());
+    for (k, slot) in new_index.iter_mut().enumerate() {
+        if *slot == 0 {
+            *slot = kept.len() as u32;
+            kept.push(k);
+        }
+    }
+    for t in &mut triangles {
+        *t = t.map(|k| new_index[k as usize]);
+    }
     let mut mesh = TriangleMesh {
-        normals: verts.iter().map(|v| v.n * sign).collect(),
-        gaussian: verts.iter().map(|v| v.k).collect(),
-        positions,
-        params: uv,
+        normals: kept.iter().map(|&k| verts[k].n * sign).collect(),
+        gaussian: kept.iter().map(|&k| verts[k].k).collect(),
+        positions: kept.iter().map(|&k| positions[k]).collect(),
+        params: kept.iter().map(|&k| uv[k]).collect(),
         triangles,
         grid_u: gu,
         grid_v: gv,
@@ -475,6 +532,11 @@ mod tests {
         let (m, n) = (mesh.grid_u.len(), mesh.grid_v.len());
         // The last column of every cell row is a fan onto the tip: one triangle per cell.
         assert_eq!(mesh.triangles.len(), 2 * (m - 1) * (n - 1) - (m - 1));
+        // Every vertex is used by a triangle, and fewer than the grid's are left.
+        let mut used = vec![false; mesh.positions.len()];
+        mesh.triangles.iter().flatten().for_each(|&k| used[k as usize] = true);
+        assert!(used.iter().all(|&u| u));
+        assert!(mesh.positions.len() < m * n);
         for k in 0..mesh.triangles.len() {
             assert!(mesh.face_normal(k).norm() > 0.5, "degenerate triangle {k}");
         }

@@ -1,0 +1,324 @@
+//! `hullskin export`: write a surface (a `surface.json` from `fit`, or offsets fitted first)
+//! as STEP, IGES (with section curves, or a polynomial approximation), DXF 3-D lines, STL, OBJ
+//! or binary glTF.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{bail, Context};
+use clap::{Args, ValueEnum};
+use hull::drawing::{lines_3d, write_dxf_3d_lines, LinesPlanOptions};
+use hull::export::{
+    greville_v, polynomial_approximation, section_curves, section_parameters, tessellate, write_glb, write_iges,
+    write_iges_model, write_obj, write_step, write_stl_ascii, write_stl_binary, IgesMeta, StepMeta,
+    TessellationOptions,
+};
+use hull::optimize::OptimSettings;
+use hull::{FitMethod, Offsets};
+use nurbs::{NurbsSurface, Vec3};
+
+use crate::fit::fit_with_progress;
+use crate::skin_args::SkinArgs;
+use crate::surface_arg::{read_input, Input};
+
+/// What to write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ExportFormat {
+    /// STEP AP214: one B-spline face (`.stp`, `.step`).
+    Step,
+    /// IGES 5.3: the rational B-spline surface, entity 128 (`.igs`, `.iges`).
+    Iges,
+    /// IGES 5.3: the surface and the skinned sections as rational B-spline curves (126).
+    IgesCurves,
+    /// IGES 5.3: a polynomial (non-rational) surface within --tolerance of the surface, for
+    /// systems that drop weights.
+    IgesPolynomial,
+    /// DXF R12: stations, waterlines and buttocks as 3-D polylines (`.dxf`).
+    Dxf,
+    /// Binary STL triangulated to --tolerance (`.stl`).
+    Stl,
+    /// ASCII STL triangulated to --tolerance.
+    StlAscii,
+    /// Wavefront OBJ with vertex normals, triangulated to --tolerance (`.obj`).
+    Obj,
+    /// Binary glTF 2.0 coloured by Gaussian curvature, in metres, Y up (`.glb`).
+    Glb,
+}
+
+impl ExportFormat {
+    /// The format a file name's extension stands for.
+    pub fn from_path(path: &Path) -> Option<Self> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        Some(match ext.as_str() {
+            "stp" | "step" => ExportFormat::Step,
+            "igs" | "iges" => ExportFormat::Iges,
+            "dxf" => ExportFormat::Dxf,
+            "stl" => ExportFormat::Stl,
+            "obj" => ExportFormat::Obj,
+            "glb" => ExportFormat::Glb,
+            _ => return None,
+        })
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            ExportFormat::Step => "step",
+            ExportFormat::Iges => "iges",
+            ExportFormat::IgesCurves => "iges-curves",
+            ExportFormat::IgesPolynomial => "iges-polynomial",
+            ExportFormat::Dxf => "dxf",
+            ExportFormat::Stl => "stl",
+            ExportFormat::StlAscii => "stl-ascii",
+            ExportFormat::Obj => "obj",
+            ExportFormat::Glb => "glb",
+        }
+    }
+
+    fn is_mesh(self) -> bool {
+        matches!(self, ExportFormat::Stl | ExportFormat::StlAscii | ExportFormat::Obj | ExportFormat::Glb)
+    }
+}
+
+/// Arguments of `hullskin export`.
+#[derive(Debug, Args)]
+#[command(mut_arg("input", |a| a
+    .value_name("SURFACE_OR_INPUT")
+    .help("A surface.json written by `hullskin fit`, or an offsets file fitted first with --method and \
+           the skinning flags. Without it the built-in Series 60 Cb 0.60 sample is fitted")))]
+pub struct ExportArgs {
+    #[command(flatten)]
+    pub skin: SkinArgs,
+    /// Fit of an offsets input: interp or approx.
+    #[arg(long, default_value = "approx", value_parser = parse_method)]
+    pub method: FitMethod,
+    /// Output format; by default from the extension of FILE (.stp/.step, .igs/.iges, .dxf,
+    /// .stl, .obj, .glb).
+    #[arg(long, value_enum)]
+    pub format: Option<ExportFormat>,
+    /// Meshes: largest distance between the triangles and the surface; iges-polynomial:
+    /// largest distance between the polynomial and the rational surface. In the surface's
+    /// length unit; default 1e-4 (meshes) or 1e-5 (iges-polynomial) of the control net's
+    /// diagonal.
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub tolerance: Option<f64>,
+    /// Meshes and DXF: add the port half (y -> -y), the full hull.
+    #[arg(long)]
+    pub mirror: bool,
+    /// Date written into STEP and IGES headers, as Unix seconds (default: SOURCE_DATE_EPOCH,
+    /// else now), for reproducible files.
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub timestamp: Option<i64>,
+    /// The file to write.
+    #[arg(short = 'o', long = "out", value_name = "FILE")]
+    pub out: PathBuf,
+}
+
+fn parse_method(s: &str) -> Result<FitMethod, String> {
+    match s.parse::<FitMethod>()? {
+        m @ (FitMethod::Interp | FitMethod::Approx) => Ok(m),
+        m => Err(format!(
+            "{} optimises weights: fit with `hullskin fit --method {}` and pass its surface.json \
+             (expected interp or approx)",
+            m.name(),
+            m.name()
+        )),
+    }
+}
+
+/// The format asked for, or the one of the output's extension; checks that the flags apply.
+fn format_of(args: &ExportArgs) -> anyhow::Result<ExportFormat> {
+    let Some(format) = args.format.or_else(|| ExportFormat::from_path(&args.out)) else {
+        bail!(
+            "cannot tell the format from {} (expected an extension .stp, .step, .igs, .iges, .dxf, .stl, .obj or \
+             .glb, or --format)",
+            args.out.display()
+        );
+    };
+    if let Some(t) = args.tolerance {
+        if !(format.is_mesh() || format == ExportFormat::IgesPolynomial) {
+            bail!("--tolerance applies to stl, stl-ascii, obj, glb and iges-polynomial, not {}", format.name());
+        }
+        if !(t.is_finite() && t > 0.0) {
+            bail!("--tolerance {t}: expected a positive length");
+        }
+    }
+    if args.mirror && !(format.is_mesh() || format == ExportFormat::Dxf) {
+        bail!("--mirror applies to stl, stl-ascii, obj, glb and dxf, not {}", format.name());
+    }
+    Ok(format)
+}
+
+/// The header date: `--timestamp`, else `SOURCE_DATE_EPOCH`, else now.
+fn unix_time(args: &ExportArgs) -> i64 {
+    args.timestamp
+        .or_else(|| std::env::var("SOURCE_DATE_EPOCH").ok().and_then(|s| s.trim().parse().ok()))
+        .unwrap_or_else(|| {
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| i64::try_from(d.as_secs()).unwrap_or(i64::MAX))
+        })
+}
+
+/// Diagonal of the control net's box.
+fn size(s: &NurbsSurface) -> f64 {
+    let (lo, hi) = s.control_bounds();
+    (hi - lo).norm()
+}
+
+pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
+    let format = format_of(args)?;
+    // The surface, and the offsets with the sections' v when it was fitted here.
+    let (surface, units, source, fitted) = match read_input(&args.skin)? {
+        Input::Surface { surface, units, source } => (surface, units, source, None),
+        Input::Offsets(offsets) => {
+            let config = args.skin.fit_config(args.method, OptimSettings::default());
+            let (outcome, _) =
+                fit_with_progress(&offsets, &config, None).with_context(|| format!("cannot fit {}", offsets.source))?;
+            let source = format!("{}, fitted by {}", offsets.source, args.method.name());
+            let vs = section_parameters(&outcome.params);
+            (outcome.surface, offsets.units, source, Some((offsets, vs)))
+        }
+    };
+    let out = &args.out;
+    let file_name = out.file_name().map_or_else(|| "hull".into(), |n| n.to_string_lossy().into_owned());
+    let time = unix_time(args);
+    let iges_meta = || {
+        let mut m = IgesMeta::new(units.into(), &file_name, &hull::export::iges_timestamp(time));
+        m.product_id = format!("hull surface ({source})");
+        m
+    };
+    let write = |fill: &dyn Fn(&mut dyn std::io::Write) -> std::io::Result<()>| {
+        hull::write_atomic(out, |w| fill(w)).with_context(|| format!("cannot write {}", out.display()))
+    };
+    let unit = units.symbol();
+    let note = match format {
+        ExportFormat::Step => {
+            let mut meta = StepMeta::new(units, &file_name, &hull::export::step_timestamp(time));
+            meta.description = format!("hull surface ({source})");
+            write(&|mut w| write_step(&mut w, &surface, &meta))?;
+            format!("one B-spline face, {}x{} poles", surface.n_u(), surface.n_v())
+        }
+        ExportFormat::Iges => {
+            write(&|mut w| write_iges(&mut w, &surface, &iges_meta()))?;
+            format!("one surface, {}x{} poles", surface.n_u(), surface.n_v())
+        }
+        ExportFormat::IgesCurves => {
+            let (vs, at) = match &fitted {
+                Some((_, vs)) => (vs.clone(), "the sections' v"),
+                None => (greville_v(&surface), "the Greville abscissae of v (a surface input has no sections)"),
+            };
+            let curves = section_curves(&surface, &vs);
+            write(&|mut w| write_iges_model(&mut w, Some(&surface), &curves, &iges_meta()))?;
+            format!("the surface and {} section curves at {at}", curves.len())
+        }
+        ExportFormat::IgesPolynomial => {
+            let tol = args.tolerance.unwrap_or(1e-5 * size(&surface));
+            let approx = polynomial_approximation(&surface, tol)?;
+            write(&|mut w| write_iges(&mut w, &approx.surface, &iges_meta()))?;
+            if approx.exact {
+                "polynomial surface, exact (all weights equal)".to_string()
+            } else {
+                format!(
+                    "polynomial surface of {}x{} poles, largest deviation {:.3e} {unit} at {} points (tolerance {tol:.3e} \
+                     {unit})",
+                    approx.surface.n_u(),
+                    approx.surface.n_v(),
+                    approx.max_deviation,
+                    approx.check_points
+                )
+            }
+        }
+        ExportFormat::Dxf => {
+            let offsets: Option<&Offsets> = fitted.as_ref().map(|(o, _)| o);
+            let mut curves = lines_3d(&surface, offsets, &LinesPlanOptions::default());
+            if args.mirror {
+                let port: Vec<_> = curves
+                    .iter()
+                    .map(|(layer, pts)| (*layer, pts.iter().map(|p| Vec3::new(p.x, -p.y, p.z)).collect::<Vec<_>>()))
+                    .collect();
+                curves.extend(port);
+            }
+            write(&|mut w| write_dxf_3d_lines(&mut w, &curves, units))?;
+            format!("{} polylines (stations, waterlines, buttocks)", curves.len())
+        }
+        ExportFormat::Stl | ExportFormat::StlAscii | ExportFormat::Obj | ExportFormat::Glb => {
+            let mut options = TessellationOptions::for_surface(&surface);
+            options.mirror = args.mirror;
+            if let Some(t) = args.tolerance {
+                options.tolerance = t;
+            }
+            let mesh = tessellate(&surface, &options)?;
+            let name = "hull";
+            match format {
+                ExportFormat::Stl => write(&|mut w| write_stl_binary(&mut w, &mesh, name, units))?,
+                ExportFormat::StlAscii => write(&|mut w| write_stl_ascii(&mut w, &mesh, name))?,
+                ExportFormat::Obj => write(&|mut w| write_obj(&mut w, &mesh, name, units))?,
+                _ => write(&|mut w| write_glb(&mut w, &mesh, name, units))?,
+            }
+            format!(
+                "{} triangles, chord tolerance {:.3e} {unit}{}",
+                mesh.triangles.len(),
+                options.tolerance,
+                if format == ExportFormat::Glb { ", in metres" } else { "" }
+            )
+        }
+    };
+    println!("wrote {} ({}: {note})", out.display(), format.name());
+    Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Debug, Parser)]
+    struct Wrap {
+        #[command(flatten)]
+        args: ExportArgs,
+    }
+
+    fn parse(argv: &[&str]) -> Result<ExportArgs, clap::Error> {
+        Wrap::try_parse_from(std::iter::once("x").chain(argv.iter().copied())).map(|w| w.args)
+    }
+
+    #[test]
+    fn the_format_comes_from_the_extension_unless_given() {
+        for (file, want) in [
+            ("a.stp", ExportFormat::Step),
+            ("a.STEP", ExportFormat::Step),
+            ("a.igs", ExportFormat::Iges),
+            ("a.iges", ExportFormat::Iges),
+            ("a.dxf", ExportFormat::Dxf),
+            ("a.stl", ExportFormat::Stl),
+            ("a.obj", ExportFormat::Obj),
+            ("a.glb", ExportFormat::Glb),
+        ] {
+            assert_eq!(format_of(&parse(&["-o", file]).expect("parses")).expect("known"), want, "{file}");
+        }
+        let a = parse(&["s.json", "-o", "x.igs", "--format", "iges-curves"]).expect("parses");
+        assert_eq!(format_of(&a).expect("given"), ExportFormat::IgesCurves);
+        let err = format_of(&parse(&["-o", "x.txt"]).expect("parses")).expect_err("unknown");
+        assert!(err.to_string().contains("--format"), "{err}");
+        assert!(parse(&["s.json"]).is_err(), "-o is required");
+    }
+
+    #[test]
+    fn flags_that_do_not_apply_are_refused() {
+        let err = |argv: &[&str]| format_of(&parse(argv).expect("parses")).expect_err("refused").to_string();
+        assert!(err(&["-o", "a.stp", "--tolerance", "0.01"]).contains("--tolerance"));
+        assert!(err(&["-o", "a.igs", "--mirror"]).contains("--mirror"));
+        assert!(err(&["-o", "a.stl", "--tolerance", "0"]).contains("positive"));
+        assert!(err(&["-o", "a.stl", "--tolerance", "-1"]).contains("positive"));
+        assert!(format_of(&parse(&["-o", "a.stl", "--tolerance", "0.01", "--mirror"]).expect("ok")).is_ok());
+        assert!(format_of(&parse(&["-o", "a.igs", "--format", "iges-polynomial", "--tolerance", "1e-3"]).expect("ok"))
+            .is_ok());
+        assert!(parse(&["-o", "a.stl", "--method", "ga"]).is_err());
+    }
+
+    #[test]
+    fn the_timestamp_flag_wins() {
+        let a = parse(&["-o", "a.stp", "--timestamp", "1000000000"]).expect("parses");
+        assert_eq!(unix_time(&a), 1_000_000_000);
+    }
+}
