@@ -20,6 +20,10 @@ mod param;
 mod skin;
 
 pub use constrained::{energy_order, fair_interpolate_curve, row_schoenberg_whitney, FairInterpolationSolver};
+pub use features::{
+    find_knuckle_lines, join_knot_vectors, knot_multiplicity, knuckle_indices, section_corners, turning_angles,
+    Continuity, CornerOptions, KnuckleLine, SectionCorner,
+};
 pub use interp::{interpolate_curve, interpolate_curve_auto, InterpolationSolver};
 pub use knots::{
     approximation_knots, averaging_knots, centred_approximation_knots, knots_for_approximation,
@@ -27,10 +31,6 @@ pub use knots::{
 };
 pub use lsq::{approximate_curve, approximate_curve_auto, LeastSquaresSolver};
 pub use param::{common_parameters, parameterize, Parameterization, SkinParameterization, UnknownParameterization};
-pub use features::{
-    find_knuckle_lines, join_knot_vectors, knot_multiplicity, knuckle_indices, section_corners, turning_angles,
-    Continuity, CornerOptions, KnuckleLine, SectionCorner,
-};
 pub use skin::{
     skin_approximate, skin_approximate_with_knuckles, skin_interpolate, skin_interpolate_with_knuckles, SkinOptions,
     SkinResult,
