@@ -9,9 +9,14 @@
 //! tests fail (a check cannot vanish silently) unless `HULLSKIN_SKIP_OCCT=1` (STEP, IGES) or
 //! `HULLSKIN_SKIP_MESH=1` (STL, OBJ, glTF) or `HULLSKIN_SKIP_DXF=1` is set.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
+
+use common::browser::workspace_root;
+use common::python::tools_python;
 
 use hull::export::mesh_out::{curvature_colors, srgb_to_linear};
 use hull::export::{
@@ -22,41 +27,6 @@ use hull::export::{
 use hull::Units;
 use nurbs::{KnotVector, NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
-
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// The Python with the tools' requirements, or `None` if `skip_var` is set to 1.
-fn tools_python(skip_var: &str, what: &str) -> Option<String> {
-    static PYTHON: OnceLock<Result<String, String>> = OnceLock::new();
-    if let Ok(p) = std::env::var("HULLSKIN_PYTHON") {
-        if !p.is_empty() {
-            return Some(p);
-        }
-    }
-    if std::env::var(skip_var).as_deref() == Ok("1") {
-        eprintln!("SKIPPED: {what} ({skip_var}=1)");
-        return None;
-    }
-    let found = PYTHON.get_or_init(|| {
-        let script = workspace_root().join("tools/setup-python.sh");
-        let out =
-            Command::new("bash").arg(&script).output().map_err(|e| format!("cannot run {}: {e}", script.display()))?;
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        match stdout.lines().last() {
-            Some(p) if out.status.success() => Ok(p.trim().to_string()),
-            _ => Err(format!("{} failed:\n{}", script.display(), String::from_utf8_lossy(&out.stderr))),
-        }
-    });
-    match found {
-        Ok(p) => Some(p.clone()),
-        Err(e) => panic!(
-            "{e}\n{what} needs the Python of tools/requirements.txt. Point HULLSKIN_PYTHON at a Python that has \
-             it, or set {skip_var}=1 to skip the check."
-        ),
-    }
-}
 
 fn occt_python() -> Option<String> {
     tools_python("HULLSKIN_SKIP_OCCT", "Open CASCADE check of the STEP and IGES exports")

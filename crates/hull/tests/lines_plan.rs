@@ -5,48 +5,23 @@
 //! `tools/setup-python.sh` (run by the test itself when needed). If that fails the tests fail
 //! (the check cannot vanish silently) unless `HULLSKIN_SKIP_DXF=1`.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 use std::process::Command;
 use std::sync::OnceLock;
+
+use common::browser::workspace_root;
+use common::python::tools_python;
 
 use hull::drawing::{write_dxf, write_dxf_3d_lines, Anchor, Drawing, Item, Rgb, Stroke};
 use hull::Units;
 use nurbs::Vec3;
 use serde_json::Value;
 
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
 /// The Python that has ezdxf, or `None` if the DXF checks are explicitly skipped.
 fn dxf_python() -> Option<String> {
-    static PYTHON: OnceLock<Result<String, String>> = OnceLock::new();
-    if let Ok(p) = std::env::var("HULLSKIN_PYTHON") {
-        if !p.is_empty() {
-            return Some(p);
-        }
-    }
-    if std::env::var("HULLSKIN_SKIP_DXF").as_deref() == Ok("1") {
-        eprintln!("SKIPPED: ezdxf check of the DXF export (HULLSKIN_SKIP_DXF=1)");
-        return None;
-    }
-    let found = PYTHON.get_or_init(|| {
-        let script = workspace_root().join("tools/setup-python.sh");
-        let out =
-            Command::new("bash").arg(&script).output().map_err(|e| format!("cannot run {}: {e}", script.display()))?;
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        match stdout.lines().last() {
-            Some(p) if out.status.success() => Ok(p.trim().to_string()),
-            _ => Err(format!("{} failed:\n{}", script.display(), String::from_utf8_lossy(&out.stderr))),
-        }
-    });
-    match found {
-        Ok(p) => Some(p.clone()),
-        Err(e) => panic!(
-            "{e}\nThe DXF export is checked with ezdxf (PyPI package ezdxf, see tools/requirements.txt). \
-             Point HULLSKIN_PYTHON at a Python that has it, or set HULLSKIN_SKIP_DXF=1 to skip the check."
-        ),
-    }
+    tools_python("HULLSKIN_SKIP_DXF", "ezdxf check of the DXF export")
 }
 
 /// Write `bytes` to a temporary file and run `tools/dxf_check.py` on it; returns (exit code,

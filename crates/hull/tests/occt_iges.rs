@@ -5,49 +5,21 @@
 //! else `.venv` made by `tools/setup-python.sh` (run by the test itself when needed). If that
 //! fails the tests fail (the check cannot vanish silently) unless `HULLSKIN_SKIP_OCCT=1`.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::OnceLock;
+
+use common::browser::workspace_root;
+use common::python::tools_python;
 
 use hull::export::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
 use nurbs::{KnotVector, NurbsSurface, Vec3};
 use serde_json::{json, Value};
 
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// The Python that has OCP, or `None` if the OCCT checks are explicitly skipped. Without
-/// `HULLSKIN_PYTHON`, `tools/setup-python.sh` makes (once) `.venv` in the checkout, so a plain
-/// `cargo test --workspace` runs the check on a fresh machine too.
+/// The Python that has OCP, or `None` if the OCCT checks are explicitly skipped.
 fn occt_python() -> Option<String> {
-    static PYTHON: OnceLock<Result<String, String>> = OnceLock::new();
-    if let Ok(p) = std::env::var("HULLSKIN_PYTHON") {
-        if !p.is_empty() {
-            return Some(p);
-        }
-    }
-    if std::env::var("HULLSKIN_SKIP_OCCT").as_deref() == Ok("1") {
-        eprintln!("SKIPPED: OCCT check of the IGES export (HULLSKIN_SKIP_OCCT=1)");
-        return None;
-    }
-    let found = PYTHON.get_or_init(|| {
-        let script = workspace_root().join("tools/setup-python.sh");
-        let out =
-            Command::new("bash").arg(&script).output().map_err(|e| format!("cannot run {}: {e}", script.display()))?;
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        match stdout.lines().last() {
-            Some(p) if out.status.success() => Ok(p.trim().to_string()),
-            _ => Err(format!("{} failed:\n{}", script.display(), String::from_utf8_lossy(&out.stderr))),
-        }
-    });
-    match found {
-        Ok(p) => Some(p.clone()),
-        Err(e) => panic!(
-            "{e}\nThe IGES export is checked with Open CASCADE (PyPI package cadquery-ocp-novtk). \
-             Point HULLSKIN_PYTHON at a Python that has it, or set HULLSKIN_SKIP_OCCT=1 to skip the check."
-        ),
-    }
+    tools_python("HULLSKIN_SKIP_OCCT", "OCCT check of the IGES export")
 }
 
 /// (a) Rational bicubic, non-uniform knots with a double knot in v, v domain not [0, 1],
