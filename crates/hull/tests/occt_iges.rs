@@ -12,6 +12,7 @@ use std::process::Command;
 
 use common::browser::workspace_root;
 use common::python::tools_python;
+use common::surfaces::{samples, scaled};
 
 use hull::export::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
 use nurbs::{KnotVector, NurbsSurface, Vec3};
@@ -71,33 +72,6 @@ fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
         }
     }
     NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
-}
-
-/// The same surface with every control point multiplied by `k` (a change of length unit).
-fn scaled(s: &NurbsSurface, k: f64) -> NurbsSurface {
-    let pts: Vec<Vec3> = s.control_points().iter().map(|&p| p * k).collect();
-    NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &pts, Some(&s.weights())).expect("valid")
-}
-
-/// A 9 x 9 grid over the domain, boundaries included, plus a few irregular interior points.
-fn samples(s: &NurbsSurface) -> Vec<[f64; 5]> {
-    let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
-    let mut uv: Vec<(f64, f64)> = Vec::new();
-    for a in 0..=8 {
-        for b in 0..=8 {
-            uv.push((u0 + (u1 - u0) * a as f64 / 8.0, v0 + (v1 - v0) * b as f64 / 8.0));
-        }
-    }
-    for k in 1..=7 {
-        let (a, b) = ((k as f64 * 0.618_034).fract(), (k as f64 * 0.414_214).fract());
-        uv.push((u0 + (u1 - u0) * a, v0 + (v1 - v0) * b));
-    }
-    uv.into_iter()
-        .map(|(u, v)| {
-            let p = s.point(u, v);
-            [u, v, p.x, p.y, p.z]
-        })
-        .collect()
 }
 
 fn meta(units: IgesUnits, name: &str) -> IgesMeta {

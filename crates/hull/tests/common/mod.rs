@@ -3,3 +3,4 @@
 
 pub mod browser;
 pub mod python;
+pub mod surfaces;
