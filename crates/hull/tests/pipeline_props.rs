@@ -2,6 +2,7 @@
 //! uneven spacing, a pointed or zero-width end) fits by both methods; interpolation passes
 //! through its data; the error in the report is the error re-measured from the written file.
 
+use hull::optimize::{Algorithm, OptimSettings};
 use hull::{fit_offsets, measure_fit_error, FitConfig, FitMethod, Offsets, Section, Units};
 use nurbs::Vec3;
 use proptest::prelude::*;
@@ -79,5 +80,37 @@ proptest! {
         ).map_err(|e| TestCaseError::fail(e.to_string()))?;
         prop_assert_eq!(report["error"]["max"].as_f64(), Some(again.overall.max));
         prop_assert_eq!(report["error"]["rms"].as_f64(), Some(again.overall.rms));
+    }
+
+}
+
+proptest! {
+    // Each case runs five optimisations: fewer cases, short runs.
+    #![proptest_config(ProptestConfig { cases: 8, ..ProptestConfig::default() })]
+
+    /// Every weight optimiser fits any valid set of sections, and (starting from the offsets'
+    /// foot points on the plain approximation, the default) never ends worse than it in true
+    /// RMS: the objective at the start is the approximation's true RMS, the optimisers only
+    /// keep a lower objective, and the objective bounds the true RMS from above.
+    #[test]
+    fn every_optimiser_fits_and_never_ends_above_the_approximation(offsets in hull_sections(), seed in 0u64..1000) {
+        let approx = fit_offsets(&offsets, &FitConfig::default())
+            .map_err(|e| TestCaseError::fail(format!("approx: {e}")))?;
+        for algorithm in [Algorithm::Ga, Algorithm::Pso, Algorithm::Gsa, Algorithm::Lm, Algorithm::GsaLm] {
+            let optim = OptimSettings { seed, iterations: Some(6), population: Some(8), ..OptimSettings::default() };
+            let config = FitConfig { method: FitMethod::Optimized(algorithm), optim, ..FitConfig::default() };
+            let out = fit_offsets(&offsets, &config)
+                .map_err(|e| TestCaseError::fail(format!("{}: {e}", algorithm.name())))?;
+            let rms = out.error.overall.rms;
+            prop_assert!(rms.is_finite() && out.error.overall.max.is_finite(), "{}: rms {rms}", algorithm.name());
+            prop_assert!(out.surface.weights().iter().all(|w| w.is_finite() && *w > 0.0));
+            // Projection round-off: the closest points are found to ~1e-12 of the model size.
+            prop_assert!(
+                rms <= approx.error.overall.rms * (1.0 + 1e-9) + 1e-12 * offsets.size(),
+                "{}: rms {rms} above approx {}",
+                algorithm.name(),
+                approx.error.overall.rms
+            );
+        }
     }
 }
