@@ -2,11 +2,13 @@
 //!
 //! Runs skinning interpolation, the plain approximation, and the approximation with its weights
 //! optimised by GA, PSO, GSA, LM and GSA+LM; writes `DIR/compare.json` and `DIR/compare.md`
-//! (each atomically) and prints the Markdown table with the floors of issue 3.
+//! (both or neither: staged beside `DIR` and moved in together) and prints the Markdown table
+//! with the floors of issue 3.
 //!
-//! Ctrl-C stops the optimiser that is running (keeping its best surface so far, which is
-//! measured and marked `interrupted`) and then the whole comparison: what was done is written,
-//! the methods not run are listed, and the exit status is 130. A second Ctrl-C quits at once.
+//! SIGINT (Ctrl-C) or SIGTERM stops the optimiser that is running (keeping its best surface so
+//! far, which is measured and marked `interrupted`) and then the whole comparison: what was done
+//! is written, complete, the methods not run are listed, and the exit status is 130 (SIGINT) or
+//! 143 (SIGTERM). A second signal quits at once, writing nothing.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -33,25 +35,30 @@ pub struct CompareArgs {
 
 /// Run `hullskin compare`.
 pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
+    progress::install_stop_handler();
     let offsets = args.skin.offsets()?;
     let s = &args.skin;
     let config = CompareConfig { degree: s.degree, ctrl: s.ctrl, param: s.param, optim: args.optim.settings() };
-    let comparison = hull::compare_offsets_with(&offsets, &config, &mut |algorithm, fit| {
-        progress::with_progress(algorithm.name(), |control| fit(control))
+    // A stop between two optimisers ends the comparison too (not the run).
+    let comparison = progress::stoppable(|| {
+        hull::compare_offsets_with(&offsets, &config, &mut |algorithm, fit| {
+            progress::with_progress(algorithm.name(), |control| fit(control))
+        })
     })?;
     let dir = &args.out;
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
     let markdown = hull::comparison_markdown(&comparison);
+    // Both files or neither: staged beside DIR and moved in together.
+    let mut out = hull::OutputDir::stage(dir).with_context(|| format!("cannot write into {}", dir.display()))?;
     for (name, text) in [("compare.json", hull::comparison_json(&comparison)), ("compare.md", markdown.clone())] {
-        let path = dir.join(name);
-        hull::write_atomic(&path, |w| w.write_all(text.as_bytes()))
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        out.write_bytes(name, text.as_bytes()).with_context(|| format!("cannot write {name}"))?;
     }
+    out.commit().with_context(|| format!("cannot write into {}", dir.display()))?;
     print!("{markdown}");
     println!("\nwrote {}", dir.join("{compare.json,compare.md}").display());
     if !comparison.complete || progress::stopped() {
-        eprintln!("hullskin: interrupted: wrote the methods done before the stop");
-        return Ok(ExitCode::from(130));
+        let status = progress::stop_status().unwrap_or(130);
+        eprintln!("hullskin: interrupted: wrote the methods done before the stop (exit status {status})");
+        return Ok(ExitCode::from(status));
     }
     Ok(ExitCode::SUCCESS)
 }

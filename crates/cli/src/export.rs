@@ -179,6 +179,8 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
             (outcome.surface, offsets.units, source, Some((offsets, vs)))
         }
     };
+    // Nothing is created for a surface no file may hold (non-finite, bad weights or knots).
+    hull::check_finite(&surface).with_context(|| format!("cannot export {source}"))?;
     let out = &args.out;
     let file_name = out.file_name().map_or_else(|| "hull".into(), |n| n.to_string_lossy().into_owned());
     let time = unix_time(args);
@@ -214,6 +216,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
         ExportFormat::IgesPolynomial => {
             let tol = args.tolerance.unwrap_or(1e-5 * size(&surface));
             let approx = polynomial_approximation(&surface, tol)?;
+            hull::check_finite(&approx.surface).context("cannot export the polynomial approximation")?;
             write(&|mut w| write_iges(&mut w, &approx.surface, &iges_meta()))?;
             if approx.exact {
                 "polynomial surface, exact (all weights equal)".to_string()

@@ -74,6 +74,7 @@ fn parse_method(s: &str) -> Result<FitMethod, String> {
 
 /// Run `hullskin fit`.
 pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
+    progress::install_stop_handler();
     let offsets = args.skin.offsets()?;
     let (outcome, search) = args.fit.fit(&args.skin, &offsets)?;
     let mut report = hull::Report::new(&offsets, &outcome);
@@ -84,16 +85,16 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         println!("{}", s.summary(offsets.units.symbol()));
     }
     println!("wrote {}", args.out.join("{surface.igs,surface.json,report.json}").display());
-    if progress::stopped() {
-        eprintln!("hullskin: interrupted: wrote the best surface found before the stop");
-        return Ok(ExitCode::from(130));
+    if let Some(status) = progress::stop_status() {
+        eprintln!("hullskin: interrupted: wrote the best surface found before the stop (exit status {status})");
+        return Ok(ExitCode::from(status));
     }
     Ok(ExitCode::SUCCESS)
 }
 
 /// Fit `offsets` with `config`, or with the fewest control points whose max error is within
 /// `tolerance` when one is given (then with the record of that search). An optimised method
-/// draws a progress bar and stops on Ctrl-C with its best surface so far
+/// draws a progress bar and stops on SIGINT (Ctrl-C) or SIGTERM with its best surface so far
 /// ([`progress::stopped`] then says so); the others run quietly.
 ///
 /// # Errors
@@ -114,8 +115,8 @@ pub(crate) fn fit_with_progress(
     }
 }
 
+/// Write the three files all or nothing (staged, then moved into `dir`).
 fn write_outputs(dir: &Path, offsets: &Offsets, outcome: &FitOutcome, report: &hull::Report) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
     hull::write_fit_outputs_with_report(dir, offsets, outcome, report)
         .with_context(|| format!("cannot write outputs to {}", dir.display()))
 }

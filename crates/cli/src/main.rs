@@ -5,6 +5,7 @@
 
 use std::process::ExitCode;
 
+use clap::builder::RangedU64ValueParser;
 use clap::{Parser, Subcommand};
 
 mod compare;
@@ -26,6 +27,46 @@ mod surface_arg;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// Worker threads for the parallel parts (fit-error projections, optimiser populations,
+    /// hydrostatics). Default: the HULLSKIN_THREADS environment variable, else all cores.
+    /// Results do not depend on it: the same input and seed give the same bytes.
+    #[arg(
+        long,
+        global = true,
+        value_name = "N",
+        value_parser = RangedU64ValueParser::<usize>::new().range(1..=MAX_THREADS as u64)
+    )]
+    threads: Option<usize>,
+}
+
+/// Most worker threads accepted (`--threads`, `HULLSKIN_THREADS`): far above any core count
+/// hullskin can use, low enough that a typo does not spawn a million threads.
+const MAX_THREADS: usize = 1024;
+
+/// Size rayon's global pool from `--threads`, else `HULLSKIN_THREADS` (unset or empty: rayon's
+/// default, all cores, or `RAYON_NUM_THREADS`).
+fn init_threads(flag: Option<usize>) -> anyhow::Result<()> {
+    let threads = match flag {
+        Some(n) => Some(n),
+        None => match std::env::var("HULLSKIN_THREADS") {
+            Ok(s) if s.trim().is_empty() => None,
+            Ok(s) => match s.trim().parse::<usize>() {
+                Ok(n) if (1..=MAX_THREADS).contains(&n) => Some(n),
+                _ => {
+                    anyhow::bail!("HULLSKIN_THREADS={s:?}: expected a whole number of threads from 1 to {MAX_THREADS}")
+                }
+            },
+            Err(std::env::VarError::NotPresent) => None,
+            Err(e) => anyhow::bail!("HULLSKIN_THREADS: {e}"),
+        },
+    };
+    if let Some(n) = threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()
+            .map_err(|e| anyhow::anyhow!("cannot start {n} worker threads: {e}"))?;
+    }
+    Ok(())
 }
 
 #[derive(Debug, Subcommand)]
@@ -68,6 +109,7 @@ fn main() -> ExitCode {
 
 fn run() -> anyhow::Result<ExitCode> {
     let cli = Cli::parse();
+    init_threads(cli.threads)?;
     match cli.command {
         Some(Command::Fit(args)) => fit::run(&args),
         Some(Command::Compare(args)) => compare::run(&args),

@@ -3,7 +3,9 @@
 //!
 //! The input is a `surface.json` (used as it is; offsets for the fit error from `--offsets`)
 //! or offsets, fitted first with the flags of `fit` (the built-in sample without input).
-//! Everything is written into `DIR`, each file atomically; see [`hull::report_html`].
+//! Everything is written into `DIR` all or nothing (staged beside it and moved in when the
+//! whole report is built); see [`hull::report_html::write_report`]. A SIGINT or SIGTERM during
+//! an optimised fit stops it and reports on the best surface so far (exit status 130 or 143).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -72,6 +74,7 @@ struct Loaded {
 /// Run `hullskin report`.
 pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
     let start = Instant::now();
+    progress::install_stop_handler();
     if let Some(t) = args.draft {
         if !(t.is_finite() && t > 0.0) {
             bail!("--draft {t}: expected a draft greater than 0");
@@ -81,6 +84,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
         bail!("--density {}: expected a positive density in t/m³", args.density);
     }
     let loaded = load(args)?;
+    hull::check_finite(&loaded.surface).with_context(|| format!("cannot report on {}", loaded.source))?;
     let comparison = match (&loaded.offsets, args.compare) {
         (Some(offsets), true) => Some(compare(args, offsets)?),
         (None, true) => bail!("--compare needs offsets: give them with --offsets FILE for a surface.json input"),
@@ -97,13 +101,16 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
     let options = ReportOptions { density: args.density, ..ReportOptions::default() };
     let report = build_report(&inputs, &options).with_context(|| format!("cannot report on {}", loaded.source))?;
     let dir = &args.out;
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    // All files or none: staged beside DIR and moved in together.
     let written =
         write_report(dir, &report).with_context(|| format!("cannot write the report to {}", dir.display()))?;
     print_summary(&loaded, &report, &written, start.elapsed().as_secs_f64());
-    if progress::stopped() {
-        eprintln!("hullskin: interrupted: the report shows the best surface found before the stop");
-        return Ok(ExitCode::from(130));
+    if let Some(status) = progress::stop_status() {
+        eprintln!(
+            "hullskin: interrupted: wrote the complete report of the best surface found before the stop (exit status \
+             {status})"
+        );
+        return Ok(ExitCode::from(status));
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -171,8 +178,11 @@ fn surface_as_is(args: &ReportArgs, surface: NurbsSurface, units: Units, source:
 fn compare(args: &ReportArgs, offsets: &Offsets) -> anyhow::Result<Comparison> {
     let s = &args.skin;
     let config = CompareConfig { degree: s.degree, ctrl: s.ctrl, param: s.param, optim: args.fit.optim.settings() };
-    let comparison = hull::compare_offsets_with(offsets, &config, &mut |algorithm, fit| {
-        progress::with_progress(algorithm.name(), |control| fit(control))
+    // A stop between two optimisers ends the comparison too (not the run).
+    let comparison = progress::stoppable(|| {
+        hull::compare_offsets_with(offsets, &config, &mut |algorithm, fit| {
+            progress::with_progress(algorithm.name(), |control| fit(control))
+        })
     })
     .with_context(|| format!("cannot compare the methods on {}", offsets.source))?;
     Ok(comparison)

@@ -154,8 +154,6 @@ pub struct SliceArgs {
 /// Run `hullskin slice`.
 pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
     let (mesh, out) = args.mesh.read_and_slice(&args.input, args.units)?;
-    hull::write_atomic(&args.out, |w| write_sections_csv(w, &out.offsets))
-        .with_context(|| format!("cannot write {}", args.out.display()))?;
     let edges = mesh.edge_counts();
     println!(
         "{}: {} triangles, {} vertices ({} degenerate triangles dropped), {} open and {} non-manifold edges",
@@ -183,6 +181,10 @@ pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
             check_surface(path, &mesh, &out.offsets, &m)?;
         }
     }
+    // Written last, atomically: a run that fails (e.g. an unreadable --check surface) leaves
+    // an earlier file as it was.
+    hull::write_atomic(&args.out, |w| write_sections_csv(w, &out.offsets))
+        .with_context(|| format!("cannot write {}", args.out.display()))?;
     println!("wrote {}", args.out.display());
     Ok(ExitCode::SUCCESS)
 }
@@ -209,6 +211,7 @@ fn print_mesh_hydrostatics(m: &MeshHydrostatics, units: Units) {
 }
 
 fn check_surface(path: &Path, mesh: &TriMesh, offsets: &Offsets, m: &MeshHydrostatics) -> anyhow::Result<()> {
+    hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface.json")?;
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let (surface, _) = hull::export::read_surface_json(&text)
         .with_context(|| format!("cannot read the surface {}", path.display()))?;

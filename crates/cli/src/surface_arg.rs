@@ -38,15 +38,31 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
         return Ok(Input::Offsets(crate::slice::mesh_offsets(path, &skin.mesh, skin.units)?));
     }
     let source = path.display().to_string();
+    hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface.json or offsets file")?;
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
     let text = hull::decode(&bytes, &source)?;
     if text.trim_start().starts_with('{') && !hull::read::json_table::is_offset_json(text) {
-        let (surface, units) =
-            hull::export::read_surface_json(text).with_context(|| format!("cannot read the surface {source}"))?;
+        let (surface, units) = hull::export::read_surface_json(text).map_err(|e| surface_json_error(e, &source))?;
         let units: Units = units.parse().with_context(|| format!("{source}: \"units\""))?;
         return Ok(Input::Surface { surface, units, source });
     }
     Ok(Input::Offsets(crate::skin_args::report_reading(hull::read_offsets_with(path, &skin.read_options())?)))
+}
+
+/// A surface JSON error naming the file, and for a syntax error its line and column as
+/// `file:line:col:` (serde_json's " at line L column C" suffix dropped).
+fn surface_json_error(e: hull::export::surface_json::SurfaceJsonError, source: &str) -> anyhow::Error {
+    use hull::export::surface_json::SurfaceJsonError;
+    match e {
+        SurfaceJsonError::Syntax { line, column, message } => {
+            let suffix = format!(" at line {line} column {column}");
+            let message = message.strip_suffix(&suffix).unwrap_or(&message);
+            anyhow::anyhow!(
+                "{source}:{line}:{column}: {message} (expected a hullskin surface JSON, as hullskin fit writes it)"
+            )
+        }
+        e => anyhow::Error::new(e).context(format!("cannot read the surface {source}")),
+    }
 }
 
 #[cfg(test)]
@@ -113,6 +129,17 @@ mod tests {
         std::fs::write(&bad, "{\"format\": \"other\"}").expect("write");
         let err = read_input(&skin(Some(bad))).err().expect("not a surface");
         assert!(format!("{err:#}").contains("bad.json"), "{err:#}");
+        let cut = dir.path().join("cut.json");
+        std::fs::write(&cut, "{\n  \"format\": \"hullskin-surface\",\n  \"version\": \"1\"").expect("write");
+        let err = format!("{:#}", read_input(&skin(Some(cut.clone()))).err().expect("a string version"));
+        assert_eq!(
+            err,
+            format!(
+                "{}:3:16: invalid type: string \"1\", expected u32 (expected a hullskin surface JSON, as hullskin fit \
+                 writes it)",
+                cut.display()
+            )
+        );
         let broken = dir.path().join("broken.csv");
         std::fs::write(&broken, "section,x,y,z\nA,1,2\n").expect("write");
         let err = read_input(&skin(Some(broken))).err().expect("not offsets");

@@ -40,7 +40,13 @@ fn small_run(dir: &Path, out: &str, alg: &str, iterations: &str, seed: &str, thr
         "--seed",
         seed,
     ];
-    let o = hullskin_env(dir, &args, &[("RAYON_NUM_THREADS", threads)]);
+    // One thread by the global `--threads` flag, more by HULLSKIN_THREADS: both ways of sizing
+    // the pool are exercised, and the bytes must not depend on either.
+    let o = if threads == "1" {
+        hullskin_env(dir, &[&args[..], &["--threads", threads]].concat(), &[])
+    } else {
+        hullskin_env(dir, &args, &[("HULLSKIN_THREADS", threads)])
+    };
     assert!(o.status.success(), "{alg} seed {seed}: {:?}", text(&o));
     let surface = fs::read(dir.join(out).join("surface.json")).expect("surface.json");
     (surface, read_json(&dir.join(out).join("report.json")))
@@ -88,6 +94,20 @@ fn same_seed_same_surface_whatever_the_thread_count_and_seeds_differ() {
         let (s3, _) = small_run(dir.path(), "s3", alg, its, "3", "2");
         assert!(!(one == s2 && one == s3), "{alg}: seeds 1, 2 and 3 gave the same surface");
     }
+}
+
+#[test]
+fn bad_thread_counts_are_clear_errors() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let o = hullskin(dir.path(), &["fit", "--threads", "0"]);
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--threads") && err.contains("1..=1024"), "{err}");
+    let o = hullskin_env(dir.path(), &["fit", "-o", "x"], &[("HULLSKIN_THREADS", "many")]);
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("HULLSKIN_THREADS=\"many\": expected a whole number of threads from 1 to 1024"), "{err}");
+    assert!(!dir.path().join("x").exists(), "nothing is written after a bad setting");
 }
 
 #[test]

@@ -101,6 +101,10 @@ pub enum HullError {
         /// Why it cannot be used, with what was expected.
         reason: String,
     },
+    /// An input above one of the documented caps of [`crate::limits`] (boxed to keep
+    /// `Result<_, HullError>` small).
+    #[error("{0}")]
+    Limit(Box<crate::limits::LimitExceeded>),
     /// No control-point count tried reached the requested max error.
     #[error(
         "no control-point count reaches max error {tolerance:.3e} {units}: the best max error is {best:.3e} {units} at {}x{} control points after {fits} fits (expected a tolerance of at least that)",
@@ -118,6 +122,13 @@ pub enum HullError {
         fits: usize,
         /// Units of the distances.
         units: &'static str,
+    },
+    /// A surface that must not be written: a non-finite control point, a weight that is not
+    /// finite and positive, or a bad knot vector ([`crate::check_finite`]).
+    #[error("the surface cannot be written: {problem} (expected finite control points, finite positive weights and valid knot vectors)")]
+    UnwritableSurface {
+        /// What is wrong, with its place, e.g. `control point (2, 3) is (NaN, 0, 1)`.
+        problem: String,
     },
 }
 
@@ -167,6 +178,17 @@ pub enum InputErrorKind {
     Separator {
         /// The separator found.
         separator: char,
+    },
+    /// A line with one field that holds another delimiter than the file's (set by its first
+    /// data line): `;` or tab files whose later lines use commas, and the like.
+    #[error("fields are separated by {} (expected {} as on line {first_line}, the file's first data line: one delimiter for the whole file)", separator_name(*.separator), separator_name(*.expected))]
+    SeparatorChange {
+        /// The separator found.
+        separator: char,
+        /// The file's delimiter.
+        expected: char,
+        /// The line that set it.
+        first_line: usize,
     },
     /// A quoted field without its closing quote on the same line.
     #[error("quoted field has no closing quote (expected a closing \" on the same line)")]
@@ -344,6 +366,36 @@ pub enum InputErrorKind {
         /// The coordinates.
         point: [f64; 3],
     },
+    /// A model too large or too small for f64 arithmetic (see `hull::offsets::MIN_SIZE`).
+    #[error("the model's size (bounding-box diagonal) is {size:e} with coordinates up to {largest:e}{} (expected a size between 1e-50 and 1e50 in the file's units: check the units and the exponents)", model_size_at(.at))]
+    ModelSize {
+        /// The bounding-box diagonal (may be infinite).
+        size: f64,
+        /// The largest absolute coordinate.
+        largest: f64,
+        /// The section label and 0-based point index of the largest coordinate, for a model too
+        /// large.
+        at: Option<(String, usize)>,
+    },
+    /// A section between the first and the last that collapses to one point.
+    #[error("section \"{label}\" collapses to one point ({}, {}, {}) (expected a section of extent: only the first and last sections, a pointed stern or stem, may be one point)", .point[0], .point[1], .point[2])]
+    PointSection {
+        /// The section label.
+        label: String,
+        /// The point.
+        point: [f64; 3],
+    },
+    /// Two segments of a section cross each other.
+    #[error("section \"{label}\" crosses itself: its segment from point {} to {}{} crosses its segment from point {} to {}{} (expected the points in order along the section, keel to deck, without a loop)", .segment.0 + 1, .segment.0 + 2, lines_note(.segment.1, .segment.2), .crossed.0 + 1, .crossed.0 + 2, lines_note(.crossed.1, .crossed.2))]
+    SectionCrosses {
+        /// The section label.
+        label: String,
+        /// The later segment: 0-based index of its first point, and the source lines of its
+        /// two points when known.
+        segment: (usize, Option<usize>, Option<usize>),
+        /// The earlier segment it crosses, the same way.
+        crossed: (usize, Option<usize>, Option<usize>),
+    },
     /// Sections (all planar in x) out of order along the length.
     #[error("section \"{label}\" at x = {x} is not {} section \"{previous_label}\" at x = {previous_x} (expected sections in order along the length, x strictly {} as set by the first two sections)", if *.increasing { "forward of" } else { "aft of" }, if *.increasing { "increasing" } else { "decreasing" })]
     SectionOrder {
@@ -397,6 +449,7 @@ fn separator_name(c: char) -> String {
     match c {
         '\t' => "tabs".to_string(),
         ';' => "semicolons".to_string(),
+        ',' => "commas".to_string(),
         c => format!("{c:?}"),
     }
 }
@@ -406,6 +459,20 @@ fn decimal_comma_hint(got: usize, expected: usize) -> &'static str {
         "; numbers with decimal commas split into extra fields: use decimal points"
     } else {
         ""
+    }
+}
+
+fn model_size_at(at: &Option<(String, usize)>) -> String {
+    match at {
+        Some((label, index)) => format!(" (section \"{label}\", point {})", index + 1),
+        None => String::new(),
+    }
+}
+
+fn lines_note(a: Option<usize>, b: Option<usize>) -> String {
+    match (a, b) {
+        (Some(a), Some(b)) => format!(" (lines {a}-{b})"),
+        _ => String::new(),
     }
 }
 

@@ -167,6 +167,27 @@ mod tests {
     }
 
     #[test]
+    fn projections_that_do_not_converge_are_counted() {
+        // A point with a NaN coordinate (it cannot come through validation, but a caller may
+        // measure any offsets) has no foot point: the projector says so and the count shows it,
+        // while the other three are measured as usual.
+        let offsets = Offsets {
+            source: "test".into(),
+            units: crate::Units::Metre,
+            sections: vec![
+                Section::new("a", vec![Vec3::new(0.5, 0.5, 0.1), Vec3::new(f64::NAN, 1.0, 0.0)]),
+                Section::new("b", vec![Vec3::new(1.5, 2.0, 0.0), Vec3::new(1.0, 2.5, 0.2)]),
+            ],
+        };
+        let e = measure_fit_error(&plane(), &offsets, None);
+        assert_eq!((e.unconverged_projections, e.overall.points), (1, 4));
+        // Section b is unaffected: exact heights, as in the test above.
+        assert_near!(e.per_section[1].stats.max, 0.2, 1e-12);
+        let clean = Offsets { sections: offsets.sections[1..].to_vec(), ..offsets };
+        assert_eq!(measure_fit_error(&plane(), &clean, None).unconverged_projections, 0);
+    }
+
+    #[test]
     fn parametric_residual_bounds_the_true_distance() {
         let s = plane();
         let q = [Vec3::new(1.0, 1.0, 0.5)];

@@ -12,6 +12,7 @@ mod error;
 pub mod export;
 pub mod fit_error;
 pub mod hydrostatics;
+pub mod limits;
 mod markup;
 pub mod mesh;
 mod offsets;
@@ -39,8 +40,8 @@ pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
     HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
 };
-pub use offsets::{Offsets, Section, COINCIDENT_REL, PLANAR_REL};
-pub use output::write_atomic;
+pub use offsets::{Offsets, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
+pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
 pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome, Knuckles};
 pub use read::{
     decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,

@@ -28,6 +28,17 @@ pub const COINCIDENT_REL: f64 = 1e-9;
 /// their mean (same reasoning as [`COINCIDENT_REL`]).
 pub const PLANAR_REL: f64 = 1e-9;
 
+/// The model size (see [`Offsets::size`]) must lie within `MIN_SIZE ..= MAX_SIZE`, in any
+/// units. The fit, the error measure and the hydrostatics square and multiply lengths (sums of
+/// squared distances over millions of points, volumes, moments of inertia of the waterplane: up
+/// to fifth powers of a length): with lengths between 1e-50 and 1e50 every such product stays a
+/// normal f64 (1e-308 to 1e308) with room to spare, while a hull of 1e300 m overflows to
+/// infinity and one of 1e-310 m is below the coincidence tolerance's resolution. Real data,
+/// micrometres to kilometres, lie twenty orders of magnitude inside either bound.
+pub const MIN_SIZE: f64 = 1e-50;
+/// See [`MIN_SIZE`].
+pub const MAX_SIZE: f64 = 1e50;
+
 /// One section of the hull: its points in order along it (keel to deck).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Section {
@@ -112,20 +123,31 @@ impl Offsets {
     /// 2. there are at least 2 sections;
     /// 3. every section has at least `max(min_points_per_section, 1)` points (pass the fit's
     ///    degree + 1);
-    /// 4. no two consecutive points of a section coincide (distance <= [`COINCIDENT_REL`] x
+    /// 4. the model size lies within [`MIN_SIZE`] and [`MAX_SIZE`] (no coordinate so large
+    ///    that lengths overflow, no model collapsed to a point or below any tolerance);
+    /// 5. no two consecutive points of a section coincide (distance <= [`COINCIDENT_REL`] x
     ///    model size), unless the whole section collapses to one point (a pointed stem or
-    ///    stern end, all its points equal);
-    /// 5. when every section is planar in x (see [`PLANAR_REL`]), the sections' x are strictly
+    ///    stern end, all its points equal), and only the first and last sections may so
+    ///    collapse (a zero-length section between two others pinches the hull: refused);
+    /// 6. no section planar in x crosses itself: two of its segments that are not neighbours
+    ///    do not cross in the (y, z) plane (a point typed out of order along the curve makes
+    ///    a loop the skinned surface would fold over); segments that only touch are accepted;
+    /// 7. when every section is planar in x (see [`PLANAR_REL`]), the sections' x are strictly
     ///    monotone (increasing or decreasing, as the first two set it; a difference within the
-    ///    tolerance counts as equal). Free-form sections whose x varies are not order-checked.
+    ///    tolerance counts as equal: a station given twice is refused). Free-form sections
+    ///    whose x varies are not order-checked.
     ///
     /// # Errors
     ///
     /// The first failed check, as [`HullError::Input`] located at the offending point's source
     /// line (and column for offset tables): [`InputErrorKind::NonFiniteCoordinate`],
     /// [`InputErrorKind::TooFewSections`], [`InputErrorKind::TooFewPoints`],
-    /// [`InputErrorKind::RepeatedPoint`] or [`InputErrorKind::SectionOrder`].
+    /// [`InputErrorKind::ModelSize`], [`InputErrorKind::RepeatedPoint`],
+    /// [`InputErrorKind::PointSection`], [`InputErrorKind::SectionCrosses`] or
+    /// [`InputErrorKind::SectionOrder`]; and
+    /// [`HullError::Limit`] above the caps of [`crate::limits::check_offsets`].
     pub fn validate(&self, min_points_per_section: usize) -> Result<(), HullError> {
+        crate::limits::check_offsets(self)?;
         let src = self.source.as_str();
         for s in &self.sections {
             if let Some(i) = s.points.iter().position(|p| !p.is_finite()) {
@@ -154,10 +176,18 @@ impl Offsets {
                 ));
             }
         }
+        self.check_size()?;
         let tol = COINCIDENT_REL * self.size();
-        for s in &self.sections {
+        let last = self.sections.len() - 1;
+        for (k, s) in self.sections.iter().enumerate() {
             if s.is_point(tol) {
-                continue; // a pointed end
+                if k == 0 || k == last {
+                    continue; // a pointed end
+                }
+                return Err(HullError::input(
+                    s.location(src, 0),
+                    InputErrorKind::PointSection { label: s.label.clone(), point: s.points[0].to_array() },
+                ));
             }
             for (i, w) in s.points.windows(2).enumerate() {
                 if w[0].distance(w[1]) <= tol {
@@ -174,7 +204,62 @@ impl Offsets {
                 }
             }
         }
+        self.check_crossings(PLANAR_REL * self.size())?;
         self.check_order(PLANAR_REL * self.size())
+    }
+
+    /// Step 4 of [`Offsets::validate`]: the size within [`MIN_SIZE`] and [`MAX_SIZE`]; a model
+    /// too large is located at its largest coordinate. Every coordinate is finite by now.
+    fn check_size(&self) -> Result<(), HullError> {
+        // The largest coordinate bounds the size within a factor sqrt(3) and cannot overflow.
+        let mut largest: Option<(usize, usize, f64)> = None;
+        for (k, s) in self.sections.iter().enumerate() {
+            for (i, p) in s.points.iter().enumerate() {
+                let m = p.x.abs().max(p.y.abs()).max(p.z.abs());
+                if largest.is_none_or(|(_, _, l)| m > l) {
+                    largest = Some((k, i, m));
+                }
+            }
+        }
+        let Some((k, i, m)) = largest else { return Ok(()) };
+        let src = self.source.as_str();
+        if m > MAX_SIZE / 2.0 || self.size() > MAX_SIZE {
+            let s = &self.sections[k];
+            return Err(HullError::input(
+                s.location(src, i),
+                InputErrorKind::ModelSize { size: self.size(), largest: m, at: Some((s.label.clone(), i)) },
+            ));
+        }
+        if self.size() < MIN_SIZE {
+            return Err(HullError::input(
+                Location::file(src),
+                InputErrorKind::ModelSize { size: self.size(), largest: m, at: None },
+            ));
+        }
+        Ok(())
+    }
+
+    /// Step 6 of [`Offsets::validate`]: the first section planar in x (within `tol`) two of
+    /// whose segments cross in the (y, z) plane.
+    fn check_crossings(&self, tol: f64) -> Result<(), HullError> {
+        for s in &self.sections {
+            let Some(x) = s.mean_x() else { continue };
+            if s.points.len() < 4 || s.points.iter().any(|p| (p.x - x).abs() > tol) {
+                continue;
+            }
+            let yz: Vec<[f64; 2]> = s.points.iter().map(|p| [p.y, p.z]).collect();
+            if let Some((a, b)) = first_crossing(&yz) {
+                return Err(HullError::input(
+                    s.location(&self.source, b + 1),
+                    InputErrorKind::SectionCrosses {
+                        label: s.label.clone(),
+                        segment: (b, s.lines.get(b).copied(), s.lines.get(b + 1).copied()),
+                        crossed: (a, s.lines.get(a).copied(), s.lines.get(a + 1).copied()),
+                    },
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Step 5 of [`Offsets::validate`]; every section has a point by now.
@@ -206,6 +291,43 @@ impl Offsets {
         }
         Ok(())
     }
+}
+
+/// The first pair `(a, b)`, `a + 1 < b`, of segments `[p_a, p_a+1]` and `[p_b, p_b+1]` of the
+/// polyline `pts` that cross properly: each segment's ends lie strictly on opposite sides of the
+/// other's line, by the sign of the orientation determinant
+/// `orient(p, q, r) = (q - p) x (r - p)` (O'Rourke, *Computational Geometry in C*, 2nd ed.,
+/// section 7.2, `SegSegInt` without the touching cases). "First" is the least `b`, then `a`.
+///
+/// A sweep over the segments in order of their lowest z keeps the work near linear for
+/// sections that rise from keel to deck (only segments overlapping in z are compared); it is
+/// quadratic only for sections that go up and down across their whole height.
+fn first_crossing(pts: &[[f64; 2]]) -> Option<(usize, usize)> {
+    let n = pts.len().checked_sub(1)?; // segments
+    let orient = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+    let crosses = |a: usize, b: usize| {
+        let (p, q, r, t) = (pts[a], pts[a + 1], pts[b], pts[b + 1]);
+        let (d1, d2) = (orient(p, q, r), orient(p, q, t));
+        let (d3, d4) = (orient(r, t, p), orient(r, t, q));
+        d1 * d2 < 0.0 && d3 * d4 < 0.0
+    };
+    let z_range = |i: usize| (pts[i][1].min(pts[i + 1][1]), pts[i][1].max(pts[i + 1][1]));
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| z_range(a).0.total_cmp(&z_range(b).0));
+    let mut active: Vec<usize> = Vec::new();
+    let mut best: Option<(usize, usize)> = None;
+    for &i in &order {
+        let lo = z_range(i).0;
+        active.retain(|&j| z_range(j).1 >= lo);
+        for &j in &active {
+            let (a, b) = (i.min(j), i.max(j));
+            if b > a + 1 && crosses(a, b) && best.is_none_or(|(ba, bb)| (b, a) < (bb, ba)) {
+                best = Some((a, b));
+            }
+        }
+        active.push(i);
+    }
+    best
 }
 
 #[cfg(test)]
@@ -346,5 +468,72 @@ mod tests {
         }
         o.sections[1].points.truncate(1);
         assert!(err(&o, 2).starts_with("box.csv: section \"1\" has 1 point(s)"));
+    }
+
+    #[test]
+    fn only_the_end_sections_may_be_one_point() {
+        let mut o = boxy(4);
+        for k in [0, 3] {
+            let p = o.sections[k].points[0];
+            o.sections[k].points.iter_mut().for_each(|q| *q = p);
+        }
+        assert!(o.validate(4).is_ok(), "pointed stern and stem: {}", err(&o, 4));
+        let p = o.sections[1].points[2];
+        o.sections[1].points.iter_mut().for_each(|q| *q = p);
+        // Section "1" starts on line 6 (the header is line 1, four lines a section).
+        assert!(err(&o, 4).starts_with("box.csv:6: section \"1\" collapses to one point (1, 1, 1)"), "{}", err(&o, 4));
+    }
+
+    #[test]
+    fn a_section_that_crosses_itself_is_refused_at_the_later_segment() {
+        let mut o = boxy(3);
+        // (0,0) -> (2.5,1.5) -> (2.5,0.5) -> (0.5,2): the third segment cuts the first at
+        // y = 1.76, z = 1.06 (z = 0.6 y meets y = 2.5 - 2t, z = 0.5 + 1.5t at t = 1/2.7).
+        o.sections[1].points =
+            [(0.0, 0.0), (2.5, 1.5), (2.5, 0.5), (0.5, 2.0)].iter().map(|&(y, z)| Vec3::new(1.0, y, z)).collect();
+        assert!(
+            err(&o, 4).starts_with(
+                "box.csv:9: section \"1\" crosses itself: its segment from point 3 to 4 (lines 8-9) crosses its \
+                 segment from point 1 to 2 (lines 6-7)"
+            ),
+            "{}",
+            err(&o, 4)
+        );
+    }
+
+    #[test]
+    fn first_crossing_finds_proper_crossings_only() {
+        // A hollow garboard goes down and up again without crossing.
+        assert_eq!(first_crossing(&[[0.0, 0.1], [0.5, 0.0], [1.0, 0.2], [1.2, 1.0], [1.3, 2.0]]), None);
+        // A bow-tie: segments 0 and 2 cross at (1, 1).
+        assert_eq!(first_crossing(&[[0.0, 0.0], [2.0, 2.0], [2.0, 0.0], [0.0, 2.0]]), Some((0, 2)));
+        // Touching at a vertex (the polyline comes back to its point 1) is not a crossing.
+        assert_eq!(first_crossing(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [2.0, 2.0], [1.0, 1.0]]), None);
+        // The first crossing is the one of the earliest later segment: 3 crosses 0 and 1 crosses none.
+        let z = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.5, -1.0], [0.4, 5.0]];
+        assert_eq!(first_crossing(&z), Some((0, 2)));
+        assert_eq!(first_crossing(&[]), None);
+        assert_eq!(first_crossing(&[[0.0, 0.0]]), None);
+    }
+
+    #[test]
+    fn the_model_size_must_suit_f64_arithmetic() {
+        // Micrometres to light years: any realistic scale validates.
+        for scale in [1e-6, 1.0, 1e16] {
+            let mut o = boxy(3);
+            o.sections.iter_mut().flat_map(|s| s.points.iter_mut()).for_each(|p| *p = *p * scale);
+            assert!(o.validate(4).is_ok(), "scale {scale}: {}", err(&o, 4));
+        }
+        let mut o = boxy(3);
+        o.sections[2].points[3].z = 1e300;
+        // Section "2", point 4 is on line 2 + 4 * 2 + 3 = 13.
+        assert!(
+            err(&o, 4).starts_with("box.csv:13: the model's size (bounding-box diagonal) is inf with coordinates up to 1e300 (section \"2\", point 4)"),
+            "{}",
+            err(&o, 4)
+        );
+        let mut o = boxy(3);
+        o.sections.iter_mut().flat_map(|s| s.points.iter_mut()).for_each(|p| *p = *p * 1e-310);
+        assert!(err(&o, 4).starts_with("box.csv: the model's size"), "{}", err(&o, 4));
     }
 }

@@ -6,8 +6,8 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use nurbs::fit::{
-    find_knuckle_lines, knuckle_indices, skin_approximate_with_knuckles, skin_interpolate_with_knuckles, CornerOptions,
-    KnuckleLine, SkinOptions, SkinParameterization,
+    find_flat_lines, find_knuckle_lines, knuckle_indices, refit_within_flats, skin_approximate_with_knuckles,
+    skin_interpolate_with_knuckles, CornerOptions, FlatLine, FlatOptions, KnuckleLine, SkinOptions, SkinParameterization,
 };
 use nurbs::{NurbsError, NurbsSurface};
 
@@ -74,6 +74,15 @@ pub enum Knuckles {
     /// discontinuities (a knot of multiplicity `p` along the sections,
     /// [`skin_interpolate_with_knuckles`]); without any, the fit is the plain skin.
     Auto(CornerOptions),
+    /// As [`Knuckles::Auto`], and where no knuckle line is found, an approximation (`approx`,
+    /// and the start of the optimised methods) of a hull with flats of side or bottom
+    /// ([`find_flat_lines`]) is refitted within the flats' planes, `y <= y_max` and
+    /// `z >= z_min` ([`refit_within_flats`]): no ringing past the flats, for 2 more control
+    /// points along `u` per flat line and up to 2 more across per line's end. Interpolation is
+    /// left as it is (held on the planes it could no longer pass through every offset). Not the
+    /// default: at equal control-point counts the plain approximation is closer to the offsets
+    /// (README, hull features).
+    AutoFlats(CornerOptions),
 }
 
 impl Default for Knuckles {
@@ -93,6 +102,8 @@ impl Knuckles {
             Knuckles::Off => "off".into(),
             Knuckles::Auto(o) if o == CornerOptions::default() => "auto".into(),
             Knuckles::Auto(o) => format!("auto({} deg)", o.min_angle_deg),
+            Knuckles::AutoFlats(o) if o == CornerOptions::default() => "auto+flats".into(),
+            Knuckles::AutoFlats(o) => format!("auto+flats({} deg)", o.min_angle_deg),
         }
     }
 }
@@ -143,6 +154,8 @@ pub struct FitOutcome {
     pub optimization: Option<OptimReport>,
     /// The knuckle lines kept in the surface (empty without any, or with [`Knuckles::Off`]).
     pub knuckle_lines: Vec<KnuckleLine>,
+    /// The flat lines the surface was refitted within ([`Knuckles::AutoFlats`]; empty otherwise).
+    pub flat_lines: Vec<FlatLine>,
 }
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
@@ -162,8 +175,10 @@ pub fn default_ctrl(offsets: &Offsets, degree: (usize, usize)) -> (usize, usize)
 /// # Errors
 /// [`HullError::Input`] when the offsets are invalid for the requested degree (fewer than
 /// two sections, a section with fewer than `p + 1` points, repeated points, stations out of
-/// order), and [`HullError::Fit`] when the kernel refuses the fit (control-point counts out of
-/// range, a singular system).
+/// order), [`HullError::Fit`] when the kernel refuses the fit (control-point counts out of
+/// range, a singular or ill-conditioned system, a surface that is not finite), and
+/// [`HullError::Limit`] above a cap of [`crate::limits`] (points, sections, control points,
+/// optimisation sizes).
 pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullError> {
     quiet(|control| fit_offsets_with(offsets, config, control))
 }
@@ -178,11 +193,13 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
         return fit_skin(offsets, config);
     };
     let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config })?;
+    crate::limits::check_optimization(&offsets.source, &config.optim, plain.surface.n_u(), plain.surface.n_v())?;
     let start = Instant::now();
     let opt = optimize_weights(offsets, &plain, algorithm, &config.optim, control)?;
     let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
     let mut out = measured(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
     out.knuckle_lines = plain.knuckle_lines;
+    out.flat_lines = plain.flat_lines;
     Ok(out)
 }
 
@@ -195,6 +212,7 @@ fn measured(
     fit_seconds: f64,
     optimization: Option<OptimReport>,
 ) -> Result<FitOutcome, HullError> {
+    nurbs::fit::check_surface(&surface, "fitted surface").map_err(|e| fit_error(config, e))?;
     let start = Instant::now();
     let error = measure_fit_error(&surface, offsets, Some(&params));
     let error_seconds = start.elapsed().as_secs_f64();
@@ -210,6 +228,7 @@ fn measured(
         error_seconds,
         optimization,
         knuckle_lines: Vec::new(),
+        flat_lines: Vec::new(),
     })
 }
 
@@ -233,11 +252,22 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullErr
         .iter()
         .map(|s| if s.is_point(tol) { vec![s.points[0]; s.points.len()] } else { s.points.clone() })
         .collect();
+    // The net before it is built: one pole per offset of the largest section by the number of
+    // sections for interpolation (at most), the requested counts for approximation.
+    let (nu, nv) = match (config.method, config.ctrl) {
+        (FitMethod::Interp, _) | (_, None) => {
+            (offsets.sections.iter().map(|s| s.points.len()).max().unwrap_or(0), offsets.sections.len())
+        }
+        (_, Some(ctrl)) => ctrl,
+    };
+    crate::limits::check_control_points(&offsets.source, nu, nv)?;
     let opts = SkinOptions { degree_u: p, degree_v: q, param: config.param };
     let start = Instant::now();
     let lines = match config.knuckles {
         Knuckles::Off => Vec::new(),
-        Knuckles::Auto(corner) => find_knuckle_lines(&sections, &corner).map_err(|e| fit_error(config, e))?,
+        Knuckles::Auto(corner) | Knuckles::AutoFlats(corner) => {
+            find_knuckle_lines(&sections, &corner).map_err(|e| fit_error(config, e))?
+        }
     };
     let knuckles = knuckle_indices(&lines, sections.len());
     let result = match config.method {
@@ -257,9 +287,19 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullErr
         }
     }
     .map_err(|e| fit_error(config, e))?;
+    let (mut surface, mut flat_lines) = (result.surface, Vec::new());
+    if matches!(config.knuckles, Knuckles::AutoFlats(_)) && lines.is_empty() && config.method != FitMethod::Interp {
+        let flats = find_flat_lines(&sections, &FlatOptions::default()).map_err(|e| fit_error(config, e))?;
+        if let Some((refit, _)) =
+            refit_within_flats(&surface, &result.params, &sections, &flats).map_err(|e| fit_error(config, e))?
+        {
+            (surface, flat_lines) = (refit, flats);
+        }
+    }
     let fit_seconds = start.elapsed().as_secs_f64();
-    let mut out = measured(offsets, config, result.surface, result.params, fit_seconds, None)?;
+    let mut out = measured(offsets, config, surface, result.params, fit_seconds, None)?;
     out.knuckle_lines = lines;
+    out.flat_lines = flat_lines;
     Ok(out)
 }
 

@@ -1,4 +1,4 @@
-//! What a fit run writes: `surface.igs`, `surface.json` and `report.json` (each atomically),
+//! What a fit run writes: `surface.igs`, `surface.json` and `report.json` (all or nothing),
 //! and the summary table printed to the terminal.
 //!
 //! `report.json` layout (stable; later features add fields):
@@ -35,7 +35,7 @@ use serde::Serialize;
 
 use crate::export::{iges_timestamp, write_iges, write_surface_json, IgesMeta};
 use crate::optimize::OptimReport;
-use crate::{write_atomic, FitError, FitOutcome, HullError, Offsets, ToleranceSearch};
+use crate::{check_finite, FitError, FitOutcome, HullError, Offsets, OutputDir, ToleranceSearch};
 
 /// The `input` block of `report.json`.
 #[derive(Clone, Debug, Serialize)]
@@ -116,11 +116,15 @@ fn timestamp() -> String {
     iges_timestamp(secs)
 }
 
-/// Write `surface.igs`, `surface.json` and `report.json` into the existing directory `dir`.
-/// Each file is written to a temporary file and renamed, so a failure leaves what was there.
+/// Write `surface.igs`, `surface.json` and `report.json` into the directory `dir` (created if
+/// needed), all or nothing: the surface is checked ([`check_finite`]), the three files are
+/// built in memory, staged beside `dir` and moved in together ([`OutputDir`]), so a failure
+/// leaves what was there byte for byte.
 ///
 /// # Errors
-/// [`HullError::Io`] naming the file that could not be written.
+/// [`HullError::UnwritableSurface`] for a surface with a non-finite control point, a bad weight
+/// or bad knots (before any file is created); [`HullError::Io`] naming the file or directory
+/// that could not be written.
 pub fn write_fit_outputs(dir: &Path, offsets: &Offsets, outcome: &FitOutcome) -> Result<(), HullError> {
     write_fit_outputs_with_report(dir, offsets, outcome, &Report::new(offsets, outcome))
 }
@@ -137,6 +141,7 @@ pub fn write_fit_outputs_with_report(
     report: &Report,
 ) -> Result<(), HullError> {
     let surface = &outcome.surface;
+    check_finite(surface)?;
     let units = offsets.units;
     let io_err = |path: &Path| {
         let path = path.to_path_buf();
@@ -151,10 +156,11 @@ pub fn write_fit_outputs_with_report(
     let mut report =
         serde_json::to_vec_pretty(report).map_err(|e| io_err(&dir.join("report.json"))(io::Error::other(e)))?;
     report.push(b'\n');
+    let mut out = OutputDir::stage(dir)?;
     for (name, bytes) in [("surface.igs", &iges), ("surface.json", &json), ("report.json", &report)] {
-        let path = dir.join(name);
-        write_atomic(&path, |w| w.write_all(bytes)).map_err(io_err(&path))?;
+        out.write_bytes(name, bytes)?;
     }
+    out.commit()?;
     Ok(())
 }
 
@@ -203,6 +209,21 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
             o.seconds,
         );
     }
+    if e.unconverged_projections > 0 {
+        let _ = writeln!(
+            t,
+            "warning: {} of {} projections stopped at the iteration limit (their distances are upper bounds)",
+            e.unconverged_projections, e.overall.points
+        );
+    }
+    if let Some(o) = outcome.optimization.as_ref().filter(|o| o.weights_at_bounds > 0) {
+        let _ = writeln!(
+            t,
+            "warning: {} weights ended on their bounds [{}, {}], a sign of over-fitting (expected fewer control \
+             points, or wider bounds)",
+            o.weights_at_bounds, o.weight_bounds[0], o.weight_bounds[1]
+        );
+    }
     if let Some(w) = &e.worst {
         let line = w.line.map(|l| format!(", line {l}")).unwrap_or_default();
         let _ = writeln!(t, "worst offset: section {} point {}{line}: {:.3e} {u}", w.section, w.index + 1, w.distance);
@@ -237,5 +258,66 @@ mod tests {
         assert!(iges.lines().all(|l| l.len() == 80));
         let table = summary_table(&offsets, &out);
         assert!(table.contains("approx") && table.contains("25 sections"), "{table}");
+    }
+
+    #[test]
+    fn summary_warns_of_unconverged_projections() {
+        let offsets = series60_sample();
+        let mut out = fit_offsets(&offsets, &FitConfig::default()).expect("fits");
+        assert!(!summary_table(&offsets, &out).contains("warning"), "a clean fit warns of nothing");
+        out.error.unconverged_projections = 3;
+        let table = summary_table(&offsets, &out);
+        assert!(table.contains("warning: 3 of 200 projections stopped at the iteration limit"), "{table}");
+    }
+
+    #[test]
+    fn summary_warns_of_weights_driven_to_their_bounds() {
+        // Weights boxed to +-1 %: Levenberg-Marquardt pushes some of the 40 onto the box to
+        // lower the residual. The report counts them (within 1e-9 relative) and the summary
+        // says how many.
+        let offsets = series60_sample();
+        let mut optim = crate::optimize::OptimSettings { iterations: Some(5), ..Default::default() };
+        optim.weights.bounds = (0.99, 1.01);
+        let method = crate::FitMethod::Optimized(crate::optimize::Algorithm::Lm);
+        let cfg = FitConfig { method, optim, ctrl: Some((5, 8)), ..FitConfig::default() };
+        let out = fit_offsets(&offsets, &cfg).expect("fits");
+        let o = out.optimization.as_ref().expect("optimised");
+        let on_bound = |w: f64| (w - 0.99).abs() <= 1e-9 * 0.99 || (w - 1.01).abs() <= 1e-9 * 1.01;
+        let count = out.surface.weights().into_iter().filter(|&w| on_bound(w)).count();
+        assert_eq!(o.weights_at_bounds, count);
+        assert!(count > 0, "no weight reached the 1 % bounds: {:?}", o.weight_range);
+        let table = summary_table(&offsets, &out);
+        let line = format!("warning: {count} weights ended on their bounds [0.99, 1.01]");
+        assert!(table.contains(&line), "{table}");
+    }
+
+    #[test]
+    fn an_unwritable_surface_writes_nothing_and_keeps_the_earlier_outputs() {
+        let root = tempfile::tempdir().expect("temp dir");
+        let dir = root.path().join("out");
+        let offsets = series60_sample();
+        let good = fit_offsets(&offsets, &FitConfig::default()).expect("fits");
+        write_fit_outputs(&dir, &offsets, &good).expect("writes");
+        let before: Vec<Vec<u8>> =
+            ["surface.igs", "surface.json", "report.json"].map(|f| std::fs::read(dir.join(f)).expect("read")).into();
+        // One control point whose Cartesian x, 1e308 / 1e-10, overflows: homogeneous
+        // coordinates the kernel accepts, a point no file may hold.
+        let s = &good.surface;
+        let mut cw = s.homogeneous().to_vec();
+        cw[7] = [1e308, 0.0, 0.0, 1e-10];
+        let mut bad = good.clone();
+        bad.surface = nurbs::NurbsSurface::try_from_homogeneous(s.knots_u().clone(), s.knots_v().clone(), cw)
+            .expect("the kernel accepts finite homogeneous coordinates");
+        let err = write_fit_outputs(&dir, &offsets, &bad).expect_err("refused");
+        assert!(matches!(err, HullError::UnwritableSurface { .. }), "{err}");
+        let after: Vec<Vec<u8>> =
+            ["surface.igs", "surface.json", "report.json"].map(|f| std::fs::read(dir.join(f)).expect("read")).into();
+        assert!(before == after, "the earlier outputs are byte-identical");
+        let entries = std::fs::read_dir(root.path()).expect("list").count();
+        assert_eq!(entries, 1, "no staging directory is left beside the output directory");
+        // Into a directory that does not exist yet: it is not created.
+        let fresh = root.path().join("fresh");
+        assert!(write_fit_outputs(&fresh, &offsets, &bad).is_err());
+        assert!(!fresh.exists());
     }
 }

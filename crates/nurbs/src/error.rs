@@ -35,6 +35,14 @@ pub enum NurbsError {
     CoincidentPoints { what: String, index: usize, next: usize },
     #[error("{what}: {count} control points requested, but {min} to {max} are possible here")]
     BadControlPointCount { what: String, count: usize, min: usize, max: usize },
+    /// Least squares with more control points than distinct data parameters: the collocation
+    /// matrix has at most `distinct` independent rows, so the normal equations are singular
+    /// whatever the knots. Refused (not reduced silently): `max` is the most that can work.
+    #[error(
+        "{what}: {count} control points requested, but the {points} points have only {distinct} distinct parameters \
+         (expected at most {max} control points, or points that are not repeated)"
+    )]
+    TooManyControlPoints { what: String, count: usize, points: usize, distinct: usize, max: usize },
     #[error("linear system is singular or too ill-conditioned ({what})")]
     SingularSystem { what: String },
     #[error("curves are not compatible: {what}")]

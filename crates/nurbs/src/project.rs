@@ -1430,6 +1430,34 @@ mod tests {
     }
 
     #[test]
+    fn iteration_limit_is_flagged_and_its_distance_is_an_upper_bound() {
+        // Points at radius 3 around a cylinder of radius 2: the true distance is 1 at every
+        // angle. One Newton step from the grid's best node cannot meet the zero-cosine test for
+        // most of them; those must say so, and the distance they give, that of a point on the
+        // surface, can only be larger than the true one.
+        let s = quarter_cylinder(2.0, 3.0);
+        let once = SurfaceProjector::new(&s, ProjectionOptions { max_iterations: 1, ..ProjectionOptions::default() });
+        let full = SurfaceProjector::new(&s, ProjectionOptions::default());
+        let mut flagged = 0;
+        for k in 0..40 {
+            let a = 0.05 + 1.47 * k as f64 / 39.0;
+            let q = Vec3::new(3.0 * a.cos(), 3.0 * a.sin(), 0.1 + 0.07 * k as f64);
+            let r = once.project(q);
+            let f = full.project(q);
+            assert!(f.converged, "{q:?}: {f:?}");
+            // Converged to the tolerance 1e-12 relative of a model of size ~4.
+            assert_near!(f.distance, 1.0, 1e-11);
+            if !r.converged {
+                flagged += 1;
+                assert_eq!(r.iterations, 1);
+            }
+            assert_near!(s.point(r.u, r.v), r.point, 1e-15);
+            assert!(r.distance >= f.distance - 1e-11, "{q:?}: {} < {}", r.distance, f.distance);
+        }
+        assert!(flagged > 20, "only {flagged} of 40 flagged");
+    }
+
+    #[test]
     fn project_near_is_never_farther_than_its_hint() {
         let s = sphere_octant(2.0);
         let proj = SurfaceProjector::new(&s, ProjectionOptions::default());

@@ -138,7 +138,7 @@ impl Sketch {
 /// # Errors
 /// [`HullError::Io`] when the file cannot be read, and those of [`parse_drawing`].
 pub fn read_drawing(path: &Path) -> Result<Sketch, HullError> {
-    let bytes = std::fs::read(path).map_err(|error| HullError::Io { path: path.to_path_buf(), error })?;
+    let bytes = crate::limits::read_capped(path, crate::limits::MAX_DRAWING_FILE_BYTES, "a drawing")?;
     parse_drawing(&bytes, &path.display().to_string())
 }
 
@@ -160,7 +160,7 @@ pub fn parse_drawing(bytes: &[u8], source: &str) -> Result<Sketch, HullError> {
             "an ASCII DXF: save the drawing as ASCII DXF (\"DXF\" rather than \"binary DXF\")",
         ));
     }
-    if first.starts_with(b"<") {
+    let sketch = if first.starts_with(b"<") {
         let text = std::str::from_utf8(body).map_err(|e| {
             drawing_error(
                 Location::file(source),
@@ -171,7 +171,9 @@ pub fn parse_drawing(bytes: &[u8], source: &str) -> Result<Sketch, HullError> {
         parse_svg(text, source)
     } else {
         parse_dxf(&String::from_utf8_lossy(body), source)
-    }
+    }?;
+    crate::limits::check_drawing_entities(source, sketch.curves.len() + sketch.labels.len())?;
+    Ok(sketch)
 }
 
 /// An [`InputErrorKind::Drawing`] error at `at`.

@@ -35,6 +35,12 @@ use crate::error::{HullError, Location};
 const SVG_NS: &str = "http://www.w3.org/2000/svg";
 const INKSCAPE_NS: &str = "http://www.inkscape.org/namespaces/inkscape";
 
+/// Groups (`<g>`, `<a>`, `<switch>`, nested `<svg>`) nested deeper than this are refused: the
+/// walk over them recurses, and a hostile file of thousands of nested groups would overflow the
+/// stack. Drawing programs nest layers and groups a few levels (Inkscape's layers and sublayers,
+/// a CAD export's blocks): 256 is far above any drawing.
+pub const MAX_GROUP_DEPTH: usize = 256;
+
 /// Parse an SVG held in `text`; `source` names it in messages.
 ///
 /// # Errors
@@ -164,6 +170,13 @@ impl Reader<'_, '_, '_> {
             if hidden {
                 self.skip(format!("hidden <{name}>"), self.loc(child));
                 continue;
+            }
+            if matches!(name, "g" | "a" | "switch" | "svg") && child.ancestors().nth(MAX_GROUP_DEPTH + 2).is_some() {
+                return Err(drawing_error(
+                    self.loc(child),
+                    format!("<{name}> nested more than {MAX_GROUP_DEPTH} groups deep"),
+                    &format!("groups nested at most {MAX_GROUP_DEPTH} deep"),
+                ));
             }
             let m = ctm.compose(&self.transform(child)?);
             match name {
@@ -555,5 +568,25 @@ mod tests {
         assert!(err("<html/>").starts_with("b.svg:1:1: root element <html> (expected an SVG document"));
         assert!(err(&svg(r#"<polyline points="1 2 3"/>"#)).contains("points has 3 numbers"));
         assert!(err(&svg(r#"<line x1="1mm"/>"#)).contains("x1=\"1mm\""));
+    }
+
+    #[test]
+    fn groups_nested_past_the_cap_are_refused_not_overflowing_the_stack() {
+        let nested = |depth: usize| {
+            format!(
+                "<svg xmlns=\"http://www.w3.org/2000/svg\">{}<path d=\"M 0 0 L 1 1\"/>{}</svg>",
+                "<g>".repeat(depth),
+                "</g>".repeat(depth)
+            )
+        };
+        // The path inside the innermost of MAX_GROUP_DEPTH groups is read.
+        let s = parse_svg(&nested(MAX_GROUP_DEPTH), "n.svg").expect("deep but within the cap");
+        assert_eq!(s.curves.len(), 1);
+        // 20000 groups stop at the first group past the cap (ancestors: itself, the groups
+        // around it, <svg> and the document), whose column is 1 + 40 (the <svg> tag) + 3 per
+        // <g> before it.
+        let e = parse_svg(&nested(20_000), "n.svg").expect_err("too deep").to_string();
+        let col = 41 + 3 * MAX_GROUP_DEPTH;
+        assert!(e.starts_with(&format!("n.svg:1:{col}: <g> nested more than {MAX_GROUP_DEPTH} groups deep")), "{e}");
     }
 }

@@ -322,7 +322,7 @@ impl Default for MeshReadOptions {
 /// [`HullError::Io`] when the file cannot be read; [`HullError::Input`] for a corrupt gzip
 /// stream, an unknown format, and every error of [`parse_mesh`].
 pub fn read_mesh(path: &Path, options: &MeshReadOptions) -> Result<TriMesh, HullError> {
-    let bytes = std::fs::read(path).map_err(|error| HullError::Io { path: path.to_path_buf(), error })?;
+    let bytes = crate::limits::read_capped(path, crate::limits::MAX_MESH_FILE_BYTES, "a mesh file")?;
     let source = path.display().to_string();
     parse_mesh(&bytes, &source, MeshFormat::from_path(path), options)
 }
@@ -396,6 +396,7 @@ pub fn parse_mesh(
     if soup.triangles.is_empty() {
         return Err(mesh_error(Location::file(source), "no triangle".to_string(), "at least one facet"));
     }
+    crate::limits::check_mesh_triangles(source, soup.triangles.len() as u64)?;
     if !(options.weld_tolerance >= 0.0 && options.weld_tolerance.is_finite()) {
         return Err(HullError::Config(format!(
             "weld tolerance {}: expected a finite distance >= 0",

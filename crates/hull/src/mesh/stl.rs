@@ -106,6 +106,7 @@ pub fn parse_stl(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError> 
 
 fn parse_binary(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError> {
     let n = claimed_count(bytes).expect("looks_binary checked the header") as usize;
+    crate::limits::check_mesh_triangles(source, n as u64)?;
     let mut vertices = Vec::with_capacity(3 * n);
     let mut triangles = Vec::with_capacity(n);
     let f32_at = |o: usize| f32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]);

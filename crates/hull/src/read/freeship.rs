@@ -100,6 +100,26 @@ struct Intersection {
     label: String,
     position: f64,
     segments: Vec<ViewLine>,
+    /// The count of an `N segments.` line, with its line number.
+    declared: Option<(u64, usize)>,
+    /// The `SEGMENT i` lines read.
+    segment_lines: u64,
+}
+
+/// An `N segments.` line must be followed by N `SEGMENT i` lines before the next description
+/// line: a count that disagrees means a file cut short or edited by hand (the count itself is
+/// never used to allocate).
+fn check_segment_count(item: Option<&Intersection>, source: &str) -> Result<(), HullError> {
+    match item {
+        Some(&Intersection { declared: Some((n, line)), segment_lines, ref label, .. }) if n != segment_lines => {
+            Err(unexpected(
+                Location::line(source, line),
+                format!("\"{n} segments.\" for {label}, followed by {segment_lines} SEGMENT line(s)"),
+                "as many SEGMENT i lines as the count says, each before its points",
+            ))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// Parses a FREE!ship offsets export (see the module docs).
@@ -155,11 +175,23 @@ pub fn parse_freeship_offsets(text: &str, source: &str, options: &ReadOptions) -
             continue;
         }
         if toks.len() == 2 && toks[1].eq_ignore_ascii_case("segments.") {
-            continue; // "N segments.": the SEGMENT lines follow
+            // "N segments.": the SEGMENT lines follow.
+            let n = first.parse::<u64>().map_err(|_| {
+                unexpected(
+                    Location::new(source, lineno, 1),
+                    format!("segment count \"{}\"", super::shown(first)),
+                    "a whole number of segments: N segments.",
+                )
+            })?;
+            if let Some(item) = items.last_mut() {
+                item.declared = Some((n, lineno));
+            }
+            continue;
         }
         if first.eq_ignore_ascii_case("segment") && toks.len() == 2 {
             match items.last_mut() {
                 Some(item) => {
+                    item.segment_lines += 1;
                     item.segments.push(ViewLine::new(format!("{} segment {}", item.label, toks[1]), Vec::new()))
                 }
                 None => {
@@ -187,7 +219,15 @@ pub fn parse_freeship_offsets(text: &str, source: &str, options: &ReadOptions) -
                 )?,
                 None => 0.0,
             };
-            items.push(Intersection { kind, label: line.to_string(), position, segments: Vec::new() });
+            check_segment_count(items.last(), source)?;
+            items.push(Intersection {
+                kind,
+                label: line.to_string(),
+                position,
+                segments: Vec::new(),
+                declared: None,
+                segment_lines: 0,
+            });
             continue;
         }
         return Err(unexpected(
@@ -197,6 +237,7 @@ pub fn parse_freeship_offsets(text: &str, source: &str, options: &ReadOptions) -
                 segments., SEGMENT i, or a point x y z [KNUCKLE]",
         ));
     }
+    check_segment_count(items.last(), source)?;
 
     // Mirror a file of the other side; refuse mixed signs.
     let ys = || items.iter().flat_map(|it| it.segments.iter()).flat_map(|s| s.points.iter()).map(|p| p.y);
@@ -458,6 +499,26 @@ CONTROLCURVE
         assert!(err("Station 1.000\n 1 2 3\nChine 4\n").starts_with("f.txt:3: line \"Chine 4\""));
         assert!(err("Waterline 1.000\n 1 2 3\n").starts_with("f.txt: no station"));
         assert!(err("Station 1.000\n 1 2 3 BEND\n").starts_with("f.txt:2:4:"));
+    }
+
+    #[test]
+    fn segment_counts_must_match_the_segment_lines() {
+        let err =
+            |t: &str| parse_freeship_offsets(t, "f.txt", &opts()).err().map(|e| e.to_string()).unwrap_or_default();
+        // A count far beyond the file (never allocated), at the end of the file and before
+        // the next description line.
+        let huge = EXPORT.replace("2 segments.", "4294967295 segments.");
+        assert!(
+            err(&huge)
+                .starts_with("f.txt:7: \"4294967295 segments.\" for Station 0.000, followed by 2 SEGMENT line(s)"),
+            "{}",
+            err(&huge)
+        );
+        let e = err("Station 1.000\n3 segments.\nSEGMENT 1\n 1 0 0\n 1 1 1\n");
+        assert!(e.starts_with("f.txt:2: \"3 segments.\" for Station 1.000, followed by 1 SEGMENT line(s)"), "{e}");
+        assert!(err("Station 1.000\n2.5 segments.\n").starts_with("f.txt:2:1: segment count \"2.5\""));
+        // The export as FREE!ship writes it reads.
+        assert!(parse_freeship_offsets(EXPORT, "f.txt", &opts()).is_ok());
     }
 
     #[test]

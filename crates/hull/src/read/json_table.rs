@@ -291,6 +291,7 @@ fn openhull_spacing(options: &ReadOptions, dir: Option<&Path>, source: &str) -> 
             "a principals.json beside it with station_spacing_m or lpp_m, or the Lpp given (hullskin --lpp)",
         ));
     };
+    crate::limits::check_file_size(&path, crate::limits::MAX_OFFSETS_FILE_BYTES, "a principals.json")?;
     let bytes = std::fs::read(&path).map_err(|error| HullError::Io { path: path.clone(), error })?;
     let psource = path.display().to_string();
     let text = super::decode(&bytes, &psource)?;

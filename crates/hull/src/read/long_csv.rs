@@ -166,11 +166,6 @@ pub fn parse_long_csv(text: &str, source: &str, options: &ReadOptions) -> Result
     let mut missing = 0usize;
     for row in rows {
         let field = |i: usize| row.fields.get(i).map_or("", |f| f.text.as_ref());
-        let y_text = field(cols.y);
-        if y_text.is_empty() {
-            missing += 1;
-            continue;
-        }
         let num = |i: usize, what: &str| {
             parse_number(
                 field(i),
@@ -178,8 +173,14 @@ pub fn parse_long_csv(text: &str, source: &str, options: &ReadOptions) -> Result
                 || format!("{what} in {unit} (column \"{}\")", header.fields[i].text),
             )
         };
+        // x and z first: a row cut short has an empty half-breadth, but no missing offset
+        // lacks its station or height.
         let x = num(cols.x, "the x coordinate")?;
         let z = num(cols.z, "the height z")?;
+        if field(cols.y).is_empty() {
+            missing += 1;
+            continue;
+        }
         let y = num(cols.y, "the half-breadth y")?;
         if y < 0.0 {
             return Err(HullError::input(row.at(source, cols.y + 1), InputErrorKind::NegativeHalfBreadth { y }));
@@ -392,6 +393,8 @@ mod tests {
         );
         assert!(err("x,z,y\n0,0,-1\n").starts_with("long.csv:2:3: half-breadth -1 is negative"));
         assert!(err("x,z,y\n,0,1\n").starts_with("long.csv:2:1: empty field (expected the x coordinate"));
+        // A row cut after its x lacks its z too: not a missing offset.
+        assert!(err("x,z,y\n0,0,1\n0,1,1\n5").starts_with("long.csv:4:2: empty field (expected the height z"));
         assert!(err("x,z,y,kind\n0,0,1,chine\n").starts_with("long.csv:2:4: kind of point \"chine\""));
         assert!(err("a,b,c\n0,0,1\n").starts_with("long.csv:1: a header without x, y and z columns"));
     }

@@ -10,12 +10,23 @@
 //! | station point clouds (`x y z` or `y z` blocks) | [`point_cloud`] | whitespace-separated numbers |
 //! | FREE!ship offsets export and curve import text | [`freeship`] | a `Station 1.000` line, or a first line `0`/`1` |
 //!
-//! The CSV formats are comma-separated text, UTF-8 (a byte-order mark is skipped), with `\n`,
-//! `\r\n` or `\r` line ends. Fields are trimmed of spaces and tabs; a field may be quoted with
-//! `"` (a doubled `""` inside stands for one quote; a quoted field ends on its own line).
-//! Blank lines, lines of empty fields only (`,,,` as spreadsheets export them), and lines whose
-//! first non-blank character is `#` are skipped. Numbers use a decimal point; `nan` and `inf`
-//! are refused.
+//! The CSV formats are delimited text, UTF-8 (a byte-order mark is skipped; UTF-16 is refused
+//! with a message saying so), with `\n`, `\r\n` or `\r` line ends, mixed as they come.
+//! Fields are trimmed of spaces and tabs; a field may be quoted with `"` (a doubled `""` inside
+//! stands for one quote; a quoted field ends on its own line). Blank lines, lines of empty
+//! fields only (`,,,` as spreadsheets export them), and lines whose first non-blank character is
+//! `#` are skipped. `nan` and `inf` are refused.
+//!
+//! The delimiter is the file's, set by its first data line (the first line neither blank nor a
+//! comment): a semicolon when that line holds one and none of the pieces between them holds more
+//! than one comma or starts or ends with one (a European spreadsheet's CSV: `z\x;0;2,5;5`), else
+//! a tab by the same rule (a spreadsheet's text export), else a comma (so `"a;b",1,2` and
+//! `0,<tab>1.5,<tab>2` are comma files). Every later line must use the same delimiter (a line that uses
+//! another is refused at its place). With a comma delimiter numbers use a decimal point (a
+//! decimal comma splits the number into two fields, and the messages say so). With a `;` or
+//! tab delimiter, and only then, a field that is a number written with one decimal comma and
+//! no point (`1,5`, `-0,25`, `1,5e-3`) is read as that number with a decimal point (`1.5`);
+//! a field with both (`1.000,5`, thousands grouped) is not a number.
 //!
 //! Errors point at `file:line:column`, with 1-based line numbers of the file and 1-based
 //! field numbers as columns (CSV fields; whitespace-separated tokens in the text formats;
@@ -128,7 +139,7 @@ pub fn detect_format(text: &str) -> InputFormat {
         return InputFormat::FreeshipOffsets;
     }
     if first.contains('\t') && !toks.iter().all(numeric) {
-        return InputFormat::OffsetTable; // a tab-separated table: its reader names the separator
+        return detect_csv(text); // tab-separated: a spreadsheet's text export
     }
     if (2..=3).contains(&toks.len()) && toks.iter().all(numeric) {
         return InputFormat::PointCloud;
@@ -292,7 +303,7 @@ pub fn read_offsets(path: &Path, units: Units) -> Result<Offsets, HullError> {
 /// [`HullError::Io`] when the file cannot be read; [`HullError::Input`] for a binary or
 /// UTF-16 file and for every parse error of the format's reader.
 pub fn read_offsets_with(path: &Path, options: &ReadOptions) -> Result<ReadOutcome, HullError> {
-    let bytes = std::fs::read(path).map_err(|error| HullError::Io { path: path.to_path_buf(), error })?;
+    let bytes = crate::limits::read_capped(path, crate::limits::MAX_OFFSETS_FILE_BYTES, "an offsets file")?;
     let source = path.display().to_string();
     let text = decode(&bytes, &source)?;
     parse_with(text, &source, options, path.parent())
@@ -319,6 +330,7 @@ pub fn parse_offsets_with(text: &str, source: &str, options: &ReadOptions) -> Re
 
 fn parse_with(text: &str, source: &str, options: &ReadOptions, dir: Option<&Path>) -> Result<ReadOutcome, HullError> {
     let mut out = parse_format(text, source, options, dir)?;
+    crate::limits::check_offsets(&out.offsets)?;
     if options.min_points > 0 && !matches!(out.format, InputFormat::SectionsCsv | InputFormat::OffsetTable) {
         let short: Vec<String> = out
             .offsets
@@ -393,7 +405,7 @@ fn parse_format(text: &str, source: &str, options: &ReadOptions, dir: Option<&Pa
 /// [`InputErrorKind::Utf16`] for a UTF-16 byte-order mark, [`InputErrorKind::Binary`] for
 /// invalid UTF-8 or a NUL byte, located at the line of the first bad byte.
 pub fn decode<'a>(bytes: &'a [u8], source: &str) -> Result<&'a str, HullError> {
-    if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
+    if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) || looks_utf16(bytes) {
         return Err(HullError::input(Location::line(source, 1), InputErrorKind::Utf16));
     }
     let line_of = |pos: usize| 1 + bytes[..pos].iter().filter(|&&b| b == b'\n').count();
@@ -406,6 +418,19 @@ pub fn decode<'a>(bytes: &'a [u8], source: &str) -> Result<&'a str, HullError> {
     })?;
     check_no_nul(text, source)?;
     Ok(text)
+}
+
+/// UTF-16 without a byte-order mark: ASCII text in UTF-16 has a NUL in every other byte. True
+/// when, over the first 64 bytes (at least 4), all the odd bytes or all the even bytes are NUL
+/// and none of the others is.
+fn looks_utf16(bytes: &[u8]) -> bool {
+    let head = &bytes[..bytes.len().min(64) & !1];
+    if head.len() < 4 {
+        return false;
+    }
+    let nul_at = |parity: usize| head.iter().skip(parity).step_by(2).all(|&b| b == 0);
+    let none_at = |parity: usize| head.iter().skip(parity).step_by(2).all(|&b| b != 0);
+    (nul_at(1) && none_at(0)) || (nul_at(0) && none_at(1))
 }
 
 /// A NUL character never occurs in a CSV text: its presence means a binary file.
@@ -451,29 +476,79 @@ impl Record<'_> {
 /// # Errors
 ///
 /// Binary text (NUL), an unterminated quote, text after a closing quote, or a line that uses
-/// `;` or tabs instead of commas.
+/// another delimiter than the file's first data line (`;` or tabs in a comma file,
+/// [`InputErrorKind::Separator`]; any other, [`InputErrorKind::SeparatorChange`]).
 pub(crate) fn records<'a>(text: &'a str, source: &str) -> Result<Vec<Record<'a>>, HullError> {
     check_no_nul(text, source)?;
     let text = text.strip_prefix('\u{FEFF}').unwrap_or(text);
     let mut out = Vec::new();
+    let mut delimiter = None;
     for (i, line) in split_lines(text).enumerate() {
         let lineno = i + 1;
         let trimmed = line.trim();
         if trimmed.is_empty() || trimmed.starts_with('#') {
             continue;
         }
-        let fields = split_fields(line, source, lineno)?;
+        let (sep, first_line) = *delimiter.get_or_insert((delimiter_of(trimmed), lineno));
+        let mut fields = split_fields(line, sep, source, lineno)?;
         if fields.iter().all(|f| f.text.is_empty()) {
             continue; // ",,,": an empty spreadsheet row
         }
+        if sep != ',' {
+            for f in &mut fields {
+                if let Some(number) = decimal_comma_number(&f.text) {
+                    f.text = Cow::Owned(number);
+                }
+            }
+        }
         if fields.len() == 1 {
-            if let Some(separator) = [';', '\t'].into_iter().find(|&c| trimmed.contains(c)) {
-                return Err(HullError::input(Location::line(source, lineno), InputErrorKind::Separator { separator }));
+            let other = [',', ';', '\t'].into_iter().find(|&c| c != sep && fields[0].text.contains(c));
+            match other {
+                Some(separator) if sep == ',' => {
+                    return Err(HullError::input(
+                        Location::line(source, lineno),
+                        InputErrorKind::Separator { separator },
+                    ))
+                }
+                Some(separator) => {
+                    return Err(HullError::input(
+                        Location::line(source, lineno),
+                        InputErrorKind::SeparatorChange { separator, expected: sep, first_line },
+                    ))
+                }
+                None => {}
             }
         }
         out.push(Record { line: lineno, fields });
     }
     Ok(out)
+}
+
+/// The delimiter a file's first data line sets (see the module docs): `;`, else a tab, when the
+/// line holds it and every piece between them holds at most one comma, not at either end (a
+/// decimal comma); else `,`.
+fn delimiter_of(first: &str) -> char {
+    let splits_cleanly = |sep: char| {
+        first.contains(sep)
+            && first
+                .split(sep)
+                .map(str::trim)
+                .all(|p| p.matches(',').count() <= 1 && !p.starts_with(',') && !p.ends_with(','))
+    };
+    [';', '\t'].into_iter().find(|&sep| splits_cleanly(sep)).unwrap_or(',')
+}
+
+/// `1,5` as `1.5`: a field holding one comma, no point, that reads as a finite number once the
+/// comma is a point; `None` for anything else (labels, `1.000,5`, `1,2,3`).
+fn decimal_comma_number(text: &str) -> Option<String> {
+    if text.matches(',').count() != 1 || text.contains('.') {
+        return None;
+    }
+    let number = text.replacen(',', ".", 1);
+    // The digits around the comma must be digits: `,5` and `5,` are written by no spreadsheet.
+    let (before, after) = text.split_once(',')?;
+    let digit_ends = before.ends_with(|c: char| c.is_ascii_digit()) && after.starts_with(|c: char| c.is_ascii_digit());
+    (digit_ends && number.parse::<f64>().is_ok_and(f64::is_finite)).then_some(number)
 }
 
 /// Lines of `text`, ended by `\r\n`, `\n` or a lone `\r`; a final line end does not start
@@ -497,9 +572,10 @@ pub(crate) fn split_lines(text: &str) -> impl Iterator<Item = &str> {
     })
 }
 
-/// Splits one line into trimmed fields, unquoting `"..."` fields.
-fn split_fields<'a>(line: &'a str, source: &str, lineno: usize) -> Result<Vec<Field<'a>>, HullError> {
-    let is_blank = |c: char| c == ' ' || c == '\t';
+/// Splits one line at `sep` into trimmed fields, unquoting `"..."` fields.
+fn split_fields<'a>(line: &'a str, sep: char, source: &str, lineno: usize) -> Result<Vec<Field<'a>>, HullError> {
+    // A tab delimiter is not a blank to trim.
+    let is_blank = |c: char| c == ' ' || (c == '\t' && sep != '\t');
     let mut fields = Vec::new();
     let mut rest = line;
     loop {
@@ -529,8 +605,8 @@ fn split_fields<'a>(line: &'a str, source: &str, lineno: usize) -> Result<Vec<Fi
                 }
             };
             let after = &quoted[end..];
-            let (stray, next) = match after.find(',') {
-                Some(i) => (&after[..i], Some(&after[i + 1..])),
+            let (stray, next) = match after.find(sep) {
+                Some(i) => (&after[..i], Some(&after[i + sep.len_utf8()..])),
                 None => (after, None),
             };
             if !stray.trim_matches(is_blank).is_empty() {
@@ -545,10 +621,10 @@ fn split_fields<'a>(line: &'a str, source: &str, lineno: usize) -> Result<Vec<Fi
                 None => break,
             }
         } else {
-            match start.find(',') {
+            match start.find(sep) {
                 Some(i) => {
                     fields.push(Field { text: Cow::Borrowed(start[..i].trim_matches(is_blank)), column });
-                    rest = &start[i + 1..];
+                    rest = &start[i + sep.len_utf8()..];
                 }
                 None => {
                     fields.push(Field { text: Cow::Borrowed(start.trim_matches(is_blank)), column });
@@ -574,7 +650,7 @@ pub(crate) fn parse_number(
     if text.is_empty() {
         return Err(HullError::input(at(), InputErrorKind::EmptyField { expected: expected() }));
     }
-    let text_ = text.to_string();
+    let text_ = shown(text);
     let kind = match text.parse::<f64>() {
         Ok(v) if v.is_finite() => return Ok(v),
         // Rust's parser takes "nan", "inf", "infinity" in any case, and overflows to inf.
@@ -585,6 +661,16 @@ pub(crate) fn parse_number(
         Err(_) => InputErrorKind::NotANumber { text: text_, expected: expected() },
     };
     Err(HullError::input(at(), kind))
+}
+
+/// A field as quoted in a message: whole up to 64 characters, else its first 64 and its length,
+/// so that a runaway field (a file of one 100 MB line) does not flood the terminal.
+pub(crate) fn shown(text: &str) -> String {
+    const MAX: usize = 64;
+    match text.char_indices().nth(MAX) {
+        None => text.to_string(),
+        Some((end, _)) => format!("{}... ({} characters)", &text[..end], text.chars().count()),
+    }
 }
 
 #[cfg(test)]
@@ -642,10 +728,52 @@ mod tests {
     #[test]
     fn other_separators_are_named() {
         assert_eq!(
-            err_of(records("# c\nsection;x;y;z\n", "s.csv")),
-            "s.csv:2: fields are separated by semicolons (expected commas: hullskin reads comma-separated values with decimal points)"
+            err_of(records("# c\nsection,x,y,z\na;1;2;3\n", "s.csv")),
+            "s.csv:3: fields are separated by semicolons (expected commas: hullskin reads comma-separated values with decimal points)"
         );
-        assert!(err_of(records("a\tb\n", "s.csv")).contains("separated by tabs"));
+        assert!(err_of(records("a,b\nc\td\n", "s.csv")).contains("separated by tabs"));
+        assert_eq!(
+            err_of(records("\n# c\na;b\nc;d\ne,1,2\n", "s.csv")),
+            "s.csv:5: fields are separated by commas (expected semicolons as on line 3, the file's first data \
+             line: one delimiter for the whole file)"
+        );
+        assert!(err_of(records("a\tb\nc,d,e\n", "s.csv")).contains("expected tabs as on line 1"));
+    }
+
+    #[test]
+    fn semicolon_and_tab_files_take_decimal_commas() {
+        let want = vec![
+            (1, vec!["s".to_string(), "x".into(), "y".into()]),
+            (2, vec!["a".into(), "1.5".into(), "-0.25".into()]),
+        ];
+        // A European spreadsheet's CSV, with CRLF and a BOM.
+        assert_eq!(texts(&records("\u{FEFF}s;x;y\r\na;1,5;-0,25\r\n", "t").expect("valid")), want);
+        // Tabs (a spreadsheet's text export); the tab is the delimiter, not a blank to trim.
+        assert_eq!(texts(&records("s\tx\ty\na\t1,5\t-0,25\n", "t").expect("valid")), want);
+        assert_eq!(texts(&records("s\tx\ty\na\t1.5 \t -0.25\n", "t").expect("valid")), want);
+        // A quoted cell, exponents, a label that is no number, and grouped thousands left alone
+        // (the reader then says that "1.000,5" is not a number).
+        let recs = records("s;x\na;\"2,45\";1,5E-3;B,C;1.000,5;1,2,3\n", "t").expect("valid");
+        assert_eq!(texts(&recs)[1].1, vec!["a", "2.45", "1.5E-3", "B,C", "1.000,5", "1,2,3"]);
+        // Only a `;` or tab file converts: in a comma file `1,5` is two fields.
+        assert_eq!(texts(&records("a,1,5\n", "t").expect("valid"))[0].1, vec!["a", "1", "5"]);
+        // The first data line sets the delimiter, even a line of decimal commas only; a comma
+        // file aligned with tabs, or with a `;` in a label, stays a comma file.
+        assert_eq!(delimiter_of("z\\x;0;2,5;5"), ';');
+        assert_eq!(delimiter_of("0,5;1,5;2,5"), ';');
+        assert_eq!(delimiter_of("z\\x\t0\t2,5\t5"), '\t');
+        assert_eq!(delimiter_of("0,\t1.5,\t2"), ',');
+        assert_eq!(delimiter_of("\"a;b\",1,2,3"), ',');
+        assert_eq!(delimiter_of("section,x,y,z"), ',');
+    }
+
+    #[test]
+    fn long_fields_are_shortened_in_messages() {
+        let long = "9".repeat(10_000) + "x";
+        let e = err_of(parse_number(&long, || Location::new("n.csv", 1, 1), || "a number".into()));
+        assert!(e.len() < 200, "{e}");
+        assert!(e.contains(&format!("\"{}... (10001 characters)\" is not a number", "9".repeat(64))), "{e}");
+        assert_eq!(shown("é".repeat(64).as_str()), "é".repeat(64));
     }
 
     #[test]
@@ -659,6 +787,10 @@ mod tests {
             "b.bin:3: binary file, invalid UTF-8 at byte offset 5 (expected a CSV text)"
         );
         assert!(err_of(decode(b"\xff\xfes\0e\0", "u.csv")).contains("UTF-16"));
+        // Without a byte-order mark, little- and big-endian, told by the NUL of every other byte.
+        assert_eq!(err_of(decode(b"s\0e\0c\0\n\0", "u.csv")), err_of(decode(b"\xff\xfes\0", "u.csv")));
+        assert!(err_of(decode(b"\0s\0e\0c\0\n", "u.csv")).contains("UTF-16"));
+        assert!(err_of(decode(b"ab\0\0", "b.bin")).contains("NUL byte"));
         assert!(err_of(records("a\0", "s")).contains("binary file"));
         assert_eq!(decode(b"ok", "s").ok(), Some("ok"));
     }
@@ -703,8 +835,9 @@ mod tests {
         assert_eq!(detect_format("station 3 x = 1\n0 0\n1 1\n"), InputFormat::PointCloud);
         assert_eq!(detect_format("0\n1 2 3\n"), InputFormat::FreeshipCurves);
         assert_eq!(detect_format("Station 12.000\n  12.0 0.0 1.0\n"), InputFormat::FreeshipOffsets);
-        assert_eq!(detect_format("section\tx\ty\tz\n"), InputFormat::OffsetTable);
-        assert_eq!(detect_format("section;x;y;z\n"), InputFormat::OffsetTable);
+        assert_eq!(detect_format("section\tx\ty\tz\n"), InputFormat::SectionsCsv);
+        assert_eq!(detect_format("section;x;y;z\n"), InputFormat::SectionsCsv);
+        assert_eq!(detect_format("z\\x\t0\t2,5\n0\t1,5\t2\n"), InputFormat::OffsetTable);
     }
 
     fn testdata(name: &str) -> std::path::PathBuf {

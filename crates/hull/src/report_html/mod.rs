@@ -230,21 +230,19 @@ impl ReportFiles {
     }
 }
 
-/// Write every file of `report` into the existing directory `dir`, each atomically
-/// ([`crate::write_atomic`]); returns the paths written, `report.html` first.
+/// Write every file of `report` into the directory `dir` (created if needed), all or nothing:
+/// the files are staged beside `dir` and moved in together ([`crate::OutputDir`]), so a failure
+/// leaves what was in `dir` byte for byte. Returns the paths written, `report.html` first.
 ///
 /// # Errors
-/// [`HullError::Io`] naming the first file that could not be written (the files before it are
-/// written, the others untouched).
+/// [`HullError::Io`] naming the file or directory that could not be written (then nothing in
+/// `dir` has changed, unless the failure is in the final moves: see [`crate::OutputDir`]).
 pub fn write_report(dir: &Path, report: &ReportFiles) -> Result<Vec<PathBuf>, HullError> {
-    let mut written = Vec::new();
+    let mut out = crate::OutputDir::stage(dir)?;
     for (name, bytes) in report.files() {
-        let path = dir.join(name);
-        crate::write_atomic(&path, |w| w.write_all(&bytes))
-            .map_err(|error| HullError::Io { path: path.clone(), error })?;
-        written.push(path);
+        out.write_bytes(name, &bytes)?;
     }
-    Ok(written)
+    out.commit()
 }
 
 /// Build the report of `inputs`.

@@ -265,6 +265,31 @@ mod tests {
     }
 
     #[test]
+    fn ill_conditioned_matrices_are_reported_by_the_pivot_ratio() {
+        // [[1, 1 - e], [1 - e, 1]] has eigenvalues e and 2 - e, cond = (2 - e) / e, and its
+        // second pivot is 1 - (1 - e)^2 ~ 2 e of its diagonal: the pivot test reads the
+        // condition number. cond 2e13 is refused; cond 2e10 is solved, to the accuracy that
+        // condition allows (cond x eps ~ 4e-6 relative).
+        let matrix = |e: f64| {
+            let mut ch = BandedCholesky::zeros(2, 1);
+            for (i, j, v) in [(0, 0, 1.0), (1, 0, 1.0 - e), (1, 1, 1.0)] {
+                ch.add(i, j, v);
+            }
+            ch
+        };
+        match matrix(1e-13).factor("t") {
+            Err(NurbsError::SingularSystem { what }) => assert!(what.contains("row 1 of 2"), "{what}"),
+            other => panic!("cond 2e13 accepted: {other:?}"),
+        }
+        let mut ch = matrix(1e-10);
+        ch.factor("t").expect("cond 2e10 is within the 1e12 threshold");
+        // x = (1, -1): b = A x = (e, -e).
+        let mut b = [[1e-10], [-1e-10]];
+        ch.solve(&mut b);
+        assert!((b[0][0] - 1.0).abs() < 1e-5 && (b[1][0] + 1.0).abs() < 1e-5, "{b:?}");
+    }
+
+    #[test]
     fn singular_matrices_are_reported() {
         let mut lu = BandedLu::zeros(3, 1, 1);
         for (i, j, v) in [(0, 0, 1.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 1.0), (2, 2, 1.0)] {

@@ -37,6 +37,8 @@ impl LeastSquaresSolver {
     /// # Errors
     /// - [`NurbsError::BadControlPointCount`] unless `degree + 1 <= knots.num_basis() <= params.len()`;
     /// - [`NurbsError::ParameterOutOfDomain`], [`NurbsError::DecreasingParameters`];
+    /// - [`NurbsError::TooManyControlPoints`] if the parameters have fewer distinct values than
+    ///   `knots.num_basis()` (repeated points: the normal equations would be singular);
     /// - [`NurbsError::Incompatible`] if the first and last parameters are not the domain ends
     ///   (the end points are interpolated there);
     /// - [`NurbsError::SingularSystem`] if the Schoenberg-Whitney condition fails or the normal
@@ -48,6 +50,7 @@ impl LeastSquaresSolver {
         check_ctrl_count(n_ctrl, count, p, "least-squares approximation")?;
         check_in_domain(params, knots)?;
         check_params(params, false, "approximation parameters")?;
+        check_distinct(params, n_ctrl, "least-squares approximation")?;
         let (start, end) = knots.domain();
         if params[0] != start || params[count - 1] != end {
             return Err(NurbsError::Incompatible {
@@ -173,6 +176,26 @@ impl LeastSquaresSolver {
     pub fn curve(&self, points: &[Vec3]) -> Result<NurbsCurve, NurbsError> {
         Ok(super::polynomial_curve(&self.knots, self.control_points(points)?))
     }
+}
+
+/// Refuse `n_ctrl` control points for non-decreasing `params` with fewer distinct values: each
+/// distinct value gives one independent row of the collocation matrix `N_{i,p}(t_k)`, so its
+/// rank, and that of `N^T N`, is at most their count (The NURBS Book 9.4.1 needs rank `n + 1`).
+///
+/// # Errors
+/// [`NurbsError::TooManyControlPoints`] with the point and distinct-parameter counts.
+pub(crate) fn check_distinct(params: &[f64], n_ctrl: usize, what: &str) -> Result<(), NurbsError> {
+    let distinct = 1 + params.windows(2).filter(|w| w[1] != w[0]).count();
+    if n_ctrl > distinct {
+        return Err(NurbsError::TooManyControlPoints {
+            what: what.to_string(),
+            count: n_ctrl,
+            points: params.len(),
+            distinct,
+            max: distinct,
+        });
+    }
+    Ok(())
 }
 
 /// The non-rational curve of degree `degree` with `n_ctrl` control points on `knots` that
@@ -313,6 +336,53 @@ mod tests {
             // Zero residual: the exact solution, up to round-off amplified by cond(N^T N) ~ 1e2.
             assert_near!(*a, *b, 1e-12);
         }
+    }
+
+    #[test]
+    fn repeated_parameters_cap_the_control_points() {
+        let q = wave(10);
+        // Points 3 to 5 at one parameter (as repeated points would be): 8 distinct values, so
+        // at most 8 control points, whatever the knots.
+        let mut t = parameterize(&q, Parameterization::Uniform, 3).expect("valid");
+        t[4] = t[3];
+        t[5] = t[3];
+        let kv = KnotVector::uniform(3, 9).expect("valid");
+        let e = approximate_curve(&q, 3, 9, &t, &kv).expect_err("9 > 8 distinct parameters");
+        assert_eq!(
+            e,
+            NurbsError::TooManyControlPoints {
+                what: "least-squares approximation".into(),
+                count: 9,
+                points: 10,
+                distinct: 8,
+                max: 8
+            }
+        );
+        assert!(e.to_string().contains("the 10 points have only 8 distinct parameters"), "{e}");
+        // 8 is not refused for that reason (it may still fail Schoenberg-Whitney on these knots).
+        let kv = KnotVector::uniform(3, 8).expect("valid");
+        assert!(!matches!(approximate_curve(&q, 3, 8, &t, &kv), Err(NurbsError::TooManyControlPoints { .. })));
+    }
+
+    #[test]
+    fn ill_conditioned_normal_equations_are_reported_not_solved() {
+        // Cubic, 5 control points on [0, 0.5, 1]: the three free ones see only three data a
+        // millionth apart. Schoenberg-Whitney holds (each has a parameter inside its support),
+        // so the matrix is nonsingular in exact arithmetic, but its rows agree to ~1e-6 and the
+        // third pivot is ~(1e-6)^4 of its diagonal: the control points would be noise.
+        let kv = KnotVector::try_new(3, vec![0., 0., 0., 0., 0.5, 1., 1., 1., 1.]).expect("valid");
+        let t = [0.0, 0.3, 0.3 + 1e-6, 0.3 + 2e-6, 1.0];
+        assert!(schoenberg_whitney(&t, &kv, "t").is_ok());
+        let q = wave(5);
+        match approximate_curve(&q, 3, 5, &t, &kv) {
+            Err(NurbsError::SingularSystem { what }) => {
+                assert!(what.starts_with("least-squares normal equations: pivot"), "{what}")
+            }
+            other => panic!("expected an ill-conditioned system, got {other:?}"),
+        }
+        // The same data a tenth apart: well conditioned, solved.
+        let t = [0.0, 0.2, 0.5, 0.8, 1.0];
+        assert!(approximate_curve(&q, 3, 5, &t, &kv).is_ok());
     }
 
     #[test]

@@ -139,6 +139,9 @@ fn in_section(e: NurbsError, k: usize) -> NurbsError {
             NurbsError::BadControlPointCount { what: tag(what), count, min, max }
         }
         NurbsError::SingularSystem { what } => NurbsError::SingularSystem { what: tag(what) },
+        NurbsError::TooManyControlPoints { what, count, points, distinct, max } => {
+            NurbsError::TooManyControlPoints { what: tag(what), count, points, distinct, max }
+        }
         NurbsError::Incompatible { what } => NurbsError::Incompatible { what: tag(what) },
         NurbsError::NonFiniteResult { what } => NurbsError::NonFiniteResult { what: tag(what) },
         NurbsError::DecreasingParameters { what, index, prev, value } => {
@@ -296,7 +299,14 @@ pub fn skin_interpolate(sections: &[Vec<Vec3>], opts: &SkinOptions) -> Result<Sk
     } else {
         interpolate_ragged(&secs, q, opts)
     }
-    .map(|(surface, v, u_of)| SkinResult { params: data_params(&secs, &v, u_of), surface })
+    .and_then(|(surface, v, u_of)| checked(SkinResult { params: data_params(&secs, &v, u_of), surface }))
+}
+
+/// The result, once [`super::check_surface`] finds its knots and control points finite (and
+/// weights positive): the last guard against a solve that lost every digit.
+fn checked(result: SkinResult) -> Result<SkinResult, NurbsError> {
+    super::check_surface(&result.surface, "skinning")?;
+    Ok(result)
 }
 
 /// The largest point count of a non-degenerate section.
@@ -608,7 +618,7 @@ pub fn skin_interpolate_with_knuckles(
     let v = cross_params(n, secs.len(), |i, k| along.rows[k][i], opts.param.v, q)?;
     let (kv, net) = interpolate_across(&along.rows, &v, opts.param.v, q)?;
     let surface = NurbsSurface::from_parts_unchecked(along.knots, kv, net);
-    Ok(SkinResult { params: data_params(&secs, &v, along.u_of), surface })
+    checked(SkinResult { params: data_params(&secs, &v, along.u_of), surface })
 }
 
 /// [`skin_approximate`] keeping knuckles (chines), `knuckles` as in
@@ -683,7 +693,7 @@ pub fn skin_approximate_with_knuckles(
     let along = plan.join(&secs, &breaks, pieces)?;
     let across = fit_across(&along.rows, nv, q, opts.param.v)?;
     let surface = NurbsSurface::from_parts_unchecked(along.knots, across.knots, across.net);
-    Ok(SkinResult { params: data_params(&secs, &across.v, along.u_of), surface })
+    checked(SkinResult { params: data_params(&secs, &across.v, along.u_of), surface })
 }
 
 /// Share `nu` control points (knuckle points counted once) among pieces whose largest sections
@@ -997,7 +1007,7 @@ pub fn skin_approximate(
         }
     }
     match (best, first_error) {
-        (Some((_, r)), _) => Ok(r),
+        (Some((_, r)), _) => checked(r),
         (None, Some(e)) => Err(e),
         (None, None) => unreachable!("the own-parameter candidate is always tried"),
     }
