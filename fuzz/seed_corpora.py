@@ -67,12 +67,13 @@ def wigley_mesh(nx=5, nz=3, length=10.0, beam=1.0, draft=0.625):
     tris = []
     for i in range(nx - 1):
         for k in range(nz - 1):
-            a, b = grid[i, k, 1], grid[i + 1, k, 1]
-            c, d = grid[i + 1, k + 1, 1], grid[i, k + 1, 1]
-            tris += [(a, b, c), (a, c, d)]
-            a, b = grid[i, k, -1], grid[i + 1, k, -1]
-            c, d = grid[i + 1, k + 1, -1], grid[i, k + 1, -1]
-            tris += [(a, c, b), (a, d, c)]
+            for side in (1, -1):
+                a, b = grid[i, k, side], grid[i + 1, k, side]
+                c, d = grid[i + 1, k + 1, side], grid[i, k + 1, side]
+                # The diagonal away from the stem: a triangle of the keel and stem corners
+                # alone would lie in the centre plane, shared by both sides.
+                quad = [(a, b, c), (a, c, d)] if 2 * i < nx - 1 else [(a, b, d), (b, c, d)]
+                tris += quad if side == 1 else [(x, z, y) for x, y, z in quad]
         top = nz - 1
         a, b = grid[i, top, 1], grid[i + 1, top, 1]
         c, d = grid[i + 1, top, -1], grid[i, top, -1]

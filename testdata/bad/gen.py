@@ -153,6 +153,11 @@ def box():
     return tris
 
 
+# The same box as OBJ quads.
+OBJ_BOX = "v 0 -2 0\nv 10 -2 0\nv 10 2 0\nv 0 2 0\nv 0 -2 2\nv 10 -2 2\nv 10 2 2\nv 0 2 2\n" \
+    "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n"
+
+
 def gz(data):
     buf = io.BytesIO()
     with gzip.GzipFile(fileobj=buf, mode="wb", mtime=0, filename="") as f:
@@ -165,6 +170,7 @@ BAD = []
 
 
 def bad(name, content, command, at, says, why, args="", exit="fail"):
+    assert not any("," in f for f in (name, command, at, says, args)), name  # manifest.csv fields
     BAD.append((name, content, command, args, exit, at, says, why))
 
 
@@ -351,7 +357,7 @@ def build():
     bad("surface_nan_point.json", SURFACE.replace("[10, 0, 0]", "[10, NaN, 0]"), "hydrostatics", ":11",
         "expected value", "`NaN` in a control point (not JSON)")
     bad("surface_huge_point.json", SURFACE.replace("[10, 0, 0]", "[10, 1e308, 1e308]"), "hydrostatics", "",
-        "magnitude", "control points of 1e308: finite, but the volume overflows")
+        "overflows", "control points of 1e308: finite, but the volume overflows")
     bad("surface_wrong_units.json", SURFACE.replace('"units": "m"', '"units": "furlong"'), "hydrostatics", "",
         "units", "unknown units")
     bad("surface_string_number.json", SURFACE.replace('"version": 1', '"version": "1"'), "hydrostatics", ":3:16",
@@ -390,8 +396,7 @@ def build():
     bad("stl_solid_then_binary.stl", b"solid x\n" + bytes(rnd.randrange(256) for _ in range(300)), "slice", ":",
         "", "starts with `solid` like an ASCII STL, then binary bytes")
     bad("mesh_empty.stl", b"", "slice", "", "", "an empty STL file")
-    obj = "v 0 -2 0\nv 10 -2 0\nv 10 2 0\nv 0 2 0\nv 0 -2 2\nv 10 -2 2\nv 10 2 2\nv 0 2 2\n" \
-          "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n"
+    obj = OBJ_BOX
     bad("obj_index_out_of_range.obj", obj.replace("f 2 6 7 3", "f 2 6 7 99"), "fit", ":12", "99",
         "a face corner 99 of 8 vertices")
     bad("obj_index_zero.obj", obj.replace("f 2 6 7 3", "f 2 6 0 3"), "slice", ":12", "index 0",
@@ -455,6 +460,17 @@ def accepted():
     ACCEPTED.append(("table_semicolon_decimal_comma.csv",
                      "\ufeff" + comma(TABLE.replace(",", ";")).replace("\n", "\r\n"),
                      "table_clean.csv", "`;` and decimal commas, BOM, CRLF"))
+    ACCEPTED.append(("long_clean.csv", LONG, "long_clean.csv", "a long CSV (x,z,y)"))
+    ACCEPTED.append(("long_tabs_decimal_comma.csv", comma(LONG.replace(",", "\t")), "long_clean.csv",
+                     "the long CSV tab-separated with decimal commas"))
+    ACCEPTED.append(("cloud_clean.dat", CLOUD, "cloud_clean.dat", "a station point cloud"))
+    ACCEPTED.append(("cloud_bom_crlf.dat", "\ufeff" + CLOUD.replace("\n", "\r\n"), "cloud_clean.dat",
+                     "the point cloud with a BOM and CRLF"))
+    ACCEPTED.append(("box_clean.obj", OBJ_BOX, "box_clean.obj", "a closed box as OBJ (sliced, then fitted)"))
+    ACCEPTED.append(("box_bom_crlf.obj", "\ufeff" + OBJ_BOX.replace("\n", "\r\n"), "box_clean.obj",
+                     "the OBJ box with a BOM and CRLF"))
+    ACCEPTED.append(("box_bom.stl", "\ufeff" + stl_ascii(box()), "box_clean.obj",
+                     "the box as an ASCII STL with a BOM"))
     ACCEPTED.append(("table_semicolon_quoted.csv", TABLE.replace(",", ";").replace("2.45", '"2,45"'),
                      "table_clean.csv", "`;` with one decimal-comma cell quoted"))
 

@@ -75,7 +75,14 @@ fn parse_method(s: &str) -> Result<FitMethod, String> {
 /// Run `hullskin fit`.
 pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     progress::install_stop_handler();
-    let offsets = args.skin.offsets()?;
+    // A mesh input is kept to measure the fitted surface against it.
+    let (offsets, mesh) = match &args.skin.input {
+        Some(path) if crate::slice::is_mesh_path(path) => {
+            let (mesh, sliced) = args.skin.mesh.read_and_slice(path, args.skin.units)?;
+            (sliced.offsets, Some(mesh))
+        }
+        _ => (args.skin.offsets()?, None),
+    };
     let (outcome, search) = args.fit.fit(&args.skin, &offsets)?;
     let mut report = hull::Report::new(&offsets, &outcome);
     report.tolerance_search = search;
@@ -84,12 +91,42 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     if let Some(s) = &report.tolerance_search {
         println!("{}", s.summary(offsets.units.symbol()));
     }
+    if let Some(mesh) = &mesh {
+        print_mesh_distance(mesh, &offsets, &outcome.surface);
+    }
     println!("wrote {}", args.out.join("{surface.igs,surface.json,report.json}").display());
     if let Some(status) = progress::stop_status() {
         eprintln!("hullskin: interrupted: wrote the best surface found before the stop (exit status {status})");
         return Ok(ExitCode::from(status));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The distance of the mesh's starboard vertices to the fitted surface, over the sections'
+/// length and up to their highest point: how well the surface stands for the mesh between and
+/// across the stations, not only at the sliced points.
+fn print_mesh_distance(mesh: &hull::mesh::TriMesh, offsets: &Offsets, surface: &nurbs::NurbsSurface) {
+    let Some(filter) = offsets.bounds().and_then(|(_, hi)| hull::mesh::VertexFilter::for_sections(offsets, hi.z))
+    else {
+        return;
+    };
+    let d = hull::mesh::mesh_distance(mesh, surface, &filter);
+    let u = offsets.units.symbol();
+    let h = &d.over_hull;
+    println!(
+        "mesh {}: distance of {} starboard vertices over the surface: max {:.3e} {u}, mean {:.3e} {u}, RMS {:.3e} {u} \
+         ({} more face another way: deck, transom, centre-plane lid or sharp edges)",
+        mesh.source, h.points, h.max, h.mean, h.rms, d.left_out
+    );
+    if let Some((q, foot)) = d.worst {
+        println!("  farthest vertex ({}, {}, {}), foot ({:.6}, {:.6}, {:.6})", q.x, q.y, q.z, foot.x, foot.y, foot.z);
+    }
+    if d.unconverged > 0 {
+        eprintln!(
+            "hullskin: warning: {} of the mesh's vertices did not converge in the closest-point search",
+            d.unconverged
+        );
+    }
 }
 
 /// Fit `offsets` with `config`, or with the fewest control points whose max error is within

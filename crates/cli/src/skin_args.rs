@@ -49,7 +49,10 @@ pub struct SkinArgs {
     pub design_draft: Option<f64>,
     /// Knuckles (chines) of the sections: `auto` keeps every knuckle line found (a corner of
     /// at least `--corner-angle` degrees, sharper than its neighbours, running through three
-    /// quarters of the sections) as a crease of the surface; `off` fits one smooth surface.
+    /// quarters of the sections) as a crease of the surface; `auto+flats` also keeps an
+    /// approximation inside the flat of side and flat of bottom found in the offsets (no
+    /// ringing past B/2 or below the keel, at more control points); `off` fits one smooth
+    /// surface.
     #[arg(long, value_enum, default_value = "auto")]
     pub knuckles: KnuckleMode,
     /// Least turning angle, in degrees, of a section's corner for `--knuckles auto`.
@@ -65,6 +68,9 @@ pub struct SkinArgs {
 pub enum KnuckleMode {
     /// Keep the knuckle lines found in the sections.
     Auto,
+    /// As `auto`, and refit an approximation within the flats of side and bottom.
+    #[value(name = "auto+flats")]
+    AutoFlats,
     /// One smooth surface.
     Off,
 }
@@ -124,11 +130,11 @@ impl SkinArgs {
     /// The library's fit settings: these skinning flags with `method` and the weight
     /// optimisers' `optim`.
     pub fn fit_config(&self, method: FitMethod, optim: OptimSettings) -> FitConfig {
+        let corner = CornerOptions { min_angle_deg: self.corner_angle, ..CornerOptions::default() };
         let knuckles = match self.knuckles {
             KnuckleMode::Off => Knuckles::Off,
-            KnuckleMode::Auto => {
-                Knuckles::Auto(CornerOptions { min_angle_deg: self.corner_angle, ..CornerOptions::default() })
-            }
+            KnuckleMode::Auto => Knuckles::Auto(corner),
+            KnuckleMode::AutoFlats => Knuckles::AutoFlats(corner),
         };
         FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim, knuckles }
     }

@@ -233,9 +233,11 @@ fn check_surface(path: &Path, mesh: &TriMesh, offsets: &Offsets, m: &MeshHydrost
     println!("  waterplane {:.6} ({:+.3} %)", row.aw, pct(row.aw, m.waterplane_area));
     if let Some(filter) = VertexFilter::for_sections(offsets, m.draft) {
         let d = mesh_distance(mesh, &surface, &filter);
+        let h = &d.over_hull;
         println!(
-            "  distance of {} wetted starboard mesh vertices to the surface: max {:.3e}, mean {:.3e}, RMS {:.3e}",
-            d.stats.points, d.stats.max, d.stats.mean, d.stats.rms
+            "  distance of {} wetted starboard mesh vertices to the surface: max {:.3e}, mean {:.3e}, RMS {:.3e} \
+             ({} more face another way: transom, centre-plane lid or sharp edges)",
+            h.points, h.max, h.mean, h.rms, d.left_out
         );
         if let Some((q, foot)) = d.worst {
             println!(

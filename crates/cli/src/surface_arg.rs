@@ -41,8 +41,13 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
     hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface.json or offsets file")?;
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
     let text = hull::decode(&bytes, &source)?;
+    // A UTF-8 byte-order mark (a Windows editor's) is no part of the JSON.
+    let text = text.strip_prefix('\u{FEFF}').unwrap_or(text);
     if text.trim_start().starts_with('{') && !hull::read::json_table::is_offset_json(text) {
         let (surface, units) = hull::export::read_surface_json(text).map_err(|e| surface_json_error(e, &source))?;
+        // Finite coordinates can still overflow every length, area and volume computed from
+        // them (a control net of 1e308): refused here for every command, not only the writers.
+        hull::check_finite(&surface).with_context(|| format!("cannot use the surface {source}"))?;
         let units: Units = units.parse().with_context(|| format!("{source}: \"units\""))?;
         return Ok(Input::Surface { surface, units, source });
     }
@@ -88,8 +93,8 @@ mod tests {
         assert!(sample.source.contains("Series 60"));
         let fitted = hull::fit_offsets(&sample, &hull::FitConfig::default()).expect("the sample fits");
         let path = dir.path().join("surface.json");
-        // Leading blanks do not hide the JSON.
-        let mut text = b"\n  ".to_vec();
+        // Leading blanks and a byte-order mark do not hide the JSON.
+        let mut text = "\u{FEFF}\n  ".as_bytes().to_vec();
         hull::export::write_surface_json(&mut text, &fitted.surface, "ft").expect("writes");
         std::fs::write(&path, text).expect("write");
         match read_input(&skin(Some(path.clone()))).expect("reads") {

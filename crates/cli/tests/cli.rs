@@ -129,3 +129,40 @@ fn a_failed_run_leaves_earlier_results_intact() {
     let leftovers: Vec<_> = fs::read_dir(dir.path().join("out")).expect("list").collect();
     assert_eq!(leftovers.len(), 3, "no temporary files left behind");
 }
+
+/// `--knuckles auto+flats` keeps the 116 m cargo ship's approximation inside its flat of side
+/// and flat of bottom: every control point (hence, by the convex hull property, the surface)
+/// within y <= B/2 and z >= the keel, where the plain fit's net rings past both.
+#[test]
+fn auto_flats_keeps_the_cargo_ship_inside_its_flats() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let input = testdata("cargo116_offsets.csv");
+    let input = input.to_str().expect("utf-8 path");
+    let table = fs::read_to_string(input).expect("read");
+    let rows: Vec<[f64; 3]> = table
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let f: Vec<f64> = l.split(',').skip(1).filter_map(|v| v.trim().parse().ok()).collect();
+            (f.len() == 3).then(|| [f[0], f[1], f[2]])
+        })
+        .collect();
+    let half_beam = rows.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
+    let keel = rows.iter().map(|p| p[2]).fold(f64::MAX, f64::min);
+    let net = |knuckles: &str| {
+        let o = hullskin(dir.path(), &["fit", input, "--knuckles", knuckles, "-o", knuckles]);
+        assert!(o.status.success(), "{knuckles}: {:?}", text(&o));
+        let s = read_json(&dir.path().join(knuckles).join("surface.json"));
+        let cp = s["control_points"].as_array().expect("control points").clone();
+        let y = cp.iter().filter_map(|p| p[1].as_f64()).fold(f64::MIN, f64::max);
+        let z = cp.iter().filter_map(|p| p[2].as_f64()).fold(f64::MAX, f64::min);
+        (y, z)
+    };
+    let (y_plain, z_plain) = net("auto");
+    let (y_flats, z_flats) = net("auto+flats");
+    // The plain net rings past the flats by centimetres (measured: the surface 83 mm past B/2
+    // and 144 mm below the keel).
+    assert!(y_plain > half_beam + 0.01 && z_plain < keel - 0.01, "{y_plain} {z_plain} vs {half_beam} {keel}");
+    // Held on the planes: equal to round-off of the least squares on a 116 m model (1e-9 m).
+    assert!(y_flats <= half_beam + 1e-9 && z_flats >= keel - 1e-9, "{y_flats} {z_flats} vs {half_beam} {keel}");
+}

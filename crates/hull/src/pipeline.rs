@@ -7,7 +7,8 @@ use std::time::Instant;
 
 use nurbs::fit::{
     find_flat_lines, find_knuckle_lines, knuckle_indices, refit_within_flats, skin_approximate_with_knuckles,
-    skin_interpolate_with_knuckles, CornerOptions, FlatLine, FlatOptions, KnuckleLine, SkinOptions, SkinParameterization,
+    skin_interpolate_with_knuckles, CornerOptions, FlatLine, FlatOptions, KnuckleLine, SkinOptions,
+    SkinParameterization,
 };
 use nurbs::{NurbsError, NurbsSurface};
 

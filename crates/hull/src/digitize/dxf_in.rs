@@ -362,11 +362,15 @@ impl<'s> Reader<'s> {
         let c = self.point(e, 10, "its centre")?;
         let u = self.point(e, 11, "its major axis end point, relative to the centre")?;
         let ratio = self.need(e, 40, "the ratio of its minor to its major axis")?;
-        let t0 = self.opt(e, 41)?.unwrap_or(0.0);
-        let mut t1 = self.opt(e, 42)?.unwrap_or(2.0 * PI);
-        if t1 <= t0 {
-            t1 += 2.0 * PI;
+        // Counter-clockwise from t0 to t1, as for an ARC: the sweep is taken modulo one turn
+        // (a zero sweep draws the whole ellipse), so that parameters of any size give at most
+        // one turn, not millions of turns to flatten.
+        let t0 = self.opt(e, 41)?.unwrap_or(0.0).rem_euclid(2.0 * PI);
+        let mut sweep = (self.opt(e, 42)?.unwrap_or(2.0 * PI) - t0).rem_euclid(2.0 * PI);
+        if sweep == 0.0 {
+            sweep = 2.0 * PI;
         }
+        let t1 = t0 + sweep;
         // The minor axis is extrusion x major axis, scaled by the ratio (world coordinates).
         let sign = if self.ocs(e)?.a < 0.0 { -1.0 } else { 1.0 };
         let v = [-sign * ratio * u[1], sign * ratio * u[0]];

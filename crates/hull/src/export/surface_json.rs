@@ -43,9 +43,6 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT_NAME: &str = "hullskin-surface";
 /// The layout version this build writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
-/// The largest control-point coordinate read: half of [`crate::MAX_SIZE`], the largest
-/// model whose lengths, areas, volumes and moments stay finite f64 values.
-pub const MAX_COORDINATE: f64 = crate::MAX_SIZE / 2.0;
 
 /// The JSON document, field for field.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -100,13 +97,6 @@ impl SurfaceFile {
             return Err(SurfaceJsonError::Count { declared: self.control_points_count, implied });
         }
         crate::limits::control_points("surface JSON", implied[0], implied[1]).map_err(SurfaceJsonError::Limit)?;
-        // Finite but absurd coordinates overflow every length computed from them (see
-        // `crate::MAX_SIZE`); non-finite ones are left to `try_new` to name.
-        if let Some((index, &point)) =
-            self.control_points.iter().enumerate().find(|(_, p)| p.iter().any(|c| c.abs() > MAX_COORDINATE))
-        {
-            return Err(SurfaceJsonError::Magnitude { index, point });
-        }
         let points: Vec<Vec3> = self.control_points.iter().map(|&[x, y, z]| Vec3::new(x, y, z)).collect();
         NurbsSurface::try_new(ku, kv, &points, self.weights.as_deref()).map_err(|source| {
             let key = match source {
@@ -132,9 +122,6 @@ pub enum SurfaceJsonError {
     /// More control points than [`crate::limits::MAX_CONTROL_POINTS`] (or per direction).
     #[error("{0}")]
     Limit(crate::limits::LimitExceeded),
-    /// A control point with a coordinate beyond [`MAX_COORDINATE`].
-    #[error("surface JSON, \"control_points\": point {index} is {point:?} (expected coordinates of magnitude at most {MAX_COORDINATE:e}: larger ones overflow lengths, areas and volumes)")]
-    Magnitude { index: usize, point: [f64; 3] },
     #[error("surface JSON, \"{key}\": {source}")]
     Nurbs {
         key: &'static str,
@@ -328,11 +315,6 @@ mod tests {
             SurfaceJsonError::Nurbs { key: "weights", .. }
         ));
         assert!(matches!(bad(&|v| v["control_points"][0] = "x".into()), SurfaceJsonError::Syntax { .. }));
-        // 1e300 is a finite f64, but the volume of such a hull is not.
-        assert!(matches!(
-            bad(&|v| v["control_points"][3][1] = 1e300.into()),
-            SurfaceJsonError::Magnitude { index: 3, point: [_, y, _] } if y == 1e300
-        ));
         assert!(matches!(
             bad(&|v| v["control_points"][0][1] = serde_json::Value::Null),
             SurfaceJsonError::Syntax { .. }

@@ -2,8 +2,9 @@
 //! measuring a fitted surface against the mesh.
 //!
 //! - [`read_mesh`] / [`parse_mesh`]: ASCII and binary STL ([`stl`]), Wavefront OBJ ([`obj`]),
-//!   either gzip-compressed (recognised by the gzip magic bytes, whatever the file name);
-//!   the triangles are welded into an indexed [`TriMesh`].
+//!   either gzip-compressed (recognised by the gzip magic bytes, whatever the file name), the
+//!   text forms with or without a UTF-8 byte-order mark; the triangles are welded into an
+//!   indexed [`TriMesh`].
 //! - [`slice::slice_mesh`]: cuts at stations `x = const`, each chained into one polyline on
 //!   the starboard side from the keel to the deck edge, resampled, as [`crate::Offsets`].
 //! - [`hydrostatics::mesh_hydrostatics`]: volume, centres, wetted surface and waterplane of the
@@ -382,6 +383,12 @@ pub fn parse_mesh(
     } else {
         bytes
     };
+    // A UTF-8 byte-order mark before an ASCII STL or an OBJ (a Windows editor's): skipped, unless
+    // the bytes are a binary STL whose free-text header happens to start with it.
+    let bytes = match bytes.strip_prefix(b"\xEF\xBB\xBF") {
+        Some(text) if !stl::looks_binary(bytes) => text,
+        _ => bytes,
+    };
     let format = format.or_else(|| MeshFormat::sniff(bytes)).ok_or_else(|| {
         mesh_error(
             Location::file(source),
@@ -532,6 +539,27 @@ mod tests {
         assert_eq!(MeshFormat::sniff(b"  solid hull\nfacet"), Some(MeshFormat::Stl));
         assert_eq!(MeshFormat::sniff(b"# made by hand\n\nv 0 0 0\n"), Some(MeshFormat::Obj));
         assert_eq!(MeshFormat::sniff(b"section,x,y,z\n"), None);
+    }
+
+    #[test]
+    fn a_byte_order_mark_before_a_text_mesh_is_skipped() {
+        let opts = MeshReadOptions::default();
+        let stl = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+        let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        for (text, format) in [(stl, None), (stl, Some(MeshFormat::Stl)), (obj, None), (obj, Some(MeshFormat::Obj))] {
+            let plain = parse_mesh(text.as_bytes(), "t", format, &opts).expect("plain");
+            let bom = parse_mesh(format!("\u{FEFF}{text}").as_bytes(), "t", format, &opts).expect("with a BOM");
+            assert_eq!((bom.vertices, bom.triangles), (plain.vertices, plain.triangles), "{format:?}");
+        }
+        // A binary STL whose 80-byte header starts with the BOM's bytes keeps its header.
+        let mut bin = b"\xEF\xBB\xBFbinary".to_vec();
+        bin.resize(80, b' ');
+        bin.extend_from_slice(&1u32.to_le_bytes());
+        for v in [[0f32; 3], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+            v.iter().for_each(|c| bin.extend_from_slice(&c.to_le_bytes()));
+        }
+        bin.extend_from_slice(&[0, 0]);
+        assert_eq!(parse_mesh(&bin, "b.stl", None, &opts).expect("binary").triangles.len(), 1);
     }
 
     #[test]

@@ -22,8 +22,8 @@ mod skin;
 pub use constrained::{energy_order, fair_interpolate_curve, row_schoenberg_whitney, FairInterpolationSolver};
 pub use features::{
     bounded_refit, find_flat_lines, find_knuckle_lines, join_knot_vectors, knot_multiplicity, knuckle_indices,
-    refit_within_flats, section_corners, turning_angles, BoundedRefit, Continuity, CornerOptions, FlatKind, FlatLine, FlatOptions,
-    KnuckleLine, PlaneBounds, SectionCorner, BOUNDED_REFIT_PULL,
+    refit_within_flats, section_corners, turning_angles, BoundedRefit, Continuity, CornerOptions, FlatKind, FlatLine,
+    FlatOptions, KnuckleLine, PlaneBounds, SectionCorner, BOUNDED_REFIT_PULL,
 };
 pub use interp::{interpolate_curve, interpolate_curve_auto, InterpolationSolver};
 pub use knots::{
@@ -97,8 +97,9 @@ mod tests {
     /// A bilinear patch over `[0, 1]^2` whose control point `(1, 0)` is `bad` with weight `w`.
     fn patch(bad: Vec3, w: f64) -> NurbsSurface {
         let k = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
-        let mut cw: Vec<[f64; 4]> =
-            [Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), bad, Vec3::new(1.0, 1.0, 0.0)].map(|p| to_homogeneous(p, 1.0)).into();
+        let mut cw: Vec<[f64; 4]> = [Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), bad, Vec3::new(1.0, 1.0, 0.0)]
+            .map(|p| to_homogeneous(p, 1.0))
+            .into();
         cw[2] = to_homogeneous(bad, w);
         NurbsSurface::from_parts_unchecked(k.clone(), k, cw)
     }
