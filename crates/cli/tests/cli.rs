@@ -166,3 +166,29 @@ fn auto_flats_keeps_the_cargo_ship_inside_its_flats() {
     // Held on the planes: equal to round-off of the least squares on a 116 m model (1e-9 m).
     assert!(y_flats <= half_beam + 1e-9 && z_flats >= keel - 1e-9, "{y_flats} {z_flats} vs {half_beam} {keel}");
 }
+
+/// R/V Gunnerus's forecastle step (the deck jumps 3.5 m between stations 0.58 m apart) folds
+/// the default skin back on itself near x = 16.5 m: the run says so, report.json records the
+/// band, and the centripetal parameterization across the sections it suggests removes it.
+#[test]
+fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let input = testdata("gunnerus_offsets.csv");
+    let input = input.to_str().expect("utf-8 path");
+    let o = hullskin(dir.path(), &["fit", input, "-o", "default"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    assert!(out.contains("warning: the surface folds back") && out.contains("--param centripetal,centripetal"), "{out}");
+    let r = read_json(&dir.path().join("default/report.json"));
+    let folds = r["folds"].as_array().unwrap_or_else(|| panic!("no folds in {r}"));
+    assert_eq!(folds.len(), 1, "{r}");
+    let x = |i: usize| folds[0]["x"][i].as_f64().expect("number");
+    // Between the stations at x = 16.24 and 16.82 m around the step (the table's header).
+    assert!(x(0) > 16.24 && x(1) < 16.82 && x(0) <= x(1), "{}", folds[0]);
+    let o = hullskin(dir.path(), &["fit", input, "--param", "centripetal,centripetal", "-o", "centripetal"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    assert!(!out.contains("folds back"), "{out}");
+    let r = read_json(&dir.path().join("centripetal/report.json"));
+    assert!(r.get("folds").is_none(), "{r}");
+}

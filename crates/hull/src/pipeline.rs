@@ -157,6 +157,9 @@ pub struct FitOutcome {
     pub knuckle_lines: Vec<KnuckleLine>,
     /// The flat lines the surface was refitted within ([`Knuckles::AutoFlats`]; empty otherwise).
     pub flat_lines: Vec<FlatLine>,
+    /// Where the surface folds back across its sections ([`crate::analysis::find_folds`]);
+    /// empty for a sound surface.
+    pub folds: Vec<crate::analysis::Fold>,
 }
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
@@ -220,6 +223,7 @@ fn measured(
     if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
         return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
     }
+    let folds = crate::analysis::find_folds(&surface);
     Ok(FitOutcome {
         config: *config,
         surface,
@@ -230,6 +234,7 @@ fn measured(
         optimization,
         knuckle_lines: Vec::new(),
         flat_lines: Vec::new(),
+        folds,
     })
 }
 

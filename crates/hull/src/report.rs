@@ -73,6 +73,9 @@ pub struct Report {
     /// The search for the fewest control points within a tolerance (`--tolerance` only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tolerance_search: Option<ToleranceSearch>,
+    /// Where the surface folds back across its sections (left out when there is none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub folds: Vec<crate::analysis::Fold>,
 }
 
 impl Report {
@@ -100,6 +103,7 @@ impl Report {
             error_seconds: outcome.error_seconds,
             optimization: outcome.optimization.clone(),
             tolerance_search: None,
+            folds: outcome.folds.clone(),
         }
     }
 }
@@ -222,6 +226,16 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
             "warning: {} weights ended on their bounds [{}, {}], a sign of over-fitting (expected fewer control \
              points, or wider bounds)",
             o.weights_at_bounds, o.weight_bounds[0], o.weight_bounds[1]
+        );
+    }
+    for f in &outcome.folds {
+        let _ = writeln!(
+            t,
+            "warning: the surface folds back across the sections between x = {:.3} and {:.3} {u} ({} of {} samples \
+             there; a CAD system sees it as self-intersecting): sections crossing each other or unevenly spaced \
+             parameters across them (expected sections that advance in x; try --param centripetal,centripetal or \
+             fewer control points across)",
+            f.x.0, f.x.1, f.samples, f.of
         );
     }
     if let Some(w) = &e.worst {

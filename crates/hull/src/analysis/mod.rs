@@ -5,19 +5,22 @@
 //!   whose points lie on the plane and carry the cut curve's curvature;
 //! - [`curvature_map`](mod@curvature_map): Gaussian, mean and principal curvatures on a parameter grid, with
 //!   statistics for colour scales and reports;
-//! - [`fairness`]: bending energy and the inflections of stations and waterlines.
+//! - [`fairness`]: bending energy and the inflections of stations and waterlines;
+//! - [`fold`]: where a skinned surface runs backwards across its sections.
 //!
 //! Axes as everywhere in hullskin: x forward, y to starboard, z up.
 
 pub mod curvature_map;
 pub mod cuts;
 pub mod fairness;
+pub mod fold;
 
 pub use curvature_map::{
     curvature_map, CurvatureField, CurvatureMap, CurvatureMapOptions, CurvatureSample, CurvatureSummary, Extreme,
     FieldStats,
 };
 pub use cuts::{cut_surface, cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
+pub use fold::{find_folds, Fold};
 pub use fairness::{
     bending_energy, cut_fairness, default_quadrature, fairness_report, gauss_legendre, BendingEnergy, CutFairness,
     FairnessOptions, FairnessReport, PlaneFairness, PlaneSelection,

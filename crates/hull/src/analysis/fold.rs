@@ -1,0 +1,135 @@
+//! Folds of a skinned hull surface: where it runs backwards across its sections.
+//!
+//! A hull skinned over stations advances in x from one section to the next, so the derivative
+//! across the sections keeps one sign: `x_v = ∂x/∂v` of `S(u, v)`. Where it turns the other way
+//! the surface doubles back on itself: its normal `S_u × S_v` faces inwards there and a CAD
+//! system sees a self-intersecting skin. Uneven spacing of the sections' parameters causes it
+//! (a deck line jumping several metres between two close stations, R/V Gunnerus's forecastle
+//! step): the cure is a parameterization across the sections less driven by those jumps
+//! (centripetal) or fewer control points across.
+//!
+//! [`find_folds`] samples `x_v` on a grid refined at every knot span and reports the bands of x
+//! where it has the sign opposite to the surface's majority.
+
+use nurbs::NurbsSurface;
+use serde::Serialize;
+
+use super::param_grid;
+
+/// A band of x over which the surface folds back across its sections.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Fold {
+    /// Lowest and highest x of the folded samples.
+    pub x: (f64, f64),
+    /// Parameter range across the sections `(v0, v1)` of the folded samples.
+    pub v: (f64, f64),
+    /// Folded samples in the band.
+    pub samples: usize,
+    /// Samples of the grid lines across the band (the folded ones among them).
+    pub of: usize,
+}
+
+/// Samples per knot span in each direction: enough to see a fold confined to one span between
+/// two close sections (Gunnerus's is 0.17 m wide between stations 0.58 m apart).
+const PER_SPAN: usize = 8;
+
+/// The folds of `surface` (u along the sections, v across them): contiguous runs of the grid's
+/// v lines on which some sample has `x_v` of the sign opposite to the majority's, larger than
+/// 1e-9 of the surface's x extent per unit parameter (where sections share an x, as at a
+/// transom, `x_v` is zero to round-off and is not a fold). Empty for a surface that advances
+/// in x everywhere, or one with no extent in x.
+pub fn find_folds(surface: &NurbsSurface) -> Vec<Fold> {
+    let us = param_grid(surface.knots_u(), 16, true, PER_SPAN);
+    let vs = param_grid(surface.knots_v(), 16, true, PER_SPAN);
+    let (lo, hi) = surface.control_bounds();
+    let (v0, v1) = surface.domain_v();
+    let extent = hi.x - lo.x;
+    if !(extent > 0.0) || !(v1 > v0) {
+        return Vec::new();
+    }
+    let tol = 1e-9 * extent / (v1 - v0);
+    // x and x_v on the grid, v-major: one row per v line.
+    let rows: Vec<Vec<(f64, f64)>> = vs
+        .iter()
+        .map(|&v| {
+            us.iter()
+                .map(|&u| {
+                    let d = surface.derivatives(u, v);
+                    (d.point.x, d.sv.x)
+                })
+                .collect()
+        })
+        .collect();
+    let balance: f64 = rows.iter().flatten().map(|&(_, xv)| if xv.abs() > tol { xv.signum() } else { 0.0 }).sum();
+    let sign = if balance < 0.0 { -1.0 } else { 1.0 };
+    let folded = |xv: f64| sign * xv < -tol;
+    let mut folds: Vec<Fold> = Vec::new();
+    let mut open = false;
+    for (j, row) in rows.iter().enumerate() {
+        let bad: Vec<f64> = row.iter().filter(|&&(_, xv)| folded(xv)).map(|&(x, _)| x).collect();
+        if bad.is_empty() {
+            open = false;
+            continue;
+        }
+        let (xmin, xmax) = bad.iter().fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+        match folds.last_mut().filter(|_| open) {
+            Some(f) => {
+                f.x = (f.x.0.min(xmin), f.x.1.max(xmax));
+                f.v.1 = vs[j];
+                f.samples += bad.len();
+                f.of += row.len();
+            }
+            None => folds.push(Fold { x: (xmin, xmax), v: (vs[j], vs[j]), samples: bad.len(), of: row.len() }),
+        }
+        open = true;
+    }
+    folds
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nurbs::{KnotVector, Vec3};
+
+    /// A ruled-in-u, cubic-in-v strip over x with the x of its poles across given by `xs`
+    /// (y, z from the pole's indices): x_v follows the differences of `xs`.
+    fn strip(xs: &[f64]) -> NurbsSurface {
+        let ku = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
+        let n = xs.len();
+        let mut kv = vec![0.0; 4];
+        kv.extend((1..n - 3).map(|i| i as f64 / (n - 3) as f64));
+        kv.extend([1.0; 4]);
+        let kv = KnotVector::try_new(3, kv).expect("valid");
+        let pts: Vec<Vec3> =
+            (0..2).flat_map(|i| xs.iter().map(move |&x| Vec3::new(x, 1.0 + 0.1 * x, i as f64))).collect::<Vec<_>>();
+        NurbsSurface::try_new(ku, kv, &pts, None).expect("valid")
+    }
+
+    #[test]
+    fn a_surface_advancing_in_x_has_no_fold() {
+        assert!(find_folds(&strip(&[0.0, 1.0, 2.0, 3.5, 5.0, 6.0, 7.0])).is_empty());
+        // Two sections at one x (a transom's edge and its hull section): x_v = 0, not a fold.
+        assert!(find_folds(&strip(&[0.0, 0.0, 0.0, 0.0, 2.0, 4.0, 6.0])).is_empty());
+        // Running aft (x decreasing throughout) is the majority's direction: no fold either.
+        assert!(find_folds(&strip(&[7.0, 6.0, 5.0, 3.5, 2.0, 1.0, 0.0])).is_empty());
+    }
+
+    #[test]
+    fn a_pole_pulled_back_past_its_neighbour_folds_the_surface_there() {
+        // Poles 3 and 4 swap order in x: x_v < 0 around v of pole 3.5 only.
+        let s = strip(&[0.0, 1.0, 2.0, 4.0, 3.0, 5.0, 6.0, 7.0, 8.0]);
+        let folds = find_folds(&s);
+        assert_eq!(folds.len(), 1, "{folds:?}");
+        let f = folds[0];
+        // x_v of a cubic B-spline is a quadratic B-spline on the differences of the poles
+        // (NURBS Book eq. 3.4): negative only where the -1 difference dominates, inside the
+        // x range of the swapped poles.
+        assert!(f.x.0 > 2.0 && f.x.1 < 5.0, "{f:?}");
+        assert!(f.samples > 0 && f.samples <= f.of, "{f:?}");
+        // Every u sample on a folded v line is folded (the strip is ruled in u).
+        assert_eq!(f.samples, f.of, "{f:?}");
+        // The band is where x_v < 0: check it against the derivative directly.
+        let mid = 0.5 * (f.v.0 + f.v.1);
+        assert!(s.derivatives(0.5, mid).sv.x < 0.0);
+    }
+}
