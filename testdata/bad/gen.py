@@ -469,8 +469,9 @@ def accepted():
     ACCEPTED.append(("box_clean.obj", OBJ_BOX, "box_clean.obj", "a closed box as OBJ (sliced, then fitted)"))
     ACCEPTED.append(("box_bom_crlf.obj", "\ufeff" + OBJ_BOX.replace("\n", "\r\n"), "box_clean.obj",
                      "the OBJ box with a BOM and CRLF"))
-    ACCEPTED.append(("box_bom.stl", "\ufeff" + stl_ascii(box()), "box_clean.obj",
-                     "the box as an ASCII STL with a BOM"))
+    ACCEPTED.append(("box_clean.stl", stl_ascii(box()), "box_clean.stl", "the box as an ASCII STL"))
+    ACCEPTED.append(("box_bom.stl", "\ufeff" + stl_ascii(box()), "box_clean.stl",
+                     "the ASCII STL box with a BOM"))
     ACCEPTED.append(("table_semicolon_quoted.csv", TABLE.replace(",", ";").replace("2.45", '"2,45"'),
                      "table_clean.csv", "`;` with one decimal-comma cell quoted"))
 

@@ -121,3 +121,47 @@ fn run() -> anyhow::Result<ExitCode> {
         None => fit::run(&fit::FitArgs::default()),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    /// Every option of every subcommand, given hostile values, parses to a value or a clap
+    /// error, never a panic: a value parser whose output does not match its field's type
+    /// panics only when the option is used (`slice --at` did).
+    #[test]
+    fn every_option_takes_any_value_without_panicking() {
+        let values = ["1", "0", "-1", "2,3", "1,2,3", "1e308,-1e308", "nan", "inf", "x", "", "1:50", "m", "auto"];
+        let cli = Cli::command();
+        let mut tried = 0;
+        for sub in cli.get_subcommands() {
+            for arg in sub.get_arguments() {
+                let Some(long) = arg.get_long() else { continue };
+                let flag = format!("--{long}");
+                let takes_value = arg.get_action().takes_values();
+                let runs: Vec<Vec<String>> = if takes_value {
+                    values.iter().map(|v| vec![flag.clone(), v.to_string()]).collect()
+                } else {
+                    vec![vec![flag.clone()]]
+                };
+                for run in runs {
+                    let mut argv = vec!["hullskin".to_string(), sub.get_name().to_string()];
+                    argv.extend(run.iter().cloned());
+                    // A positional input where one is required.
+                    argv.push("input.csv".into());
+                    let result = std::panic::catch_unwind(|| Cli::try_parse_from(&argv).map(|_| ()));
+                    assert!(result.is_ok(), "panic on {argv:?}");
+                    tried += 1;
+                }
+            }
+        }
+        // Every subcommand has options: the loop really ran over them.
+        assert!(tried > 200, "{tried}");
+    }
+}

@@ -29,7 +29,7 @@ pub struct MeshArgs {
     #[arg(long, default_value = "cosine", value_parser = parse_spacing)]
     pub spacing: Spacing,
     /// Mesh input: stations at these x instead (comma-separated, increasing).
-    #[arg(long, value_name = "X1,X2,...", value_parser = parse_list, conflicts_with = "stations")]
+    #[arg(long, value_name = "X1,X2,...", value_delimiter = ',', value_parser = parse_finite, conflicts_with = "stations")]
     pub at: Option<Vec<f64>>,
     /// Mesh input: points per section, keel to deck edge.
     #[arg(long = "points", default_value_t = 30, value_name = "M")]
@@ -259,6 +259,14 @@ fn parse_resample(s: &str) -> Result<Resample, String> {
 
 fn parse_axes(s: &str) -> Result<Axes, String> {
     s.parse().map_err(|e| format!("{e}"))
+}
+
+/// One finite number.
+fn parse_finite(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("`{}` is not a finite number", s.trim())),
+    }
 }
 
 /// Comma-separated finite numbers.

@@ -141,3 +141,30 @@ fn fit_and_hydrostatics_slice_a_mesh_input_with_the_mesh_flags() {
     let vol = v["rows"][0]["vol"].as_f64().unwrap_or_else(|| panic!("{v}"));
     assert!((vol / (4.0 / 9.0 * 0.1 * T) - 1.0).abs() < 0.0065, "{vol}");
 }
+
+/// `--at` gives the stations' positions: one section at each (it used to panic in the
+/// argument parser), and hostile positions or point counts are refused with exit status 2.
+#[test]
+fn stations_at_given_positions_and_hostile_slicing_flags() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mesh = testdata("mesh/wigley.stl.gz");
+    let mesh = mesh.to_str().expect("utf-8 path");
+    let o = hullskin(dir.path(), &["slice", mesh, "--shift", SHIFT, "--at", "0.2,0.5,0.8", "-o", "at.csv"]);
+    assert!(o.status.success(), "{:?}", text(&o));
+    let csv = fs::read_to_string(dir.path().join("at.csv")).expect("read");
+    let mut xs: Vec<String> = csv.lines().skip(1).filter_map(|l| l.split(',').nth(1).map(str::to_string)).collect();
+    xs.dedup();
+    assert_eq!(xs.len(), 3, "{csv}");
+    for (x, want) in xs.iter().zip([0.2, 0.5, 0.8]) {
+        let x: f64 = x.parse().expect("number");
+        // A station plane's x is written as given (shortest round-trip float).
+        assert_eq!(x, want, "{csv}");
+    }
+    for bad in [&["--at", "1e308,-1e308"][..], &["--at", "0.5,nan"], &["--points", "100000000"], &["--stations", "0"]] {
+        let o = hullskin(dir.path(), &[&["slice", mesh, "-o", "bad.csv"][..], bad].concat());
+        let (out, err) = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {out}\n{err}");
+        assert!(!err.contains("panicked") && err.contains("error:"), "{bad:?}: {err}");
+    }
+    assert!(!dir.path().join("bad.csv").exists());
+}

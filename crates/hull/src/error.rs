@@ -173,8 +173,8 @@ pub enum InputErrorKind {
     Empty,
 
     // ----- tokenizing -----
-    /// A line holding no comma but `;` or a tab.
-    #[error("fields are separated by {} (expected commas: hullskin reads comma-separated values with decimal points)", separator_name(*.separator))]
+    /// A line holding no comma but `;` or a tab, in a file whose first data line set commas.
+    #[error("fields are separated by {} (expected commas, as on the file's first data line: one delimiter for the whole file)", separator_name(*.separator))]
     Separator {
         /// The separator found.
         separator: char,

@@ -291,13 +291,18 @@ pub fn station_positions(x_min: f64, x_max: f64, n: usize, spacing: Spacing) -> 
 /// Slices `mesh` into sections, keel to deck edge on the starboard side (see the module docs).
 ///
 /// # Errors
-/// [`HullError::Config`] for fewer than 2 points per section, a deck angle outside 0..90
+/// [`HullError::Config`] for fewer than 2 points per section or more than
+/// [`crate::limits::MAX_POINTS_PER_SECTION`], a deck angle outside 0..90
 /// degrees, a non-finite `max_z`, station positions that are not finite and strictly
 /// increasing, or a station count of [`station_positions`]; and when fewer than 2 stations
 /// give a section (the message lists why each was dropped).
 pub fn slice_mesh(mesh: &TriMesh, options: &SliceOptions) -> Result<SliceOutcome, HullError> {
-    if options.points < 2 {
-        return Err(HullError::Config(format!("{} points per section: expected at least 2", options.points)));
+    if options.points < 2 || options.points > crate::limits::MAX_POINTS_PER_SECTION {
+        return Err(HullError::Config(format!(
+            "{} points per section: expected 2 to {} (README, Limits)",
+            options.points,
+            crate::limits::MAX_POINTS_PER_SECTION
+        )));
     }
     if !(options.deck_angle >= 0.0 && options.deck_angle < 90.0) {
         return Err(HullError::Config(format!(

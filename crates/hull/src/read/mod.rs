@@ -729,7 +729,8 @@ mod tests {
     fn other_separators_are_named() {
         assert_eq!(
             err_of(records("# c\nsection,x,y,z\na;1;2;3\n", "s.csv")),
-            "s.csv:3: fields are separated by semicolons (expected commas: hullskin reads comma-separated values with decimal points)"
+            "s.csv:3: fields are separated by semicolons (expected commas, as on the file's first data line: one \
+             delimiter for the whole file)"
         );
         assert!(err_of(records("a,b\nc\td\n", "s.csv")).contains("separated by tabs"));
         assert_eq!(
