@@ -10,7 +10,7 @@ no clock, a fixed random seed, gzip with mtime 0).
 manifest.csv columns, read by crates/cli/tests/bad_input.rs:
 
 - file: the path under testdata/bad/;
-- command: the subcommand run on it (fit, hydrostatics, export, digitize, slice);
+- command: the subcommand run on it (fit, hydrostatics, export, report, digitize, slice);
 - args: extra arguments, space-separated (usually none);
 - exit: `fail` (exit code non-zero, not a panic) or `ok` for the few hostile but valid files
   that are accepted with a note (`says` is then a phrase of the note);
@@ -234,7 +234,7 @@ def build():
     bad("sections_zero_length_middle.csv", sections_csv(r), "fit", ":6", "collapses to one point",
         "the middle section collapses to one point (a zero-length section between two full ones)")
     r = example_rows()
-    r[4:8] = [["mid", "5", "0", "0"], ["mid", "5", "2.5", "1.5"], ["mid", "5", "2.5", "0.5"], ["mid", "5", "0.5", "2.0"]]
+    r[4:8] = [["mid", "5", y, z] for y, z in [("0", "0"), ("2.5", "1.5"), ("2.5", "0.5"), ("0.5", "2.0")]]
     bad("sections_self_intersecting.csv", sections_csv(r), "fit", ":9", "crosses itself",
         "the middle section crosses itself (its last segment cuts its first)")
     bad("sections_header_only.csv", "section,x,y,z\n", "fit", ":1", "no data rows", "a header and nothing else")
@@ -362,6 +362,10 @@ def build():
         "units", "unknown units")
     bad("surface_string_number.json", SURFACE.replace('"version": 1', '"version": "1"'), "hydrostatics", ":3:16",
         "expected u32", "the version as a string")
+    bad("surface_bom_truncated.json", "\ufeff" + SURFACE[:230], "report", ":", "EOF",
+        "a surface JSON with a BOM, cut short, for a report")
+    bad("report_offsets_inf.csv", sections_csv()[:-4] + "inf\n", "report", ":13:4", "not a finite number",
+        "offsets with `inf` as the last height, for a report")
     bad("surface_wrong_format.json", SURFACE.replace("hullskin-surface", "rhino-surface"), "export", "",
         "hullskin-surface", "another program's JSON")
 
@@ -427,6 +431,22 @@ def build():
         "digitize", ":", "entit", "a billion-laughs entity expansion (10^10 characters)")
     bad("svg_no_curves.svg", '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"/>\n', "digitize", "",
         "expected", "an SVG without any curve")
+
+    lw = DXF_HEAD + "0\nLWPOLYLINE\n8\nST0\n90\n4000000000\n70\n0\n10\n0\n20\n0\n10\n5\n20\n5\n0\nENDSEC\n0\nEOF\n"
+    bad("dxf_lwpolyline_count.dxf", lw, "digitize", "", "expected at least 2 sections",
+        "an LWPOLYLINE announcing 4e9 vertices (group 90) with 2 given: read as its 2 (the count is not trusted), "
+        "then one station only")
+    sp = DXF_HEAD + "0\nSPLINE\n8\nST0\n71\n1000000000\n72\n4000000000\n73\n4000000000\n10\n0\n20\n0\n" \
+        "0\nENDSEC\n0\nEOF\n"
+    bad("dxf_spline_counts.dxf", sp, "digitize", ":5", "announces 4000000000 knots",
+        "a SPLINE of degree 1e9 announcing 4e9 knots and 4e9 control points, giving none")
+    bad("dxf_huge_arc.dxf", DXF_HEAD + "0\nARC\n8\nST0\n10\n0\n20\n0\n40\n1e308\n50\n0\n51\n359.9999\n"
+        "0\nENDSEC\n0\nEOF\n", "digitize", ":5", "centreline", "an ARC of radius 1e308 around the datum")
+    bad("svg_overflow_number.svg", SVG.replace("L 120 90", "L 1e999 90"), "digitize", ":3", "invalid number",
+        "`1e999` in a path: overflows an f64")
+    bad("svg_huge_arc.svg", SVG.replace("L 120 90", "A 1e308 1e308 0 1 1 120 90"), "digitize", ":3", "not finite",
+        "an elliptical arc of radii 1e308 whose points overflow")
+    bad("bom_only.csv", "\ufeff", "fit", "", "no data", "a UTF-8 byte-order mark and nothing else")
 
     # ----- directories -----
     bad("directory.csv", None, "fit", "", "", "a directory where a file belongs")
@@ -521,7 +541,7 @@ def write_readme():
         "",
         "Hostile and broken inputs for every format the CLI reads, run by",
         "`crates/cli/tests/bad_input.rs` (`cargo test -p hullskin --test bad_input`): on each file the",
-        "CLI must exit non-zero without a panic, a signal, a hang (60 s) or more than 2 GiB of address",
+        "CLI must exit non-zero without a panic, a signal, a hang (60 s) or more than 1 GiB of address",
         "space, and its message must name the file, the place (line, or line and column, for text",
         "inputs) and say what is wrong. The few files marked TOLERATED are hostile but valid: they",
         "must succeed, with the note given. The files are small, made up, and written by `gen.py`",

@@ -528,7 +528,10 @@ mod tests {
         o.sections[2].points[3].z = 1e300;
         // Section "2", point 4 is on line 2 + 4 * 2 + 3 = 13.
         assert!(
-            err(&o, 4).starts_with("box.csv:13: the model's size (bounding-box diagonal) is inf with coordinates up to 1e300 (section \"2\", point 4)"),
+            err(&o, 4).starts_with(
+                "box.csv:13: the model's size (bounding-box diagonal) is inf with coordinates up to 1e300 \
+                 (section \"2\", point 4)"
+            ),
             "{}",
             err(&o, 4)
         );

@@ -13,7 +13,6 @@
 //!   copied and spliced runs), must each give `Ok` or `Err`, never a panic. This is the part
 //!   of the fuzzing that CI runs; `cargo fuzz` explores far more.
 
-#[allow(dead_code)]
 #[path = "../../../fuzz/src/lib.rs"]
 mod fuzz_targets;
 
@@ -94,6 +93,7 @@ fn every_regression_input_returns_and_former_panics_name_their_place() {
             }
         }
     }
+    assert!(count > 0, "no regression inputs found in {}", dir.display());
     assert!(failures.is_empty(), "{} of {count} regression inputs fail:\n{}", failures.len(), failures.join("\n"));
 }
 

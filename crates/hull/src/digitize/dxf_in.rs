@@ -791,4 +791,29 @@ mod tests {
         assert!(err("<svg").contains("where a group code belongs"));
         assert!(err(&dxf("0\nLINE\n10\nnan\n20\n0\n11\n0\n21\n0\n")).contains("is not a finite number"));
     }
+
+    /// Found by fuzzing (`testdata/fuzz/drawing_dxf/`): an ELLIPSE's parameters 41/42 of
+    /// millions of radians drew at most one turn, but were flattened turn by turn (4 GiB).
+    #[test]
+    fn ellipse_parameters_of_any_size_draw_at_most_one_turn() {
+        let ellipse = |t0: &str, t1: &str| {
+            let s =
+                parse_dxf(&dxf(&format!("0\nELLIPSE\n10\n0\n20\n0\n11\n2\n21\n0\n40\n0.5\n41\n{t0}\n42\n{t1}\n")), "e")
+                    .expect("valid ellipse");
+            s.curves[0].clone()
+        };
+        for (t0, t1) in [("-1e308", "1e308"), ("0", "60283185"), ("42724778", "6.283185"), ("1", "1")] {
+            let c = ellipse(t0, t1);
+            let p = c.points(1e-3);
+            // One turn of an ellipse of semi-axes 2 and 1 flattened to 1e-3 takes about
+            // pi / sqrt(2 x 1e-3 / 2) ~ 100 chords; a bound of 1000 leaves room for any start.
+            assert!(p.len() < 1000, "{t0}..{t1}: {} points", p.len());
+            for q in p {
+                // On the ellipse (x/2)^2 + y^2 = 1, to round-off of the cos/sin evaluation.
+                assert!(((q[0] / 2.0).powi(2) + q[1] * q[1] - 1.0).abs() < 1e-9, "{t0}..{t1}: {q:?}");
+            }
+        }
+        // Equal parameters draw the whole ellipse, a closed curve, as before.
+        assert!(ellipse("1", "1").closed && !ellipse("0", "3").closed);
+    }
 }

@@ -333,18 +333,26 @@ pub fn is_gzip(bytes: &[u8]) -> bool {
     bytes.starts_with(&[0x1f, 0x8b])
 }
 
+/// The largest expansion of deflate: 1032 to 1 (RFC 1951, section 3.2.5: a match of 258 bytes
+/// in as few as 2 bits).
+const MAX_DEFLATE_RATIO: usize = 1032;
+
 /// Decompresses a gzip stream (all its members), up to [`MAX_DECOMPRESSED`] bytes.
 ///
 /// # Errors
 /// [`InputErrorKind::Mesh`] for a corrupt or truncated stream, or one that decompresses to
 /// more than [`MAX_DECOMPRESSED`] bytes.
 pub fn gunzip(bytes: &[u8], source: &str) -> Result<Vec<u8>, HullError> {
-    // The trailer's ISIZE (size mod 2^32) is a good first guess of the capacity.
+    // The trailer's ISIZE (size mod 2^32) is a good first guess of the capacity, but only a
+    // guess: a truncated or forged file ends in any four bytes. Deflate expands at most 1032
+    // times (a 258-byte match coded in two bits, RFC 1951 3.2.5), so no stream of these bytes
+    // can need more; beyond that the vector grows as the data come.
     let hint = bytes
         .len()
         .checked_sub(4)
         .map_or(0, |i| u32::from_le_bytes([bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]) as usize);
-    let mut out = Vec::with_capacity(hint.min(MAX_DECOMPRESSED as usize));
+    let most = bytes.len().saturating_mul(MAX_DEFLATE_RATIO);
+    let mut out = Vec::with_capacity(hint.min(most).min(MAX_DECOMPRESSED as usize));
     let mut reader = flate2::read::MultiGzDecoder::new(bytes).take(MAX_DECOMPRESSED + 1);
     reader.read_to_end(&mut out).map_err(|e| {
         mesh_error(
@@ -560,6 +568,24 @@ mod tests {
         }
         bin.extend_from_slice(&[0, 0]);
         assert_eq!(parse_mesh(&bin, "b.stl", None, &opts).expect("binary").triangles.len(), 1);
+    }
+
+    #[test]
+    fn a_truncated_gzip_does_not_trust_its_last_four_bytes() {
+        // 1 MiB of zeros: deflate packs it near its best ratio, so the capacity bound holds.
+        let mut gz = Vec::new();
+        let mut enc = flate2::write::GzEncoder::new(&mut gz, flate2::Compression::best());
+        std::io::Write::write_all(&mut enc, &vec![0u8; 1 << 20]).expect("compress");
+        enc.finish().expect("finish");
+        assert!(gz.len() * MAX_DEFLATE_RATIO >= 1 << 20, "{} bytes compressed", gz.len());
+        assert_eq!(gunzip(&gz, "z.gz").expect("whole").len(), 1 << 20);
+        // Cut short and ending in a forged ISIZE of 4 GiB - 1: an error. (That no 1 GiB vector
+        // is reserved on the way is checked under an address-space cap by the CLI's bad-input
+        // test, `stl_gz_truncated.stl.gz`: a 150-byte file.)
+        let mut cut = gz[..gz.len() / 2].to_vec();
+        cut.extend_from_slice(&u32::MAX.to_le_bytes());
+        let e = gunzip(&cut, "cut.gz").expect_err("truncated").to_string();
+        assert!(e.starts_with("cut.gz: corrupt gzip stream"), "{e}");
     }
 
     #[test]
