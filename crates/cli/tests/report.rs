@@ -351,3 +351,22 @@ fn bad_inputs_exit_with_a_message_naming_the_file() {
     // Nothing was written for a failed run.
     assert!(!dir.join("R").join("report.html").exists());
 }
+
+/// A folded surface (R/V Gunnerus's forecastle step) is flagged on the page, with its x band,
+/// and the sample's page, which does not fold, says nothing of the kind.
+#[test]
+fn a_folded_surface_is_flagged_on_the_page() {
+    let dir = scratch("folded");
+    let input = testdata("gunnerus_offsets.csv");
+    report_ok(&dir, &[input.to_str().expect("utf-8 path"), "-o", "R"]);
+    let html = read_text(&dir.join("R"), "report.html");
+    let doc = parse(&html);
+    let warning = doc
+        .descendants()
+        .filter_map(|n| n.text())
+        .find(|t| t.contains("folds back across the sections"))
+        .unwrap_or_else(|| panic!("no fold warning on the page"));
+    assert!(warning.contains("between x = 16.5") && warning.contains("centripetal"), "{warning}");
+    let sample = read_text(&sample().0, "report.html");
+    assert!(!sample.contains("folds back"));
+}
