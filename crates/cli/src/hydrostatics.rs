@@ -104,8 +104,23 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
         density: hull::density_per_cubic_unit(args.density, units),
         ..HydrostaticsOptions::default()
     };
-    let rows =
-        Hydrostatics::new(&surface, &options)?.rows(&drafts).with_context(|| format!("hydrostatics of {source}"))?;
+    let hydro = Hydrostatics::new(&surface, &options)?;
+    let rows = hydro.rows(&drafts).with_context(|| format!("hydrostatics of {source}"))?;
+    // Centre-plane webs (a station sliced from a mesh as two pieces joined on y = 0): their
+    // area is left out of S; say how much (the largest over the drafts), on standard error so
+    // the table stays clean.
+    let mut web = (0.0, 0.0);
+    for &t in &drafts {
+        let area = hydro.web_area(t).with_context(|| format!("hydrostatics of {source}"))?;
+        if area > web.0 {
+            web = (area, t);
+        }
+    }
+    if web.0 > 0.0 {
+        let u = units.symbol();
+        let at = if drafts.len() > 1 { format!(" (largest, at draft {})", web.1) } else { String::new() };
+        eprintln!("hullskin: note: centre-plane web of {:.6} {u}² left out of S and Lwl{at}", web.0);
+    }
     let table = HydrostaticsTable { source, units, density: args.density, rows };
     let text = match args.format {
         Format::Text => table.text(),
