@@ -178,7 +178,10 @@ fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
     let o = hullskin(dir.path(), &["fit", input, "-o", "default"]);
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}\n{err}");
-    assert!(out.contains("warning: the surface folds back") && out.contains("--param centripetal,centripetal"), "{out}");
+    assert!(
+        out.contains("warning: the surface folds back") && out.contains("--param centripetal,centripetal"),
+        "{out}"
+    );
     let r = read_json(&dir.path().join("default/report.json"));
     let folds = r["folds"].as_array().unwrap_or_else(|| panic!("no folds in {r}"));
     assert_eq!(folds.len(), 1, "{r}");

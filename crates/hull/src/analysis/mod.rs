@@ -20,11 +20,11 @@ pub use curvature_map::{
     FieldStats,
 };
 pub use cuts::{cut_surface, cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
-pub use fold::{find_folds, Fold};
 pub use fairness::{
     bending_energy, cut_fairness, default_quadrature, fairness_report, gauss_legendre, BendingEnergy, CutFairness,
     FairnessOptions, FairnessReport, PlaneFairness, PlaneSelection,
 };
+pub use fold::{find_folds, Fold};
 
 use nurbs::{KnotVector, NurbsSurface};
 
