@@ -22,6 +22,7 @@ pub mod ga;
 pub mod gsa;
 mod linalg;
 pub mod lm;
+mod net_energy;
 pub mod pso;
 pub mod weights;
 

@@ -37,6 +37,7 @@ use nurbs::basis::{basis_funs, ders_basis_funs, BasisRow};
 use nurbs::{KnotVector, NurbsError, NurbsSurface, Vec3, MAX_DEGREE};
 
 use super::linalg::{band_cholesky, band_solve, dot};
+use super::net_energy::NetEnergy;
 use super::Objective;
 use crate::{FitOutcome, HullError, Offsets};
 
@@ -117,6 +118,18 @@ pub struct WeightOptions {
     /// whole bounds left GSA (and GA, in true RMS) at the start on three of them. LM and the
     /// LM phase of `gsa+lm` search the whole bounds.
     pub search_scale: Option<f64>,
+    /// Fairness `λ` of the control net ([`NetEnergy`], re-solved mode only): the control points
+    /// minimise `(1/m) sum_k |S_k - Q_k|^2 + λ (1/r) |D Y|^2` (`r` rows of the second-difference
+    /// operator `D`, `Y = w P` the homogeneous control points), and the objective carries the
+    /// same term. Dimensionless: a mean squared second difference of the net costs `λ` times as
+    /// much as a mean squared residual. `0` (the default) is the plain least squares.
+    pub fair: f64,
+    /// Smoothness of the log-weights, `σ / model size`: the objective gains
+    /// `σ^2 (1/e) sum (θ_a - θ_b)^2` over the `e` pairs of neighbouring weights (grid
+    /// neighbours; in the rank-one layout neighbouring `α` and neighbouring `β`), so the weights
+    /// vary smoothly over the net instead of running to their bounds one by one. `0` (the
+    /// default) leaves them independent.
+    pub weight_smoothing: f64,
 }
 
 impl Default for WeightOptions {
@@ -130,6 +143,8 @@ impl Default for WeightOptions {
             regularization: 1e-6,
             anchor: 1e-9,
             search_scale: Some(10.0),
+            fair: 0.0,
+            weight_smoothing: 0.0,
         }
     }
 }
@@ -359,6 +374,17 @@ pub struct WeightProblem {
     rho: f64,
     /// The section (run of offsets sharing one `v` at construction) of each offset.
     section: Vec<usize>,
+    /// The control net's difference operator (u-major indices) and `D^T D` as band entries
+    /// `(index into the band storage, value)`: empty when `fair` is 0.
+    net: NetEnergy,
+    net_band: Vec<(usize, f64)>,
+    /// `λ m / r`: the factor of `D^T D` in `G` (`G` sums the unscaled residuals).
+    fair_g: f64,
+    /// `λ / r`: the factor of `|D Y|^2` in `f^2`.
+    fair_f: f64,
+    /// Neighbouring variables `(a, b)` of the log-weight smoothing, and `σ^2 / e`.
+    smooth_pairs: Vec<(usize, usize)>,
+    smooth: f64,
 }
 
 impl WeightProblem {
@@ -387,6 +413,11 @@ impl WeightProblem {
                 "weight regularization {} is not usable (expected a finite number >= 0)",
                 options.regularization
             )));
+        }
+        for (name, v) in [("fairness", options.fair), ("weight smoothing", options.weight_smoothing)] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(HullError::Config(format!("{name} {v} is not usable (expected a finite number >= 0)")));
+            }
         }
         if let Some(k) = options.search_scale {
             if !(k > 0.0 && k.is_finite()) {
@@ -444,7 +475,14 @@ impl WeightProblem {
             size,
             rho: options.regularization * size,
             section: Vec::with_capacity(params.len()),
+            net: NetEnergy::default(),
+            net_band: Vec::new(),
+            fair_g: 0.0,
+            fair_f: 0.0,
+            smooth_pairs: Vec::new(),
+            smooth: 0.0,
         };
+        problem.set_penalties();
         for (k, &(_, v)) in params.iter().enumerate() {
             let g = match problem.section.last() {
                 Some(&g) if v == params[k - 1].1 => g,
@@ -497,6 +535,133 @@ impl WeightProblem {
         out.table = self.basis_table(&params, false);
         out.params = params;
         Ok(out)
+    }
+
+    /// The same problem with other fairness settings ([`WeightOptions::fair`],
+    /// [`WeightOptions::weight_smoothing`]); the basis products are kept.
+    ///
+    /// # Errors
+    /// [`HullError::Config`] if either is negative or not finite.
+    pub fn with_fairness(&self, fair: f64, weight_smoothing: f64) -> Result<Self, HullError> {
+        for (name, v) in [("fairness", fair), ("weight smoothing", weight_smoothing)] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(HullError::Config(format!("{name} {v} is not usable (expected a finite number >= 0)")));
+            }
+        }
+        let mut out = self.clone();
+        out.options.fair = fair;
+        out.options.weight_smoothing = weight_smoothing;
+        out.set_penalties();
+        Ok(out)
+    }
+
+    /// Build the fairness operator and the log-weight pairs from the options.
+    fn set_penalties(&mut self) {
+        let pat = &self.pat;
+        let (n_u, n_v) = (pat.n_u, pat.n_v);
+        let resolved = self.options.mode == WeightMode::Resolved;
+        (self.net, self.net_band, self.fair_g, self.fair_f) = (NetEnergy::default(), Vec::new(), 0.0, 0.0);
+        if resolved && self.options.fair > 0.0 {
+            let net = NetEnergy::new(n_u, n_v, &self.ku, &self.kv);
+            if !net.is_empty() {
+                let (bw, stride) = (pat.bw, pat.stride);
+                // Every entry of D^T D lies within the band: the stencils span two rows of the
+                // net along the direction of degree >= 2 (one along a degree-1 direction) and
+                // one diagonal step, all within `p n_v + q` (u-major) or `q n_u + p` (v-major).
+                self.net_band = net
+                    .gram_lower(|c| pat.pos(c / n_v, c % n_v))
+                    .into_iter()
+                    .filter(|&(r, c, _)| r - c <= bw)
+                    .map(|(r, c, v)| (r * stride + c + bw - r, v))
+                    .collect();
+                let rows = net.len() as f64;
+                self.fair_f = self.options.fair / rows;
+                self.fair_g = self.fair_f * self.points.len() as f64;
+                self.net = net;
+            }
+        }
+        let sigma = self.options.weight_smoothing * self.size;
+        self.smooth_pairs.clear();
+        self.smooth = 0.0;
+        if sigma > 0.0 {
+            let pairs = &mut self.smooth_pairs;
+            match self.options.layout {
+                WeightLayout::Full => {
+                    for i in 0..n_u {
+                        for j in 0..n_v {
+                            let c = i * n_v + j;
+                            if i + 1 < n_u {
+                                pairs.push((c, c + n_v));
+                            }
+                            if j + 1 < n_v {
+                                pairs.push((c, c + 1));
+                            }
+                        }
+                    }
+                }
+                WeightLayout::RankOne => {
+                    pairs.extend((1..n_u).map(|i| (i - 1, i)));
+                    pairs.extend((1..n_v).map(|j| (n_u + j - 1, n_u + j)));
+                }
+            }
+            if !pairs.is_empty() {
+                self.smooth = sigma * sigma / pairs.len() as f64;
+            }
+        }
+    }
+
+    /// `out += R v`, `R = (ρ^2 / d) I + (σ^2 / e) L` the Hessian of the log-weights' prior
+    /// (regularisation and smoothing; `L` the graph Laplacian of the neighbouring pairs), so
+    /// that the prior's part of `f^2` is `θ^T R θ`.
+    pub(crate) fn prior_apply(&self, v: &[f64], out: &mut [f64]) {
+        let reg = self.rho * self.rho / v.len() as f64;
+        for (o, t) in out.iter_mut().zip(v) {
+            *o += reg * t;
+        }
+        if self.smooth > 0.0 {
+            for &(a, b) in &self.smooth_pairs {
+                let g = self.smooth * (v[a] - v[b]);
+                out[a] += g;
+                out[b] -= g;
+            }
+        }
+    }
+
+    /// The diagonal of `R` (see [`WeightProblem::prior_apply`]).
+    pub(crate) fn prior_diag(&self) -> Vec<f64> {
+        let d = self.dim();
+        let mut diag = vec![self.rho * self.rho / d as f64; d];
+        for &(a, b) in &self.smooth_pairs {
+            diag[a] += self.smooth;
+            diag[b] += self.smooth;
+        }
+        diag
+    }
+
+    /// `θ^T R θ`, the prior's part of `f^2`.
+    fn prior_value(&self, x: &[f64]) -> f64 {
+        let mut f2 = 0.0;
+        if self.rho > 0.0 {
+            f2 += self.rho * self.rho * x.iter().map(|t| t * t).sum::<f64>() / x.len() as f64;
+        }
+        if self.smooth > 0.0 {
+            f2 += self.smooth * self.smooth_pairs.iter().map(|&(a, b)| (x[a] - x[b]).powi(2)).sum::<f64>();
+        }
+        f2
+    }
+
+    /// `|D Y|^2` of the homogeneous control points after [`WeightProblem::solve`].
+    fn net_value(&self, sc: &Scratch) -> f64 {
+        let (pat, n_v) = (&self.pat, self.pat.n_v);
+        self.net.value(|c| sc.y[pat.pos(c / n_v, c % n_v)])
+    }
+
+    /// The fairness energy `|D P|^2` of the net of `surface`'s control points (Cartesian), with
+    /// this problem's creases; `0` when the problem has no fairness term.
+    pub fn net_energy_of(&self, surface: &NurbsSurface) -> f64 {
+        let n_v = surface.n_v();
+        NetEnergy::new(surface.n_u(), n_v, surface.knots_u(), surface.knots_v())
+            .value(|c| surface.control_point(c / n_v, c % n_v).to_array())
     }
 
     /// The evolutionary algorithms' search box (see [`WeightOptions::search_scale`]): the
@@ -739,7 +904,7 @@ impl WeightProblem {
         let m = table.first.len();
         let d = x.len();
         let resolved = self.options.mode == WeightMode::Resolved;
-        let pts: Vec<[f64; 3]> = sc.y.iter().zip(&sc.w).map(|(y, &w)| [y[0] / w, y[1] / w, y[2] / w]).collect();
+        let pts = self.derivative_points(&sc);
         // A^T A (lower triangle), A^T e, Z_v (d blocks of n) from s_v on, H^T e.
         let mut ata = vec![0.0; d * d];
         let mut ate = vec![0.0; d];
@@ -811,6 +976,26 @@ impl WeightProblem {
             for v in 0..d {
                 band_forward_from(&sc.band, n, bw, stride, &mut z[v * n..(v + 1) * n], start[v]);
             }
+            if self.fair_g > 0.0 {
+                // With the fairness term the least-squares optimality is A^T r = H^T e +
+                // λ' D^T D Y = 0, not H^T e = 0: the projected term takes A^T r.
+                let n_v = pat.n_v;
+                for st in self.net.rows() {
+                    let mut dy = [0.0; 3];
+                    for &(c, w) in st.entries() {
+                        let y = sc.y[pat.pos(c / n_v, c % n_v)];
+                        for t in 0..3 {
+                            dy[t] += w * y[t];
+                        }
+                    }
+                    for &(c, w) in st.entries() {
+                        let h = &mut hte[pat.pos(c / n_v, c % n_v)];
+                        for t in 0..3 {
+                            h[t] += self.fair_g * w * dy[t];
+                        }
+                    }
+                }
+            }
             band_forward_from(&sc.band, n, bw, stride, &mut hte, 0);
             let t = hte.as_flattened();
             for v in 0..d {
@@ -833,6 +1018,19 @@ impl WeightProblem {
             }
             jtj[v * d + v] = jtj[v * d + v] * scale + reg;
             jtr[v] = jtr[v] * scale + reg * x[v];
+        }
+        if self.smooth > 0.0 {
+            // The smoothing rows' J^T J = (σ^2 / e) L and J^T r = (σ^2 / e) L θ.
+            for &(a, b) in &self.smooth_pairs {
+                let s = self.smooth;
+                jtj[a * d + a] += s;
+                jtj[b * d + b] += s;
+                jtj[a * d + b] -= s;
+                jtj[b * d + a] -= s;
+                let g = s * (x[a] - x[b]);
+                jtr[a] += g;
+                jtr[b] -= g;
+            }
         }
         if !(jtj.iter().all(|t| t.is_finite()) && jtr.iter().all(|t| t.is_finite())) {
             return None;
@@ -991,6 +1189,11 @@ impl WeightProblem {
                         yo[2] += hl * qk[2];
                     }
                 }
+                if self.fair_g > 0.0 {
+                    for &(idx, v) in &self.net_band {
+                        sc.band[idx] += self.fair_g * v;
+                    }
+                }
                 let anchor = self.options.anchor;
                 if anchor > 0.0 {
                     let max_diag = (0..n).map(|c| sc.band[c * stride + bw]).fold(0.0, f64::max);
@@ -1128,9 +1331,9 @@ impl WeightProblem {
             let e = [s[0] - qk[0], s[1] - qk[1], s[2] - qk[2]];
             sum += e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
         }
-        let mut f2 = sum / m as f64;
-        if self.rho > 0.0 {
-            f2 += self.rho * self.rho * x.iter().map(|t| t * t).sum::<f64>() / x.len() as f64;
+        let mut f2 = sum / m as f64 + self.prior_value(x);
+        if self.fair_f > 0.0 {
+            f2 += self.fair_f * self.net_value(sc);
         }
         f2
     }
@@ -1165,7 +1368,36 @@ impl WeightProblem {
         }
         let reg = self.rho / (d as f64).sqrt();
         r.extend(x.iter().map(|t| reg * t));
+        self.push_penalty_rows(&mut r, x, sc);
         r
+    }
+
+    /// The fairness rows `sqrt(λ / r) D Y` (x, y, z of each stencil) and the smoothing rows
+    /// `σ / sqrt(e) (θ_a - θ_b)`, after the regularisation rows: `|r|^2 = f^2`.
+    fn push_penalty_rows(&self, r: &mut Vec<f64>, x: &[f64], sc: &Scratch) {
+        if self.fair_f > 0.0 {
+            let (c, n_v) = (self.fair_f.sqrt(), self.pat.n_v);
+            for st in self.net.rows() {
+                let mut acc = [0.0; 3];
+                for &(k, w) in st.entries() {
+                    let y = sc.y[self.pat.pos(k / n_v, k % n_v)];
+                    for t in 0..3 {
+                        acc[t] += w * y[t];
+                    }
+                }
+                r.extend(acc.iter().map(|a| c * a));
+            }
+        }
+        if self.smooth > 0.0 {
+            let c = self.smooth.sqrt();
+            r.extend(self.smooth_pairs.iter().map(|&(a, b)| c * (x[a] - x[b])));
+        }
+    }
+
+    /// Number of penalty rows of [`WeightProblem::push_penalty_rows`].
+    fn penalty_rows(&self) -> usize {
+        (if self.fair_f > 0.0 { 3 * self.net.len() } else { 0 })
+            + if self.smooth > 0.0 { self.smooth_pairs.len() } else { 0 }
     }
 
     /// The variables a band position's log-weight feeds: `[c]` (full grid) or `[i, n_u + j]`
@@ -1176,6 +1408,21 @@ impl WeightProblem {
         match self.options.layout {
             WeightLayout::Full => ([c, 0], 1),
             WeightLayout::RankOne => ([c / self.pat.n_v, self.pat.n_u + c % self.pat.n_v], 2),
+        }
+    }
+
+    /// The points `T_c` of the derivative at fixed control points, `dS_k/dθ_c = R_kc (T_c - S_k)`:
+    /// the Euclidean control points `P_c` (the derivative at fixed `P`), or, with a fairness
+    /// term, zero (the derivative at fixed homogeneous `Y = w P`, `-R_kc S_k`). Both give the
+    /// same projected (Kaufman) Jacobian when the least squares has no penalty, as they differ
+    /// by `H δ`, in the range the projection removes; with the penalty `λ |D Y|^2` only the
+    /// second is the derivative of the augmented residual `[H Y - Q; sqrt(λ) D Y]`, whose
+    /// `D` does not depend on the weights.
+    fn derivative_points(&self, sc: &Scratch) -> Vec<[f64; 3]> {
+        if self.fair_f > 0.0 && self.options.mode == WeightMode::Resolved {
+            vec![[0.0; 3]; sc.y.len()]
+        } else {
+            sc.y.iter().zip(&sc.w).map(|(y, &w)| [y[0] / w, y[1] / w, y[2] / w]).collect()
         }
     }
 
@@ -1200,15 +1447,15 @@ impl WeightProblem {
             return None;
         }
         let cols = d + self.param_count(free);
-        let rows = 3 * m + d;
+        let rows = 3 * m + d + self.penalty_rows();
         let residuals = self.residual_vector(table, x, &sc);
         let resolved = self.options.mode == WeightMode::Resolved;
         let exact = resolved && kind == JacobianKind::Exact;
         let mut jac = vec![0.0; rows * cols];
         // Z[v] = H^T A_v (+ Golub-Pereyra term): the right-hand sides of the projections.
         let mut z = if resolved { vec![[0.0f64; 3]; d * n] } else { Vec::new() };
-        // Euclidean control points and the unscaled residuals.
-        let pts: Vec<[f64; 3]> = sc.y.iter().zip(&sc.w).map(|(y, &w)| [y[0] / w, y[1] / w, y[2] / w]).collect();
+        // The points the derivatives pull towards, and the unscaled residuals.
+        let pts = self.derivative_points(&sc);
         let sk: Vec<[f64; 3]> = (0..m).map(|k| self.point_of(table, &sc, k)).collect();
         let ek: Vec<[f64; 3]> =
             sk.iter().zip(&self.points).map(|(s, q)| [s[0] - q[0], s[1] - q[1], s[2] - q[2]]).collect();
@@ -1250,7 +1497,7 @@ impl WeightProblem {
                 }
             }
         }
-        if exact {
+        if exact && self.fair_f == 0.0 {
             // The delta term (H^T e)_c at entry c of its variables' right-hand sides (zero at
             // an exact least-squares solution; kept for round-off).
             let mut hte = vec![[0.0f64; 3]; n];
@@ -1303,8 +1550,26 @@ impl WeightProblem {
         if resolved {
             // J_v -= H G^{-1} Z_v.
             let mut y = vec![[0.0f64; 3]; n];
+            // The fairness rows of column v: -sqrt(λ / r) D G^{-1} Z_v (their Jacobian is the
+            // projection's share of the penalty rows; they do not depend on θ directly).
+            let pen0 = 3 * m + d;
+            let fair_c = self.fair_f.sqrt();
             let project = |jcol: &mut [f64], y: &mut [[f64; 3]]| {
                 band_solve(&sc.band, n, bw, pat.stride, y);
+                if self.fair_f > 0.0 {
+                    for (r, st) in self.net.rows().iter().enumerate() {
+                        let mut acc = [0.0; 3];
+                        for &(c, w) in st.entries() {
+                            let yc = y[pat.pos(c / pat.n_v, c % pat.n_v)];
+                            for t in 0..3 {
+                                acc[t] += w * yc[t];
+                            }
+                        }
+                        for t in 0..3 {
+                            jcol[pen0 + 3 * r + t] = -fair_c * acc[t];
+                        }
+                    }
+                }
                 for k in 0..m {
                     let first = table.first[k];
                     let s = sc.s[k];
@@ -1322,7 +1587,7 @@ impl WeightProblem {
             };
             for v in 0..d {
                 y.copy_from_slice(&z[v * n..(v + 1) * n]);
-                project(&mut jac[v * rows..v * rows + 3 * m], &mut y);
+                project(&mut jac[v * rows..(v + 1) * rows], &mut y);
             }
             for &(v, k, a) in &param_cols {
                 y.iter_mut().for_each(|t| *t = [0.0; 3]);
@@ -1332,7 +1597,7 @@ impl WeightProblem {
                     let hl = bl * s;
                     y[first + o] = [hl * a[0], hl * a[1], hl * a[2]];
                 }
-                project(&mut jac[v * rows..v * rows + 3 * m], &mut y);
+                project(&mut jac[v * rows..(v + 1) * rows], &mut y);
             }
         }
         let scale = 1.0 / (m as f64).sqrt();
@@ -1342,6 +1607,13 @@ impl WeightProblem {
             col[..3 * m].iter_mut().for_each(|t| *t *= scale);
             if v < d {
                 col[3 * m + v] = reg;
+            }
+        }
+        if self.smooth > 0.0 {
+            let (c, r0) = (self.smooth.sqrt(), 3 * m + d + if self.fair_f > 0.0 { 3 * self.net.len() } else { 0 });
+            for (e, &(a, b)) in self.smooth_pairs.iter().enumerate() {
+                jac[a * rows + r0 + e] = c;
+                jac[b * rows + r0 + e] = -c;
             }
         }
         if !(jac.iter().all(|t| t.is_finite()) && residuals.iter().all(|t| t.is_finite())) {
@@ -1584,9 +1856,15 @@ mod tests {
     #[test]
     fn jacobians_match_central_differences() {
         let mut seed = 17;
-        for layout in [WeightLayout::Full, WeightLayout::RankOne] {
+        // Without and with the fairness and smoothing terms (their rows join the residuals).
+        for (layout, fair) in [
+            (WeightLayout::Full, 0.0),
+            (WeightLayout::RankOne, 0.0),
+            (WeightLayout::Full, 0.05),
+            (WeightLayout::RankOne, 0.05),
+        ] {
             for mode in [WeightMode::Fixed, WeightMode::Resolved] {
-                let p = problem((5, 8), mode, layout, 1e-3);
+                let p = problem((5, 8), mode, layout, 1e-3).with_fairness(fair, fair / 10.0).expect("usable");
                 let x: Vec<f64> = (0..p.dim()).map(|_| 0.8 * noise(&mut seed)).collect();
                 let r = |x: &[f64]| p.residuals(x).expect("regular");
                 let kinds: &[JacobianKind] = if mode == WeightMode::Fixed {
@@ -1806,11 +2084,22 @@ mod tests {
         // (8, 5) is assembled u-major, (6, 12) v-major; both layouts and modes.
         for ctrl in [(8, 5), (6, 12)] {
             for layout in [WeightLayout::Full, WeightLayout::RankOne] {
-                for mode in [WeightMode::Fixed, WeightMode::Resolved] {
-                    // The identity behind both needs the pure least-squares G = H^T H: no anchor
-                    // (with it, both are the same O(anchor) approximation of the exact terms).
+                for (mode, fair) in
+                    [(WeightMode::Fixed, 0.0), (WeightMode::Resolved, 0.0), (WeightMode::Resolved, 0.05)]
+                {
+                    // The identity behind both needs the pure least-squares G = H^T H (+ the
+                    // fairness term): no anchor (with it, both are the same O(anchor)
+                    // approximation of the exact terms).
                     let (fit, offsets) = sample_fit(ctrl);
-                    let opts = WeightOptions { mode, layout, regularization: 1e-3, anchor: 0.0, ..Default::default() };
+                    let opts = WeightOptions {
+                        mode,
+                        layout,
+                        regularization: 1e-3,
+                        anchor: 0.0,
+                        fair,
+                        weight_smoothing: fair / 10.0,
+                        ..Default::default()
+                    };
                     let p = WeightProblem::from_fit(&fit, &offsets, opts).expect("shapes match");
                     let x: Vec<f64> = (0..p.dim()).map(|_| 0.8 * noise(&mut seed)).collect();
                     let lin = p.residuals_and_jacobian(&x, JacobianKind::Kaufman).expect("regular");
