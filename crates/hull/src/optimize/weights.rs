@@ -38,8 +38,11 @@ use nurbs::{KnotVector, NurbsError, NurbsSurface, Vec3, MAX_DEGREE};
 
 use super::linalg::{band_cholesky, band_solve, dot};
 use super::net_energy::NetEnergy;
+
+mod within;
 use super::Objective;
 use crate::{FitOutcome, HullError, Offsets};
+pub use within::ControlBox;
 
 /// What happens to the control points when the weights move.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -1119,6 +1122,24 @@ impl WeightProblem {
     /// `sc.band`). `false` if `x` is not finite or of the wrong length, a `W_k` is not positive,
     /// or `G` is singular.
     fn solve(&self, table: &BasisTable, x: &[f64], sc: &mut Scratch) -> bool {
+        if !self.assemble(table, x, sc) {
+            return false;
+        }
+        if self.options.mode == WeightMode::Fixed {
+            return true;
+        }
+        let pat = &self.pat;
+        if !band_cholesky(&mut sc.band, pat.n(), pat.bw, pat.stride) {
+            return false;
+        }
+        band_solve(&sc.band, pat.n(), pat.bw, pat.stride, &mut sc.y);
+        sc.y.iter().all(|y| y.iter().all(|c| c.is_finite()))
+    }
+
+    /// The first half of [`WeightProblem::solve`]: weights, `1 / W_k` and, in `Resolved` mode,
+    /// the normal matrix `G` (in `sc.band`, not yet factored) and right-hand side `H^T Q` (in
+    /// `sc.y`); in `Fixed` mode `sc.y` is already `w P`.
+    fn assemble(&self, table: &BasisTable, x: &[f64], sc: &mut Scratch) -> bool {
         if x.len() != self.dim() || !x.iter().all(|t| t.is_finite()) {
             return false;
         }
@@ -1205,11 +1226,7 @@ impl WeightProblem {
                         y[2] += lambda * w * p[2];
                     }
                 }
-                if !band_cholesky(&mut sc.band, n, bw, stride) {
-                    return false;
-                }
-                band_solve(&sc.band, n, bw, stride, &mut sc.y);
-                sc.y.iter().all(|y| y.iter().all(|c| c.is_finite()))
+                true
             }
         }
     }
