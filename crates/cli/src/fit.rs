@@ -142,8 +142,21 @@ pub(crate) fn fit_with_progress(
     tolerance: Option<f64>,
 ) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
     let fit = |control: &hull::optimize::Control<'_>| match tolerance {
-        Some(t) => hull::fit_to_tolerance(offsets, config, &hull::ToleranceSettings::new(t), control)
-            .map(|r| (r.outcome, Some(r.search))),
+        // The counts are searched on the plain fits; the count found is then faired within T.
+        Some(t) => {
+            let plain = FitConfig { fair: hull::Fairing::Off, ..*config };
+            let r = hull::fit_to_tolerance(offsets, &plain, &hull::ToleranceSettings::new(t), control)?;
+            let fair = match config.fair {
+                hull::Fairing::Auto { tolerance: None } => hull::Fairing::Auto { tolerance: Some(t) },
+                f => f,
+            };
+            if fair == hull::Fairing::Off || control.stopped() {
+                return Ok((r.outcome, Some(r.search)));
+            }
+            let [nu, nv] = r.search.control_points;
+            let faired = FitConfig { ctrl: Some((nu, nv)), fair, ..*config };
+            hull::fit_offsets_with(offsets, &faired, control).map(|o| (o, Some(r.search)))
+        }
         None => hull::fit_offsets_with(offsets, config, control).map(|o| (o, None)),
     };
     match config.method.algorithm() {
@@ -169,7 +182,9 @@ mod tests {
         let offsets = hull::series60_sample();
         let args = FitArgs::default();
         let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
-        let direct = hull::fit_offsets(&offsets, &FitConfig::default()).expect("the sample fits");
+        // The command line fairs by default.
+        let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
+        let direct = hull::fit_offsets(&offsets, &config).expect("the sample fits");
         // The same deterministic least-squares fit: bit-identical surfaces.
         assert_eq!(outcome.surface, direct.surface);
         assert!(search.is_none());

@@ -1,6 +1,6 @@
 //! Value parsers shared by the subcommands' flags.
 
-use hull::Units;
+use hull::{Fairing, Units};
 use nurbs::fit::SkinParameterization;
 
 /// `NU,NV` or `P,Q`: two non-negative integers.
@@ -18,4 +18,17 @@ pub(crate) fn parse_param(s: &str) -> Result<SkinParameterization, String> {
 /// `m`, `mm`, `ft` or `in`.
 pub(crate) fn parse_units(s: &str) -> Result<Units, String> {
     s.parse().map_err(|e| format!("{e}"))
+}
+
+/// `auto` or a fairness weight `λ >= 0` (`0`: the plain least squares).
+pub(crate) fn parse_fair(s: &str) -> Result<Fairing, String> {
+    let t = s.trim();
+    if t.eq_ignore_ascii_case("auto") {
+        return Ok(Fairing::Auto { tolerance: None });
+    }
+    match t.parse::<f64>() {
+        Ok(l) if l == 0.0 => Ok(Fairing::Off),
+        Ok(l) if l > 0.0 && l.is_finite() => Ok(Fairing::Lambda(l)),
+        _ => Err(format!("`{s}` is not a fairness weight (expected auto, 0, or a finite number > 0 such as 1e-3)")),
+    }
 }

@@ -4,10 +4,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 use hull::optimize::OptimSettings;
-use hull::{FitConfig, FitMethod, Knuckles, Offsets, Units};
+use hull::{Fairing, FitConfig, FitMethod, Knuckles, Offsets, Units};
 use nurbs::fit::{CornerOptions, SkinParameterization};
 
-use crate::parse::{parse_pair, parse_param, parse_units};
+use crate::parse::{parse_fair, parse_pair, parse_param, parse_units};
 
 /// Which offsets, and how the sections are skinned.
 #[derive(Debug, Clone, Args)]
@@ -58,6 +58,13 @@ pub struct SkinArgs {
     /// Least turning angle, in degrees, of a section's corner for `--knuckles auto`.
     #[arg(long, default_value = "30", value_parser = parse_corner_angle)]
     pub corner_angle: f64,
+    /// Fairness of the approximation and of the optimised weights: `auto` (the fairest
+    /// surface whose max error at the offsets is within the plain approximation's, or within
+    /// --tolerance, that does not fold, control points held in the offsets' envelope), a weight
+    /// LAMBDA of the control net's second differences (e.g. 1e-3), or 0 for the plain least
+    /// squares. Interpolation is not faired.
+    #[arg(long, value_name = "LAMBDA", default_value = "auto", value_parser = parse_fair)]
+    pub fair: Fairing,
     /// How a mesh input (`.stl`, `.stl.gz`, `.obj`) is sliced into sections first.
     #[command(flatten)]
     pub mesh: crate::slice::MeshArgs,
@@ -98,6 +105,7 @@ impl Default for SkinArgs {
             design_draft: None,
             knuckles: KnuckleMode::Auto,
             corner_angle: CornerOptions::default().min_angle_deg,
+            fair: Fairing::Auto { tolerance: None },
             mesh: crate::slice::MeshArgs::default(),
         }
     }
@@ -136,7 +144,7 @@ impl SkinArgs {
             KnuckleMode::Auto => Knuckles::Auto(corner),
             KnuckleMode::AutoFlats => Knuckles::AutoFlats(corner),
         };
-        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim, knuckles }
+        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim, knuckles, fair: self.fair }
     }
 }
 

@@ -10,6 +10,7 @@ pub mod digitize;
 pub mod drawing;
 mod error;
 pub mod export;
+pub mod fairing;
 pub mod fit_error;
 pub mod hydrostatics;
 pub mod limits;
@@ -35,6 +36,7 @@ pub use compare::{
     CURVATURE_GRID, FLOOR_RELATIVE_TOLERANCE,
 };
 pub use error::{HullError, InputErrorKind, Location};
+pub use fairing::{FairReport, Fairing};
 pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,

@@ -12,6 +12,7 @@ use nurbs::fit::{
 };
 use nurbs::{NurbsError, NurbsSurface};
 
+use crate::fairing::{FairReport, Fairing};
 use crate::fit_error::{measure_fit_error, FitError};
 use crate::optimize::{optimize_weights, quiet, Algorithm, Control, OptimReport, OptimSettings};
 use crate::{HullError, Offsets};
@@ -124,6 +125,11 @@ pub struct FitConfig {
     pub optim: OptimSettings,
     /// Knuckles (chines) kept as tangent discontinuities; the default looks for them.
     pub knuckles: Knuckles,
+    /// The fairness term of `approx` and of the optimised methods ([`crate::fairing`]); the
+    /// default is [`Fairing::Off`], the plain least squares (the command line's default is
+    /// [`Fairing::Auto`]). Not applied to `interp` (it passes through every offset) nor to a
+    /// fit refitted within flats (`auto+flats`).
+    pub fair: Fairing,
 }
 
 impl Default for FitConfig {
@@ -135,6 +141,7 @@ impl Default for FitConfig {
             param: SkinParameterization::default(),
             optim: OptimSettings::default(),
             knuckles: Knuckles::default(),
+            fair: Fairing::Off,
         }
     }
 }
@@ -160,6 +167,11 @@ pub struct FitOutcome {
     /// Where the surface folds back across its sections ([`crate::analysis::find_folds`]);
     /// empty for a sound surface.
     pub folds: Vec<crate::analysis::Fold>,
+    /// What fairing did (`approx` and the optimised methods with a fairness setting).
+    pub fairing: Option<FairReport>,
+    /// Results not taken as the answer, and why (e.g. an optimised surface that folds: the
+    /// fair start is kept instead).
+    pub rejected: Vec<String>,
 }
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
@@ -194,16 +206,66 @@ pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, 
 /// As [`fit_offsets`].
 pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control<'_>) -> Result<FitOutcome, HullError> {
     let Some(algorithm) = config.method.algorithm() else {
-        return fit_skin(offsets, config);
+        let plain = fit_skin(offsets, config)?;
+        if config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
+            return Ok(plain);
+        }
+        let start = Instant::now();
+        let Some((surface, report)) = crate::fairing::fair(offsets, &plain, config.fair)? else {
+            return Ok(plain);
+        };
+        if report.lambda == 0.0 {
+            return Ok(FitOutcome { fairing: Some(report), ..plain });
+        }
+        let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
+        let mut out = measured(offsets, config, surface, plain.params.clone(), fit_seconds, None)?;
+        out.knuckle_lines = plain.knuckle_lines;
+        out.fairing = Some(report);
+        return Ok(out);
     };
     let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config })?;
     crate::limits::check_optimization(&offsets.source, &config.optim, plain.surface.n_u(), plain.surface.n_v())?;
     let start = Instant::now();
-    let opt = optimize_weights(offsets, &plain, algorithm, &config.optim, control)?;
+    // The optimisers work on the fair objective: the λ fairing chooses for the approximation
+    // (0 when no fair surface was fairer than the plain one) and the log-weights smoothed.
+    let mut optim = config.optim;
+    let mut fair_report = None;
+    if plain.flat_lines.is_empty() {
+        if let Some((_, report)) = crate::fairing::fair(offsets, &plain, config.fair)? {
+            optim.weights.fair = report.lambda;
+            optim.weights.weight_smoothing = crate::fairing::WEIGHT_SMOOTHING;
+            fair_report = Some(report);
+        }
+    }
+    let opt = optimize_weights(offsets, &plain, algorithm, &optim, control)?;
     let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
     let mut out = measured(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
-    out.knuckle_lines = plain.knuckle_lines;
-    out.flat_lines = plain.flat_lines;
+    out.knuckle_lines = plain.knuckle_lines.clone();
+    out.flat_lines = plain.flat_lines.clone();
+    if let Some(mut report) = fair_report {
+        report.after = crate::fairing::FairnessFigures::of(&out.surface);
+        out.fairing = Some(report);
+    }
+    // A surface that folds is never the answer when its start did not: the start is.
+    if !out.folds.is_empty() && plain.folds.is_empty() && config.fair != Fairing::Off {
+        let why = format!(
+            "the {} surface (true RMS {:.3e}) folds back across the sections in {} band(s), from x = {:.4} to {:.4}; the plain approximation, which does not, is kept (expected fewer control points or weights closer to 1)",
+            config.method.name(),
+            out.error.overall.rms,
+            out.folds.len(),
+            out.folds.iter().map(|f| f.x.0).fold(f64::INFINITY, f64::min),
+            out.folds.iter().map(|f| f.x.1).fold(f64::NEG_INFINITY, f64::max),
+        );
+        // The answer is the plain approximation, named so; the optimisation's record goes with
+        // the rejection.
+        let mut kept = FitOutcome {
+            config: FitConfig { method: FitMethod::Approx, ..*config },
+            fairing: out.fairing.take(),
+            ..plain
+        };
+        kept.rejected.push(why);
+        return Ok(kept);
+    }
     Ok(out)
 }
 
@@ -235,6 +297,8 @@ fn measured(
         knuckle_lines: Vec::new(),
         flat_lines: Vec::new(),
         folds,
+        fairing: None,
+        rejected: Vec::new(),
     })
 }
 

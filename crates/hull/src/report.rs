@@ -21,6 +21,10 @@
 //!
 //! `optimization` is present for the weight-optimised methods only; its `history` is the best
 //! objective (parametric RMS of the offsets) after each iteration. `tolerance_search` is
+//! `fairing` is present when the fit was faired ([`crate::FairReport`]: `setting`, `lambda`
+//! (0: the plain fit was kept), `tolerance`, `tried` (`lambda`, `max`, `folds`, `accepted`),
+//! `held_on_box`, `before` and `after` (`thin_plate`, `gaussian` [min, max])); `rejected`
+//! lists results not taken as the answer, and why. `tolerance_search` is
 //! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
 //! `interp_control_points`, `ratio`, `fits`, `complete`, `tried`).
 //!
@@ -76,6 +80,12 @@ pub struct Report {
     /// Where the surface folds back across its sections (left out when there is none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub folds: Vec<crate::analysis::Fold>,
+    /// What fairing did ([`crate::fairing::FairReport`]; left out when the fit was not faired).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fairing: Option<crate::FairReport>,
+    /// Results not taken as the answer, and why.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rejected: Vec<String>,
 }
 
 impl Report {
@@ -104,6 +114,8 @@ impl Report {
             optimization: outcome.optimization.clone(),
             tolerance_search: None,
             folds: outcome.folds.clone(),
+            fairing: outcome.fairing.clone(),
+            rejected: outcome.rejected.clone(),
         }
     }
 }
@@ -212,6 +224,12 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
             o.weight_range[1],
             o.seconds,
         );
+    }
+    if let Some(f) = &outcome.fairing {
+        let _ = writeln!(t, "{}", f.summary(u));
+    }
+    for r in &outcome.rejected {
+        let _ = writeln!(t, "rejected: {r}");
     }
     if e.unconverged_projections > 0 {
         let _ = writeln!(

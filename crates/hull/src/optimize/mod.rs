@@ -32,7 +32,8 @@ pub use gsa::{GsaOptions, GsaRandom};
 pub use lm::{LmOptions, ParamFit};
 pub use pso::{PsoOptions, PsoVariant};
 pub use weights::{
-    JacobianKind, Linearization, NormalEquations, ParamFreedom, WeightLayout, WeightMode, WeightOptions, WeightProblem,
+    ControlBox, JacobianKind, Linearization, NormalEquations, ParamFreedom, WeightLayout, WeightMode, WeightOptions,
+    WeightProblem,
 };
 
 /// A function to minimise over a box.
