@@ -144,7 +144,16 @@ impl SkinArgs {
             KnuckleMode::Auto => Knuckles::Auto(corner),
             KnuckleMode::AutoFlats => Knuckles::AutoFlats(corner),
         };
-        FitConfig { method, degree: self.degree, ctrl: self.ctrl, param: self.param, optim, knuckles, fair: self.fair }
+        FitConfig {
+            method,
+            degree: self.degree,
+            ctrl: self.ctrl,
+            param: self.param,
+            optim,
+            knuckles,
+            fair: self.fair,
+            smoothing: 0.0,
+        }
     }
 }
 

@@ -130,6 +130,8 @@ pub struct FitConfig {
     /// [`Fairing::Auto`]). Not applied to `interp` (it passes through every offset) nor to a
     /// fit refitted within flats (`auto+flats`).
     pub fair: Fairing,
+    /// [`SkinOptions::smoothing`] of the skinning approximation (set by [`crate::fairing`]).
+    pub smoothing: f64,
 }
 
 impl Default for FitConfig {
@@ -142,6 +144,7 @@ impl Default for FitConfig {
             optim: OptimSettings::default(),
             knuckles: Knuckles::default(),
             fair: Fairing::Off,
+            smoothing: 0.0,
         }
     }
 }
@@ -210,18 +213,19 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
         if config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
             return Ok(plain);
         }
+        let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..*config });
         let start = Instant::now();
-        let Some((surface, report)) = crate::fairing::fair(offsets, &plain, config.fair)? else {
-            return Ok(plain);
-        };
-        if report.lambda == 0.0 {
-            return Ok(FitOutcome { fairing: Some(report), ..plain });
-        }
-        let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
-        let mut out = measured(offsets, config, surface, plain.params.clone(), fit_seconds, None)?;
-        out.knuckle_lines = plain.knuckle_lines;
-        out.fairing = Some(report);
-        return Ok(out);
+        return Ok(match crate::fairing::fair(&plain, config.fair, skin)? {
+            Some((mut out, report)) => {
+                // The time of the whole choice, the plain fit and every smoothed one measured.
+                let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
+                out.fit_seconds = total - out.error_seconds;
+                out.config = *config;
+                out.fairing = Some(report);
+                out
+            }
+            None => plain,
+        });
     };
     let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config })?;
     crate::limits::check_optimization(&offsets.source, &config.optim, plain.surface.n_u(), plain.surface.n_v())?;
@@ -231,7 +235,10 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     let mut optim = config.optim;
     let mut fair_report = None;
     if plain.flat_lines.is_empty() {
-        if let Some((_, report)) = crate::fairing::fair(offsets, &plain, config.fair)? {
+        let approx = FitConfig { method: FitMethod::Approx, ..*config };
+        let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx });
+        if let Some((_, report)) = crate::fairing::fair(&plain, config.fair, skin)? {
+            // The same dimensionless weight on the net's second differences.
             optim.weights.fair = report.lambda;
             optim.weights.weight_smoothing = crate::fairing::WEIGHT_SMOOTHING;
             fair_report = Some(report);
@@ -331,7 +338,7 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullErr
         (_, Some(ctrl)) => ctrl,
     };
     crate::limits::check_control_points(&offsets.source, nu, nv)?;
-    let opts = SkinOptions { degree_u: p, degree_v: q, param: config.param };
+    let opts = SkinOptions { degree_u: p, degree_v: q, param: config.param, smoothing: config.smoothing };
     let start = Instant::now();
     let lines = match config.knuckles {
         Knuckles::Off => Vec::new(),

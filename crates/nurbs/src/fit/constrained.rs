@@ -125,6 +125,11 @@ impl EnergyGram {
         e
     }
 
+    /// Number of basis functions (rows of `G`).
+    pub(crate) fn len(&self) -> usize {
+        self.n
+    }
+
     /// The largest diagonal entry of `G`.
     pub(crate) fn max_diagonal(&self) -> f64 {
         (0..self.n).map(|i| self.get(i, i)).fold(0.0, f64::max)

@@ -29,6 +29,9 @@ pub struct LeastSquaresSolver {
     basis: Vec<f64>,
     /// `None` when there are no interior control points (`n + 1 = 2`).
     chol: Option<BandedCholesky>,
+    /// Smoothing: `(i, λ G_{i,0}, λ G_{i,n})` for the interior unknowns coupled to the fixed
+    /// end points by the energy term (empty without smoothing).
+    ends: Vec<(usize, f64, f64)>,
 }
 
 impl LeastSquaresSolver {
@@ -44,6 +47,28 @@ impl LeastSquaresSolver {
     /// - [`NurbsError::SingularSystem`] if the Schoenberg-Whitney condition fails or the normal
     ///   matrix is too ill-conditioned.
     pub fn new(params: &[f64], knots: &KnotVector) -> Result<Self, NurbsError> {
+        Self::smoothing(params, knots, 0.0)
+    }
+
+    /// As [`LeastSquaresSolver::new`], with a smoothing term: the interior control points
+    /// minimize `sum_k |Q_k - C(t_k)|^2 + λ E(C)`, `E = ∫ |C^(r)|^2 dt` the curve's energy of
+    /// order `r = min(p, 2)` (bending energy for `p >= 2`; a smoothing spline on the B-spline
+    /// basis, Reinsch 1967 / de Boor's `smooth`), so the normal equations become
+    /// `(N^T N + λ G_ff) P_f = R - λ G_fx P_x` with `G_ij = ∫ N_i^(r) N_j^(r)` (banded like
+    /// `N^T N`) and `P_x` the interpolated ends. `λ = 0` is [`LeastSquaresSolver::new`]
+    /// exactly. `λ` is absolute (squared length per unit energy): callers scale it by the knots'
+    /// Gram matrix.
+    ///
+    /// # Errors
+    /// As [`LeastSquaresSolver::new`], and [`NurbsError::Incompatible`] for a negative or
+    /// non-finite `lambda`.
+    pub fn smoothing(params: &[f64], knots: &KnotVector, lambda: f64) -> Result<Self, NurbsError> {
+        if !(lambda >= 0.0 && lambda.is_finite()) {
+            return Err(NurbsError::Incompatible {
+                what: format!("smoothing weight {lambda} (expected a finite number >= 0)"),
+            });
+        }
+        let gram = if lambda > 0.0 { Some(super::constrained::EnergyGram::new(knots)) } else { None };
         let p = knots.degree();
         let n_ctrl = knots.num_basis();
         let count = params.len();
@@ -93,10 +118,24 @@ impl LeastSquaresSolver {
                     }
                 }
             }
+            if let Some(g) = &gram {
+                for i in 1..n_ctrl - 1 {
+                    for j in i.saturating_sub(p).max(1)..=i {
+                        a.add(i - 1, j - 1, lambda * g.get(i, j));
+                    }
+                }
+            }
             a.factor("least-squares normal equations")?;
             Some(a)
         };
-        Ok(LeastSquaresSolver { knots: knots.clone(), params: params.to_vec(), spans, basis, chol })
+        let ends = match &gram {
+            Some(g) => (1..n_ctrl - 1)
+                .map(|i| (i, lambda * g.get(i, 0), lambda * g.get(i, n_ctrl - 1)))
+                .filter(|&(_, a, b)| a != 0.0 || b != 0.0)
+                .collect(),
+            None => Vec::new(),
+        };
+        Ok(LeastSquaresSolver { knots: knots.clone(), params: params.to_vec(), spans, basis, chol, ends })
     }
 
     /// The knot vector of the approximants.
@@ -150,6 +189,11 @@ impl LeastSquaresSolver {
                     for (oc, rc) in rhs[i - 1].iter_mut().zip(r) {
                         *oc += na * rc;
                     }
+                }
+            }
+            for &(i, g0, gn) in &self.ends {
+                for ((oc, a), b) in rhs[i - 1].iter_mut().zip(q0).zip(qm) {
+                    *oc -= g0 * a + gn * b;
                 }
             }
             chol.solve(rhs);

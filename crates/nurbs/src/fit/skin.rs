@@ -35,7 +35,7 @@ use crate::tolerance::COINCIDENT_REL;
 use crate::{KnotVector, NurbsError, NurbsSurface, Vec3, MAX_DEGREE};
 
 /// Settings of [`skin_interpolate`] and [`skin_approximate`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SkinOptions {
     /// Degree along the sections, lowered to `N - 1` when the largest section has only `N`
     /// points (shorter sections do not lower it: they are fitted on the common knots).
@@ -44,12 +44,20 @@ pub struct SkinOptions {
     pub degree_v: usize,
     /// Parameterization along the sections (`u`) and across them (`v`).
     pub param: SkinParameterization,
+    /// Smoothing `ν` of [`skin_approximate`] (not of interpolation): each least-squares curve,
+    /// along the sections and then across them, minimizes `sum |C(t_k) - Q_k|^2 + λ E(C)`
+    /// ([`LeastSquaresSolver::smoothing`], `E` the bending energy) with
+    /// `λ = ν m / (n max_i G_ii)` for `m` data points on `n` control points, `G` the knots'
+    /// energy Gram matrix: dimensionless, a control polygon zig-zagging by `δ` costs about
+    /// `ν δ^2` per data point, like a residual of `sqrt(ν) δ`. `0` (the default): plain least
+    /// squares.
+    pub smoothing: f64,
 }
 impl Default for SkinOptions {
     /// Bicubic, centripetal along the sections and chord length across them
     /// ([`SkinParameterization::default`]).
     fn default() -> Self {
-        SkinOptions { degree_u: 3, degree_v: 3, param: SkinParameterization::default() }
+        SkinOptions { degree_u: 3, degree_v: 3, param: SkinParameterization::default(), smoothing: 0.0 }
     }
 }
 
@@ -673,7 +681,7 @@ pub fn skin_approximate_with_knuckles(
         let mut best: Option<(f64, AlongFit)> = None;
         let mut first_error = None;
         for (u_of, shared) in candidates {
-            match fit_along(piece, u_of, nu_j, p, opts.param.u, shared) {
+            match fit_along(piece, u_of, nu_j, p, opts.param.u, shared, opts.smoothing) {
                 Ok((score, fit)) => {
                     if best.as_ref().is_none_or(|(b, _)| score < *b) {
                         best = Some((score, fit));
@@ -691,7 +699,7 @@ pub fn skin_approximate_with_knuckles(
         }
     }
     let along = plan.join(&secs, &breaks, pieces)?;
-    let across = fit_across(&along.rows, nv, q, opts.param.v)?;
+    let across = fit_across(&along.rows, nv, q, opts.param.v, opts.smoothing)?;
     let surface = NurbsSurface::from_parts_unchecked(along.knots, across.knots, across.net);
     checked(SkinResult { params: data_params(&secs, &across.v, along.u_of), surface })
 }
@@ -753,6 +761,15 @@ const BLEND_WEIGHTS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 /// 15 poles overshoot by up to 31 m with their own parameters, 0.16 m at the chosen blend).
 const LSQ_ENERGY_WEIGHT: f64 = 1e-3;
 
+/// `λ = ν m / (n max_i G_ii)` of [`SkinOptions::smoothing`] for `m` data points on the knots of
+/// `gram` (`n` control points).
+fn smoothing_lambda(gram: &EnergyGram, m: usize, smoothing: f64) -> f64 {
+    if smoothing == 0.0 {
+        return 0.0;
+    }
+    smoothing * m as f64 / (gram.len() as f64 * gram.max_diagonal())
+}
+
 /// A section fitted on common knots: its score (energy, or penalized residual), control points
 /// and parameters.
 type BlendFit = (f64, Vec<Vec3>, Vec<f64>);
@@ -782,11 +799,19 @@ struct SectionFits<'a> {
     solvers: Vec<FairInterpolationSolver>,
     /// The index in `solvers` of each parameter vector (by the bits of its values).
     by_params: HashMap<Vec<u64>, usize>,
+    /// [`SkinOptions::smoothing`] of the least-squares fits.
+    smoothing: f64,
 }
 
 impl<'a> SectionFits<'a> {
     fn new(knots: &'a KnotVector) -> Self {
-        SectionFits { knots, gram: EnergyGram::new(knots), solvers: Vec::new(), by_params: HashMap::new() }
+        SectionFits {
+            knots,
+            gram: EnergyGram::new(knots),
+            solvers: Vec::new(),
+            by_params: HashMap::new(),
+            smoothing: 0.0,
+        }
     }
 
     /// The fair-interpolation solver for `params`, from the cache or newly factored.
@@ -823,9 +848,10 @@ impl<'a> SectionFits<'a> {
     /// # Errors
     /// The error of the first candidate, in the section's name, if no candidate can be solved.
     fn approximate(&mut self, pts: &[Vec3], own: Vec<f64>, k: usize) -> Result<BlendFit, NurbsError> {
-        let lambda = self.lambda();
+        let smooth = smoothing_lambda(&self.gram, pts.len(), self.smoothing);
+        let lambda = self.lambda() + smooth;
         self.best_blend(pts, own, k, |fits, t| {
-            let cp = LeastSquaresSolver::new(t, fits.knots)?.control_points(pts)?;
+            let cp = LeastSquaresSolver::smoothing(t, fits.knots, smooth)?.control_points(pts)?;
             Ok((residual(fits.knots, t, pts, &cp) + lambda * fits.gram.energy(&cp), cp))
         })
     }
@@ -990,8 +1016,9 @@ pub fn skin_approximate(
     let mut best: Option<(f64, SkinResult)> = None;
     let mut first_error = None;
     for (u_of, shared) in candidates.into_iter().zip(shared) {
-        let fit = fit_along(&secs, u_of, nu, p, opts.param.u, shared)
-            .and_then(|(_, along)| fit_across(&along.rows, nv, q, opts.param.v).map(|across| (along, across)));
+        let fit = fit_along(&secs, u_of, nu, p, opts.param.u, shared, opts.smoothing).and_then(|(_, along)| {
+            fit_across(&along.rows, nv, q, opts.param.v, opts.smoothing).map(|across| (along, across))
+        });
         let (along, across) = match fit {
             Ok(f) => f,
             Err(e) => {
@@ -1063,15 +1090,16 @@ fn fit_along(
     p: usize,
     kind: Parameterization,
     shared: bool,
+    smoothing: f64,
 ) -> Result<(f64, AlongFit), NurbsError> {
     let mut best: Option<(f64, AlongFit)> = None;
     let mut first_error = None;
     for &placement in placements(kind) {
         let fit = common_approximation_knots(&u_of, nu, p, placement).and_then(|knots| {
             if shared {
-                along_shared(secs, &u_of, knots)
+                along_shared(secs, &u_of, knots, smoothing)
             } else {
-                along_own(secs, u_of.clone(), nu, knots)
+                along_own(secs, u_of.clone(), nu, knots, smoothing)
             }
         });
         match fit {
@@ -1094,8 +1122,15 @@ fn fit_along(
 
 /// Step 1 with each section on its own parameters (blends); the score is the sum of the
 /// sections' penalized residuals (`λ E` for those interpolated).
-fn along_own(secs: &[Section], mut u_of: UParams, nu: usize, knots: KnotVector) -> Result<(f64, AlongFit), NurbsError> {
+fn along_own(
+    secs: &[Section],
+    mut u_of: UParams,
+    nu: usize,
+    knots: KnotVector,
+    smoothing: f64,
+) -> Result<(f64, AlongFit), NurbsError> {
     let mut fits = SectionFits::new(&knots);
+    fits.smoothing = smoothing;
     let lambda = fits.lambda();
     let mut rows: Vec<Vec<Vec3>> = Vec::with_capacity(secs.len());
     let mut score = 0.0;
@@ -1122,11 +1157,17 @@ fn along_own(secs: &[Section], mut u_of: UParams, nu: usize, knots: KnotVector) 
 }
 
 /// Step 1 with all regular sections at the same parameters: one least-squares factorization.
-fn along_shared(secs: &[Section], u_of: &UParams, knots: KnotVector) -> Result<(f64, AlongFit), NurbsError> {
+fn along_shared(
+    secs: &[Section],
+    u_of: &UParams,
+    knots: KnotVector,
+    smoothing: f64,
+) -> Result<(f64, AlongFit), NurbsError> {
     let t = u_of.iter().flatten().next().expect("classify keeps one regular section");
-    let solver = LeastSquaresSolver::new(t, &knots)?;
     let gram = EnergyGram::new(&knots);
-    let lambda = LSQ_ENERGY_WEIGHT / gram.max_diagonal();
+    let smooth = smoothing_lambda(&gram, t.len(), smoothing);
+    let solver = LeastSquaresSolver::smoothing(t, &knots, smooth)?;
+    let lambda = LSQ_ENERGY_WEIGHT / gram.max_diagonal() + smooth;
     let nu = knots.num_basis();
     let mut score = 0.0;
     let rows = secs
@@ -1153,7 +1194,13 @@ struct AcrossFit {
 
 /// Fit the columns of the rows' control points across the sections for each placement and
 /// keep the one with the least `sum over columns of (residual + λ E)` (step 2).
-fn fit_across(rows: &[Vec<Vec3>], nv: usize, q: usize, kind: Parameterization) -> Result<AcrossFit, NurbsError> {
+fn fit_across(
+    rows: &[Vec<Vec3>],
+    nv: usize,
+    q: usize,
+    kind: Parameterization,
+    smoothing: f64,
+) -> Result<AcrossFit, NurbsError> {
     let (nu, k_count) = (rows[0].len(), rows.len());
     let v = cross_params(nu, k_count, |i, k| rows[k][i], kind, q)?;
     let columns: Vec<Vec<Vec3>> = (0..nu).map(|i| rows.iter().map(|r| r[i]).collect()).collect();
@@ -1165,9 +1212,10 @@ fn fit_across(rows: &[Vec<Vec3>], nv: usize, q: usize, kind: Parameterization) -
             None => knots_for_approximation(&v, nv, q, kind),
         }
         .and_then(|kv| {
-            let solver = LeastSquaresSolver::new(&v, &kv)?;
             let gram = EnergyGram::new(&kv);
-            let lambda = LSQ_ENERGY_WEIGHT / gram.max_diagonal();
+            let smooth = smoothing_lambda(&gram, v.len(), smoothing);
+            let solver = LeastSquaresSolver::smoothing(&v, &kv, smooth)?;
+            let lambda = LSQ_ENERGY_WEIGHT / gram.max_diagonal() + smooth;
             let mut score = 0.0;
             let mut cps = Vec::with_capacity(nu);
             for col in &columns {
@@ -1516,16 +1564,16 @@ mod tests {
                 .iter()
                 .map(|&pl| {
                     let ku = common_approximation_knots(&own, nu, 3, Some(pl)).expect("valid");
-                    along_own(&secs, own.clone(), nu, ku).expect("valid").0
+                    along_own(&secs, own.clone(), nu, ku, 0.0).expect("valid").0
                 })
                 .collect();
-            let (_, chosen) = fit_along(&secs, own.clone(), nu, 3, kind, false).expect("valid");
-            let (chosen_score, _) = along_own(&secs, own.clone(), nu, chosen.knots).expect("valid");
+            let (_, chosen) = fit_along(&secs, own.clone(), nu, 3, kind, false, 0.0).expect("valid");
+            let (chosen_score, _) = along_own(&secs, own.clone(), nu, chosen.knots, 0.0).expect("valid");
             let best = scores.iter().copied().fold(f64::INFINITY, f64::min);
             assert_eq!(chosen_score, best, "{nu}x{nv}: {scores:?}");
             // The whole fit against the former rule.
             let ku = common_approximation_knots(&own, nu, 3, Some(Placement::Resampled)).expect("valid");
-            let (_, old) = along_own(&secs, own.clone(), nu, ku).expect("valid");
+            let (_, old) = along_own(&secs, own.clone(), nu, ku, 0.0).expect("valid");
             let v = cross_params(nu, s.len(), |i, k| old.rows[k][i], Parameterization::ChordLength, 3).expect("valid");
             let kv = approximation_knots(&v, nv, 3).expect("valid");
             let solver = LeastSquaresSolver::new(&v, &kv).expect("valid");
