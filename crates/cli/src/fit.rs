@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
-use hull::{FitConfig, FitMethod, FitOutcome, HullError, Offsets, ToleranceSearch};
+use hull::{FitConfig, FitMethod, FitOutcome, HeldOutError, HullError, Offsets, ToleranceSearch};
 
 use crate::optim_args::OptimArgs;
 use crate::progress;
@@ -21,11 +21,30 @@ pub struct FitArgs {
     pub out: PathBuf,
     #[command(flatten)]
     pub fit: MethodArgs,
+    /// Folds K of the held-out error (cross-validation: refit without every K-th section, then
+    /// without every K-th point of each section, and measure the true distance of what was
+    /// left out); report.json gets "error.held_out". 0 turns it off.
+    #[arg(long = "held-out", value_name = "K", default_value_t = hull::HeldOutOptions::DEFAULT_FOLDS, value_parser = parse_folds)]
+    pub held_out: usize,
 }
 
 impl Default for FitArgs {
     fn default() -> Self {
-        FitArgs { skin: SkinArgs::default(), out: PathBuf::from("hullskin-out"), fit: MethodArgs::default() }
+        FitArgs {
+            skin: SkinArgs::default(),
+            out: PathBuf::from("hullskin-out"),
+            fit: MethodArgs::default(),
+            held_out: hull::HeldOutOptions::DEFAULT_FOLDS,
+        }
+    }
+}
+
+/// `--held-out K`: 0 (off) or at least 2 folds.
+pub(crate) fn parse_folds(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(1) => Err("1 fold would hold out every offset (expected 0 to turn it off, or at least 2)".into()),
+        Ok(k) => Ok(k),
+        Err(_) => Err(format!("`{s}` is not a whole number (expected 0 to turn it off, or a number of folds >= 2)")),
     }
 }
 
@@ -83,7 +102,10 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         }
         _ => (args.skin.offsets()?, None),
     };
-    let (outcome, search) = args.fit.fit(&args.skin, &offsets)?;
+    let (mut outcome, search) = args.fit.fit(&args.skin, &offsets)?;
+    if args.held_out > 0 && !progress::stopped() {
+        outcome.error.held_out = held_out_with_progress(&offsets, &outcome.config, args.held_out);
+    }
     let mut report = hull::Report::new(&offsets, &outcome);
     report.tolerance_search = search;
     write_outputs(&args.out, &offsets, &outcome, &report)?;
@@ -150,6 +172,24 @@ pub(crate) fn fit_with_progress(
         Some(a) => progress::with_progress(a.name(), fit),
         None => hull::optimize::quiet(fit),
     }
+}
+
+/// The held-out error of the fit `config` with `folds` folds ([`hull::held_out_for_config`]),
+/// with a progress bar for the optimised methods (their refits take a while), stopped by
+/// SIGINT or SIGTERM like them. `None` after a stop, or when it cannot be computed (then a
+/// warning says why: the fit itself stands).
+pub(crate) fn held_out_with_progress(offsets: &Offsets, config: &FitConfig, folds: usize) -> Option<HeldOutError> {
+    let options = hull::HeldOutOptions::with_folds(folds);
+    let run =
+        |control: &hull::optimize::Control<'_>| hull::held_out_for_config_with(offsets, config, &options, control);
+    let result = match config.method.algorithm() {
+        Some(_) => progress::with_progress("held out", run),
+        None => hull::optimize::quiet(run),
+    };
+    result.unwrap_or_else(|e| {
+        eprintln!("hullskin: warning: no held-out error: {e}");
+        None
+    })
 }
 
 /// Write the three files all or nothing (staged, then moved into `dir`).
