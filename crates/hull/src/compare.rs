@@ -894,6 +894,67 @@ mod tests {
     }
 
     #[test]
+    fn rows_over_fit_when_closer_at_the_offsets_and_farther_between() {
+        use RowStatus::*;
+        let with = |mut r: CompareRow, held: Option<f64>| {
+            r.held_out_rms = held;
+            r
+        };
+        let mut rows = vec![
+            with(row("interp", Done, 0.0), Some(2.0)),
+            with(row("approx", Done, 1.0), Some(1.5)),
+            with(row("ga", Done, 0.9), Some(1.4)),
+            with(row("pso", Done, 1.1), Some(2.0)),
+            with(row("gsa", Done, 0.9), None),
+            with(row("lm", Failed, 0.0), None),
+        ];
+        mark_overfitting(&mut rows);
+        let flags: Vec<Option<bool>> = rows.iter().map(|r| r.overfit).collect();
+        // interp: lower at the offsets, higher between; ga better at both; pso worse at the
+        // offsets (not over-fitting, just worse); gsa and lm unknown; approx is the baseline.
+        assert_eq!(flags, [Some(true), None, Some(false), Some(false), None, None]);
+        // Without the baseline's held-out error nothing is marked.
+        rows[1].held_out_rms = None;
+        rows.iter_mut().for_each(|r| r.overfit = None);
+        mark_overfitting(&mut rows);
+        assert!(rows.iter().all(|r| r.overfit.is_none()));
+    }
+
+    #[test]
+    fn held_out_errors_join_the_rows_when_asked_for() {
+        let offsets = series60_sample();
+        let config = CompareConfig { held_out: Some(HeldOutOptions::default()), ..small_config() };
+        let c = compare_offsets(&offsets, &config).expect("sample compares");
+        assert_eq!(c.held_out_folds, Some(4));
+        for r in &c.methods {
+            let (rms, max) = (r.held_out_rms.expect("computed"), r.held_out_max.expect("computed"));
+            assert!(0.0 < rms && rms <= max, "{}: {rms} {max}", r.method);
+        }
+        // The approximation's figure is that of its configuration, computed on its own.
+        let approx =
+            crate::held_out_for_config(&offsets, &config.fit_config(FitMethod::Approx), &HeldOutOptions::default())
+                .expect("cross-validates");
+        assert_eq!(c.methods[1].held_out_rms, Some(approx.rms));
+        let (interp, base) = (&c.methods[0], &c.methods[1]);
+        let expected = crate::overfit(
+            interp.error.expect("done").rms,
+            interp.held_out_rms.expect("computed"),
+            base.error.expect("done").rms,
+            base.held_out_rms.expect("computed"),
+        );
+        assert_eq!(interp.overfit, Some(expected));
+        let json: serde_json::Value = serde_json::from_str(&comparison_json(&c)).expect("valid JSON");
+        assert!(json["methods"][0]["held_out_rms"].is_f64() && json["methods"][0]["overfit"].is_boolean());
+        assert!(json["methods"][1]["overfit"].is_null(), "approx is the baseline");
+        let md = comparison_markdown(&c);
+        assert!(md.contains("held-out RMS") && md.contains("4-fold cross-validation"), "{md}");
+        // Not asked for: nulls, and no note.
+        let plain = compare_offsets(&offsets, &small_config()).expect("compares");
+        assert!(plain.methods.iter().all(|r| r.held_out_rms.is_none() && r.overfit.is_none()));
+        assert!(!comparison_markdown(&plain).contains("cross-validation"));
+    }
+
+    #[test]
     fn a_stop_ends_the_comparison_and_marks_the_row() {
         let offsets = series60_sample();
         let stop = AtomicBool::new(true);

@@ -209,8 +209,8 @@ fn splits(offsets: &Offsets, options: &HeldOutOptions) -> Vec<Split> {
 /// result not to depend on the thread count.
 ///
 /// # Errors
-/// [`HullError::Config`] for invalid `options`, and the first error of a refit (in split
-/// order).
+/// [`HullError::Config`] for invalid `options` or offsets too few to hold any out for the
+/// degrees, and the first error of a refit (in split order).
 pub fn held_out_error(
     offsets: &Offsets,
     fit: impl Fn(&Offsets) -> Result<NurbsSurface, HullError> + Sync,
@@ -235,6 +235,19 @@ pub fn held_out_error_with(
     options.validate()?;
     let start = Instant::now();
     let splits = splits(offsets, options);
+    if splits.is_empty() {
+        let most = offsets.sections.iter().map(|s| s.points.len()).max().unwrap_or(0);
+        return Err(HullError::Config(format!(
+            "no offset of {} can be held out: {} sections of at most {most} points leave too few for degrees {},{} \
+             (expected at least {} sections, or a section of at least {} points)",
+            offsets.source,
+            offsets.sections.len(),
+            options.degree.0,
+            options.degree.1,
+            options.degree.1 + 2,
+            options.degree.0 + 2
+        )));
+    }
     let done = AtomicUsize::new(0);
     // The largest distance so far, for the progress report: the bits of a non-negative float
     // order as the float does.
@@ -450,6 +463,10 @@ mod tests {
         // 5 sections with degree 3 across: holding one out leaves 4 = q + 1; with 4, none.
         assert!(section_split(&offsets, &options, 1).is_some());
         assert!(section_split(&planar(4, 5), &options, 1).is_none());
+        // Nothing at all to hold out: said, not a zero error.
+        let never = |_: &Offsets| -> Result<NurbsSurface, HullError> { unreachable!("no refit") };
+        let e = held_out_error(&planar(3, 4), never, &options).expect_err("too small");
+        assert!(e.to_string().contains("can be held out: 3 sections of at most 4 points"), "{e}");
         // A pointed end section keeps its points.
         let mut pointed = planar(6, 6);
         let stem = pointed.sections[5].points[0];
