@@ -216,8 +216,12 @@ pub fn held_out_error(
     fit: impl Fn(&Offsets) -> Result<NurbsSurface, HullError> + Sync,
     options: &HeldOutOptions,
 ) -> Result<HeldOutError, HullError> {
-    quiet(|control| held_out_error_with(offsets, fit, options, control))?
-        .ok_or_else(|| HullError::Config("held-out error stopped before its end".into()))
+    unstopped(quiet(|control| held_out_error_with(offsets, fit, options, control)))
+}
+
+/// The result of a run that no stop can end ([`quiet`]): always `Some`.
+fn unstopped(result: Result<Option<HeldOutError>, HullError>) -> Result<HeldOutError, HullError> {
+    result?.ok_or_else(|| HullError::Config("held-out error stopped before its end".into()))
 }
 
 /// [`held_out_error`] with progress reports (`iteration` = refits done of `iterations`,
@@ -319,8 +323,7 @@ pub fn held_out_for_config(
     config: &FitConfig,
     options: &HeldOutOptions,
 ) -> Result<HeldOutError, HullError> {
-    quiet(|control| held_out_for_config_with(offsets, config, options, control))?
-        .ok_or_else(|| HullError::Config("held-out error stopped before its end".into()))
+    unstopped(quiet(|control| held_out_for_config_with(offsets, config, options, control)))
 }
 
 /// [`held_out_for_config`] with progress and a stop flag, as [`held_out_error_with`]; a weight
