@@ -31,6 +31,10 @@ pub struct CompareArgs {
     pub out: PathBuf,
     #[command(flatten)]
     pub optim: OptimArgs,
+    /// Folds K of each row's held-out error (cross-validation, as `hullskin fit --held-out`),
+    /// with the column saying which rows over-fit; 0 turns it off.
+    #[arg(long = "held-out", value_name = "K", default_value_t = hull::HeldOutOptions::DEFAULT_FOLDS, value_parser = crate::fit::parse_folds)]
+    pub held_out: usize,
 }
 
 /// Run `hullskin compare`.
@@ -38,7 +42,13 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     progress::install_stop_handler();
     let offsets = args.skin.offsets()?;
     let s = &args.skin;
-    let config = CompareConfig { degree: s.degree, ctrl: s.ctrl, param: s.param, optim: args.optim.settings() };
+    let config = CompareConfig {
+        degree: s.degree,
+        ctrl: s.ctrl,
+        param: s.param,
+        optim: args.optim.settings(),
+        held_out: (args.held_out > 0).then(|| hull::HeldOutOptions::with_folds(args.held_out)),
+    };
     // A stop between two optimisers ends the comparison too (not the run).
     let comparison = progress::stoppable(|| {
         hull::compare_offsets_with(&offsets, &config, &mut |algorithm, fit| {
@@ -83,5 +93,11 @@ mod tests {
         let s = w.args.optim.settings();
         assert_eq!((s.seed, s.iterations, s.population), (7, Some(3), None));
         assert!(Wrap::try_parse_from(["x", "--ctrl", "5"]).is_err());
+        assert_eq!(w.args.held_out, 4, "cross-validated by default");
+        let off = Wrap::try_parse_from(["x", "--held-out", "0"]).expect("valid");
+        assert_eq!(off.args.held_out, 0);
+        let e = Wrap::try_parse_from(["x", "--held-out", "1"]).expect_err("one fold");
+        assert!(e.to_string().contains("expected 0 to turn it off, or at least 2"), "{e}");
+        assert!(Wrap::try_parse_from(["x", "--held-out", "-1"]).is_err());
     }
 }

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
-use hull::{FitConfig, FitMethod, FitOutcome, HullError, Offsets, ToleranceSearch};
+use hull::{FitConfig, FitMethod, FitOutcome, HeldOutError, HullError, Offsets, ToleranceSearch};
 
 use crate::optim_args::OptimArgs;
 use crate::progress;
@@ -21,11 +21,30 @@ pub struct FitArgs {
     pub out: PathBuf,
     #[command(flatten)]
     pub fit: MethodArgs,
+    /// Folds K of the held-out error (cross-validation: refit without every K-th section, then
+    /// without every K-th point of each section, and measure the true distance of what was
+    /// left out); report.json gets "error.held_out". 0 turns it off.
+    #[arg(long = "held-out", value_name = "K", default_value_t = hull::HeldOutOptions::DEFAULT_FOLDS, value_parser = parse_folds)]
+    pub held_out: usize,
 }
 
 impl Default for FitArgs {
     fn default() -> Self {
-        FitArgs { skin: SkinArgs::default(), out: PathBuf::from("hullskin-out"), fit: MethodArgs::default() }
+        FitArgs {
+            skin: SkinArgs::default(),
+            out: PathBuf::from("hullskin-out"),
+            fit: MethodArgs::default(),
+            held_out: hull::HeldOutOptions::DEFAULT_FOLDS,
+        }
+    }
+}
+
+/// `--held-out K`: 0 (off) or at least 2 folds.
+pub(crate) fn parse_folds(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(1) => Err("1 fold would hold out every offset (expected 0 to turn it off, or at least 2)".into()),
+        Ok(k) => Ok(k),
+        Err(_) => Err(format!("`{s}` is not a whole number (expected 0 to turn it off, or a number of folds >= 2)")),
     }
 }
 
@@ -83,11 +102,17 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         }
         _ => (args.skin.offsets()?, None),
     };
-    let (outcome, search) = args.fit.fit(&args.skin, &offsets)?;
+    let (mut outcome, search) = args.fit.fit(&args.skin, &offsets)?;
+    if args.held_out > 0 && !progress::stopped() {
+        outcome.error.held_out = held_out_with_progress(&offsets, &outcome.config, args.held_out);
+    }
     let mut report = hull::Report::new(&offsets, &outcome);
     report.tolerance_search = search;
     write_outputs(&args.out, &offsets, &outcome, &report)?;
     print!("{}", hull::summary_table(&offsets, &outcome));
+    if let Some(line) = overfitting(&offsets, &outcome) {
+        println!("{line}");
+    }
     if let Some(s) = &report.tolerance_search {
         println!("{}", s.summary(offsets.units.symbol()));
     }
@@ -165,6 +190,45 @@ pub(crate) fn fit_with_progress(
     }
 }
 
+/// The held-out error of the fit `config` with `folds` folds ([`hull::held_out_for_config`]),
+/// with a progress bar for the optimised methods (their refits take a while), stopped by
+/// SIGINT or SIGTERM like them. `None` after a stop, or when it cannot be computed (then a
+/// warning says why: the fit itself stands).
+pub(crate) fn held_out_with_progress(offsets: &Offsets, config: &FitConfig, folds: usize) -> Option<HeldOutError> {
+    let options = hull::HeldOutOptions::with_folds(folds);
+    let run =
+        |control: &hull::optimize::Control<'_>| hull::held_out_for_config_with(offsets, config, &options, control);
+    let result = match config.method.algorithm() {
+        Some(_) => progress::with_progress("held out", run),
+        None => hull::optimize::quiet(run),
+    };
+    result.unwrap_or_else(|e| {
+        eprintln!("hullskin: warning: no held-out error: {e}");
+        None
+    })
+}
+
+/// For an optimised method with a held-out error: a warning line when it over-fits against
+/// the plain approximation at the same control points ([`HeldOutError::overfits`]: lower RMS
+/// at the offsets, higher held-out RMS), which is fitted and cross-validated for it (the cost
+/// of an approximation and its refits, small beside the optimiser's).
+fn overfitting(offsets: &Offsets, outcome: &FitOutcome) -> Option<String> {
+    let held = outcome.error.held_out.as_ref()?;
+    outcome.config.method.algorithm()?;
+    let plain = FitConfig { method: FitMethod::Approx, ..outcome.config };
+    let base = hull::fit_offsets(offsets, &plain).ok()?;
+    let base_held = hull::held_out_for_config(offsets, &plain, &hull::HeldOutOptions::with_folds(held.folds)).ok()?;
+    let (at, at_base) = (outcome.error.overall.rms, base.error.overall.rms);
+    held.overfits(at, at_base, &base_held).then(|| {
+        let u = offsets.units.symbol();
+        format!(
+            "warning: {} over-fits: RMS {at:.3e} {u} at the offsets, below the plain approximation's {at_base:.3e} {u}, \
+             but {:.3e} {u} held out, above its {:.3e} {u} (expected fewer control points or a fairer fit)",
+            outcome.config.method, held.rms, base_held.rms
+        )
+    })
+}
+
 /// Write the three files all or nothing (staged, then moved into `dir`).
 fn write_outputs(dir: &Path, offsets: &Offsets, outcome: &FitOutcome, report: &hull::Report) -> anyhow::Result<()> {
     hull::write_fit_outputs_with_report(dir, offsets, outcome, report)
@@ -188,6 +252,28 @@ mod tests {
         // The same deterministic least-squares fit: bit-identical surfaces.
         assert_eq!(outcome.surface, direct.surface);
         assert!(search.is_none());
+    }
+
+    #[test]
+    fn over_fitting_is_warned_of_against_the_plain_approximation() {
+        // A short LM run of the sample, closer to the offsets than the plain approximation at
+        // the same 5 x 8 control points; its held-out figure is then set by hand on either
+        // side of the approximation's, which `overfitting` computes itself.
+        let offsets = hull::series60_sample();
+        let optim = hull::optimize::OptimSettings { iterations: Some(3), ..Default::default() };
+        let method = FitMethod::Optimized(hull::optimize::Algorithm::Lm);
+        let config = FitConfig { method, ctrl: Some((5, 8)), optim, ..FitConfig::default() };
+        let mut lm = hull::fit_offsets(&offsets, &config).expect("fits");
+        let plain = FitConfig { method: FitMethod::Approx, ..config };
+        let base = hull::fit_offsets(&offsets, &plain).expect("fits");
+        assert!(lm.error.overall.rms < base.error.overall.rms, "LM improves at the offsets");
+        let base_held = hull::held_out_for_config(&offsets, &plain, &hull::HeldOutOptions::default()).expect("ok");
+        assert_eq!(overfitting(&offsets, &lm), None, "no held-out error, no verdict");
+        lm.error.held_out = Some(HeldOutError { rms: 2.0 * base_held.rms, ..base_held.clone() });
+        let line = overfitting(&offsets, &lm).expect("over-fits");
+        assert!(line.starts_with("warning: lm over-fits: RMS") && line.contains(&format!("{:.3e}", base_held.rms)));
+        lm.error.held_out = Some(HeldOutError { rms: 0.5 * base_held.rms, ..base_held });
+        assert_eq!(overfitting(&offsets, &lm), None);
     }
 
     #[test]

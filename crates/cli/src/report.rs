@@ -185,7 +185,13 @@ fn surface_as_is(args: &ReportArgs, surface: NurbsSurface, units: Units, source:
 /// Every method at the same control points, with a progress bar for the optimisers.
 fn compare(args: &ReportArgs, offsets: &Offsets) -> anyhow::Result<Comparison> {
     let s = &args.skin;
-    let config = CompareConfig { degree: s.degree, ctrl: s.ctrl, param: s.param, optim: args.fit.optim.settings() };
+    let config = CompareConfig {
+        degree: s.degree,
+        ctrl: s.ctrl,
+        param: s.param,
+        optim: args.fit.optim.settings(),
+        held_out: None,
+    };
     // A stop between two optimisers ends the comparison too (not the run).
     let comparison = progress::stoppable(|| {
         hull::compare_offsets_with(offsets, &config, &mut |algorithm, fit| {

@@ -195,3 +195,42 @@ fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
     let r = read_json(&dir.path().join("centripetal/report.json"));
     assert!(r.get("folds").is_none(), "{r}");
 }
+
+#[test]
+fn fit_reports_the_held_out_error_beside_the_error_at_the_offsets() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let o = hullskin(dir.path(), &["fit", "-o", "out"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let r = read_json(&dir.path().join("out/report.json"));
+    let h = &r["error"]["held_out"];
+    assert_eq!((h["folds"].as_u64(), h["refits"].as_u64()), (Some(4), Some(8)), "{h}");
+    for part in ["sections", "points"] {
+        for k in ["max", "mean", "rms", "points"] {
+            assert!(h[part][k].is_number(), "{part}.{k} in {h}");
+        }
+    }
+    let (rms, max) = (h["rms"].as_f64().expect("number"), h["max"].as_f64().expect("number"));
+    assert!(0.0 < rms && rms <= max, "{h}");
+    // The line follows the error at the offsets in the summary.
+    let lines: Vec<&str> = out.lines().collect();
+    let at = lines.iter().position(|l| l.starts_with("approx ")).expect("method row");
+    assert!(lines[at + 1].starts_with(&format!("held out (4 folds): RMS {rms:.3e} m, max {max:.3e} m")), "{out}");
+    // Off: no block, no line.
+    let o = hullskin(dir.path(), &["fit", "-o", "off", "--held-out", "0"]);
+    assert!(o.status.success(), "{:?}", text(&o));
+    assert!(read_json(&dir.path().join("off/report.json"))["error"].get("held_out").is_none());
+    assert!(!text(&o).0.contains("held out"));
+    // One fold: refused before any work, nothing written.
+    let o = hullskin(dir.path(), &["fit", "-o", "one", "--held-out", "1"]);
+    assert_eq!(o.status.code(), Some(2), "{:?}", text(&o));
+    assert!(text(&o).1.contains("expected 0 to turn it off, or at least 2"), "{:?}", text(&o));
+    assert!(!dir.path().join("one").exists());
+    // A table too small to hold anything out: the fit stands, a warning says why.
+    let input = testdata("sections_example.csv");
+    let o = hullskin(dir.path(), &["fit", input.to_str().expect("utf-8"), "-o", "small"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    assert!(err.contains("warning: no held-out error: no offset of") && err.contains("can be held out"), "{err}");
+    assert!(read_json(&dir.path().join("small/report.json"))["error"].get("held_out").is_none());
+}

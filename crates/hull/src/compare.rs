@@ -19,7 +19,9 @@
 //!               "gaussian_curvature": {"max": .., "min": .., "max_at": [u, v], "min_at": [u, v],
 //!                                      "samples": n, "skipped": n},
 //!               "seconds": .., "error_seconds": .., "evaluations": 0, "iterations": 0,
-//!               "seed": null, "objective": null}, ...],
+//!               "seed": null, "objective": null,
+//!               "held_out_rms": .., "held_out_max": .., "overfit": true}, ...],
+//!  "held_out_folds": 4,
 //!  "floors": {"metric": "rms", "relative_tolerance": 1e-9, "all_hold": true,
 //!             "checks": [{"floor": "ga < approx", "holds": true, "value": .., "bound": ..}, ...]}}
 //! ```
@@ -37,6 +39,11 @@
 //! * `evaluations` and `iterations`: of the objective, 0 for `interp` and `approx`; `seed` and
 //!   `objective` (`[start, final]`, the optimiser's parametric RMS objective) only for the
 //!   optimised methods.
+//! * `held_out_rms`, `held_out_max`: the error between the offsets by K-fold cross-validation
+//!   (`held_out_folds` = K; [`crate::held_out_for_config`]), `null` when not asked for, after a
+//!   stop or when a refit failed. `overfit`: the row is closer to the offsets than the plain
+//!   approximation but farther from the held-out ones (RMS; [`crate::overfit`]); `null`
+//!   without both held-out errors, and for `approx` itself.
 //! * `status`: `done`, `interrupted` (stopped by the user; the best surface found before the
 //!   stop is measured) or `failed` (with `failure`, the error message). On an interruption the
 //!   comparison stops: the methods after it are listed in `not_run` and `complete` is false.
@@ -54,7 +61,10 @@ use serde::Serialize;
 
 use crate::fit_error::parametric_residuals;
 use crate::optimize::{quiet, Algorithm, Control, OptimSettings, StopReason};
-use crate::{fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, InputSummary};
+use crate::{
+    fit_offsets, fit_offsets_with, held_out_for_config_with, FitConfig, FitMethod, FitOutcome, HeldOutOptions,
+};
+use crate::{HullError, InputSummary};
 use crate::{Offsets, COINCIDENT_REL};
 
 /// Samples per parameter direction of the curvature grid (before the knot lines are added).
@@ -84,6 +94,9 @@ pub struct CompareConfig {
     pub ctrl: Option<(usize, usize)>,
     pub param: SkinParameterization,
     pub optim: OptimSettings,
+    /// Cross-validate every row with these options (its degrees are the rows'); `None`: no
+    /// held-out error.
+    pub held_out: Option<HeldOutOptions>,
 }
 
 impl Default for CompareConfig {
@@ -96,7 +109,7 @@ impl CompareConfig {
     /// The settings with the default fit configuration (degrees 3, 3).
     pub fn new() -> Self {
         let d = FitConfig::default();
-        CompareConfig { degree: d.degree, ctrl: d.ctrl, param: d.param, optim: d.optim }
+        CompareConfig { degree: d.degree, ctrl: d.ctrl, param: d.param, optim: d.optim, held_out: None }
     }
 
     fn fit_config(self, method: FitMethod) -> FitConfig {
@@ -220,6 +233,13 @@ pub struct CompareRow {
     pub seed: Option<u64>,
     /// The optimiser's objective `[start, final]` (parametric RMS with the log-weight penalty).
     pub objective: Option<[f64; 2]>,
+    /// RMS of the held-out error (cross-validation), when computed.
+    pub held_out_rms: Option<f64>,
+    /// Max of the held-out error, when computed.
+    pub held_out_max: Option<f64>,
+    /// Lower error at the offsets than `approx` but higher held-out error; `None` when not
+    /// known (and for `approx`).
+    pub overfit: Option<bool>,
 }
 
 impl CompareRow {
@@ -248,6 +268,9 @@ impl CompareRow {
             iterations: opt.map_or(0, |o| o.iterations),
             seed: opt.map(|o| o.seed),
             objective: opt.map(|o| [o.start_value, o.final_value]),
+            held_out_rms: outcome.error.held_out.as_ref().map(|h| h.rms),
+            held_out_max: outcome.error.held_out.as_ref().map(|h| h.max),
+            overfit: None,
         }
     }
 
@@ -266,6 +289,9 @@ impl CompareRow {
             iterations: 0,
             seed,
             objective: None,
+            held_out_rms: None,
+            held_out_max: None,
+            overfit: None,
         }
     }
 
@@ -419,6 +445,8 @@ pub struct Comparison {
     pub complete: bool,
     /// Methods not run because of an interruption.
     pub not_run: Vec<&'static str>,
+    /// K of the rows' held-out errors (`None`: not computed).
+    pub held_out_folds: Option<usize>,
     pub methods: Vec<CompareRow>,
     pub floors: Floors,
 }
@@ -457,7 +485,18 @@ pub fn compare_offsets_with(
 ) -> Result<Comparison, HullError> {
     // The plain approximation first: it validates the input and the settings, and its failure
     // would fail every optimised row.
-    let approx = fit_offsets(offsets, &config.fit_config(FitMethod::Approx))?;
+    let mut approx = fit_offsets(offsets, &config.fit_config(FitMethod::Approx))?;
+    // A row's held-out error, `None` unless asked for, after a stop or if a refit fails (the
+    // row itself stands).
+    let held_out = |outcome: &mut FitOutcome, control: &Control<'_>| {
+        if let Some(options) = &config.held_out {
+            if !control.stopped() {
+                outcome.error.held_out =
+                    held_out_for_config_with(offsets, &outcome.config, options, control).ok().flatten();
+            }
+        }
+    };
+    quiet(|control| held_out(&mut approx, control));
     let ctrl = (approx.surface.n_u(), approx.surface.n_v());
     let degree = [approx.surface.degree_u(), approx.surface.degree_v()];
     let mut rows = Vec::with_capacity(COMPARE_METHODS.len());
@@ -472,7 +511,10 @@ pub fn compare_offsets_with(
         let row = match method {
             FitMethod::Approx => CompareRow::from_outcome(offsets, &approx),
             FitMethod::Interp => match fit_offsets(offsets, &cfg) {
-                Ok(out) => CompareRow::from_outcome(offsets, &out),
+                Ok(mut out) => {
+                    quiet(|control| held_out(&mut out, control));
+                    CompareRow::from_outcome(offsets, &out)
+                }
                 Err(e @ (HullError::Input { .. } | HullError::Config(_))) => return Err(e),
                 Err(e) => {
                     // What interpolation would have used: one pole per offset of the largest
@@ -484,7 +526,10 @@ pub fn compare_offsets_with(
             FitMethod::Optimized(algorithm) => {
                 let mut saw_stop = false;
                 let result = run(algorithm, &mut |control| {
-                    let r = fit_offsets_with(offsets, &cfg, control);
+                    let mut r = fit_offsets_with(offsets, &cfg, control);
+                    if let Ok(out) = &mut r {
+                        held_out(out, control);
+                    }
                     saw_stop = control.stopped();
                     r
                 });
@@ -498,6 +543,7 @@ pub fn compare_offsets_with(
         };
         rows.push(row);
     }
+    mark_overfitting(&mut rows);
     let o = &config.optim;
     Ok(Comparison {
         hullskin: env!("CARGO_PKG_VERSION"),
@@ -522,9 +568,22 @@ pub fn compare_offsets_with(
         curvature_sampling: CurvatureSampling { grid: CURVATURE_GRID, knot_lines: true },
         complete: not_run.is_empty() && rows.iter().all(|r| r.status != RowStatus::Interrupted),
         not_run,
+        held_out_folds: config.held_out.map(|h| h.folds),
         floors: check_floors(&rows),
         methods: rows,
     })
+}
+
+/// Mark the rows that over-fit against `approx` ([`crate::overfit`] on the RMS errors at and
+/// between the offsets), where both are known.
+fn mark_overfitting(rows: &mut [CompareRow]) {
+    let base = |r: &CompareRow| Some((r.done_rms()?, r.held_out_rms?));
+    let Some((at_b, held_b)) = rows.iter().find(|r| r.method == "approx").and_then(base) else {
+        return;
+    };
+    for r in rows.iter_mut().filter(|r| r.method != "approx") {
+        r.overfit = base(r).map(|(at_a, held_a)| crate::overfit(at_a, held_a, at_b, held_b));
+    }
 }
 
 /// `compare.json`, pretty-printed, with a final newline.
@@ -557,9 +616,9 @@ pub fn comparison_table(c: &Comparison) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "| method | control points | max error ({u}) | mean error ({u}) | RMS error ({u}) | max K (1/{u}²) | min K (1/{u}²) | time (ms) | evaluations | seed |"
+        "| method | control points | max error ({u}) | mean error ({u}) | RMS error ({u}) | held-out RMS ({u}) | held-out max ({u}) | over-fits | max K (1/{u}²) | min K (1/{u}²) | time (ms) | evaluations | seed |"
     );
-    let _ = writeln!(t, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|");
+    let _ = writeln!(t, "|---|---|--:|--:|--:|--:|--:|:-:|--:|--:|--:|--:|--:|");
     for r in &c.methods {
         let name = match r.status {
             RowStatus::Done => r.method.to_string(),
@@ -575,9 +634,16 @@ pub fn comparison_table(c: &Comparison) -> String {
             None => ("-".into(), "-".into()),
         };
         let seed = r.seed.map_or_else(|| "-".to_string(), |s| s.to_string());
+        let held = |v: Option<f64>| v.map_or_else(|| "-".to_string(), sci);
+        let (held_rms, held_max) = (held(r.held_out_rms), held(r.held_out_max));
+        let overfit = match r.overfit {
+            Some(true) => "**yes**",
+            Some(false) => "no",
+            None => "-",
+        };
         let _ = writeln!(
             t,
-            "| {name} | {}x{} | {max} | {mean} | {rms} | {kmax} | {kmin} | {} | {} | {seed} |",
+            "| {name} | {}x{} | {max} | {mean} | {rms} | {held_rms} | {held_max} | {overfit} | {kmax} | {kmin} | {} | {} | {seed} |",
             r.control_points[0],
             r.control_points[1],
             millis(r.seconds),
@@ -637,6 +703,14 @@ pub fn comparison_markdown(c: &Comparison) -> String {
         Some(false) => "**some fail**",
         None => "not all checked",
     };
+    if let Some(k) = c.held_out_folds {
+        let _ = writeln!(
+            t,
+            "Held-out error: {k}-fold cross-validation (refits without every {k}th interior section, then without \
+             every {k}th interior point of each section; true distance of what was left out). Over-fits: lower RMS \
+             error at the offsets than approx, higher held-out RMS.\n"
+        );
+    }
     let _ = writeln!(t, "Floors (true RMS error): {verdict}\n");
     t.push_str(&floors_markdown(&c.floors));
     for r in c.methods.iter().filter(|r| r.status == RowStatus::Failed) {
@@ -713,6 +787,9 @@ mod tests {
             iterations: 0,
             seed: None,
             objective: None,
+            held_out_rms: None,
+            held_out_max: None,
+            overfit: None,
         }
     }
 
@@ -814,6 +891,67 @@ mod tests {
         let json: serde_json::Value = serde_json::from_str(&comparison_json(&c)).expect("valid JSON");
         assert_eq!(json["methods"].as_array().map(Vec::len), Some(7));
         assert_eq!(json["floors"]["checks"].as_array().map(Vec::len), Some(4));
+    }
+
+    #[test]
+    fn rows_over_fit_when_closer_at_the_offsets_and_farther_between() {
+        use RowStatus::*;
+        let with = |mut r: CompareRow, held: Option<f64>| {
+            r.held_out_rms = held;
+            r
+        };
+        let mut rows = vec![
+            with(row("interp", Done, 0.0), Some(2.0)),
+            with(row("approx", Done, 1.0), Some(1.5)),
+            with(row("ga", Done, 0.9), Some(1.4)),
+            with(row("pso", Done, 1.1), Some(2.0)),
+            with(row("gsa", Done, 0.9), None),
+            with(row("lm", Failed, 0.0), None),
+        ];
+        mark_overfitting(&mut rows);
+        let flags: Vec<Option<bool>> = rows.iter().map(|r| r.overfit).collect();
+        // interp: lower at the offsets, higher between; ga better at both; pso worse at the
+        // offsets (not over-fitting, just worse); gsa and lm unknown; approx is the baseline.
+        assert_eq!(flags, [Some(true), None, Some(false), Some(false), None, None]);
+        // Without the baseline's held-out error nothing is marked.
+        rows[1].held_out_rms = None;
+        rows.iter_mut().for_each(|r| r.overfit = None);
+        mark_overfitting(&mut rows);
+        assert!(rows.iter().all(|r| r.overfit.is_none()));
+    }
+
+    #[test]
+    fn held_out_errors_join_the_rows_when_asked_for() {
+        let offsets = series60_sample();
+        let config = CompareConfig { held_out: Some(HeldOutOptions::default()), ..small_config() };
+        let c = compare_offsets(&offsets, &config).expect("sample compares");
+        assert_eq!(c.held_out_folds, Some(4));
+        for r in &c.methods {
+            let (rms, max) = (r.held_out_rms.expect("computed"), r.held_out_max.expect("computed"));
+            assert!(0.0 < rms && rms <= max, "{}: {rms} {max}", r.method);
+        }
+        // The approximation's figure is that of its configuration, computed on its own.
+        let approx =
+            crate::held_out_for_config(&offsets, &config.fit_config(FitMethod::Approx), &HeldOutOptions::default())
+                .expect("cross-validates");
+        assert_eq!(c.methods[1].held_out_rms, Some(approx.rms));
+        let (interp, base) = (&c.methods[0], &c.methods[1]);
+        let expected = crate::overfit(
+            interp.error.expect("done").rms,
+            interp.held_out_rms.expect("computed"),
+            base.error.expect("done").rms,
+            base.held_out_rms.expect("computed"),
+        );
+        assert_eq!(interp.overfit, Some(expected));
+        let json: serde_json::Value = serde_json::from_str(&comparison_json(&c)).expect("valid JSON");
+        assert!(json["methods"][0]["held_out_rms"].is_f64() && json["methods"][0]["overfit"].is_boolean());
+        assert!(json["methods"][1]["overfit"].is_null(), "approx is the baseline");
+        let md = comparison_markdown(&c);
+        assert!(md.contains("held-out RMS") && md.contains("4-fold cross-validation"), "{md}");
+        // Not asked for: nulls, and no note.
+        let plain = compare_offsets(&offsets, &small_config()).expect("compares");
+        assert!(plain.methods.iter().all(|r| r.held_out_rms.is_none() && r.overfit.is_none()));
+        assert!(!comparison_markdown(&plain).contains("cross-validation"));
     }
 
     #[test]

@@ -68,6 +68,10 @@ pub struct FitError {
     pub per_section: Vec<SectionError>,
     /// Projections that stopped at the iteration limit instead of a convergence criterion.
     pub unconverged_projections: usize,
+    /// The error between the offsets, by cross-validation ([`crate::held_out_for_config`]);
+    /// `None` (left out of the JSON) unless it was asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub held_out: Option<crate::HeldOutError>,
 }
 
 /// Distance of every offset to `surface` by closest-point projection, per section and overall.
@@ -76,23 +80,8 @@ pub struct FitError {
 /// point `i` of section `k`): Newton also starts there, so a measured distance is never larger
 /// than the parametric residual, whatever the global search finds.
 pub fn measure_fit_error(surface: &NurbsSurface, offsets: &Offsets, hints: Option<&[Vec<(f64, f64)>]>) -> FitError {
-    let projector = SurfaceProjector::new(surface, ProjectionOptions::default());
-    // Project every offset in parallel (each projection is a pure function of its point, so the
-    // result does not depend on the thread count), then gather in input order.
-    let jobs: Vec<(usize, usize, Vec3)> = offsets
-        .sections
-        .iter()
-        .enumerate()
-        .flat_map(|(k, s)| s.points.iter().enumerate().map(move |(i, &q)| (k, i, q)))
-        .collect();
-    let projections: Vec<SurfaceProjection> = jobs
-        .par_iter()
-        .map(|&(k, i, q)| match hints.and_then(|h| h.get(k)).and_then(|h| h.get(i)) {
-            Some(&uv) => projector.project_near(q, uv),
-            None => projector.project(q),
-        })
-        .collect();
-    let mut all = Vec::with_capacity(jobs.len());
+    let projections = project_offsets(surface, offsets, hints);
+    let mut all = Vec::with_capacity(projections.len());
     let mut per_section = Vec::with_capacity(offsets.sections.len());
     let mut worst: Option<WorstPoint> = None;
     let mut unconverged = 0;
@@ -119,7 +108,38 @@ pub fn measure_fit_error(surface: &NurbsSurface, offsets: &Offsets, hints: Optio
             .push(SectionError { section: section.label.clone(), stats: ErrorStats::from_distances(&distances) });
         all.extend(distances);
     }
-    FitError { overall: ErrorStats::from_distances(&all), worst, per_section, unconverged_projections: unconverged }
+    FitError {
+        overall: ErrorStats::from_distances(&all),
+        worst,
+        per_section,
+        unconverged_projections: unconverged,
+        held_out: None,
+    }
+}
+
+/// The closest-point projection of every offset onto `surface`, in input order (section by
+/// section, point by point), with `hints` as in [`measure_fit_error`].
+///
+/// The offsets are projected in parallel; each projection is a pure function of its point, so
+/// the result does not depend on the thread count.
+pub(crate) fn project_offsets(
+    surface: &NurbsSurface,
+    offsets: &Offsets,
+    hints: Option<&[Vec<(f64, f64)>]>,
+) -> Vec<SurfaceProjection> {
+    let projector = SurfaceProjector::new(surface, ProjectionOptions::default());
+    let jobs: Vec<(usize, usize, Vec3)> = offsets
+        .sections
+        .iter()
+        .enumerate()
+        .flat_map(|(k, s)| s.points.iter().enumerate().map(move |(i, &q)| (k, i, q)))
+        .collect();
+    jobs.par_iter()
+        .map(|&(k, i, q)| match hints.and_then(|h| h.get(k)).and_then(|h| h.get(i)) {
+            Some(&uv) => projector.project_near(q, uv),
+            None => projector.project(q),
+        })
+        .collect()
 }
 
 /// The parametric residuals `|S(u_k, v_k) - Q_k|` at given data parameters (an upper bound

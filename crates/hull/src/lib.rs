@@ -12,6 +12,7 @@ mod error;
 pub mod export;
 pub mod fairing;
 pub mod fit_error;
+mod held_out;
 pub mod hydrostatics;
 pub mod limits;
 mod markup;
@@ -38,6 +39,10 @@ pub use compare::{
 pub use error::{HullError, InputErrorKind, Location};
 pub use fairing::{FairReport, Fairing};
 pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
+pub use held_out::{
+    held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, overfit, HeldOutError,
+    HeldOutOptions,
+};
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
     HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,

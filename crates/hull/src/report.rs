@@ -10,7 +10,9 @@
 //!  "parameterization": "centripetal",
 //!  "error": {"max": .., "mean": .., "rms": .., "points": N, "worst": {...},
 //!            "per_section": [{"section": "..", "max": .., "mean": .., "rms": .., "points": n}],
-//!            "unconverged_projections": 0},
+//!            "unconverged_projections": 0,
+//!            "held_out": {"rms": .., "max": .., "sections": {"max": .., "mean": .., "rms": .., "points": n},
+//!                         "points": {...}, "folds": 4, "refits": 8, "seconds": ..}},
 //!  "seconds": .., "fit_seconds": .., "error_seconds": ..,
 //!  "optimization": {"algorithm": "gsa", "seed": 1, "control_points": "resolved",
 //!                   "weight_layout": "full", "weight_bounds": [0.1, 10], "weight_range": [..],
@@ -29,7 +31,10 @@
 //! `interp_control_points`, `ratio`, `fits`, `complete`, `tried`).
 //!
 //! Errors are distances in the input's units, measured by closest-point projection of every
-//! input point onto the surface.
+//! input point onto the surface. `error.held_out`, when asked for (`hullskin fit --held-out K`,
+//! on by default), is the error between the offsets by K-fold cross-validation
+//! ([`crate::held_out_for_config`]): the true distance of held-out sections and of held-out
+//! points within sections to the surface refitted without them.
 
 use std::fmt::Write as _;
 use std::io;
@@ -210,6 +215,9 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
         format!("{:.3e} {u}", e.overall.rms),
         format!("{:.2} ms", 1e3 * (outcome.fit_seconds + outcome.error_seconds)),
     );
+    if let Some(h) = &e.held_out {
+        let _ = writeln!(t, "{}", held_out_line(h, u));
+    }
     if let Some(o) = &outcome.optimization {
         let _ = writeln!(
             t,
@@ -263,6 +271,25 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
     t
 }
 
+/// The summary's line of the held-out error, e.g. `held out (4 folds): RMS 3.1e-2 m, max
+/// 1.2e-1 m (sections: ..., points: ...)`.
+fn held_out_line(h: &crate::HeldOutError, u: &str) -> String {
+    let part = |name: &str, s: &crate::ErrorStats| match s.points {
+        0 => format!("{name}: none held out"),
+        n => format!("{name}: RMS {:.3e} {u}, max {:.3e} {u} over {n}", s.rms, s.max),
+    };
+    format!(
+        "held out ({} folds): RMS {:.3e} {u}, max {:.3e} {u} ({}; {}), {} refits in {:.2} s",
+        h.folds,
+        h.rms,
+        h.max,
+        part("sections", &h.sections),
+        part("points", &h.points),
+        h.refits,
+        h.seconds
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -290,6 +317,33 @@ mod tests {
         assert!(iges.lines().all(|l| l.len() == 80));
         let table = summary_table(&offsets, &out);
         assert!(table.contains("approx") && table.contains("25 sections"), "{table}");
+    }
+
+    #[test]
+    fn the_held_out_error_goes_into_the_report_and_the_summary() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let offsets = series60_sample();
+        let mut out = fit_offsets(&offsets, &FitConfig::default()).expect("fits");
+        let read = |dir: &Path| -> serde_json::Value {
+            serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).expect("read")).expect("JSON")
+        };
+        write_fit_outputs(dir.path(), &offsets, &out).expect("writes");
+        assert!(read(dir.path())["error"].get("held_out").is_none(), "left out unless asked for");
+        assert!(!summary_table(&offsets, &out).contains("held out"));
+        let h = crate::held_out_for_config(&offsets, &out.config, &crate::HeldOutOptions::default()).expect("ok");
+        out.error.held_out = Some(h.clone());
+        write_fit_outputs(dir.path(), &offsets, &out).expect("writes");
+        let r = read(dir.path());
+        let j = &r["error"]["held_out"];
+        assert_eq!((j["rms"].as_f64(), j["max"].as_f64()), (Some(h.rms), Some(h.max)));
+        assert_eq!(j["sections"]["points"].as_u64(), Some(h.sections.points as u64));
+        assert_eq!((j["folds"].as_u64(), j["refits"].as_u64()), (Some(4), Some(8)));
+        assert!(j["points"]["rms"].is_f64() && j["seconds"].is_f64());
+        // Beside the error at the offsets, which keeps its place.
+        assert_eq!(r["error"]["rms"].as_f64(), Some(out.error.overall.rms));
+        let table = summary_table(&offsets, &out);
+        let line = format!("held out (4 folds): RMS {:.3e} m, max {:.3e} m (sections: RMS", h.rms, h.max);
+        assert!(table.contains(&line), "{table}");
     }
 
     #[test]
