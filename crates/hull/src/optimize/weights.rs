@@ -40,6 +40,10 @@ use super::linalg::{band_cholesky, band_solve, dot};
 use super::Objective;
 use crate::{FitOutcome, HullError, Offsets};
 
+mod matvec;
+
+pub(crate) use matvec::JacobianOp;
+
 /// What happens to the control points when the weights move.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum WeightMode {
@@ -803,7 +807,6 @@ impl WeightProblem {
             }
         }
         let scale = 1.0 / m as f64;
-        let reg = self.rho * self.rho / d as f64;
         let mut jtj = ata;
         let mut jtr = ate;
         if resolved {
@@ -831,13 +834,45 @@ impl WeightProblem {
                 jtj[v * d + w] = lower;
                 jtj[w * d + v] = lower;
             }
-            jtj[v * d + v] = jtj[v * d + v] * scale + reg;
-            jtr[v] = jtr[v] * scale + reg * x[v];
+            jtj[v * d + v] *= scale;
+            jtr[v] *= scale;
+        }
+        // The prior: J^T J += R (its diagonal today; a column at a time in general), J^T r += R x.
+        self.prior_apply(x, &mut jtr);
+        let mut e = vec![0.0; d];
+        let mut col = vec![0.0; d];
+        for v in 0..d {
+            e[v] = 1.0;
+            col.iter_mut().for_each(|t| *t = 0.0);
+            self.prior_apply(&e, &mut col);
+            e[v] = 0.0;
+            for (w, c) in col.iter().enumerate() {
+                if *c != 0.0 {
+                    jtj[w * d + v] += c;
+                }
+            }
         }
         if !(jtj.iter().all(|t| t.is_finite()) && jtr.iter().all(|t| t.is_finite())) {
             return None;
         }
         Some(NormalEquations { jtj, jtr, dim: d })
+    }
+
+    /// `out += R v`: the prior of the log-weights in the Gauss-Newton normal equations
+    /// (`J^T J + R`, gradient `J^T r + R θ`), the Hessian of the penalty of the module docs
+    /// halved: `R = (ρ^2 / d) I`. Every solver's use of the prior goes through this and
+    /// [`WeightProblem::prior_diag`].
+    pub(crate) fn prior_apply(&self, v: &[f64], out: &mut [f64]) {
+        let reg = self.rho * self.rho / self.dim() as f64;
+        for (o, t) in out.iter_mut().zip(v) {
+            *o += reg * t;
+        }
+    }
+
+    /// The diagonal of `R` (see [`WeightProblem::prior_apply`]), for preconditioners.
+    pub(crate) fn prior_diag(&self) -> Vec<f64> {
+        let d = self.dim();
+        vec![self.rho * self.rho / d as f64; d]
     }
 
     // ----- internals -----
@@ -1445,14 +1480,14 @@ mod tests {
         (fit_offsets(&offsets, &cfg).expect("sample fits"), offsets)
     }
 
-    fn problem(ctrl: (usize, usize), mode: WeightMode, layout: WeightLayout, reg: f64) -> WeightProblem {
+    pub(super) fn problem(ctrl: (usize, usize), mode: WeightMode, layout: WeightLayout, reg: f64) -> WeightProblem {
         let (fit, offsets) = sample_fit(ctrl);
         let opts = WeightOptions { mode, layout, regularization: reg, ..WeightOptions::default() };
         WeightProblem::from_fit(&fit, &offsets, opts).expect("shapes match")
     }
 
     /// Deterministic pseudo-random numbers in [-0.5, 0.5).
-    fn noise(seed: &mut u64) -> f64 {
+    pub(super) fn noise(seed: &mut u64) -> f64 {
         *seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         (*seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
     }
