@@ -24,8 +24,26 @@
 //! `R` of the log-weights (see [`WeightProblem::prior_apply`]) is added by the caller's
 //! operator, not here.
 
-use super::{band_solve, Scratch, WeightMode, WeightProblem};
+use super::{band_cholesky, band_solve, Scratch, WeightLayout, WeightMode, WeightProblem};
 use crate::optimize::Objective;
+
+/// One evaluation of a [`WeightProblem`]: the point, its value and the solved state.
+pub(crate) struct Evaluation {
+    x: Vec<f64>,
+    value: f64,
+    sc: Option<Scratch>,
+}
+
+impl Evaluation {
+    /// The point evaluated.
+    pub(crate) fn x(&self) -> &[f64] {
+        &self.x
+    }
+    /// Its value (`+inf` where infeasible).
+    pub(crate) fn value(&self) -> f64 {
+        self.value
+    }
+}
 
 /// Kaufman's Jacobian at one point of a [`WeightProblem`] (its own parameters), with the
 /// evaluation's factor kept for the projections. Build with [`WeightProblem::jacobian_op`].
@@ -49,9 +67,26 @@ impl WeightProblem {
     /// Kaufman's Jacobian at `x` as an operator (see the module docs); `None` where the value
     /// is infinite.
     pub(crate) fn jacobian_op(&self, x: &[f64]) -> Option<JacobianOp<'_>> {
+        self.jacobian_op_at(self.evaluate(x))
+    }
+
+    /// The value at `x`, bit-identical to [`Objective::value`], with the solved state kept
+    /// for [`WeightProblem::jacobian_op_at`] (so an accepted trial point is not solved twice).
+    pub(crate) fn evaluate(&self, x: &[f64]) -> Evaluation {
         let mut sc = Scratch::default();
         let table = &self.table;
-        if !self.solve(table, x, &mut sc) {
+        let solved = self.solve(table, x, &mut sc);
+        let value = if solved { self.value_squared(table, x, &sc).sqrt() } else { f64::INFINITY };
+        let value = if value.is_finite() { value } else { f64::INFINITY };
+        Evaluation { x: x.to_vec(), value, sc: solved.then_some(sc) }
+    }
+
+    /// Kaufman's Jacobian at an evaluated point; `None` where its value is infinite.
+    pub(crate) fn jacobian_op_at(&self, ev: Evaluation) -> Option<JacobianOp<'_>> {
+        let sc = ev.sc?;
+        let x = &ev.x;
+        let table = &self.table;
+        if !ev.value.is_finite() || x.len() != self.dim() {
             return None;
         }
         let pat = &self.pat;
@@ -105,6 +140,25 @@ impl WeightProblem {
         let finite = op.val.iter().chain(&op.e).all(|a| a.iter().all(|c| c.is_finite()));
         op.sc = sc;
         finite.then_some(op)
+    }
+
+    /// Multiply-adds of one `(J^T J) v` product ([`JacobianOp::normal_apply`]), for choosing
+    /// between the dense and the matrix-free step: `A v` and `A^T u` (6 per entry of `A`), and
+    /// in `Resolved` mode `H^T u`, `H t` (6 per basis product) and the two band substitutions
+    /// (`6 n bw`).
+    pub(crate) fn product_cost(&self) -> usize {
+        let pat = &self.pat;
+        let per_row = match self.options.layout {
+            WeightLayout::Full => pat.nb,
+            WeightLayout::RankOne => pat.p + pat.q + 2,
+        };
+        let m = self.points.len();
+        let a = 6 * m * per_row;
+        if self.options.mode == WeightMode::Resolved {
+            a + 6 * m * pat.nb + 6 * pat.n() * pat.bw
+        } else {
+            a
+        }
     }
 }
 
@@ -170,6 +224,7 @@ impl JacobianOp<'_> {
 
     /// `J v`: `3 m` rows, x, y, z of each offset in turn (the data rows of
     /// [`super::Linearization::jacobian`]).
+    #[cfg(test)]
     pub(crate) fn apply(&mut self, v: &[f64]) -> Vec<f64> {
         let mut u = Vec::new();
         self.apply_a(v, &mut u);
@@ -179,6 +234,7 @@ impl JacobianOp<'_> {
     }
 
     /// `J^T w` for `3 m` data rows `w`.
+    #[cfg(test)]
     pub(crate) fn apply_t(&mut self, w: &[f64]) -> Vec<f64> {
         let mut u: Vec<[f64; 3]> = w.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
         self.project(&mut u);
@@ -204,6 +260,38 @@ impl JacobianOp<'_> {
         out
     }
 
+    /// `A^T A / m` in the band order of `G` (full layout only: there each variable is one
+    /// control point, and two share an offset only within `G`'s half-bandwidth), for a band
+    /// preconditioner; `None` in the rank-one layout.
+    pub(crate) fn ata_band(&self) -> Option<AtaBand> {
+        let p = self.problem;
+        if p.options.layout != WeightLayout::Full {
+            return None;
+        }
+        let pat = &p.pat;
+        let (n, bw) = (pat.n(), pat.bw);
+        let stride = bw + 1;
+        let mut pos_of_var = vec![0; n];
+        for (pos, &c) in pat.grid.iter().enumerate() {
+            pos_of_var[c] = pos;
+        }
+        let mut band = vec![0.0; n * stride];
+        let scale = 1.0 / self.m() as f64;
+        for k in 0..self.m() {
+            let (vars, vals) = (&self.var[self.ptr[k]..self.ptr[k + 1]], &self.val[self.ptr[k]..self.ptr[k + 1]]);
+            for (&va, a) in vars.iter().zip(vals) {
+                let pa = pos_of_var[va];
+                for (&vb, b) in vars.iter().zip(vals) {
+                    let pb = pos_of_var[vb];
+                    if pb <= pa {
+                        band[pa * stride + pb + bw - pa] += scale * (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+                    }
+                }
+            }
+        }
+        Some(AtaBand { band, n, bw, stride, pos_of_var })
+    }
+
     /// `diag(A^T A) / m`: an upper bound of `diag(J^T J)` (the projection only removes), for
     /// the damping's scaling and the Jacobi preconditioner.
     pub(crate) fn diag_ata(&self) -> Vec<f64> {
@@ -215,16 +303,47 @@ impl JacobianOp<'_> {
         d.iter_mut().for_each(|t| *t *= scale);
         d
     }
+}
 
-    /// Multiply-adds of one [`JacobianOp::normal_apply`], for choosing between the dense and
-    /// the matrix-free step.
-    pub(crate) fn product_cost(&self) -> usize {
-        let pat = &self.problem.pat;
-        let a = 6 * self.var.len();
-        if self.resolved {
-            a + 6 * self.m() * pat.nb + 6 * pat.n() * pat.bw
-        } else {
-            a
+/// `A^T A / m` as a band matrix in `G`'s order (see [`JacobianOp::ata_band`]).
+pub(crate) struct AtaBand {
+    band: Vec<f64>,
+    n: usize,
+    bw: usize,
+    stride: usize,
+    pos_of_var: Vec<usize>,
+}
+
+impl AtaBand {
+    /// The band Cholesky factor of `A^T A / m + diag(extra)` restricted to the variables with
+    /// `free[v]` (the others decoupled: identity rows), `None` if not positive definite.
+    pub(crate) fn factor(&self, free: &[bool], extra: &[f64]) -> Option<Vec<f64>> {
+        let (n, bw, stride) = (self.n, self.bw, self.stride);
+        let mut l = self.band.clone();
+        for (v, &pos) in self.pos_of_var.iter().enumerate() {
+            if free[v] {
+                l[pos * stride + bw] += extra[v];
+            } else {
+                l[pos * stride..pos * stride + bw].iter_mut().for_each(|t| *t = 0.0);
+                l[pos * stride + bw] = 1.0;
+                for r in pos + 1..(pos + bw + 1).min(n) {
+                    l[r * stride + pos + bw - r] = 0.0;
+                }
+            }
+        }
+        band_cholesky(&mut l, n, bw, stride).then_some(l)
+    }
+
+    /// `r <- M^{-1} r` (variables' order) with the factor `l` of [`AtaBand::factor`].
+    pub(crate) fn solve(&self, l: &[f64], r: &mut [f64], work: &mut Vec<[f64; 1]>) {
+        work.clear();
+        work.resize(self.n, [0.0]);
+        for (v, &pos) in self.pos_of_var.iter().enumerate() {
+            work[pos] = [r[v]];
+        }
+        band_solve(l, self.n, self.bw, self.stride, work);
+        for (v, &pos) in self.pos_of_var.iter().enumerate() {
+            r[v] = work[pos][0];
         }
     }
 }
