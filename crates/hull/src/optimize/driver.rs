@@ -224,7 +224,7 @@ pub fn optimize_weights(
             // unevenly sampled stations the foot points do (frigate 1.38 against 4.28). Both
             // run `LM_PROBE` iterations; only the lower goes on.
             let starts: Vec<&WeightProblem> = if foot_start { vec![&problem, &fitted] } else { vec![&problem] };
-            let probe = std::env::var("LMPROBE").ok().and_then(|v| v.parse().ok()).unwrap_or(LM_PROBE);
+            let probe = LM_PROBE;
             let (best, r) = lm::run_best_of(&starts, &lm_opts, probe, control);
             let n_starts = starts.len();
             if best == 1 {

@@ -98,8 +98,8 @@ impl Default for LmOptions {
             stall: (10, 1e-5),
             initial_damping: 1e-3,
             jacobian: JacobianKind::Kaufman,
-            cg_tolerance: 1e-2,
-            max_cg: 250,
+            cg_tolerance: 0.5,
+            max_cg: 8,
             matrix_free: None,
         }
     }
@@ -335,7 +335,14 @@ fn engine<'a>(
     let mut f = value(&z);
     let mut history = vec![f];
     if !f.is_finite() {
-        let r = OptimResult { x: z, value: f64::INFINITY, evaluations, iterations: 0, history, stop: StopReason::Converged };
+        let r = OptimResult {
+            x: z,
+            value: f64::INFINITY,
+            evaluations,
+            iterations: 0,
+            history,
+            stop: StopReason::Converged,
+        };
         return (r, opts.initial_damping);
     }
     let mut col_norm: Vec<f64> = model.scaling().iter().map(|t| t.sqrt()).collect();
@@ -450,10 +457,6 @@ fn engine<'a>(
             let fn_ = value(&zn);
             evaluations += 1;
             let actual = 0.5 * (f * f - fn_ * fn_);
-            if std::env::var_os("LMTRACE").is_some() {
-                let clamped = (0..n).filter(|&i| zn[i] != z[i] + full[i]).count();
-                eprintln!("it {iterations} f {f:e} descends {descends} clamped {clamped} rho {:.3} mu {mu:e} hn {hn:e}", actual / predicted);
-            }
             if fn_.is_finite() && actual > 0.0 {
                 if let Some(next) = normal(&zn) {
                     accepted = true;
@@ -628,6 +631,31 @@ mod tests {
         wild[1] = f64::NAN;
         let r = quiet(|c| polish(&p, &wild, &LmOptions { max_iterations: 3, ..LmOptions::default() }, c));
         assert!(r.value.is_finite() && r.x[0] <= p.upper()[0] && r.x[1].is_finite());
+    }
+
+    #[test]
+    fn the_best_of_two_starts_goes_on_from_where_its_probe_stopped() {
+        let o = series60_sample();
+        let out = fit(&o, (3, 3), (6, 12));
+        let a = problem(&o, &out, WeightMode::Resolved, WeightLayout::Full);
+        // The same weights at other parameters: every v moved a little.
+        let moved: Vec<(f64, f64)> = a.params().iter().map(|&(u, v)| (u, 0.98 * v + 0.01)).collect();
+        let b = a.with_params(&moved).expect("ok");
+        let opts = LmOptions::default();
+        let probe = 4;
+        let (best, r) = quiet(|c| run_best_of(&[&a, &b], &opts, probe, c));
+        let short = LmOptions { max_iterations: probe, ..opts };
+        let pa = quiet(|c| run(&a, &short, c));
+        let pb = quiet(|c| run(&b, &short, c));
+        // The winner is the lower after the probe, and the result never above its probe.
+        assert_eq!(best, usize::from(pb.value < pa.value));
+        assert!(r.value <= pa.value.min(pb.value));
+        assert_eq!(r.history[0], a.value(&a.start()));
+        assert!(r.history.windows(2).all(|w| w[1] <= w[0]), "{:?}", r.history);
+        assert_eq!(*r.history.last().expect("non-empty"), r.value);
+        assert!(r.iterations <= 2 * probe + opts.max_iterations);
+        // Deterministic.
+        assert_eq!(quiet(|c| run_best_of(&[&a, &b], &opts, probe, c)), (best, r));
     }
 
     #[test]

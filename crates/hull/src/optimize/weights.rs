@@ -42,7 +42,7 @@ use crate::{FitOutcome, HullError, Offsets};
 
 mod matvec;
 
-pub(crate) use matvec::{AtaBand, Evaluation, JacobianOp};
+pub(crate) use matvec::{Evaluation, JacobianOp};
 
 /// What happens to the control points when the weights move.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -1877,6 +1877,9 @@ mod tests {
                     let ne = p.normal_equations(&x).expect("regular");
                     let d = p.dim();
                     assert_eq!((ne.dim, ne.jtj.len(), ne.jtr.len()), (d, d * d, d));
+                    // The diagonal alone: the same sums, bit for bit.
+                    let diag = p.jtj_diagonal(&x).expect("regular");
+                    assert!((0..d).all(|i| diag[i] == ne.jtj[i * d + i]));
                     let diag = (0..d).map(|i| dot_norm(lin.column(i)).powi(2)).fold(0.0, f64::max);
                     let gscale = diag.sqrt() * dot_norm(&lin.residuals);
                     let mut worst = (0.0f64, 0.0f64);

@@ -15,7 +15,7 @@
 //! [`step_path`] picks the cheaper by an estimate of the multiply-adds of one iteration.
 
 use super::super::linalg::{dense_cholesky, dense_solve, dot};
-use super::super::weights::{AtaBand, JacobianOp, WeightLayout, WeightProblem};
+use super::super::weights::{JacobianOp, WeightLayout, WeightProblem};
 use super::super::Objective;
 use super::LmOptions;
 
@@ -66,8 +66,8 @@ impl Model for Dense {
         &self.diag
     }
     fn damped_step(&mut self, free: &[usize], mu: f64) -> Option<Vec<f64>> {
-        let (a, n, nf) = (&self.a, self.n, free.len());
-        let damp = damping(&self.diag, free, mu);
+        let (a, n, nf, diag) = (&self.a, self.n, free.len(), &self.diag);
+        let damp = damping(diag, free, mu);
         let (m, rhs) = (&mut self.m, &mut self.rhs);
         m.clear();
         m.resize(nf * nf, 0.0);
@@ -75,7 +75,7 @@ impl Model for Dense {
             for (c, &j) in free.iter().enumerate() {
                 m[r * nf + c] = a[i * n + j];
             }
-            m[r * nf + r] += damp(a[i * n + i]);
+            m[r * nf + r] += damp(diag[i]);
         }
         rhs.clear();
         rhs.extend(free.iter().map(|&i| -self.g[i]));
@@ -108,9 +108,6 @@ impl Model for Dense {
 pub(super) struct MatrixFree<'a> {
     problem: &'a WeightProblem,
     op: JacobianOp<'a>,
-    /// `A^T A / m` banded, for the preconditioner (full layout).
-    ata: Option<AtaBand>,
-    prior: Vec<f64>,
     g: Vec<f64>,
     diag: Vec<f64>,
     /// CG's relative residual `η` and iteration cap.
@@ -127,7 +124,13 @@ pub(super) struct MatrixFree<'a> {
 impl<'a> MatrixFree<'a> {
     /// The model at `x` from its Jacobian operator; CG stops at relative residual `tol` or
     /// after `max_cg` iterations. `None` if the gradient is not finite.
-    pub(super) fn new(problem: &'a WeightProblem, mut op: JacobianOp<'a>, x: &[f64], tol: f64, max_cg: usize) -> Option<Self> {
+    pub(super) fn new(
+        problem: &'a WeightProblem,
+        mut op: JacobianOp<'a>,
+        x: &[f64],
+        tol: f64,
+        max_cg: usize,
+    ) -> Option<Self> {
         let mut g = op.gradient();
         problem.prior_apply(x, &mut g);
         let mut diag = op.diag_ata();
@@ -135,14 +138,11 @@ impl<'a> MatrixFree<'a> {
         for (d, r) in diag.iter_mut().zip(&prior) {
             *d += r;
         }
+
         let d = g.len();
-        let ata = if std::env::var_os("LMBAND").is_some() { op.ata_band() } else { None };
-        let tol = std::env::var("LMTOL").ok().and_then(|v| v.parse().ok()).unwrap_or(tol);
         g.iter().all(|t| t.is_finite()).then(|| MatrixFree {
             problem,
             op,
-            ata,
-            prior,
             g,
             diag,
             tol,
@@ -173,32 +173,9 @@ impl Model for MatrixFree<'_> {
         let damp = damping(&self.diag, free, mu);
         let dd: Vec<f64> = free.iter().map(|&i| damp(self.diag[i])).collect();
         let precond: Vec<f64> = free.iter().zip(&dd).map(|(&i, &d)| 1.0 / (self.diag[i] + d)).collect();
-        // The band preconditioner A^T A / m + diag(R) + μ D on the free variables, where it
-        // can be formed; else Jacobi.
-        let mut mask = vec![false; self.g.len()];
-        let mut extra = self.prior.clone();
-        for (&i, &d) in free.iter().zip(&dd) {
-            mask[i] = true;
-            extra[i] += d;
-        }
-        let factor = if std::env::var_os("LMJACOBI").is_some() { None } else { self.ata.as_ref().and_then(|b| b.factor(&mask, &extra)) };
-        let mut work = Vec::new();
-        let mut wide = vec![0.0; self.g.len()];
-        let mut apply_m = |r: &[f64], z: &mut [f64]| match (&self.ata, &factor) {
-            (Some(b), Some(l)) => {
-                wide.iter_mut().for_each(|t| *t = 0.0);
-                for (&i, &ri) in free.iter().zip(r) {
-                    wide[i] = ri;
-                }
-                b.solve(l, &mut wide, &mut work);
-                for (zk, &i) in z.iter_mut().zip(free) {
-                    *zk = wide[i];
-                }
-            }
-            _ => {
-                for ((zk, &rk), &pk) in z.iter_mut().zip(r).zip(&precond) {
-                    *zk = rk * pk;
-                }
+        let apply_m = |r: &[f64], z: &mut [f64]| {
+            for ((zk, &rk), &pk) in z.iter_mut().zip(r).zip(&precond) {
+                *zk = rk * pk;
             }
         };
         // Preconditioned CG on K_FF h = -g_F, K = J^T J + R + μ D, from h = 0.
@@ -211,15 +188,13 @@ impl Model for MatrixFree<'_> {
         let mut rz = dot(&r, &zv);
         let mut q = vec![0.0; nf];
         self.cg_iterations = 0;
-        let max_cg: usize = std::env::var("LMMAXCG").ok().and_then(|v| v.parse().ok()).unwrap_or(self.max_cg);
+        let max_cg = self.max_cg;
         while self.cg_iterations < max_cg.min(nf.max(1)) && bnorm > 0.0 {
             self.full.iter_mut().for_each(|t| *t = 0.0);
             for (&i, &pi) in free.iter().zip(&p) {
                 self.full[i] = pi;
             }
-            // (J^T J + R) p, by fields (the preconditioner's closure holds `self.ata`).
-            self.op.normal_apply(&self.full, &mut self.out, &mut self.rows);
-            self.problem.prior_apply(&self.full, &mut self.out);
+            self.product();
             for (((qk, &i), &pk), &dk) in q.iter_mut().zip(free).zip(&p).zip(&dd) {
                 *qk = self.out[i] + dk * pk;
             }
@@ -248,9 +223,6 @@ impl Model for MatrixFree<'_> {
                 p[k] = zv[k] + beta * p[k];
             }
         }
-        if std::env::var_os("LMTRACE").is_some() {
-            eprintln!("cg {} nf {} mu {mu:e} res {:e}", self.cg_iterations, nf, dot(&r, &r).sqrt() / bnorm);
-        }
         if !h.iter().all(|t| t.is_finite()) {
             return None;
         }
@@ -274,13 +246,14 @@ pub(super) enum StepPath {
     MatrixFree,
 }
 
-/// CG iterations per step assumed by [`step_path`]'s estimate (measured: see lm.rs).
-const EXPECTED_CG: usize = 30;
+/// Products per matrix-free iteration assumed by [`step_path`]: [`LmOptions::max_cg`] CG
+/// iterations (the default cap, reached on the large tables), the gradient and the model's
+/// decrease.
+const EXTRA_PRODUCTS: usize = 2;
 
 /// The cheaper step for `problem`: forming and factoring the normal equations costs about
 /// `d n (bw + d / 3) + d^3 / 6` multiply-adds an iteration
-/// ([`WeightProblem::normal_equations`]), the matrix-free step about `EXPECTED_CG + 2`
-/// products. [`LmOptions::matrix_free`] overrides the choice.
+/// ([`WeightProblem::normal_equations`]), the matrix-free step about `max_cg + 2` products. [`LmOptions::matrix_free`] overrides the choice.
 pub(super) fn step_path(problem: &WeightProblem, opts: &LmOptions) -> StepPath {
     match opts.matrix_free {
         Some(true) => return StepPath::MatrixFree,
@@ -293,10 +266,88 @@ pub(super) fn step_path(problem: &WeightProblem, opts: &LmOptions) -> StepPath {
     let d = problem.dim();
     let (n, bw) = (problem.ctrl().0 * problem.ctrl().1, problem.bandwidth());
     let dense = d * n * (bw + d / 3) + d * d * d / 6;
-    let free = (EXPECTED_CG + 2) * problem.product_cost();
+    let free = (opts.max_cg + EXTRA_PRODUCTS) * problem.product_cost();
     if free < dense {
         StepPath::MatrixFree
     } else {
         StepPath::Dense
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optimize::weights::{WeightMode, WeightOptions};
+    use crate::{fit_offsets, series60_sample, FitConfig};
+
+    /// Both models at one point of a small problem (Series 60 sample, 6 x 12, 72 weights): the
+    /// same gradient and quadratic model, and CG solved to round-off gives the step of the
+    /// dense system with the matrix-free scaling.
+    #[test]
+    fn dense_and_matrix_free_models_agree_on_a_small_problem() {
+        let offsets = series60_sample();
+        let fit = fit_offsets(&offsets, &FitConfig { ctrl: Some((6, 12)), ..FitConfig::default() }).expect("fits");
+        for mode in [WeightMode::Resolved, WeightMode::Fixed] {
+            // No anchor: then J^T J is exactly A^T (I - H G^{-1} H^T) A / m on both sides.
+            let opts = WeightOptions { mode, regularization: 1e-3, anchor: 0.0, ..WeightOptions::default() };
+            let p = WeightProblem::from_fit(&fit, &offsets, opts).expect("shapes match");
+            let d = p.dim();
+            let x: Vec<f64> = (0..d).map(|i| 0.3 * ((i as f64) * 0.7).sin()).collect();
+            let ne = p.normal_equations(&x).expect("regular");
+            let mut dense = Dense::new(ne.jtj.clone(), ne.jtr.clone());
+            let op = p.jacobian_op(&x).expect("regular");
+            let mut mf = MatrixFree::new(&p, op, &x, 1e-13, 10 * d).expect("finite");
+            let gmax = ne.jtr.iter().map(|t| t.abs()).fold(0.0, f64::max);
+            let gerr = dense.gradient().iter().zip(mf.gradient()).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            // The same sums in another order (the projected term is round-off at the
+            // least-squares solution): 1e-9 of the largest component.
+            assert!(gerr <= 1e-9 * gmax, "{mode:?}: gradient {gerr:e} of {gmax:e}");
+            let h: Vec<f64> = (0..d).map(|i| 0.01 * ((i as f64) * 1.3).cos()).collect();
+            let (a, b) = (dense.decrease(&h), mf.decrease(&h));
+            assert!((a - b).abs() <= 1e-9 * a.abs().max(b.abs()), "{mode:?}: decrease {a:e} vs {b:e}");
+            // The matrix-free scaling bounds the dense one from above.
+            assert!(dense.scaling().iter().zip(mf.scaling()).all(|(a, b)| *a <= b * (1.0 + 1e-12)));
+            // Free: all but every fifth variable. CG minimises the damped quadratic
+            // q(h) = g^T h + h^T (J^T J + R + μ D) h / 2 on them: its minimum equals the dense
+            // solve's with the same scaling D (the well-conditioned measure: the steps
+            // themselves differ along the nearly flat directions by round-off / μ).
+            let free: Vec<usize> = (0..d).filter(|i| i % 5 != 0).collect();
+            let mu = 1e-3;
+            let step = mf.damped_step(&free, mu).expect("positive definite");
+            let mut same_d = Dense::new(ne.jtj.clone(), ne.jtr.clone());
+            same_d.diag = mf.scaling().to_vec();
+            let exact = same_d.damped_step(&free, mu).expect("positive definite");
+            let damp = damping(mf.scaling(), &free, mu);
+            let mut q = |h: &[f64]| {
+                let ds: f64 = free.iter().map(|&i| damp(mf.scaling()[i]) * h[i] * h[i]).sum();
+                -same_d.decrease(h) + 0.5 * ds
+            };
+            let (qm, qd) = (q(&step), q(&exact));
+            assert!(qd < 0.0 && (qm - qd).abs() <= 1e-9 * qd.abs(), "{mode:?}: q {qm:e} vs dense {qd:e}");
+            assert!((0..d).filter(|i| i % 5 == 0).all(|i| step[i] == 0.0));
+            // A truncated CG step (2 iterations) still descends.
+            let mut short = MatrixFree::new(&p, p.jacobian_op(&x).expect("regular"), &x, 1e-13, 2).expect("finite");
+            let hs = short.damped_step(&free, mu).expect("positive definite");
+            assert_eq!(short.cg_iterations, 2);
+            assert!(short.decrease(&hs) > 0.0);
+        }
+    }
+
+    #[test]
+    fn small_problems_take_the_dense_step_and_large_ones_the_matrix_free() {
+        let offsets = series60_sample();
+        let path = |ctrl: (usize, usize)| {
+            let fit = fit_offsets(&offsets, &FitConfig { ctrl: Some(ctrl), ..FitConfig::default() }).expect("fits");
+            let p = WeightProblem::from_fit(&fit, &offsets, WeightOptions::default()).expect("shapes match");
+            step_path(&p, &LmOptions::default())
+        };
+        // 5 x 8 = 40 weights: forming 40 x 40 is cheaper than 10 products; 8 x 25 = 200
+        // weights: the dense system costs ~40 times more than one product per CG iteration.
+        assert_eq!(path((5, 8)), StepPath::Dense);
+        assert_eq!(path((8, 25)), StepPath::MatrixFree);
+        let forced = LmOptions { matrix_free: Some(true), ..LmOptions::default() };
+        let fit = fit_offsets(&offsets, &FitConfig { ctrl: Some((5, 8)), ..FitConfig::default() }).expect("fits");
+        let p = WeightProblem::from_fit(&fit, &offsets, WeightOptions::default()).expect("shapes match");
+        assert_eq!(step_path(&p, &forced), StepPath::MatrixFree);
     }
 }

@@ -24,7 +24,7 @@
 //! `R` of the log-weights (see [`WeightProblem::prior_apply`]) is added by the caller's
 //! operator, not here.
 
-use super::{band_cholesky, band_solve, Scratch, WeightLayout, WeightMode, WeightProblem};
+use super::{band_solve, Scratch, WeightLayout, WeightMode, WeightProblem};
 use crate::optimize::Objective;
 
 /// One evaluation of a [`WeightProblem`]: the point, its value and the solved state.
@@ -66,6 +66,7 @@ pub(crate) struct JacobianOp<'a> {
 impl WeightProblem {
     /// Kaufman's Jacobian at `x` as an operator (see the module docs); `None` where the value
     /// is infinite.
+    #[cfg(test)]
     pub(crate) fn jacobian_op(&self, x: &[f64]) -> Option<JacobianOp<'_>> {
         self.jacobian_op_at(self.evaluate(x))
     }
@@ -260,38 +261,6 @@ impl JacobianOp<'_> {
         out
     }
 
-    /// `A^T A / m` in the band order of `G` (full layout only: there each variable is one
-    /// control point, and two share an offset only within `G`'s half-bandwidth), for a band
-    /// preconditioner; `None` in the rank-one layout.
-    pub(crate) fn ata_band(&self) -> Option<AtaBand> {
-        let p = self.problem;
-        if p.options.layout != WeightLayout::Full {
-            return None;
-        }
-        let pat = &p.pat;
-        let (n, bw) = (pat.n(), pat.bw);
-        let stride = bw + 1;
-        let mut pos_of_var = vec![0; n];
-        for (pos, &c) in pat.grid.iter().enumerate() {
-            pos_of_var[c] = pos;
-        }
-        let mut band = vec![0.0; n * stride];
-        let scale = 1.0 / self.m() as f64;
-        for k in 0..self.m() {
-            let (vars, vals) = (&self.var[self.ptr[k]..self.ptr[k + 1]], &self.val[self.ptr[k]..self.ptr[k + 1]]);
-            for (&va, a) in vars.iter().zip(vals) {
-                let pa = pos_of_var[va];
-                for (&vb, b) in vars.iter().zip(vals) {
-                    let pb = pos_of_var[vb];
-                    if pb <= pa {
-                        band[pa * stride + pb + bw - pa] += scale * (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-                    }
-                }
-            }
-        }
-        Some(AtaBand { band, n, bw, stride, pos_of_var })
-    }
-
     /// `diag(A^T A) / m`: an upper bound of `diag(J^T J)` (the projection only removes), for
     /// the damping's scaling and the Jacobi preconditioner.
     pub(crate) fn diag_ata(&self) -> Vec<f64> {
@@ -302,49 +271,6 @@ impl JacobianOp<'_> {
         let scale = 1.0 / self.m() as f64;
         d.iter_mut().for_each(|t| *t *= scale);
         d
-    }
-}
-
-/// `A^T A / m` as a band matrix in `G`'s order (see [`JacobianOp::ata_band`]).
-pub(crate) struct AtaBand {
-    band: Vec<f64>,
-    n: usize,
-    bw: usize,
-    stride: usize,
-    pos_of_var: Vec<usize>,
-}
-
-impl AtaBand {
-    /// The band Cholesky factor of `A^T A / m + diag(extra)` restricted to the variables with
-    /// `free[v]` (the others decoupled: identity rows), `None` if not positive definite.
-    pub(crate) fn factor(&self, free: &[bool], extra: &[f64]) -> Option<Vec<f64>> {
-        let (n, bw, stride) = (self.n, self.bw, self.stride);
-        let mut l = self.band.clone();
-        for (v, &pos) in self.pos_of_var.iter().enumerate() {
-            if free[v] {
-                l[pos * stride + bw] += extra[v];
-            } else {
-                l[pos * stride..pos * stride + bw].iter_mut().for_each(|t| *t = 0.0);
-                l[pos * stride + bw] = 1.0;
-                for r in pos + 1..(pos + bw + 1).min(n) {
-                    l[r * stride + pos + bw - r] = 0.0;
-                }
-            }
-        }
-        band_cholesky(&mut l, n, bw, stride).then_some(l)
-    }
-
-    /// `r <- M^{-1} r` (variables' order) with the factor `l` of [`AtaBand::factor`].
-    pub(crate) fn solve(&self, l: &[f64], r: &mut [f64], work: &mut Vec<[f64; 1]>) {
-        work.clear();
-        work.resize(self.n, [0.0]);
-        for (v, &pos) in self.pos_of_var.iter().enumerate() {
-            work[pos] = [r[v]];
-        }
-        band_solve(l, self.n, self.bw, self.stride, work);
-        for (v, &pos) in self.pos_of_var.iter().enumerate() {
-            r[v] = work[pos][0];
-        }
     }
 }
 
