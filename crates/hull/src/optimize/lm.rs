@@ -36,6 +36,15 @@
 //! count at 6 x 19: its long middle phase (ϱ about 0.5 with `μ` below `1e-4`, weights reaching
 //! their bounds one by one) is the functional's.
 //!
+//! Many weights: where forming and factoring the normal equations would cost 4x more than
+//! the matrix-free step (`lm/model.rs`: preconditioned conjugate gradients on products with
+//! Kaufman's `J^T J`, at most [`LmOptions::max_cg`] of them, relative residual
+//! [`LmOptions::cg_tolerance`]), that is used instead; the evaluation of an accepted point is
+//! reused for its model. On the tables of `testdata/` (the README's table, `tools/lm_speed.sh`)
+//! this took LM from 60x-970x the plain approximation's time to 7x-13x on 176 to 780 weights,
+//! at a higher final RMS where the old runs went furthest (WPB 0.37 mm against 0.027).
+//! [`run_best_of`] runs several starts a few iterations each and only the lowest on.
+//!
 //! With [`run_with_parameters`] the unknowns are the log-weights and every offset's `u_k` (and
 //! `v_k`), the control points still eliminated by least squares: this recovers exactly
 //! rational shapes (circular sections) to round-off, which weights at fixed parameters cannot.
