@@ -221,31 +221,21 @@ pub fn optimize_weights(
             (r, s)
         }
         Algorithm::Lm => {
-            let mut r = lm::run(&problem, &lm_opts, control);
-            if foot_start && !control.stopped() {
-                // LM also from the skinning's own parameters, keeping the lower objective (an
-                // upper bound of the true RMS either way, so the start's guarantee stands): on
-                // grids of stations and waterlines the structured parameters let the weights
-                // go further (trawler 1.77 mm true RMS against 2.67 from the foot points), on
-                // unevenly sampled stations the foot points do (frigate 1.38 against 4.28).
-                // The history goes on with the second run's values as a best so far over both.
-                let other = lm::run(&fitted, &lm_opts, control);
-                let mut best = r.value;
-                r.history.extend(other.history.iter().skip(1).map(|&v| {
-                    best = best.min(v);
-                    best
-                }));
-                r.evaluations += other.evaluations;
-                r.iterations += other.iterations;
-                if other.value < r.value {
-                    r.x = other.x;
-                    r.value = other.value;
-                    r.stop = other.stop;
-                    problem = fitted.clone();
-                    start_parameters = "fitted";
-                }
+            // LM also from the skinning's own parameters, keeping the lower objective (an
+            // upper bound of the true RMS either way, so the start's guarantee stands): on
+            // grids of stations and waterlines the structured parameters let the weights go
+            // further (trawler 1.77 mm true RMS against 2.67 from the foot points), on
+            // unevenly sampled stations the foot points do (frigate 1.38 against 4.28). Both
+            // run `LM_PROBE` iterations; only the lower goes on.
+            let starts: Vec<&WeightProblem> = if foot_start { vec![&problem, &fitted] } else { vec![&problem] };
+            let probe = LM_PROBE;
+            let (best, r) = lm::run_best_of(&starts, &lm_opts, probe, control);
+            let n_starts = starts.len();
+            if best == 1 {
+                problem = fitted.clone();
+                start_parameters = "fitted";
             }
-            (r, serde_json::json!({ "lm": lm_settings(&lm_opts), "starts": if foot_start { 2 } else { 1 } }))
+            (r, serde_json::json!({ "lm": lm_settings(&lm_opts), "starts": n_starts, "probe_iterations": probe }))
         }
     };
     // Never worse than the start (the algorithms guarantee it; this guards the contract).
@@ -302,6 +292,9 @@ pub fn optimize_weights(
     };
     Ok(Optimized { surface, params: regroup(offsets, &params), report })
 }
+
+/// Iterations each LM start runs before only the lower goes on (see [`lm::run_best_of`]).
+const LM_PROBE: usize = 10;
 
 fn lm_settings(o: &LmOptions) -> serde_json::Value {
     serde_json::json!({

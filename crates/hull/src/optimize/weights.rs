@@ -44,6 +44,10 @@ use super::Objective;
 use crate::{FitOutcome, HullError, Offsets};
 pub use within::ControlBox;
 
+mod matvec;
+
+pub(crate) use matvec::{Evaluation, JacobianOp};
+
 /// What happens to the control points when the weights move.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum WeightMode {
@@ -678,11 +682,11 @@ impl WeightProblem {
         let x0 = self.start();
         let d = x0.len();
         let f0 = self.value(&x0);
-        let Some(ne) = self.normal_equations(&x0) else {
+        let Some(diag) = self.jtj_diagonal(&x0) else {
             return (lo, hi);
         };
         for i in 0..d {
-            let h = k * f0 / (ne.jtj[i * d + i].sqrt() * (d as f64).sqrt());
+            let h = k * f0 / (diag[i].sqrt() * (d as f64).sqrt());
             if h.is_finite() && h > 0.0 {
                 lo[i] = lo[i].max(x0[i] - h);
                 hi[i] = hi[i].min(x0[i] + h);
@@ -897,6 +901,19 @@ impl WeightProblem {
     /// `(p+1) + (q+1)` entries there).
     /// In `Fixed` mode `m J^T J = A^T A`.
     pub fn normal_equations(&self, x: &[f64]) -> Option<NormalEquations> {
+        let (jtj, jtr) = self.gauss_newton(x, true)?;
+        Some(NormalEquations { jtj, jtr, dim: x.len() })
+    }
+
+    /// The diagonal of `J^T J` (with the prior's) of [`WeightProblem::normal_equations`], the
+    /// same sums without the off-diagonal products: about `d n bw` multiply-adds instead of
+    /// `d n (bw + d / 3)`. `None` where the value is infinite.
+    pub(crate) fn jtj_diagonal(&self, x: &[f64]) -> Option<Vec<f64>> {
+        self.gauss_newton(x, false).map(|(diag, _)| diag)
+    }
+
+    /// `(J^T J, J^T r)` (`full`: row-major `d x d`) or `(diag(J^T J), J^T r)`.
+    fn gauss_newton(&self, x: &[f64], full: bool) -> Option<(Vec<f64>, Vec<f64>)> {
         let mut sc = Scratch::default();
         let table = &self.table;
         if !self.solve(table, x, &mut sc) {
@@ -909,7 +926,7 @@ impl WeightProblem {
         let resolved = self.options.mode == WeightMode::Resolved;
         let pts = self.derivative_points(&sc);
         // A^T A (lower triangle), A^T e, Z_v (d blocks of n) from s_v on, H^T e.
-        let mut ata = vec![0.0; d * d];
+        let mut ata = vec![0.0; if full { d * d } else { d }];
         let mut ate = vec![0.0; d];
         let mut z = if resolved { vec![[0.0f64; 3]; d * n] } else { Vec::new() };
         let mut start = vec![n; d];
@@ -955,8 +972,10 @@ impl WeightProblem {
             for (i, &(v, av)) in row.iter().enumerate() {
                 ate[v] += av[0] * e[0] + av[1] * e[1] + av[2] * e[2];
                 for &(w, aw) in &row[..=i] {
-                    let val = av[0] * aw[0] + av[1] * aw[1] + av[2] * aw[2];
-                    ata[v.max(w) * d + v.min(w)] += val;
+                    if full || w == v {
+                        let val = av[0] * aw[0] + av[1] * aw[1] + av[2] * aw[2];
+                        ata[if full { v.max(w) * d + v.min(w) } else { v }] += val;
+                    }
                 }
                 if resolved {
                     start[v] = start[v].min(first);
@@ -971,7 +990,6 @@ impl WeightProblem {
             }
         }
         let scale = 1.0 / m as f64;
-        let reg = self.rho * self.rho / d as f64;
         let mut jtj = ata;
         let mut jtr = ate;
         if resolved {
@@ -1005,12 +1023,22 @@ impl WeightProblem {
                 let wv = z[v * n..(v + 1) * n].as_flattened();
                 let sv = start[v].min(n);
                 jtr[v] -= dot(&wv[3 * sv..], &t[3 * sv..]);
-                for w in 0..=v {
+                for w in if full { 0 } else { v }..=v {
                     let s0 = 3 * sv.max(start[w]).min(n);
                     let ww = dot(&wv[s0..], &z[w * n..(w + 1) * n].as_flattened()[s0..]);
-                    jtj[v * d + w] -= ww;
+                    jtj[if full { v * d + w } else { v }] -= ww;
                 }
             }
+        }
+        if !full {
+            let prior = self.prior_diag();
+            for v in 0..d {
+                jtj[v] = jtj[v] * scale + prior[v];
+                jtr[v] *= scale;
+            }
+            self.prior_apply(x, &mut jtr);
+            let finite = jtj.iter().chain(&jtr).all(|t| t.is_finite());
+            return finite.then_some((jtj, jtr));
         }
         for v in 0..d {
             for w in 0..v {
@@ -1019,8 +1047,23 @@ impl WeightProblem {
                 jtj[v * d + w] = lower;
                 jtj[w * d + v] = lower;
             }
-            jtj[v * d + v] = jtj[v * d + v] * scale + reg;
-            jtr[v] = jtr[v] * scale + reg * x[v];
+            jtj[v * d + v] *= scale;
+            jtr[v] *= scale;
+        }
+        // The prior: J^T J += R (its diagonal today; a column at a time in general), J^T r += R x.
+        self.prior_apply(x, &mut jtr);
+        let mut e = vec![0.0; d];
+        let mut col = vec![0.0; d];
+        for v in 0..d {
+            e[v] = 1.0;
+            col.iter_mut().for_each(|t| *t = 0.0);
+            self.prior_apply(&e, &mut col);
+            e[v] = 0.0;
+            for (w, c) in col.iter().enumerate() {
+                if *c != 0.0 {
+                    jtj[w * d + v] += c;
+                }
+            }
         }
         if self.smooth > 0.0 {
             // The smoothing rows' J^T J = (σ^2 / e) L and J^T r = (σ^2 / e) L θ.
@@ -1038,7 +1081,24 @@ impl WeightProblem {
         if !(jtj.iter().all(|t| t.is_finite()) && jtr.iter().all(|t| t.is_finite())) {
             return None;
         }
-        Some(NormalEquations { jtj, jtr, dim: d })
+        Some((jtj, jtr))
+    }
+
+    /// `out += R v`: the prior of the log-weights in the Gauss-Newton normal equations
+    /// (`J^T J + R`, gradient `J^T r + R θ`), the Hessian of the penalty of the module docs
+    /// halved: `R = (ρ^2 / d) I`. Every solver's use of the prior goes through this and
+    /// [`WeightProblem::prior_diag`].
+    pub(crate) fn prior_apply(&self, v: &[f64], out: &mut [f64]) {
+        let reg = self.rho * self.rho / self.dim() as f64;
+        for (o, t) in out.iter_mut().zip(v) {
+            *o += reg * t;
+        }
+    }
+
+    /// The diagonal of `R` (see [`WeightProblem::prior_apply`]), for preconditioners.
+    pub(crate) fn prior_diag(&self) -> Vec<f64> {
+        let d = self.dim();
+        vec![self.rho * self.rho / d as f64; d]
     }
 
     // ----- internals -----
@@ -1734,14 +1794,14 @@ mod tests {
         (fit_offsets(&offsets, &cfg).expect("sample fits"), offsets)
     }
 
-    fn problem(ctrl: (usize, usize), mode: WeightMode, layout: WeightLayout, reg: f64) -> WeightProblem {
+    pub(super) fn problem(ctrl: (usize, usize), mode: WeightMode, layout: WeightLayout, reg: f64) -> WeightProblem {
         let (fit, offsets) = sample_fit(ctrl);
         let opts = WeightOptions { mode, layout, regularization: reg, ..WeightOptions::default() };
         WeightProblem::from_fit(&fit, &offsets, opts).expect("shapes match")
     }
 
     /// Deterministic pseudo-random numbers in [-0.5, 0.5).
-    fn noise(seed: &mut u64) -> f64 {
+    pub(super) fn noise(seed: &mut u64) -> f64 {
         *seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         (*seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
     }
@@ -2123,6 +2183,9 @@ mod tests {
                     let ne = p.normal_equations(&x).expect("regular");
                     let d = p.dim();
                     assert_eq!((ne.dim, ne.jtj.len(), ne.jtr.len()), (d, d * d, d));
+                    // The diagonal alone: the same sums, bit for bit.
+                    let diag = p.jtj_diagonal(&x).expect("regular");
+                    assert!((0..d).all(|i| diag[i] == ne.jtj[i * d + i]));
                     let diag = (0..d).map(|i| dot_norm(lin.column(i)).powi(2)).fold(0.0, f64::max);
                     let gscale = diag.sqrt() * dot_norm(&lin.residuals);
                     let mut worst = (0.0f64, 0.0f64);

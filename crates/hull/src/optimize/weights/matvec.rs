@@ -1,0 +1,348 @@
+//! Kaufman's Jacobian of the variable-projection residual as an operator: products `J v`,
+//! `J^T w` and `(J^T J) v` without forming `J` or `J^T J`, for a matrix-free
+//! Levenberg-Marquardt step (conjugate gradients) on problems with many weights.
+//!
+//! With `A` the derivative of the residuals at fixed control points (`3 m x d`, sparse: offset
+//! `k`'s row block has one entry `R_kc (P_c - S_k)` per control point `c` of its support,
+//! summed into `(p+1) + (q+1)` variables in the rank-one layout), `H` the `m x n` matrix
+//! `h_kc = B_kc / W_k` acting on each coordinate, and `G = H^T H` (+ the anchor ridge) with the
+//! band Cholesky factor `G = L L^T` that the evaluation made, Kaufman's Jacobian is
+//! (Kaufman 1975; see [`WeightProblem::normal_equations`])
+//!
+//! `J = (I - H G^{-1} H^T) A / sqrt(m)` (`Resolved` mode), `J = A / sqrt(m)` (`Fixed`),
+//!
+//! and the normal matrix the dense path forms is `m J^T J = A^T (I - H G^{-1} H^T) A`
+//! (one projection: the projector is idempotent when `G = H^T H`, and with the anchor this is
+//! the same `O(anchor)` approximation as `normal_equations`). So
+//!
+//! * `J v`: `u = A v` (`3 m (p+1)(q+1)` multiply-adds), `t = H^T u`, `t <- G^{-1} t` (two band
+//!   substitutions, `6 n bw`), `u <- u - H t`;
+//! * `J^T w`: the same projection of `w`, then `A^T`;
+//! * `(J^T J) v = A^T (I - H G^{-1} H^T) A v / m`: one projection,
+//!
+//! each `O(m (p+1)(q+1) + n bw)`, against `O(m d^2)` for the dense normal equations. The prior
+//! `R` of the log-weights (see [`WeightProblem::prior_apply`]) is added by the caller's
+//! operator, not here.
+
+use super::{band_solve, Scratch, WeightLayout, WeightMode, WeightProblem};
+use crate::optimize::Objective;
+
+/// One evaluation of a [`WeightProblem`]: the point, its value and the solved state.
+pub(crate) struct Evaluation {
+    x: Vec<f64>,
+    value: f64,
+    sc: Option<Scratch>,
+}
+
+impl Evaluation {
+    /// The point evaluated.
+    pub(crate) fn x(&self) -> &[f64] {
+        &self.x
+    }
+    /// Its value (`+inf` where infeasible).
+    pub(crate) fn value(&self) -> f64 {
+        self.value
+    }
+}
+
+/// Kaufman's Jacobian at one point of a [`WeightProblem`] (its own parameters), with the
+/// evaluation's factor kept for the projections. Build with [`WeightProblem::jacobian_op`].
+pub(crate) struct JacobianOp<'a> {
+    problem: &'a WeightProblem,
+    sc: Scratch,
+    /// Offset `k`'s row block of `A`: entries `ptr[k] .. ptr[k+1]` of `var` and `val`.
+    ptr: Vec<usize>,
+    var: Vec<usize>,
+    val: Vec<[f64; 3]>,
+    /// `h_kl = B_kl / W_k`, `(p+1)(q+1)` per offset.
+    h: Vec<f64>,
+    /// `e_k = S_k - Q_k`.
+    e: Vec<[f64; 3]>,
+    resolved: bool,
+    /// Scratch of the projection, `n` homogeneous rows.
+    t: Vec<[f64; 3]>,
+}
+
+impl WeightProblem {
+    /// Kaufman's Jacobian at `x` as an operator (see the module docs); `None` where the value
+    /// is infinite.
+    #[cfg(test)]
+    pub(crate) fn jacobian_op(&self, x: &[f64]) -> Option<JacobianOp<'_>> {
+        self.jacobian_op_at(self.evaluate(x))
+    }
+
+    /// The value at `x`, bit-identical to [`Objective::value`], with the solved state kept
+    /// for [`WeightProblem::jacobian_op_at`] (so an accepted trial point is not solved twice).
+    pub(crate) fn evaluate(&self, x: &[f64]) -> Evaluation {
+        let mut sc = Scratch::default();
+        let table = &self.table;
+        let solved = self.solve(table, x, &mut sc);
+        let value = if solved { self.value_squared(table, x, &sc).sqrt() } else { f64::INFINITY };
+        let value = if value.is_finite() { value } else { f64::INFINITY };
+        Evaluation { x: x.to_vec(), value, sc: solved.then_some(sc) }
+    }
+
+    /// Kaufman's Jacobian at an evaluated point; `None` where its value is infinite.
+    pub(crate) fn jacobian_op_at(&self, ev: Evaluation) -> Option<JacobianOp<'_>> {
+        let sc = ev.sc?;
+        let x = &ev.x;
+        let table = &self.table;
+        if !ev.value.is_finite() || x.len() != self.dim() {
+            return None;
+        }
+        let pat = &self.pat;
+        let nb = pat.nb;
+        let m = table.first.len();
+        let pts: Vec<[f64; 3]> = sc.y.iter().zip(&sc.w).map(|(y, &w)| [y[0] / w, y[1] / w, y[2] / w]).collect();
+        let mut op = JacobianOp {
+            problem: self,
+            ptr: Vec::with_capacity(m + 1),
+            var: Vec::with_capacity(m * nb),
+            val: Vec::with_capacity(m * nb),
+            h: Vec::with_capacity(m * nb),
+            e: Vec::with_capacity(m),
+            resolved: self.options.mode == WeightMode::Resolved,
+            t: vec![[0.0; 3]; pat.n()],
+            sc: Scratch::default(),
+        };
+        op.ptr.push(0);
+        for k in 0..m {
+            let first = table.first[k];
+            let s = sc.s[k];
+            let sp = self.point_of(table, &sc, k);
+            let qk = self.points[k];
+            op.e.push([sp[0] - qk[0], sp[1] - qk[1], sp[2] - qk[2]]);
+            let row0 = op.var.len();
+            for (&o, &bl) in pat.off.iter().zip(&table.vals[k * nb..(k + 1) * nb]) {
+                let hl = bl * s;
+                op.h.push(hl);
+                let pos = first + o;
+                let r_kc = hl * sc.w[pos];
+                let pc = pts[pos];
+                let al = [r_kc * (pc[0] - sp[0]), r_kc * (pc[1] - sp[1]), r_kc * (pc[2] - sp[2])];
+                let (vars, nv) = self.vars_of(pos);
+                for &v in &vars[..nv] {
+                    match op.var[row0..].iter().position(|&w| w == v) {
+                        Some(i) => {
+                            let t = &mut op.val[row0 + i];
+                            t[0] += al[0];
+                            t[1] += al[1];
+                            t[2] += al[2];
+                        }
+                        None => {
+                            op.var.push(v);
+                            op.val.push(al);
+                        }
+                    }
+                }
+            }
+            op.ptr.push(op.var.len());
+        }
+        let finite = op.val.iter().chain(&op.e).all(|a| a.iter().all(|c| c.is_finite()));
+        op.sc = sc;
+        finite.then_some(op)
+    }
+
+    /// Multiply-adds of one `(J^T J) v` product ([`JacobianOp::normal_apply`]), for choosing
+    /// between the dense and the matrix-free step: `A v` and `A^T u` (6 per entry of `A`), and
+    /// in `Resolved` mode `H^T u`, `H t` (6 per basis product) and the two band substitutions
+    /// (`6 n bw`).
+    pub(crate) fn product_cost(&self) -> usize {
+        let pat = &self.pat;
+        let per_row = match self.options.layout {
+            WeightLayout::Full => pat.nb,
+            WeightLayout::RankOne => pat.p + pat.q + 2,
+        };
+        let m = self.points.len();
+        let a = 6 * m * per_row;
+        if self.options.mode == WeightMode::Resolved {
+            a + 6 * m * pat.nb + 6 * pat.n() * pat.bw
+        } else {
+            a
+        }
+    }
+}
+
+impl JacobianOp<'_> {
+    /// Number of offsets `m`.
+    fn m(&self) -> usize {
+        self.e.len()
+    }
+
+    /// `u <- u - H G^{-1} H^T u` (`Resolved` mode; nothing in `Fixed` mode).
+    fn project(&mut self, u: &mut [[f64; 3]]) {
+        if !self.resolved {
+            return;
+        }
+        let p = self.problem;
+        let (pat, table) = (&p.pat, &p.table);
+        let nb = pat.nb;
+        self.t.iter_mut().for_each(|t| *t = [0.0; 3]);
+        for (k, uk) in u.iter().enumerate() {
+            let t = &mut self.t[table.first[k]..];
+            for (&o, &hl) in pat.off.iter().zip(&self.h[k * nb..(k + 1) * nb]) {
+                let to = &mut t[o];
+                to[0] += hl * uk[0];
+                to[1] += hl * uk[1];
+                to[2] += hl * uk[2];
+            }
+        }
+        band_solve(&self.sc.band, pat.n(), pat.bw, pat.stride, &mut self.t);
+        for (k, uk) in u.iter_mut().enumerate() {
+            let t = &self.t[table.first[k]..];
+            for (&o, &hl) in pat.off.iter().zip(&self.h[k * nb..(k + 1) * nb]) {
+                let to = t[o];
+                uk[0] -= hl * to[0];
+                uk[1] -= hl * to[1];
+                uk[2] -= hl * to[2];
+            }
+        }
+    }
+
+    /// `u = A v` (unscaled).
+    fn apply_a(&self, v: &[f64], u: &mut Vec<[f64; 3]>) {
+        u.clear();
+        u.extend((0..self.m()).map(|k| {
+            let mut acc = [0.0; 3];
+            for (&var, a) in self.var[self.ptr[k]..self.ptr[k + 1]].iter().zip(&self.val[self.ptr[k]..]) {
+                let x = v[var];
+                acc[0] += a[0] * x;
+                acc[1] += a[1] * x;
+                acc[2] += a[2] * x;
+            }
+            acc
+        }));
+    }
+
+    /// `out += c A^T u`.
+    fn add_at(&self, u: &[[f64; 3]], c: f64, out: &mut [f64]) {
+        for (k, uk) in u.iter().enumerate() {
+            for (&var, a) in self.var[self.ptr[k]..self.ptr[k + 1]].iter().zip(&self.val[self.ptr[k]..]) {
+                out[var] += c * (a[0] * uk[0] + a[1] * uk[1] + a[2] * uk[2]);
+            }
+        }
+    }
+
+    /// `J v`: `3 m` rows, x, y, z of each offset in turn (the data rows of
+    /// [`super::Linearization::jacobian`]).
+    #[cfg(test)]
+    pub(crate) fn apply(&mut self, v: &[f64]) -> Vec<f64> {
+        let mut u = Vec::new();
+        self.apply_a(v, &mut u);
+        self.project(&mut u);
+        let scale = 1.0 / (self.m() as f64).sqrt();
+        u.iter().flat_map(|r| r.map(|c| c * scale)).collect()
+    }
+
+    /// `J^T w` for `3 m` data rows `w`.
+    #[cfg(test)]
+    pub(crate) fn apply_t(&mut self, w: &[f64]) -> Vec<f64> {
+        let mut u: Vec<[f64; 3]> = w.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        self.project(&mut u);
+        let mut out = vec![0.0; self.problem.dim()];
+        self.add_at(&u, 1.0 / (self.m() as f64).sqrt(), &mut out);
+        out
+    }
+
+    /// `out = (J^T J) v` as the dense path forms it: `A^T (I - H G^{-1} H^T) A v / m`.
+    pub(crate) fn normal_apply(&mut self, v: &[f64], out: &mut [f64], u: &mut Vec<[f64; 3]>) {
+        self.apply_a(v, u);
+        self.project(u);
+        out.iter_mut().for_each(|t| *t = 0.0);
+        self.add_at(u, 1.0 / self.m() as f64, out);
+    }
+
+    /// `J^T r` of the data rows: `A^T (I - H G^{-1} H^T) e / m`.
+    pub(crate) fn gradient(&mut self) -> Vec<f64> {
+        let mut u = self.e.clone();
+        self.project(&mut u);
+        let mut out = vec![0.0; self.problem.dim()];
+        self.add_at(&u, 1.0 / self.m() as f64, &mut out);
+        out
+    }
+
+    /// `diag(A^T A) / m`: an upper bound of `diag(J^T J)` (the projection only removes), for
+    /// the damping's scaling and the Jacobi preconditioner.
+    pub(crate) fn diag_ata(&self) -> Vec<f64> {
+        let mut d = vec![0.0; self.problem.dim()];
+        for (&var, a) in self.var.iter().zip(&self.val) {
+            d[var] += a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+        }
+        let scale = 1.0 / self.m() as f64;
+        d.iter_mut().for_each(|t| *t *= scale);
+        d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::{noise, problem};
+    use super::super::{JacobianKind, WeightLayout, WeightMode};
+    use crate::optimize::linalg::dot;
+    use crate::optimize::Objective;
+
+    #[test]
+    fn products_equal_the_dense_jacobians() {
+        let mut seed = 17;
+        // (8, 5) is factored u-major, (6, 12) v-major; both layouts and modes.
+        for ctrl in [(8, 5), (6, 12)] {
+            for layout in [WeightLayout::Full, WeightLayout::RankOne] {
+                for mode in [WeightMode::Fixed, WeightMode::Resolved] {
+                    let p = problem(ctrl, mode, layout, 1e-3);
+                    let d = p.dim();
+                    let x: Vec<f64> = (0..d).map(|_| 0.8 * noise(&mut seed)).collect();
+                    let lin = p.residuals_and_jacobian(&x, JacobianKind::Kaufman).expect("regular");
+                    let ne = p.normal_equations(&x).expect("regular");
+                    let mut op = p.jacobian_op(&x).expect("regular");
+                    let rows = 3 * p.num_points();
+                    let v: Vec<f64> = (0..d).map(|_| noise(&mut seed)).collect();
+                    let w: Vec<f64> = (0..rows).map(|_| noise(&mut seed)).collect();
+                    // Dense references: J v, J^T w from the columns (data rows only).
+                    let jv: Vec<f64> = (0..rows).map(|r| (0..d).map(|c| lin.column(c)[r] * v[c]).sum()).collect();
+                    let jtw: Vec<f64> = (0..d).map(|c| dot(&lin.column(c)[..rows], &w)).collect();
+                    let scale_v = jv.iter().map(|t| t.abs()).fold(0.0, f64::max);
+                    let scale_w = jtw.iter().map(|t| t.abs()).fold(0.0, f64::max);
+                    let op_jv = op.apply(&v);
+                    let op_jtw = op.apply_t(&w);
+                    // The same sums in another order, through the same factor: round-off
+                    // amplified by cond(G) (<~ 1e4 here); with the anchor's ridge the dense
+                    // J carries the projector twice where the product has it once, an O(1e-9)
+                    // relative difference that only matters for J^T J (compared below with
+                    // the dense normal equations, which apply it once too).
+                    let err_v = jv.iter().zip(&op_jv).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+                    let err_w = jtw.iter().zip(&op_jtw).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+                    assert!(err_v <= 1e-11 * scale_v, "{ctrl:?} {layout:?} {mode:?}: J v {err_v:e} of {scale_v:e}");
+                    assert!(err_w <= 1e-11 * scale_w, "{ctrl:?} {layout:?} {mode:?}: J^T w {err_w:e} of {scale_w:e}");
+                    // (J^T J) v and J^T r against the dense normal equations (their prior
+                    // diagonal removed: the operator leaves it to the caller).
+                    let prior = p.prior_diag();
+                    let mut out = vec![0.0; d];
+                    op.normal_apply(&v, &mut out, &mut Vec::new());
+                    let dense: Vec<f64> =
+                        (0..d).map(|i| dot(&ne.jtj[i * d..(i + 1) * d], &v) - prior[i] * v[i]).collect();
+                    let sn = dense.iter().map(|t| t.abs()).fold(0.0, f64::max);
+                    let en = dense.iter().zip(&out).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+                    assert!(en <= 1e-11 * sn, "{ctrl:?} {layout:?} {mode:?}: J^T J v {en:e} of {sn:e}");
+                    let g = op.gradient();
+                    let gd: Vec<f64> = (0..d).map(|i| ne.jtr[i] - prior[i] * x[i]).collect();
+                    let sg = gd.iter().map(|t| t.abs()).fold(0.0, f64::max);
+                    let eg = gd.iter().zip(&g).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+                    assert!(eg <= 1e-9 * sg, "{ctrl:?} {layout:?} {mode:?}: J^T r {eg:e} of {sg:e}");
+                    // diag(A^T A) / m bounds diag(J^T J) from above.
+                    let da = op.diag_ata();
+                    for i in 0..d {
+                        let jj = ne.jtj[i * d + i] - prior[i];
+                        assert!(jj <= da[i] * (1.0 + 1e-12), "{ctrl:?} {layout:?} {mode:?}: {i}: {jj} > {}", da[i]);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_infeasible_point_gives_no_operator() {
+        let p = problem((6, 12), WeightMode::Resolved, WeightLayout::Full, 0.0);
+        assert!(p.jacobian_op(&[f64::NAN; 72]).is_none());
+        assert!(p.jacobian_op(&[0.0; 3]).is_none());
+    }
+}

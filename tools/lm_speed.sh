@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# LM's cost against the plain approximation's, per table in testdata/ (issue 11, item 5: LM
+# within 15x the approximation of the same table, measured in the same run).
+#
+#   tools/lm_speed.sh                    # every table; about 1 min
+#   BEFORE=/path/to/old/hullskin tools/lm_speed.sh   # adds the old binary's LM, same run
+#   tools/lm_speed.sh testdata/matlab_yacht.csv ...  # some tables
+#
+# For each table: weights d (full grid: the control points), offsets m, the time column of
+# `hullskin fit` (fit plus error measurement, the summary's `time`) for the plain
+# approximation (best of 3, interleaved with the LM runs) and for `--method lm` (best of 2),
+# their ratio, LM's true RMS; with BEFORE, the old binary's LM time and RMS too. Prints a
+# Markdown table. Needs jq. Times depend on the machine and its load.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+cargo build --release -q -p hullskin
+bin=target/release/hullskin
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+if [ $# -gt 0 ]; then tables=("$@"); else tables=(testdata/*.csv); fi
+
+# ms of the summary row of `method` printed by `hullskin fit`.
+ms() { awk -v m="$1" '$1 == m { print $(NF - 1) }'; }
+best() { tr ' ' '\n' | grep -v '^$' | sort -g | head -1; }
+
+if [ -n "${BEFORE:-}" ]; then
+  echo "| table | d | m | approx ms | LM ms | ratio | LM RMS mm | before: LM ms | ratio | LM RMS mm |"
+  echo "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|"
+else
+  echo "| table | d | m | approx ms | LM ms | ratio | LM RMS mm |"
+  echo "|---|--:|--:|--:|--:|--:|--:|"
+fi
+for t in "${tables[@]}"; do
+  name=$(basename "$t" .csv)
+  a="" l="" b=""
+  for r in 1 2 3; do
+    a="$a $("$bin" fit "$t" -o "$out/a" | ms approx)"
+    if [ "$r" -le 2 ]; then
+      l="$l $("$bin" fit "$t" --method lm -o "$out/l" | ms lm)"
+      if [ -n "${BEFORE:-}" ] && [ "$r" -eq 1 ]; then
+        b=$("$BEFORE" fit "$t" --method lm -o "$out/b" | ms lm)
+      fi
+    fi
+  done
+  a=$(echo "$a" | best)
+  l=$(echo "$l" | best)
+  d=$(jq '.surface.control_points[0] * .surface.control_points[1]' "$out/l/report.json")
+  m=$(jq '.input.points' "$out/l/report.json")
+  rms=$(jq '.error.rms * 1000' "$out/l/report.json")
+  row=$(awk -v n="$name" -v d="$d" -v m="$m" -v a="$a" -v l="$l" -v r="$rms" \
+    'BEGIN { printf "| %s | %d | %d | %.2f | %.1f | %.1f | %.4g |", n, d, m, a, l, l / a, r }')
+  if [ -n "${BEFORE:-}" ]; then
+    brms=$(jq '.error.rms * 1000' "$out/b/report.json")
+    row="$row$(awk -v a="$a" -v b="$b" -v r="$brms" 'BEGIN { printf " %.1f | %.1f | %.4g |", b, b / a, r }')"
+  fi
+  echo "$row"
+done
