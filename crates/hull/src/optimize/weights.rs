@@ -997,32 +997,17 @@ impl WeightProblem {
             for v in 0..d {
                 band_forward_from(&sc.band, n, bw, stride, &mut z[v * n..(v + 1) * n], start[v]);
             }
-            if self.fair_g > 0.0 {
-                // With the fairness term the least-squares optimality is A^T r = H^T e +
-                // λ' D^T D Y = 0, not H^T e = 0: the projected term takes A^T r.
-                let n_v = pat.n_v;
-                for st in self.net.rows() {
-                    let mut dy = [0.0; 3];
-                    for &(c, w) in st.entries() {
-                        let y = sc.y[pat.pos(c / n_v, c % n_v)];
-                        for t in 0..3 {
-                            dy[t] += w * y[t];
-                        }
-                    }
-                    for &(c, w) in st.entries() {
-                        let h = &mut hte[pat.pos(c / n_v, c % n_v)];
-                        for t in 0..3 {
-                            h[t] += self.fair_g * w * dy[t];
-                        }
-                    }
-                }
-            }
             band_forward_from(&sc.band, n, bw, stride, &mut hte, 0);
             let t = hte.as_flattened();
             for v in 0..d {
                 let wv = z[v * n..(v + 1) * n].as_flattened();
                 let sv = start[v].min(n);
-                jtr[v] -= dot(&wv[3 * sv..], &t[3 * sv..]);
+                // With the fairness term the least-squares optimality is A^T r = H^T e +
+                // λ' D^T D Y = 0, not H^T e = 0, and the projected part of the augmented
+                // gradient vanishes: J^T r = A^T e (as in `matvec::JacobianOp::gradient`).
+                if self.fair_g == 0.0 {
+                    jtr[v] -= dot(&wv[3 * sv..], &t[3 * sv..]);
+                }
                 for w in if full { 0 } else { v }..=v {
                     let s0 = 3 * sv.max(start[w]).min(n);
                     let ww = dot(&wv[s0..], &z[w * n..(w + 1) * n].as_flattened()[s0..]);
@@ -1050,7 +1035,8 @@ impl WeightProblem {
             jtj[v * d + v] *= scale;
             jtr[v] *= scale;
         }
-        // The prior: J^T J += R (its diagonal today; a column at a time in general), J^T r += R x.
+        // The prior: J^T J += R (a column at a time: the diagonal and the smoothing's Laplacian),
+        // J^T r += R x.
         self.prior_apply(x, &mut jtr);
         let mut e = vec![0.0; d];
         let mut col = vec![0.0; d];
@@ -1065,40 +1051,10 @@ impl WeightProblem {
                 }
             }
         }
-        if self.smooth > 0.0 {
-            // The smoothing rows' J^T J = (σ^2 / e) L and J^T r = (σ^2 / e) L θ.
-            for &(a, b) in &self.smooth_pairs {
-                let s = self.smooth;
-                jtj[a * d + a] += s;
-                jtj[b * d + b] += s;
-                jtj[a * d + b] -= s;
-                jtj[b * d + a] -= s;
-                let g = s * (x[a] - x[b]);
-                jtr[a] += g;
-                jtr[b] -= g;
-            }
-        }
         if !(jtj.iter().all(|t| t.is_finite()) && jtr.iter().all(|t| t.is_finite())) {
             return None;
         }
         Some((jtj, jtr))
-    }
-
-    /// `out += R v`: the prior of the log-weights in the Gauss-Newton normal equations
-    /// (`J^T J + R`, gradient `J^T r + R θ`), the Hessian of the penalty of the module docs
-    /// halved: `R = (ρ^2 / d) I`. Every solver's use of the prior goes through this and
-    /// [`WeightProblem::prior_diag`].
-    pub(crate) fn prior_apply(&self, v: &[f64], out: &mut [f64]) {
-        let reg = self.rho * self.rho / self.dim() as f64;
-        for (o, t) in out.iter_mut().zip(v) {
-            *o += reg * t;
-        }
-    }
-
-    /// The diagonal of `R` (see [`WeightProblem::prior_apply`]), for preconditioners.
-    pub(crate) fn prior_diag(&self) -> Vec<f64> {
-        let d = self.dim();
-        vec![self.rho * self.rho / d as f64; d]
     }
 
     // ----- internals -----

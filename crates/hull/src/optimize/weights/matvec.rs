@@ -93,7 +93,7 @@ impl WeightProblem {
         let pat = &self.pat;
         let nb = pat.nb;
         let m = table.first.len();
-        let pts: Vec<[f64; 3]> = sc.y.iter().zip(&sc.w).map(|(y, &w)| [y[0] / w, y[1] / w, y[2] / w]).collect();
+        let pts = self.derivative_points(&sc);
         let mut op = JacobianOp {
             problem: self,
             ptr: Vec::with_capacity(m + 1),
@@ -252,10 +252,14 @@ impl JacobianOp<'_> {
         self.add_at(u, 1.0 / self.m() as f64, out);
     }
 
-    /// `J^T r` of the data rows: `A^T (I - H G^{-1} H^T) e / m`.
+    /// `J^T r` of the data rows: `A^T (I - H G^{-1} H^T) e / m`. With the fairness term the
+    /// least-squares optimality is `H^T e + λ' D^T D Y = 0` (not `H^T e = 0`), which makes the
+    /// projected part of the augmented gradient vanish: `J^T r = A^T e / m` exactly.
     pub(crate) fn gradient(&mut self) -> Vec<f64> {
         let mut u = self.e.clone();
-        self.project(&mut u);
+        if self.problem.fair_f == 0.0 {
+            self.project(&mut u);
+        }
         let mut out = vec![0.0; self.problem.dim()];
         self.add_at(&u, 1.0 / self.m() as f64, &mut out);
         out
@@ -287,8 +291,12 @@ mod tests {
         // (8, 5) is factored u-major, (6, 12) v-major; both layouts and modes.
         for ctrl in [(8, 5), (6, 12)] {
             for layout in [WeightLayout::Full, WeightLayout::RankOne] {
-                for mode in [WeightMode::Fixed, WeightMode::Resolved] {
-                    let p = problem(ctrl, mode, layout, 1e-3);
+                // The fairness term and the log-weight smoothing (a prior with off-diagonal
+                // entries) as well.
+                for (mode, fair) in
+                    [(WeightMode::Fixed, 0.0), (WeightMode::Resolved, 0.0), (WeightMode::Resolved, 0.05)]
+                {
+                    let p = problem(ctrl, mode, layout, 1e-3).with_fairness(fair, fair / 10.0).expect("usable");
                     let d = p.dim();
                     let x: Vec<f64> = (0..d).map(|_| 0.8 * noise(&mut seed)).collect();
                     let lin = p.residuals_and_jacobian(&x, JacobianKind::Kaufman).expect("regular");
@@ -316,15 +324,17 @@ mod tests {
                     // (J^T J) v and J^T r against the dense normal equations (their prior
                     // diagonal removed: the operator leaves it to the caller).
                     let prior = p.prior_diag();
+                    let (mut rv, mut rx) = (vec![0.0; d], vec![0.0; d]);
+                    p.prior_apply(&v, &mut rv);
+                    p.prior_apply(&x, &mut rx);
                     let mut out = vec![0.0; d];
                     op.normal_apply(&v, &mut out, &mut Vec::new());
-                    let dense: Vec<f64> =
-                        (0..d).map(|i| dot(&ne.jtj[i * d..(i + 1) * d], &v) - prior[i] * v[i]).collect();
+                    let dense: Vec<f64> = (0..d).map(|i| dot(&ne.jtj[i * d..(i + 1) * d], &v) - rv[i]).collect();
                     let sn = dense.iter().map(|t| t.abs()).fold(0.0, f64::max);
                     let en = dense.iter().zip(&out).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
                     assert!(en <= 1e-11 * sn, "{ctrl:?} {layout:?} {mode:?}: J^T J v {en:e} of {sn:e}");
                     let g = op.gradient();
-                    let gd: Vec<f64> = (0..d).map(|i| ne.jtr[i] - prior[i] * x[i]).collect();
+                    let gd: Vec<f64> = (0..d).map(|i| ne.jtr[i] - rx[i]).collect();
                     let sg = gd.iter().map(|t| t.abs()).fold(0.0, f64::max);
                     let eg = gd.iter().zip(&g).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
                     assert!(eg <= 1e-9 * sg, "{ctrl:?} {layout:?} {mode:?}: J^T r {eg:e} of {sg:e}");
