@@ -19,7 +19,8 @@
 //!               "gaussian_curvature": {"max": .., "min": .., "max_at": [u, v], "min_at": [u, v],
 //!                                      "samples": n, "skipped": n},
 //!               "seconds": .., "error_seconds": .., "evaluations": 0, "iterations": 0,
-//!               "seed": null, "objective": null}, ...],
+//!               "seed": null, "objective": null,
+//!               "validity": {"valid": true, "findings": 0, "kinds": []}}, ...],
 //!  "floors": {"metric": "rms", "relative_tolerance": 1e-9, "all_hold": true,
 //!             "checks": [{"floor": "ga < approx", "holds": true, "value": .., "bound": ..}, ...]}}
 //! ```
@@ -37,6 +38,10 @@
 //! * `evaluations` and `iterations`: of the objective, 0 for `interp` and `approx`; `seed` and
 //!   `objective` (`[start, final]`, the optimiser's parametric RMS objective) only for the
 //!   optimised methods.
+//! * `validity`: whether the row's surface is valid: the number of findings of
+//!   [`check_fit_validity`](crate::analysis::check_fit_validity) (folds, leaving the offsets'
+//!   envelope, bulging through a flat, inward-facing facets) and their kinds, each once;
+//!   `null` for a failed method.
 //! * `status`: `done`, `interrupted` (stopped by the user; the best surface found before the
 //!   stop is measured) or `failed` (with `failure`, the error message). On an interruption the
 //!   comparison stops: the methods after it are listed in `not_run` and `complete` is false.
@@ -52,6 +57,7 @@ use nurbs::fit::SkinParameterization;
 use nurbs::{KnotVector, NurbsSurface};
 use serde::Serialize;
 
+use crate::analysis::{Finding, FindingKind};
 use crate::fit_error::parametric_residuals;
 use crate::optimize::{quiet, Algorithm, Control, OptimSettings, StopReason};
 use crate::{fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, InputSummary};
@@ -196,6 +202,36 @@ pub enum RowStatus {
     Failed,
 }
 
+/// Whether a row's surface is valid.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct RowValidity {
+    /// No finding.
+    pub valid: bool,
+    /// The number of findings.
+    pub findings: usize,
+    /// The kinds found, each once, in the order of [`FindingKind`].
+    pub kinds: Vec<FindingKind>,
+}
+
+impl RowValidity {
+    /// The summary of `findings`.
+    pub fn of(findings: &[Finding]) -> Self {
+        let mut kinds: Vec<FindingKind> = findings.iter().map(|f| f.kind).collect();
+        kinds.sort();
+        kinds.dedup();
+        RowValidity { valid: findings.is_empty(), findings: findings.len(), kinds }
+    }
+
+    /// `valid`, or the count and the kinds (`2: fold, below_centre_plane`).
+    pub fn label(&self) -> String {
+        if self.valid {
+            return "valid".into();
+        }
+        let kinds: Vec<&str> = self.kinds.iter().map(|k| k.name()).collect();
+        format!("{}: {}", self.findings, kinds.join(", "))
+    }
+}
+
 /// One method of the comparison.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CompareRow {
@@ -220,6 +256,8 @@ pub struct CompareRow {
     pub seed: Option<u64>,
     /// The optimiser's objective `[start, final]` (parametric RMS with the log-weight penalty).
     pub objective: Option<[f64; 2]>,
+    /// Whether the surface is valid (`None` if the method failed).
+    pub validity: Option<RowValidity>,
 }
 
 impl CompareRow {
@@ -248,6 +286,7 @@ impl CompareRow {
             iterations: opt.map_or(0, |o| o.iterations),
             seed: opt.map(|o| o.seed),
             objective: opt.map(|o| [o.start_value, o.final_value]),
+            validity: Some(RowValidity::of(&outcome.validity)),
         }
     }
 
@@ -266,6 +305,7 @@ impl CompareRow {
             iterations: 0,
             seed,
             objective: None,
+            validity: None,
         }
     }
 
@@ -557,9 +597,9 @@ pub fn comparison_table(c: &Comparison) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "| method | control points | max error ({u}) | mean error ({u}) | RMS error ({u}) | max K (1/{u}²) | min K (1/{u}²) | time (ms) | evaluations | seed |"
+        "| method | control points | max error ({u}) | mean error ({u}) | RMS error ({u}) | max K (1/{u}²) | min K (1/{u}²) | time (ms) | evaluations | seed | validity |"
     );
-    let _ = writeln!(t, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|");
+    let _ = writeln!(t, "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|---|");
     for r in &c.methods {
         let name = match r.status {
             RowStatus::Done => r.method.to_string(),
@@ -575,9 +615,10 @@ pub fn comparison_table(c: &Comparison) -> String {
             None => ("-".into(), "-".into()),
         };
         let seed = r.seed.map_or_else(|| "-".to_string(), |s| s.to_string());
+        let validity = r.validity.as_ref().map_or_else(|| "-".to_string(), RowValidity::label);
         let _ = writeln!(
             t,
-            "| {name} | {}x{} | {max} | {mean} | {rms} | {kmax} | {kmin} | {} | {} | {seed} |",
+            "| {name} | {}x{} | {max} | {mean} | {rms} | {kmax} | {kmin} | {} | {} | {seed} | {validity} |",
             r.control_points[0],
             r.control_points[1],
             millis(r.seconds),
@@ -713,6 +754,7 @@ mod tests {
             iterations: 0,
             seed: None,
             objective: None,
+            validity: None,
         }
     }
 

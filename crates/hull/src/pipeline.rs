@@ -160,6 +160,10 @@ pub struct FitOutcome {
     /// Where the surface folds back across its sections ([`crate::analysis::find_folds`]);
     /// empty for a sound surface.
     pub folds: Vec<crate::analysis::Fold>,
+    /// Every defect of the surface ([`crate::analysis::check_fit_validity`]: folds, leaving the
+    /// offsets' envelope, bulging through a flat of the offsets, inward-facing facets); empty
+    /// for a valid surface.
+    pub validity: Vec<crate::analysis::Finding>,
 }
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
@@ -224,6 +228,7 @@ fn measured(
         return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
     }
     let folds = crate::analysis::find_folds(&surface);
+    let validity = crate::analysis::check_fit_validity(&surface, offsets)?;
     Ok(FitOutcome {
         config: *config,
         surface,
@@ -235,6 +240,7 @@ fn measured(
         knuckle_lines: Vec::new(),
         flat_lines: Vec::new(),
         folds,
+        validity,
     })
 }
 

@@ -16,13 +16,23 @@
 //!                   "weight_layout": "full", "weight_bounds": [0.1, 10], "weight_range": [..],
 //!                   "weights_at_bounds": n, "iterations": .., "evaluations": .., "stop": "iterations",
 //!                   "start_value": .., "final_value": .., "history": [..],
-//!                   "parameter_correction": false, "settings": {..}, "seconds": ..}}
+//!                   "parameter_correction": false, "settings": {..}, "seconds": ..},
+//!  "folds": [{"x": [x0, x1], "v": [v0, v1], "samples": n, "of": n}],
+//!  "validity": [{"kind": "below_centre_plane", "place": {"x": .., "y": .., "z": .., "u": .., "v": ..},
+//!                "size": .., "limit": .., "reference": .., "x_band": [x0, x1], "flat": "bottom"}]}
 //! ```
 //!
 //! `optimization` is present for the weight-optimised methods only; its `history` is the best
 //! objective (parametric RMS of the offsets) after each iteration. `tolerance_search` is
 //! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
 //! `interp_control_points`, `ratio`, `fits`, `complete`, `tried`).
+//!
+//! `folds` is left out when the surface does not fold. `validity` is always there: one finding
+//! per defect ([`crate::analysis::Finding`]; kinds `fold`, `below_centre_plane`,
+//! `beyond_half_breadth`, `below_lowest_offset`, `above_highest_offset`, `past_aft_end`,
+//! `past_fore_end`, `flat_bulge`, `inward_facing`), empty for a valid surface. `size` is how far
+//! past `reference` (model units; an area in units² for `inward_facing`), `limit` the allowance
+//! it exceeded; `reference`, `x_band` and `flat` only where they apply.
 //!
 //! Errors are distances in the input's units, measured by closest-point projection of every
 //! input point onto the surface.
@@ -76,6 +86,8 @@ pub struct Report {
     /// Where the surface folds back across its sections (left out when there is none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub folds: Vec<crate::analysis::Fold>,
+    /// Every defect of the surface (always present; empty when valid).
+    pub validity: Vec<crate::analysis::Finding>,
 }
 
 impl Report {
@@ -104,6 +116,7 @@ impl Report {
             optimization: outcome.optimization.clone(),
             tolerance_search: None,
             folds: outcome.folds.clone(),
+            validity: outcome.validity.clone(),
         }
     }
 }
@@ -228,15 +241,8 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
             o.weights_at_bounds, o.weight_bounds[0], o.weight_bounds[1]
         );
     }
-    for f in &outcome.folds {
-        let _ = writeln!(
-            t,
-            "warning: the surface folds back across the sections between x = {:.3} and {:.3} {u} ({} of {} samples \
-             there; a CAD system sees it as self-intersecting): sections crossing each other or unevenly spaced \
-             parameters across them (expected sections that advance in x; try --param centripetal,centripetal or \
-             fewer control points across)",
-            f.x.0, f.x.1, f.samples, f.of
-        );
+    for f in &outcome.validity {
+        let _ = writeln!(t, "warning: {}", f.message(u));
     }
     if let Some(w) = &e.worst {
         let line = w.line.map(|l| format!(", line {l}")).unwrap_or_default();
