@@ -855,6 +855,14 @@ mod tests {
         }
         let json: serde_json::Value = serde_json::from_str(&comparison_json(&c)).expect("valid JSON");
         assert_eq!(json["methods"].as_array().map(Vec::len), Some(7));
+        // Every row says whether its surface is valid, in both files.
+        for (r, j) in c.methods.iter().zip(json["methods"].as_array().into_iter().flatten()) {
+            let v = r.validity.as_ref().expect("measured rows are checked");
+            assert_eq!(j["validity"]["findings"].as_u64(), Some(v.findings as u64), "{}", r.method);
+            assert_eq!(j["validity"]["valid"].as_bool(), Some(v.findings == 0), "{}", r.method);
+            let row = md.lines().find(|l| l.starts_with(&format!("| {} |", r.method))).expect("row");
+            assert!(row.ends_with(&format!("| {} |", v.label())), "{row}");
+        }
         assert_eq!(json["floors"]["checks"].as_array().map(Vec::len), Some(4));
     }
 
@@ -874,6 +882,22 @@ mod tests {
         assert!(!c.complete);
         assert_eq!(c.floors.all_hold, None);
         assert!(comparison_markdown(&c).contains("ga (interrupted)"));
+    }
+
+    #[test]
+    fn row_validity_counts_the_findings_and_names_each_kind_once() {
+        let place = crate::analysis::Place { x: 0.0, y: 0.0, z: 0.0, u: 0.0, v: 0.0 };
+        let finding =
+            |kind| Finding { kind, place, size: 1.0, limit: 0.5, reference: None, x_band: None, flat: None, places: 1 };
+        let v = RowValidity::of(&[
+            finding(FindingKind::InwardFacing),
+            finding(FindingKind::Fold),
+            finding(FindingKind::InwardFacing),
+        ]);
+        assert_eq!((v.valid, v.findings), (false, 3));
+        assert_eq!(v.kinds, [FindingKind::Fold, FindingKind::InwardFacing]);
+        assert_eq!(v.label(), "3: fold, inward_facing");
+        assert_eq!(RowValidity::of(&[]).label(), "valid");
     }
 
     #[test]

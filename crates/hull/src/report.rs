@@ -270,6 +270,13 @@ mod tests {
         assert_eq!(report["input"]["points"], 200);
         assert_eq!(report["surface"]["degree"], serde_json::json!([3, 3]));
         assert_eq!(report["error"]["max"].as_f64(), Some(out.error.overall.max));
+        // The findings, each with its kind, place and size (the sample's default fit has some).
+        let validity = report["validity"].as_array().expect("always a list");
+        assert_eq!(validity.len(), out.validity.len());
+        for (v, f) in validity.iter().zip(&out.validity) {
+            assert_eq!(v["kind"], f.kind.name());
+            assert_eq!((v["size"].as_f64(), v["place"]["x"].as_f64()), (Some(f.size), Some(f.place.x)));
+        }
         let text = std::fs::read_to_string(dir.path().join("surface.json")).expect("read");
         let (s, units) = crate::export::read_surface_json(&text).expect("reads back");
         assert_eq!(units, "m");
@@ -284,6 +291,11 @@ mod tests {
     fn summary_warns_of_unconverged_projections() {
         let offsets = series60_sample();
         let mut out = fit_offsets(&offsets, &FitConfig::default()).expect("fits");
+        // The default fit of the sample warns of its validity findings only (it crosses the
+        // centre plane at the transom and bulges past its flat side), one line each.
+        let warnings = |t: &str| t.lines().filter(|l| l.starts_with("warning: ")).count();
+        assert_eq!(warnings(&summary_table(&offsets, &out)), out.validity.len());
+        out.validity.clear();
         assert!(!summary_table(&offsets, &out).contains("warning"), "a clean fit warns of nothing");
         out.error.unconverged_projections = 3;
         let table = summary_table(&offsets, &out);

@@ -156,6 +156,9 @@ pub struct Finding {
     /// The flat of a flat bulge.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub flat: Option<Flat>,
+    /// Separate regions of the grid past the same limit, this finding the worst of them (1
+    /// for folds and inward-facing regions, which are reported one by one).
+    pub places: usize,
 }
 
 /// A length with three significant figures (at least three decimals from 1 up).
@@ -174,10 +177,13 @@ impl Finding {
         let u = units;
         let p = &self.place;
         let at = format!("at x = {}, y = {}, z = {} {u}", len(p.x), len(p.y), len(p.z));
-        let band = match self.x_band {
+        let mut band = match self.x_band {
             Some((a, b)) if len(a) != len(b) => format!(" between x = {} and {} {u}", len(a), len(b)),
             _ => String::new(),
         };
+        if self.places > 1 {
+            band.push_str(&format!(" (the worst of {} places)", self.places));
+        }
         let r = self.reference.map_or_else(String::new, len);
         let past = |what: &str, coord: &str, allowance: &str, expected: &str, cure: &str| {
             format!(
@@ -401,7 +407,7 @@ pub fn check_validity(surface: &NurbsSurface, envelope: &Envelope, flats: &[Flat
         };
         probes.push(Probe { band: Some(band), flat: Some(flat), ..probe });
     }
-    out.extend(probes.iter().flat_map(|p| p.check(surface, &grid)));
+    out.extend(probes.iter().filter_map(|p| p.check(surface, &grid)));
     // A fold's own facets face inwards too: that region is the fold, reported once.
     let folded = |k: usize| !folds.is_empty() && sign * grid.nodes[k].sv.x < 0.0;
     out.extend(inward_facing(surface, &grid, folded));
@@ -459,22 +465,22 @@ impl Probe {
         }
     }
 
-    /// One finding per connected region of grid nodes past the limit (4-neighbours), from
-    /// the region's worst node refined, largest first; without any such node, the worst node
-    /// refined, if that is past the limit.
-    fn check(&self, surface: &NurbsSurface, grid: &Grid) -> Vec<Finding> {
+    /// The worst of the connected regions of grid nodes past the limit (4-neighbours), each
+    /// from its worst node refined, with the band of its region and the count of regions;
+    /// without any such node, the worst node refined, if that is past the limit.
+    fn check(&self, surface: &NurbsSurface, grid: &Grid) -> Option<Finding> {
         if !(self.reference.is_finite() && self.limit.is_finite()) {
-            return Vec::new();
+            return None;
         }
         let excess: Vec<f64> = grid.nodes.iter().map(|n| self.excess(n.p)).collect();
         let mut regions = regions(grid, |k| excess[k] > self.limit);
         if regions.is_empty() {
             match excess.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)) {
                 Some((k, &e)) if e > f64::NEG_INFINITY => regions.push(vec![k]),
-                _ => return Vec::new(),
+                _ => return None,
             }
         }
-        let mut out: Vec<Finding> = regions
+        let out: Vec<Finding> = regions
             .iter()
             .filter_map(|region| {
                 let &k = region.iter().max_by(|&&a, &&b| excess[a].total_cmp(&excess[b]))?;
@@ -494,11 +500,13 @@ impl Probe {
                     reference: Some(self.reference),
                     x_band: Some(x_band),
                     flat: self.flat,
+                    places: 1,
                 })
             })
             .collect();
-        out.sort_by(|a, b| b.size.total_cmp(&a.size));
-        out
+        let places = out.len();
+        let worst = out.into_iter().max_by(|a, b| a.size.total_cmp(&b.size))?;
+        Some(Finding { places, ..worst })
     }
 }
 
@@ -616,6 +624,7 @@ fn fold_finding(surface: &NurbsSurface, grid: &Grid, fold: &Fold, sign: f64) -> 
         reference: None,
         x_band: Some(fold.x),
         flat: None,
+        places: 1,
     }
 }
 
@@ -722,6 +731,7 @@ fn inward_facing(surface: &NurbsSurface, grid: &Grid, folded: impl Fn(usize) -> 
             reference: None,
             x_band: Some(band),
             flat: None,
+            places: 1,
         });
     }
     out.sort_by(|a, b| b.size.total_cmp(&a.size));
