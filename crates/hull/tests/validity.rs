@@ -106,29 +106,25 @@ fn outward(p: Vec3, z_mid: f64) -> Vec3 {
 
 /// `--knuckles auto+flats` on the cargo ship: the refit keeps the surface within the planes
 /// of its flats but folds it inside them (the issue: 25 m² of inward-facing facets, and
-/// nothing warned). Both flats' facets are found, each near that area, and a dense sampling
-/// that orients the normals by the hull's outward side (not by the flood fill) agrees.
+/// nothing warned). The largest inward-facing region is on the flat bottom, another on the
+/// flat side, and a dense sampling that orients the normals by the hull's outward side (not by
+/// the flood fill) agrees.
 #[test]
 fn the_cargo_ships_refit_within_its_flats_faces_inwards_inside_them() {
     let o = read("cargo116_offsets.csv");
     let out = fit(&o, FitMethod::Approx, Knuckles::AutoFlats(CornerOptions::default()));
     assert!(!out.flat_lines.is_empty(), "refitted within the flats");
     let inward = of_kind(&out, FindingKind::InwardFacing);
-    for f in &inward {
-        eprintln!("{}", f.message("m"));
-    }
+    assert_eq!(inward.len(), 1, "{:?}", out.validity);
+    let f = inward[0];
+    eprintln!("{}", f.message("m"));
     // Held on the planes: no bulge through them.
     assert!(of_kind(&out, FindingKind::FlatBulge).is_empty(), "{:?}", out.validity);
-    let (lo, hi) = o.bounds().expect("points");
-    let on_bottom = |f: &&&Finding| f.place.z.abs() < 1e-3;
-    let on_side = |f: &&&Finding| (f.place.y - hi.y).abs() < 1e-3;
-    let bottom = inward.iter().find(on_bottom).expect("inward facets on the flat bottom");
-    let side = inward.iter().find(on_side).expect("inward facets on the flat side");
-    for f in [bottom, side] {
-        assert!(f.size > 20.0 && f.size < 30.0, "{f:?}");
-    }
+    // The bottom's region, and at least the side's besides.
+    assert!(f.place.z.abs() < 1e-3 && f.size > 20.0 && f.size < 30.0 && f.places >= 2, "{f:?}");
     // Independently: the normal S_u x S_v oriented by the majority's agreement with the
-    // outward side, then the area facing the other way on each flat, by 401 x 401 cells.
+    // outward side, then the area facing the other way on each flat, by 400 x 400 cells.
+    let (lo, hi) = o.bounds().expect("points");
     let s = &out.surface;
     let z_mid = 0.5 * (lo.z + hi.z);
     let n = 400;
@@ -152,14 +148,13 @@ fn the_cargo_ships_refit_within_its_flats_faces_inwards_inside_them() {
         }
     }
     eprintln!(
-        "cargo auto+flats: inward on the bottom {:.2} m² (dense {bottom_area:.2}), on the side {:.2} m² (dense \
-         {side_area:.2})",
-        bottom.size, side.size
+        "cargo auto+flats: inward on the bottom {:.2} m² (dense {bottom_area:.2}), on the side dense {side_area:.2} m²",
+        f.size
     );
     // Two samplings of the same facets (node weights against cell sums, 8 per knot span
     // against 1/400 of the domain): within 10 % of each other.
-    assert!((bottom.size - bottom_area).abs() < 0.1 * bottom_area, "{bottom_area} vs {bottom:?}");
-    assert!((side.size - side_area).abs() < 0.1 * side_area, "{side_area} vs {side:?}");
+    assert!((f.size - bottom_area).abs() < 0.1 * bottom_area, "{bottom_area} vs {f:?}");
+    assert!(side_area > 20.0, "{side_area}");
 }
 
 /// R/V Gunnerus's default approximation folds between the stations of its forecastle step

@@ -19,6 +19,10 @@
 //! - **inward facing**: facets whose normal `S_u x S_v` points opposite to the rest of the
 //!   surface, a region larger than [`INWARD_SHARE`] of the surface's area.
 //!
+//! Each check gives at most one finding, its worst region (largest excess or area) with the
+//! number of separate regions past the same limit ([`Finding::places`]); folds are reported
+//! band by band, each with its own cure.
+//!
 //! The worst grid sample of each envelope and flat check is refined by golden-section search
 //! (Kiefer 1953), alternately in `u` and in `v`, over the grid cells around it, so the size
 //! reported is that of the surface, not of the grid (an extreme on the domain's edge, as at a
@@ -157,7 +161,7 @@ pub struct Finding {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub flat: Option<Flat>,
     /// Separate regions of the grid past the same limit, this finding the worst of them (1
-    /// for folds and inward-facing regions, which are reported one by one).
+    /// for folds, which are reported band by band).
     pub places: usize,
 }
 
@@ -379,7 +383,8 @@ impl Grid {
 /// The defects of `surface` (u along the sections, v across them) against the offsets'
 /// `envelope` and the flat lines `flats` of the same offsets (their `index` per section
 /// matching [`Envelope::sections_x`]): folds first, then the envelope's faces (y, z, x), the
-/// flats (bottom, side) and the inward-facing regions (largest first). Empty for a valid
+/// flats (bottom, side) and the inward-facing facets, one finding for each (the worst region,
+/// with the count of regions) but folds, one per band. Empty for a valid
 /// surface. Deterministic: the same surface gives the same findings whatever the thread count.
 pub fn check_validity(surface: &NurbsSurface, envelope: &Envelope, flats: &[FlatLine]) -> Vec<Finding> {
     let grid = Grid::sample(surface);
@@ -658,11 +663,12 @@ impl Orientation {
     }
 }
 
-/// The inward-facing regions of the sampled surface (see the module docs), largest first,
-/// but those of which most of the area is on nodes where `folded` (a fold's own facets).
-fn inward_facing(surface: &NurbsSurface, grid: &Grid, folded: impl Fn(usize) -> bool) -> Vec<Finding> {
+/// The largest inward-facing region of the sampled surface (see the module docs) with the
+/// count of such regions, leaving out those of which most of the area is on nodes where
+/// `folded` (a fold's own facets).
+fn inward_facing(surface: &NurbsSurface, grid: &Grid, folded: impl Fn(usize) -> bool) -> Option<Finding> {
     let (nu, nv) = (grid.nu(), grid.vs.len());
-    let Some(size) = model_size(surface) else { return Vec::new() };
+    let size = model_size(surface)?;
     let ((u0, u1), (v0, v1)) = (surface.domain_u(), surface.domain_v());
     // |S_u x S_v| at round-off of the model's area per unit parameter area: degenerate.
     let area_tol = COINCIDENT_REL * size * size / ((u1 - u0) * (v1 - v0));
@@ -676,7 +682,7 @@ fn inward_facing(surface: &NurbsSurface, grid: &Grid, folded: impl Fn(usize) -> 
         (0..nu * nv).map(|k| if valid[k] { normals[k].norm() * du[k % nu] * dv[k / nu] } else { 0.0 }).collect();
     let total: f64 = area.iter().sum();
     if !(total > 0.0) {
-        return Vec::new();
+        return None;
     }
     // Grid edges between regular nodes, weighted 1 - |cos|, flipping where cos < 0.
     let mut edges: Vec<(f64, usize, usize, bool)> = Vec::with_capacity(2 * nu * nv);
@@ -734,8 +740,8 @@ fn inward_facing(surface: &NurbsSurface, grid: &Grid, folded: impl Fn(usize) -> 
             places: 1,
         });
     }
-    out.sort_by(|a, b| b.size.total_cmp(&a.size));
-    out
+    let places = out.len();
+    out.into_iter().max_by(|a, b| a.size.total_cmp(&b.size)).map(|worst| Finding { places, ..worst })
 }
 
 #[cfg(test)]
@@ -796,6 +802,26 @@ mod tests {
         assert_eq!((f.reference, f.x_band), (Some(0.0), Some((0.0, 10.0))));
         let m = f.message("m");
         assert!(m.contains("crosses the centre plane") && m.contains("by 0.250 m") && m.contains("--ctrl"), "{m}");
+    }
+
+    #[test]
+    fn two_separate_crossings_are_one_finding_at_the_worse_with_the_count() {
+        // The quartic Bezier y(u) with controls 0.3, -1.2, 2, -1.2, 0.3 dips below 0 twice,
+        // symmetrically (u in 0.071..0.286 and 0.714..0.929): two regions, equally deep.
+        let c = [0.3, -1.2, 2.0, -1.2, 0.3];
+        let s = patch(&c, &[0.0, 0.5, 1.0, 1.5, 2.0], &[0.0, 5.0, 10.0]);
+        let f = check_validity(&s, &bare((0.0, 10.0), (0.0, 2.0), (0.0, 2.0)), &[]);
+        assert_eq!(kinds(&f), [FindingKind::BelowCentrePlane], "{f:?}");
+        assert_eq!(f[0].places, 2, "{f:?}");
+        // The least by the Bernstein form on a 1e-6 grid: y'' <= 30, so within 30 (5e-7)^2 / 2
+        // of the true least, below 1e-11.
+        let bernstein = |u: f64| {
+            let b = [1.0, 4.0, 6.0, 4.0, 1.0];
+            (0..5).map(|i| b[i] * u.powi(i as i32) * (1.0 - u).powi(4 - i as i32) * c[i]).sum::<f64>()
+        };
+        let least = (0..=1_000_000).map(|i| bernstein(i as f64 * 1e-6)).fold(f64::INFINITY, f64::min);
+        assert!((f[0].size + least).abs() < 1e-9, "{} vs {least}", f[0].size);
+        assert!(f[0].message("m").contains("(the worst of 2 places)"), "{}", f[0].message("m"));
     }
 
     #[test]

@@ -1064,6 +1064,7 @@ fn comparison(c: &Comparison) -> String {
         th("Max K", Some(&format!("1/{u}²"))),
         th("Iterations", None),
         th("Evaluations", None),
+        th_key("Validity"),
     ];
     // Interpolation's error is round-off by construction (with its own count): not a contender.
     let best = c
@@ -1096,6 +1097,7 @@ fn comparison(c: &Comparison) -> String {
             }
             cells.push(format!("<td>{}</td>", r.iterations));
             cells.push(format!("<td>{}</td>", r.evaluations));
+            cells.push(td_key(&r.validity.as_ref().map_or_else(|| "-".to_string(), crate::RowValidity::label)));
             (r.error.is_some_and(|e| e.rms == best && r.method != "interp"), cells)
         })
         .collect();
