@@ -227,8 +227,7 @@ fn measured(
     if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
         return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
     }
-    let folds = crate::analysis::find_folds(&surface);
-    let validity = crate::analysis::check_fit_validity(&surface, offsets)?;
+    let (validity, folds) = crate::analysis::validity::fit_validity_and_folds(&surface, offsets)?;
     Ok(FitOutcome {
         config: *config,
         surface,

@@ -28,6 +28,14 @@ fn of_kind(out: &FitOutcome, kind: FindingKind) -> Vec<&Finding> {
     out.validity.iter().filter(|f| f.kind == kind).collect()
 }
 
+/// The one finding of `kind`, its warning printed.
+fn the_one(out: &FitOutcome, kind: FindingKind) -> &Finding {
+    let found = of_kind(out, kind);
+    assert_eq!(found.len(), 1, "one {kind:?} in {:?}", out.validity);
+    eprintln!("{}", found[0].message("m"));
+    found[0]
+}
+
 /// The surface on a uniform `n + 1` x `n + 1` parameter grid: `(u, v, S(u, v))`.
 fn dense(s: &NurbsSurface, n: usize) -> Vec<(f64, f64, Vec3)> {
     let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
@@ -59,10 +67,7 @@ fn check_least_y(s: &NurbsSurface, f: &Finding) {
 fn the_sample_crosses_the_centre_plane_at_the_transom() {
     let o = series60_sample();
     let out = fit_offsets(&o, &FitConfig::default()).expect("fits");
-    let below = of_kind(&out, FindingKind::BelowCentrePlane);
-    assert_eq!(below.len(), 1, "{:?}", out.validity);
-    let f = below[0];
-    eprintln!("{}", f.message("m"));
+    let f = the_one(&out, FindingKind::BelowCentrePlane);
     assert!(f.size > 0.08 && f.size < 0.095, "{f:?}");
     // 0.5 % of the 8.13 m half-beam.
     assert!((f.limit - 0.005 * 8.13).abs() < 1e-12, "{f:?}");
@@ -84,10 +89,7 @@ fn the_sample_crosses_the_centre_plane_at_the_transom() {
 fn the_cargo_ship_crosses_the_centre_plane_at_the_bulb() {
     let o = read("cargo116_offsets.csv");
     let out = fit(&o, FitMethod::Approx, Knuckles::default());
-    let below = of_kind(&out, FindingKind::BelowCentrePlane);
-    assert_eq!(below.len(), 1, "{:?}", out.validity);
-    let f = below[0];
-    eprintln!("{}", f.message("m"));
+    let f = the_one(&out, FindingKind::BelowCentrePlane);
     assert!((f.size - 0.66).abs() < 0.01, "{f:?}");
     assert!(f.place.x > 104.0 && f.place.z < 2.0, "{f:?}");
     check_least_y(&out.surface, f);
@@ -114,10 +116,7 @@ fn the_cargo_ships_refit_within_its_flats_faces_inwards_inside_them() {
     let o = read("cargo116_offsets.csv");
     let out = fit(&o, FitMethod::Approx, Knuckles::AutoFlats(CornerOptions::default()));
     assert!(!out.flat_lines.is_empty(), "refitted within the flats");
-    let inward = of_kind(&out, FindingKind::InwardFacing);
-    assert_eq!(inward.len(), 1, "{:?}", out.validity);
-    let f = inward[0];
-    eprintln!("{}", f.message("m"));
+    let f = the_one(&out, FindingKind::InwardFacing);
     // Held on the planes: no bulge through them.
     assert!(of_kind(&out, FindingKind::FlatBulge).is_empty(), "{:?}", out.validity);
     // The bottom's region, and at least the side's besides.
@@ -163,11 +162,8 @@ fn the_cargo_ships_refit_within_its_flats_faces_inwards_inside_them() {
 fn gunnerus_folds_at_its_forecastle_step() {
     let o = read("gunnerus_offsets.csv");
     let out = fit(&o, FitMethod::Approx, Knuckles::default());
-    let folds = of_kind(&out, FindingKind::Fold);
-    assert_eq!(folds.len(), 1, "{:?}", out.validity);
+    let f = the_one(&out, FindingKind::Fold);
     assert_eq!(out.folds.len(), 1, "the fold band of report.json too");
-    let f = folds[0];
-    eprintln!("{}", f.message("m"));
     let (a, b) = f.x_band.expect("a band");
     assert!(a > 16.5 && b < 16.6 && a <= b, "{f:?}");
     assert_eq!((a, b), out.folds[0].x);
@@ -198,10 +194,7 @@ fn the_wigley_hull_is_valid_interpolated_and_approximated() {
 fn the_cb080_parent_bulges_through_its_flat_side_unless_refitted_within_it() {
     let o = read("series60_cb080_offsets.csv");
     let plain = fit(&o, FitMethod::Approx, Knuckles::default());
-    let bulge = of_kind(&plain, FindingKind::FlatBulge);
-    assert_eq!(bulge.len(), 1, "{:?}", plain.validity);
-    let f = bulge[0];
-    eprintln!("{}", f.message("m"));
+    let f = the_one(&plain, FindingKind::FlatBulge);
     assert_eq!(f.flat, Some(Flat::Side));
     assert!((f.size - 0.036).abs() < 0.002, "{f:?}");
     assert!(of_kind(&plain, FindingKind::BeyondHalfBreadth).is_empty(), "{:?}", plain.validity);

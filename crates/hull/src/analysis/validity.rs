@@ -387,6 +387,16 @@ impl Grid {
 /// with the count of regions) but folds, one per band. Empty for a valid
 /// surface. Deterministic: the same surface gives the same findings whatever the thread count.
 pub fn check_validity(surface: &NurbsSurface, envelope: &Envelope, flats: &[FlatLine]) -> Vec<Finding> {
+    validity_and_folds(surface, envelope, flats).0
+}
+
+/// [`check_validity`] with the fold bands of [`find_folds`](super::find_folds) (the same grid,
+/// sampled once).
+pub(crate) fn validity_and_folds(
+    surface: &NurbsSurface,
+    envelope: &Envelope,
+    flats: &[FlatLine],
+) -> (Vec<Finding>, Vec<Fold>) {
     let grid = Grid::sample(surface);
     let rows: Vec<Vec<(f64, f64)>> =
         grid.nodes.chunks(grid.nu()).map(|row| row.iter().map(|n| (n.p.x, n.sv.x)).collect()).collect();
@@ -416,22 +426,34 @@ pub fn check_validity(surface: &NurbsSurface, envelope: &Envelope, flats: &[Flat
     // A fold's own facets face inwards too: that region is the fold, reported once.
     let folded = |k: usize| !folds.is_empty() && sign * grid.nodes[k].sv.x < 0.0;
     out.extend(inward_facing(surface, &grid, folded));
-    out
+    (out, folds)
 }
 
 /// [`check_validity`] of a surface fitted to `offsets`, with the flats found in them
 /// ([`nurbs::fit::find_flat_lines`] with its default settings, as `--knuckles auto+flats`).
-/// Empty for offsets without a point.
+/// Offsets without a point have no envelope: folds and inward-facing facets only.
 ///
 /// # Errors
 /// [`crate::HullError::Fit`] when the flat detection refuses the offsets (a coordinate that
 /// is not finite).
 pub fn check_fit_validity(surface: &NurbsSurface, offsets: &Offsets) -> Result<Vec<Finding>, crate::HullError> {
-    let Some(envelope) = Envelope::of_offsets(offsets) else { return Ok(Vec::new()) };
+    Ok(fit_validity_and_folds(surface, offsets)?.0)
+}
+
+/// [`check_fit_validity`] with the fold bands of [`find_folds`](super::find_folds) (offsets
+/// without a point: folds only, no envelope).
+///
+/// # Errors
+/// As [`check_fit_validity`].
+pub(crate) fn fit_validity_and_folds(
+    surface: &NurbsSurface,
+    offsets: &Offsets,
+) -> Result<(Vec<Finding>, Vec<Fold>), crate::HullError> {
+    let envelope = Envelope::of_offsets(offsets).unwrap_or_else(Envelope::unbounded);
     let sections: Vec<Vec<Vec3>> = offsets.sections.iter().map(|s| s.points.clone()).collect();
     let flats = nurbs::fit::find_flat_lines(&sections, &nurbs::fit::FlatOptions::default())
         .map_err(|reason| crate::HullError::Fit { method: "validity", reason })?;
-    Ok(check_validity(surface, &envelope, &flats))
+    Ok(validity_and_folds(surface, &envelope, &flats))
 }
 
 /// One face of the envelope or one flat: `coordinate axis` past `reference` (above it if
@@ -860,6 +882,10 @@ mod tests {
         assert_eq!(f[0].limit, 0.0);
         assert!((f[1].size - 2.0 / 7.0).abs() < 1e-12 && (f[1].place.v - 1.0 / 7.0).abs() < 1e-6, "{f:?}");
         assert!(f[0].message("m").contains("folds back across the sections"));
+        // The bands sampled once with the rest are find_folds' own.
+        let (_, folds) = validity_and_folds(&s, &Envelope::unbounded(), &[]);
+        assert_eq!(folds, crate::analysis::find_folds(&s));
+        assert_eq!(f[0].x_band, Some(folds[0].x));
         // Forward past the fore end: x(v) = 24 v - 14 v^2 overshoots to 72/7 at v = 6/7 and
         // runs back to 10 at v = 1, a fold there too.
         let s = patch(&[0.0, 2.0, 2.0], &[0.0, 0.0, 2.0], &[0.0, 12.0, 10.0]);
