@@ -134,15 +134,6 @@ fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
     let notes = search
         .iter()
         .map(|s| format!("Fitted with the fewest control points within --tolerance: {}.", s.summary(u)))
-        .chain(outcome.folds.iter().map(|f| {
-            format!(
-                "Warning: the surface folds back across the sections between x = {:.3} and {:.3} {u} ({} of {} \
-                 samples there): a CAD system sees it as self-intersecting. Sections crossing each other or \
-                 unevenly spaced parameters across them cause it; try --param centripetal,centripetal or fewer \
-                 control points across.",
-                f.x.0, f.x.1, f.samples, f.of
-            )
-        }))
         .collect();
     Ok(Loaded {
         surface: outcome.surface.clone(),

@@ -367,6 +367,22 @@ fn a_folded_surface_is_flagged_on_the_page() {
         .find(|t| t.contains("folds back across the sections"))
         .unwrap_or_else(|| panic!("no fold warning on the page"));
     assert!(warning.contains("between x = 16.5") && warning.contains("centripetal"), "{warning}");
+    // Every finding is listed in the validity table of the fit error, the fold among them.
+    let kinds: Vec<&str> = doc
+        .descendants()
+        .find(|n| n.attribute("id") == Some("validity-table"))
+        .unwrap_or_else(|| panic!("no validity table"))
+        .descendants()
+        .filter(|n| n.has_tag_name("td") && n.attribute("class") == Some("key"))
+        .filter_map(|n| n.text())
+        .filter(|t| t.chars().all(|c| c.is_ascii_lowercase() || c == '_'))
+        .collect();
+    assert!(kinds.contains(&"fold"), "{kinds:?}");
+    let notes = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("p") && n.text().is_some_and(|t| t.starts_with("Warning: ")))
+        .count();
+    assert_eq!(notes, kinds.len(), "one warning under the title per finding: {kinds:?}");
     let sample = read_text(&sample().0, "report.html");
     assert!(!sample.contains("folds back"));
 }

@@ -20,7 +20,8 @@
 //!                                      "samples": n, "skipped": n},
 //!               "seconds": .., "error_seconds": .., "evaluations": 0, "iterations": 0,
 //!               "seed": null, "objective": null,
-//!               "held_out_rms": .., "held_out_max": .., "overfit": true}, ...],
+//!               "held_out_rms": .., "held_out_max": .., "overfit": true,
+//!               "validity": {"valid": true, "findings": 0, "kinds": []}}, ...],
 //!  "held_out_folds": 4,
 //!  "floors": {"metric": "rms", "relative_tolerance": 1e-9, "all_hold": true,
 //!             "checks": [{"floor": "ga < approx", "holds": true, "value": .., "bound": ..}, ...]}}
@@ -44,6 +45,10 @@
 //!   stop or when a refit failed. `overfit`: the row is closer to the offsets than the plain
 //!   approximation but farther from the held-out ones (RMS; [`crate::overfit`]); `null`
 //!   without both held-out errors, and for `approx` itself.
+//! * `validity`: whether the row's surface is valid: the number of findings of
+//!   [`check_fit_validity`](crate::analysis::check_fit_validity) (folds, leaving the offsets'
+//!   envelope, bulging through a flat, inward-facing facets) and their kinds, each once;
+//!   `null` for a failed method.
 //! * `status`: `done`, `interrupted` (stopped by the user; the best surface found before the
 //!   stop is measured) or `failed` (with `failure`, the error message). On an interruption the
 //!   comparison stops: the methods after it are listed in `not_run` and `complete` is false.
@@ -59,6 +64,7 @@ use nurbs::fit::SkinParameterization;
 use nurbs::{KnotVector, NurbsSurface};
 use serde::Serialize;
 
+use crate::analysis::{Finding, FindingKind};
 use crate::fit_error::parametric_residuals;
 use crate::optimize::{quiet, Algorithm, Control, OptimSettings, StopReason};
 use crate::{
@@ -209,6 +215,36 @@ pub enum RowStatus {
     Failed,
 }
 
+/// Whether a row's surface is valid.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct RowValidity {
+    /// No finding.
+    pub valid: bool,
+    /// The number of findings.
+    pub findings: usize,
+    /// The kinds found, each once, in the order of [`FindingKind`].
+    pub kinds: Vec<FindingKind>,
+}
+
+impl RowValidity {
+    /// The summary of `findings`.
+    pub fn of(findings: &[Finding]) -> Self {
+        let mut kinds: Vec<FindingKind> = findings.iter().map(|f| f.kind).collect();
+        kinds.sort();
+        kinds.dedup();
+        RowValidity { valid: findings.is_empty(), findings: findings.len(), kinds }
+    }
+
+    /// `valid`, or the count and the kinds (`2: fold, below_centre_plane`).
+    pub fn label(&self) -> String {
+        if self.valid {
+            return "valid".into();
+        }
+        let kinds: Vec<&str> = self.kinds.iter().map(|k| k.name()).collect();
+        format!("{}: {}", self.findings, kinds.join(", "))
+    }
+}
+
 /// One method of the comparison.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CompareRow {
@@ -240,6 +276,8 @@ pub struct CompareRow {
     /// Lower error at the offsets than `approx` but higher held-out error; `None` when not
     /// known (and for `approx`).
     pub overfit: Option<bool>,
+    /// Whether the surface is valid (`None` if the method failed).
+    pub validity: Option<RowValidity>,
 }
 
 impl CompareRow {
@@ -271,6 +309,7 @@ impl CompareRow {
             held_out_rms: outcome.error.held_out.as_ref().map(|h| h.rms),
             held_out_max: outcome.error.held_out.as_ref().map(|h| h.max),
             overfit: None,
+            validity: Some(RowValidity::of(&outcome.validity)),
         }
     }
 
@@ -292,6 +331,7 @@ impl CompareRow {
             held_out_rms: None,
             held_out_max: None,
             overfit: None,
+            validity: None,
         }
     }
 
@@ -616,9 +656,9 @@ pub fn comparison_table(c: &Comparison) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "| method | control points | max error ({u}) | mean error ({u}) | RMS error ({u}) | held-out RMS ({u}) | held-out max ({u}) | over-fits | max K (1/{u}²) | min K (1/{u}²) | time (ms) | evaluations | seed |"
+        "| method | control points | max error ({u}) | mean error ({u}) | RMS error ({u}) | held-out RMS ({u}) | held-out max ({u}) | over-fits | max K (1/{u}²) | min K (1/{u}²) | time (ms) | evaluations | seed | validity |"
     );
-    let _ = writeln!(t, "|---|---|--:|--:|--:|--:|--:|:-:|--:|--:|--:|--:|--:|");
+    let _ = writeln!(t, "|---|---|--:|--:|--:|--:|--:|:-:|--:|--:|--:|--:|--:|---|");
     for r in &c.methods {
         let name = match r.status {
             RowStatus::Done => r.method.to_string(),
@@ -641,9 +681,10 @@ pub fn comparison_table(c: &Comparison) -> String {
             Some(false) => "no",
             None => "-",
         };
+        let validity = r.validity.as_ref().map_or_else(|| "-".to_string(), RowValidity::label);
         let _ = writeln!(
             t,
-            "| {name} | {}x{} | {max} | {mean} | {rms} | {held_rms} | {held_max} | {overfit} | {kmax} | {kmin} | {} | {} | {seed} |",
+            "| {name} | {}x{} | {max} | {mean} | {rms} | {held_rms} | {held_max} | {overfit} | {kmax} | {kmin} | {} | {} | {seed} | {validity} |",
             r.control_points[0],
             r.control_points[1],
             millis(r.seconds),
@@ -790,6 +831,7 @@ mod tests {
             held_out_rms: None,
             held_out_max: None,
             overfit: None,
+            validity: None,
         }
     }
 
@@ -890,6 +932,14 @@ mod tests {
         }
         let json: serde_json::Value = serde_json::from_str(&comparison_json(&c)).expect("valid JSON");
         assert_eq!(json["methods"].as_array().map(Vec::len), Some(7));
+        // Every row says whether its surface is valid, in both files.
+        for (r, j) in c.methods.iter().zip(json["methods"].as_array().into_iter().flatten()) {
+            let v = r.validity.as_ref().expect("measured rows are checked");
+            assert_eq!(j["validity"]["findings"].as_u64(), Some(v.findings as u64), "{}", r.method);
+            assert_eq!(j["validity"]["valid"].as_bool(), Some(v.findings == 0), "{}", r.method);
+            let row = md.lines().find(|l| l.starts_with(&format!("| {} |", r.method))).expect("row");
+            assert!(row.ends_with(&format!("| {} |", v.label())), "{row}");
+        }
         assert_eq!(json["floors"]["checks"].as_array().map(Vec::len), Some(4));
     }
 
@@ -970,6 +1020,22 @@ mod tests {
         assert!(!c.complete);
         assert_eq!(c.floors.all_hold, None);
         assert!(comparison_markdown(&c).contains("ga (interrupted)"));
+    }
+
+    #[test]
+    fn row_validity_counts_the_findings_and_names_each_kind_once() {
+        let place = crate::analysis::Place { x: 0.0, y: 0.0, z: 0.0, u: 0.0, v: 0.0 };
+        let finding =
+            |kind| Finding { kind, place, size: 1.0, limit: 0.5, reference: None, x_band: None, flat: None, places: 1 };
+        let v = RowValidity::of(&[
+            finding(FindingKind::InwardFacing),
+            finding(FindingKind::Fold),
+            finding(FindingKind::InwardFacing),
+        ]);
+        assert_eq!((v.valid, v.findings), (false, 3));
+        assert_eq!(v.kinds, [FindingKind::Fold, FindingKind::InwardFacing]);
+        assert_eq!(v.label(), "3: fold, inward_facing");
+        assert_eq!(RowValidity::of(&[]).label(), "valid");
     }
 
     #[test]

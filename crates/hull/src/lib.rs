@@ -30,11 +30,12 @@ mod tolerance_search;
 mod units;
 pub mod viewer;
 
+pub use analysis::{check_fit_validity, check_validity, Envelope, Finding, FindingKind};
 pub use compare::{
     check_floors, compare_offsets, compare_offsets_with, comparison_json, comparison_markdown, comparison_table,
     floors_markdown, gaussian_curvature_range, CompareConfig, CompareOptimization, CompareRow, Comparison,
-    CurvatureRange, CurvatureSampling, FloorCheck, Floors, OptimRunner, RowError, RowStatus, COMPARE_METHODS,
-    CURVATURE_GRID, FLOOR_RELATIVE_TOLERANCE,
+    CurvatureRange, CurvatureSampling, FloorCheck, Floors, OptimRunner, RowError, RowStatus, RowValidity,
+    COMPARE_METHODS, CURVATURE_GRID, FLOOR_RELATIVE_TOLERANCE,
 };
 pub use error::{HullError, InputErrorKind, Location};
 pub use fairing::{FairReport, Fairing};

@@ -175,6 +175,10 @@ pub struct FitOutcome {
     /// Results not taken as the answer, and why (e.g. an optimised surface that folds: the
     /// fair start is kept instead).
     pub rejected: Vec<String>,
+    /// Every defect of the surface ([`crate::analysis::check_fit_validity`]: folds, leaving the
+    /// offsets' envelope, bulging through a flat of the offsets, inward-facing facets); empty
+    /// for a valid surface.
+    pub validity: Vec<crate::analysis::Finding>,
 }
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
@@ -233,15 +237,17 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     // The optimisers work on the fair objective: the λ fairing chooses for the approximation
     // (0 when no fair surface was fairer than the plain one) and the log-weights smoothed.
     let mut optim = config.optim;
-    let mut fair_report = None;
-    if plain.flat_lines.is_empty() {
-        let approx = FitConfig { method: FitMethod::Approx, ..*config };
-        let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx });
-        if let Some((_, report)) = crate::fairing::fair(&plain, config.fair, skin)? {
-            // The same dimensionless weight on the net's second differences.
-            optim.weights.fair = report.lambda;
+    // The optimisers work on the fair objective: the net's second differences
+    // ([`crate::fairing::NET_FAIR`], or the given weight) and smooth log-weights.
+    match config.fair {
+        Fairing::Off => {}
+        Fairing::Lambda(l) => {
+            optim.weights.fair = l;
             optim.weights.weight_smoothing = crate::fairing::WEIGHT_SMOOTHING;
-            fair_report = Some(report);
+        }
+        Fairing::Auto { .. } => {
+            optim.weights.fair = crate::fairing::NET_FAIR;
+            optim.weights.weight_smoothing = crate::fairing::WEIGHT_SMOOTHING;
         }
     }
     let opt = optimize_weights(offsets, &plain, algorithm, &optim, control)?;
@@ -249,31 +255,37 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     let mut out = measured(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
     out.knuckle_lines = plain.knuckle_lines.clone();
     out.flat_lines = plain.flat_lines.clone();
-    if let Some(mut report) = fair_report {
-        report.after = crate::fairing::FairnessFigures::of(&out.surface);
-        out.fairing = Some(report);
+    if out.validity.is_empty() || config.fair == Fairing::Off {
+        return Ok(out);
     }
-    // A surface that folds is never the answer when its start did not: the start is.
-    if !out.folds.is_empty() && plain.folds.is_empty() && config.fair != Fairing::Off {
-        let why = format!(
-            "the {} surface (true RMS {:.3e}) folds back across the sections in {} band(s), from x = {:.4} to {:.4}; the plain approximation, which does not, is kept (expected fewer control points or weights closer to 1)",
-            config.method.name(),
-            out.error.overall.rms,
-            out.folds.len(),
-            out.folds.iter().map(|f| f.x.0).fold(f64::INFINITY, f64::min),
-            out.folds.iter().map(|f| f.x.1).fold(f64::NEG_INFINITY, f64::max),
-        );
-        // The answer is the plain approximation, named so; the optimisation's record goes with
-        // the rejection.
-        let mut kept = FitOutcome {
-            config: FitConfig { method: FitMethod::Approx, ..*config },
-            fairing: out.fairing.take(),
-            ..plain
-        };
-        kept.rejected.push(why);
-        return Ok(kept);
+    // A surface with a validity finding is not the answer when a sound one is at hand: the
+    // fair approximation (its choice, [`crate::fairing::fair`], removes a fold if it can) or the
+    // plain one.
+    let approx = FitConfig { method: FitMethod::Approx, ..*config };
+    let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx });
+    let fair = if plain.flat_lines.is_empty() { crate::fairing::fair(&plain, config.fair, skin)? } else { None };
+    let mut candidates: Vec<FitOutcome> = Vec::new();
+    if let Some((mut f, report)) = fair {
+        f.fairing = Some(report);
+        candidates.push(f);
     }
-    Ok(out)
+    candidates.push(plain);
+    let Some(mut kept) = candidates.into_iter().find(|c| c.validity.is_empty()) else {
+        return Ok(out);
+    };
+    let kinds: Vec<&str> = out.validity.iter().map(|f| f.kind.name()).collect();
+    kept.rejected.push(format!(
+        "the {} surface (true RMS {:.3e}, {} at the offsets) has {} validity finding(s) ({}); the sound approximation \
+         is kept (expected fewer control points or a larger --fair)",
+        config.method.name(),
+        out.error.overall.rms,
+        out.error.overall.max,
+        out.validity.len(),
+        kinds.join(", ")
+    ));
+    kept.config = FitConfig { method: FitMethod::Approx, ..*config };
+    kept.fit_seconds += fit_seconds;
+    Ok(kept)
 }
 
 /// Measure the true error of a fitted surface and assemble the outcome.
@@ -292,7 +304,7 @@ fn measured(
     if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
         return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
     }
-    let folds = crate::analysis::find_folds(&surface);
+    let (validity, folds) = crate::analysis::validity::fit_validity_and_folds(&surface, offsets)?;
     Ok(FitOutcome {
         config: *config,
         surface,
@@ -306,6 +318,7 @@ fn measured(
         folds,
         fairing: None,
         rejected: Vec::new(),
+        validity,
     })
 }
 

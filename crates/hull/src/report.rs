@@ -18,7 +18,10 @@
 //!                   "weight_layout": "full", "weight_bounds": [0.1, 10], "weight_range": [..],
 //!                   "weights_at_bounds": n, "iterations": .., "evaluations": .., "stop": "iterations",
 //!                   "start_value": .., "final_value": .., "history": [..],
-//!                   "parameter_correction": false, "settings": {..}, "seconds": ..}}
+//!                   "parameter_correction": false, "settings": {..}, "seconds": ..},
+//!  "folds": [{"x": [x0, x1], "v": [v0, v1], "samples": n, "of": n}],
+//!  "validity": [{"kind": "below_centre_plane", "place": {"x": .., "y": .., "z": .., "u": .., "v": ..},
+//!                "size": .., "limit": .., "reference": .., "x_band": [x0, x1], "flat": "bottom"}]}
 //! ```
 //!
 //! `optimization` is present for the weight-optimised methods only; its `history` is the best
@@ -29,6 +32,13 @@
 //! lists results not taken as the answer, and why. `tolerance_search` is
 //! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
 //! `interp_control_points`, `ratio`, `fits`, `complete`, `tried`).
+//!
+//! `folds` is left out when the surface does not fold. `validity` is always there: one finding
+//! per defect ([`crate::analysis::Finding`]; kinds `fold`, `below_centre_plane`,
+//! `beyond_half_breadth`, `below_lowest_offset`, `above_highest_offset`, `past_aft_end`,
+//! `past_fore_end`, `flat_bulge`, `inward_facing`), empty for a valid surface. `size` is how far
+//! past `reference` (model units; an area in units² for `inward_facing`), `limit` the allowance
+//! it exceeded; `reference`, `x_band` and `flat` only where they apply.
 //!
 //! Errors are distances in the input's units, measured by closest-point projection of every
 //! input point onto the surface. `error.held_out`, when asked for (`hullskin fit --held-out K`,
@@ -91,6 +101,8 @@ pub struct Report {
     /// Results not taken as the answer, and why.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rejected: Vec<String>,
+    /// Every defect of the surface (always present; empty when valid).
+    pub validity: Vec<crate::analysis::Finding>,
 }
 
 impl Report {
@@ -121,6 +133,7 @@ impl Report {
             folds: outcome.folds.clone(),
             fairing: outcome.fairing.clone(),
             rejected: outcome.rejected.clone(),
+            validity: outcome.validity.clone(),
         }
     }
 }
@@ -254,15 +267,8 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
             o.weights_at_bounds, o.weight_bounds[0], o.weight_bounds[1]
         );
     }
-    for f in &outcome.folds {
-        let _ = writeln!(
-            t,
-            "warning: the surface folds back across the sections between x = {:.3} and {:.3} {u} ({} of {} samples \
-             there; a CAD system sees it as self-intersecting): sections crossing each other or unevenly spaced \
-             parameters across them (expected sections that advance in x; try --param centripetal,centripetal or \
-             fewer control points across)",
-            f.x.0, f.x.1, f.samples, f.of
-        );
+    for f in &outcome.validity {
+        let _ = writeln!(t, "warning: {}", f.message(u));
     }
     if let Some(w) = &e.worst {
         let line = w.line.map(|l| format!(", line {l}")).unwrap_or_default();
@@ -309,6 +315,13 @@ mod tests {
         assert_eq!(report["input"]["points"], 200);
         assert_eq!(report["surface"]["degree"], serde_json::json!([3, 3]));
         assert_eq!(report["error"]["max"].as_f64(), Some(out.error.overall.max));
+        // The findings, each with its kind, place and size (the sample's default fit has some).
+        let validity = report["validity"].as_array().expect("always a list");
+        assert_eq!(validity.len(), out.validity.len());
+        for (v, f) in validity.iter().zip(&out.validity) {
+            assert_eq!(v["kind"], f.kind.name());
+            assert_eq!((v["size"].as_f64(), v["place"]["x"].as_f64()), (Some(f.size), Some(f.place.x)));
+        }
         let text = std::fs::read_to_string(dir.path().join("surface.json")).expect("read");
         let (s, units) = crate::export::read_surface_json(&text).expect("reads back");
         assert_eq!(units, "m");
@@ -350,6 +363,11 @@ mod tests {
     fn summary_warns_of_unconverged_projections() {
         let offsets = series60_sample();
         let mut out = fit_offsets(&offsets, &FitConfig::default()).expect("fits");
+        // The default fit of the sample warns of its validity findings only (it crosses the
+        // centre plane at the transom and bulges past its flat side), one line each.
+        let warnings = |t: &str| t.lines().filter(|l| l.starts_with("warning: ")).count();
+        assert_eq!(warnings(&summary_table(&offsets, &out)), out.validity.len());
+        out.validity.clear();
         assert!(!summary_table(&offsets, &out).contains("warning"), "a clean fit warns of nothing");
         out.error.unconverged_projections = 3;
         let table = summary_table(&offsets, &out);

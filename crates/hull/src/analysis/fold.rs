@@ -31,7 +31,7 @@ pub struct Fold {
 
 /// Samples per knot span in each direction: enough to see a fold confined to one span between
 /// two close sections (Gunnerus's is 0.17 m wide between stations 0.58 m apart).
-const PER_SPAN: usize = 8;
+pub(crate) const PER_SPAN: usize = 8;
 
 /// The folds of `surface` (u along the sections, v across them): contiguous runs of the grid's
 /// v lines on which some sample has `x_v` of the sign opposite to the majority's, larger than
@@ -41,13 +41,6 @@ const PER_SPAN: usize = 8;
 pub fn find_folds(surface: &NurbsSurface) -> Vec<Fold> {
     let us = param_grid(surface.knots_u(), 16, true, PER_SPAN);
     let vs = param_grid(surface.knots_v(), 16, true, PER_SPAN);
-    let (lo, hi) = surface.control_bounds();
-    let (v0, v1) = surface.domain_v();
-    let extent = hi.x - lo.x;
-    if !(extent > 0.0) || !(v1 > v0) {
-        return Vec::new();
-    }
-    let tol = 1e-9 * extent / (v1 - v0);
     // x and x_v on the grid, v-major: one row per v line.
     let rows: Vec<Vec<(f64, f64)>> = vs
         .iter()
@@ -60,6 +53,20 @@ pub fn find_folds(surface: &NurbsSurface) -> Vec<Fold> {
                 .collect()
         })
         .collect();
+    folds_on_grid(surface, &vs, &rows).0
+}
+
+/// The folds of `surface` from samples `(x, x_v)` on the v lines `vs` (`rows[j]` on `vs[j]`),
+/// with the majority's sign of `x_v` (+1 when the surface advances in x with v, -1 when it
+/// runs aft; +1 for a surface with no extent in x, which has no fold).
+pub(crate) fn folds_on_grid(surface: &NurbsSurface, vs: &[f64], rows: &[Vec<(f64, f64)>]) -> (Vec<Fold>, f64) {
+    let (lo, hi) = surface.control_bounds();
+    let (v0, v1) = surface.domain_v();
+    let extent = hi.x - lo.x;
+    if !(extent > 0.0) || !(v1 > v0) {
+        return (Vec::new(), 1.0);
+    }
+    let tol = 1e-9 * extent / (v1 - v0);
     let balance: f64 = rows.iter().flatten().map(|&(_, xv)| if xv.abs() > tol { xv.signum() } else { 0.0 }).sum();
     let sign = if balance < 0.0 { -1.0 } else { 1.0 };
     let folded = |xv: f64| sign * xv < -tol;
@@ -83,7 +90,7 @@ pub fn find_folds(surface: &NurbsSurface) -> Vec<Fold> {
         }
         open = true;
     }
-    folds
+    (folds, sign)
 }
 
 #[cfg(test)]

@@ -6,7 +6,9 @@
 //! - [`curvature_map`](mod@curvature_map): Gaussian, mean and principal curvatures on a parameter grid, with
 //!   statistics for colour scales and reports;
 //! - [`fairness`]: bending energy and the inflections of stations and waterlines;
-//! - [`fold`]: where a skinned surface runs backwards across its sections.
+//! - [`fold`]: where a skinned surface runs backwards across its sections;
+//! - [`validity`]: every defect that makes a surface invalid (folds, leaving the offsets'
+//!   envelope, bulging through a flat, inward-facing facets).
 //!
 //! Axes as everywhere in hullskin: x forward, y to starboard, z up.
 
@@ -14,6 +16,7 @@ pub mod curvature_map;
 pub mod cuts;
 pub mod fairness;
 pub mod fold;
+pub mod validity;
 
 pub use curvature_map::{
     curvature_map, CurvatureField, CurvatureMap, CurvatureMapOptions, CurvatureSample, CurvatureSummary, Extreme,
@@ -25,6 +28,10 @@ pub use fairness::{
     FairnessOptions, FairnessReport, PlaneFairness, PlaneSelection,
 };
 pub use fold::{find_folds, Fold};
+pub use validity::{
+    check_fit_validity, check_validity, Envelope, Finding, FindingKind, Flat, Place, ENVELOPE_REL, FLAT_REL,
+    INWARD_SHARE,
+};
 
 use nurbs::{KnotVector, NurbsSurface};
 

@@ -2,7 +2,8 @@
 //! pictures and tables it is made of as separate files.
 //!
 //! The page holds, in order: the particulars (extent, surface, offsets, method, source); the
-//! fit error (max, mean, RMS, the worst offset, per section); the comparison of the methods
+//! fit error (max, mean, RMS, the worst offset, per section) with the surface's validity (every
+//! [`Finding`](crate::analysis::Finding), also flagged under the title); the comparison of the methods
 //! when one was run; the hydrostatics (at the design draft, or at ten drafts from the keel to
 //! the top of the offsets); the curvature summary (smallest and largest Gaussian and mean
 //! curvature and where) with the fairness measures (thin-plate energy, inflections per station
@@ -31,7 +32,7 @@ use nurbs::{NurbsSurface, Vec3};
 use self::html::{
     esc, esc_srcdoc, fixed, kv_table, num, png_img, point, table, td, td_html, td_key, td_num, th, th_key,
 };
-use crate::analysis::{self, CurvatureMap, CurvatureSummary, FairnessOptions, FairnessReport, FieldStats};
+use crate::analysis::{self, CurvatureMap, CurvatureSummary, FairnessOptions, FairnessReport, FieldStats, Finding};
 use crate::drawing::{lines_3d, lines_plan, write_dxf, write_dxf_3d_lines, write_svg, LinesPlanOptions};
 use crate::optimize::{OptimReport, StopReason};
 use crate::render::{self, RasterOptions};
@@ -206,6 +207,9 @@ pub struct ReportFiles {
     pub fairness: FairnessReport,
     /// The fit error shown, if any.
     pub error: Option<FitError>,
+    /// The surface's defects (the fit's; else checked here against the offsets' envelope and
+    /// flats, or, without offsets, for folds and inward-facing facets only). Empty when valid.
+    pub validity: Vec<Finding>,
 }
 
 impl ReportFiles {
@@ -272,6 +276,11 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
         (None, None) => None,
     };
     let optimization = inputs.optimization.or_else(|| inputs.fit.and_then(|f| f.optimization.as_ref()));
+    let validity = match (inputs.fit, inputs.offsets) {
+        (Some(fit), _) => fit.validity.clone(),
+        (None, Some(o)) => analysis::check_fit_validity(surface, o)?,
+        (None, None) => analysis::check_validity(surface, &analysis::Envelope::unbounded(), &[]),
+    };
 
     // Pictures and drawings.
     let lines_options = LinesPlanOptions {
@@ -324,6 +333,7 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
         convex_sign,
         fairness: &fairness,
         error: error.as_ref(),
+        validity: &validity,
         optimization,
         lines_svg: &lines_svg,
         maps: [
@@ -350,6 +360,7 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
         convex_sign,
         fairness,
         error,
+        validity,
     })
 }
 
@@ -471,6 +482,7 @@ struct Page<'p, 'a> {
     convex_sign: f64,
     fairness: &'p FairnessReport,
     error: Option<&'p FitError>,
+    validity: &'p [Finding],
     optimization: Option<&'p OptimReport>,
     lines_svg: &'p str,
     maps: [(&'p render::CurvatureMap, &'p [u8], &'static str); 2],
@@ -540,6 +552,49 @@ impl Page<'_, '_> {
         for n in &i.notes {
             s.push_str(&format!("<p class=\"note\">{}</p>\n", esc(n)));
         }
+        for f in self.validity {
+            s.push_str(&format!("<p class=\"note\">Warning: {}.</p>\n", esc(&f.message(self.u()))));
+        }
+        s
+    }
+
+    /// The validity subsection of the fit error: a table of the findings, or what was checked.
+    fn validity(&self) -> String {
+        let u = self.u();
+        let checked = if self.inputs.offsets.is_some() {
+            "folds, the offsets' envelope (0.5 % of the half-beam, depth and length), the flats of the offsets \
+             (0.05 %) and inward-facing facets"
+        } else {
+            "folds and inward-facing facets (without offsets there is no envelope to check)"
+        };
+        let mut s = String::from("<h3>Validity</h3>\n");
+        if self.validity.is_empty() {
+            s.push_str(&format!("<p id=\"validity-ok\">No finding: checked {checked}.</p>\n"));
+            return s;
+        }
+        s.push_str(&format!(
+            "<p>{} finding(s); checked {checked}. Size: how far past the reference ({u}; an area in {u}² for \
+             inward-facing facets).</p>\n",
+            self.validity.len()
+        ));
+        let head = vec![
+            th_key("Finding"),
+            th("From x", Some(u)),
+            th("To x", Some(u)),
+            th_key("Worst at (x, y, z)"),
+            th("Size", None),
+            th("Allowed", None),
+        ];
+        let rows: Vec<(bool, Vec<String>)> = self
+            .validity
+            .iter()
+            .map(|f| {
+                let (a, b) = f.x_band.unwrap_or((f.place.x, f.place.x));
+                let p = [f.place.x, f.place.y, f.place.z];
+                (true, vec![td_key(f.kind.name()), td(a), td(b), td_key(&point(p)), td(f.size), td(f.limit)])
+            })
+            .collect();
+        s.push_str(&table("validity-table", "numbers", &head, &rows));
         s
     }
 
@@ -625,9 +680,11 @@ impl Page<'_, '_> {
     fn fit_error(&self) -> String {
         let u = self.u();
         let Some(e) = self.error else {
-            return "<p class=\"note\">No offsets were given, so the distance of the offsets to the surface is not \
-                    measured.</p>\n"
-                .into();
+            return format!(
+                "<p class=\"note\">No offsets were given, so the distance of the offsets to the surface is not \
+                 measured.</p>\n{}",
+                self.validity()
+            );
         };
         let how = if self.inputs.fit.is_some() {
             "Distance of every offset to the surface by closest-point projection (from the fit's parameters \
@@ -660,6 +717,7 @@ impl Page<'_, '_> {
             rows.push(("Projections at the iteration limit".into(), e.unconverged_projections.to_string()));
         }
         s.push_str(&kv_table("error-summary", &rows));
+        s.push_str(&self.validity());
         let worst = e.per_section.iter().enumerate().fold(None, |best: Option<(usize, f64)>, (k, sec)| match best {
             Some((_, m)) if m >= sec.stats.max => best,
             _ => Some((k, sec.stats.max)),
@@ -1006,6 +1064,7 @@ fn comparison(c: &Comparison) -> String {
         th("Max K", Some(&format!("1/{u}²"))),
         th("Iterations", None),
         th("Evaluations", None),
+        th_key("Validity"),
     ];
     // Interpolation's error is round-off by construction (with its own count): not a contender.
     let best = c
@@ -1038,6 +1097,7 @@ fn comparison(c: &Comparison) -> String {
             }
             cells.push(format!("<td>{}</td>", r.iterations));
             cells.push(format!("<td>{}</td>", r.evaluations));
+            cells.push(td_key(&r.validity.as_ref().map_or_else(|| "-".to_string(), crate::RowValidity::label)));
             (r.error.is_some_and(|e| e.rms == best && r.method != "interp"), cells)
         })
         .collect();
