@@ -8,7 +8,9 @@
 #
 # For each table: weights d (full grid: the control points), offsets m, the time column of
 # `hullskin fit` (fit plus error measurement, the summary's `time`) for the plain
-# approximation (best of 3, interleaved with the LM runs) and for `--method lm` (best of 2),
+# approximation (`--fair 0`; best of 3, interleaved with the LM runs) and for `--method lm`
+# (on the fair objective of `--fair auto`, the default, with its fallback to a sound
+# approximation when LM's surface has a validity finding; best of 2), both `--held-out 0`,
 # their ratio, LM's true RMS; with BEFORE, the old binary's LM time and RMS too. Prints a
 # Markdown table. Needs jq. Times depend on the machine and its load.
 set -euo pipefail
@@ -19,8 +21,10 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 if [ $# -gt 0 ]; then tables=("$@"); else tables=(testdata/*.csv); fi
 
-# ms of the summary row of `method` printed by `hullskin fit`.
-ms() { awk -v m="$1" '$1 == m { print $(NF - 1) }'; }
+# ms of the summary row printed by `hullskin fit` (the row under the header: `lm`, or `approx`
+# when LM's surface was rejected for a sound approximation; the argument names the method
+# asked for).
+ms() { awk 'prev ~ /^method / { print $(NF - 1) } { prev = $0 }'; }
 best() { tr ' ' '\n' | grep -v '^$' | sort -g | head -1; }
 
 if [ -n "${BEFORE:-}" ]; then
@@ -34,9 +38,9 @@ for t in "${tables[@]}"; do
   name=$(basename "$t" .csv)
   a="" l="" b=""
   for r in 1 2 3; do
-    a="$a $("$bin" fit "$t" -o "$out/a" | ms approx)"
+    a="$a $("$bin" fit "$t" --fair 0 --held-out 0 -o "$out/a" | ms approx)"
     if [ "$r" -le 2 ]; then
-      l="$l $("$bin" fit "$t" --method lm -o "$out/l" | ms lm)"
+      l="$l $("$bin" fit "$t" --method lm --held-out 0 -o "$out/l" | ms lm)"
       if [ -n "${BEFORE:-}" ] && [ "$r" -eq 1 ]; then
         b=$("$BEFORE" fit "$t" --method lm -o "$out/b" | ms lm)
       fi
