@@ -245,6 +245,10 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
             optim.weights.fair = l;
             optim.weights.weight_smoothing = crate::fairing::WEIGHT_SMOOTHING;
         }
+        // Parameter correction fits the weights and the offsets' parameters jointly to recover
+        // exact shapes (conics) to round-off; any fairness term would bias them, so `auto`
+        // leaves it unpenalised.
+        Fairing::Auto { .. } if optim.parameter_correction => {}
         Fairing::Auto { .. } => {
             optim.weights.fair = crate::fairing::NET_FAIR;
             optim.weights.weight_smoothing = crate::fairing::WEIGHT_SMOOTHING;
