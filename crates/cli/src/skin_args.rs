@@ -63,7 +63,7 @@ pub struct SkinArgs {
     /// --tolerance, that does not fold, control points held in the offsets' envelope), a weight
     /// LAMBDA of the control net's second differences (e.g. 1e-3), or 0 for the plain least
     /// squares. Interpolation is not faired.
-    #[arg(long, value_name = "LAMBDA", default_value = "auto", value_parser = parse_fair)]
+    #[arg(long, value_name = "LAMBDA", default_value = "auto", value_parser = parse_fair, allow_hyphen_values = true)]
     pub fair: Fairing,
     /// How a mesh input (`.stl`, `.stl.gz`, `.obj`) is sliced into sections first.
     #[command(flatten)]

@@ -268,3 +268,27 @@ fn every_validity_finding_is_warned_of_and_recorded() {
     assert!(o.status.success() && !out.contains("warning"), "{out}\n{err}");
     assert_eq!(read_json(&dir.path().join("w/report.json"))["validity"], serde_json::json!([]));
 }
+
+/// Issue 11: bad values of `--fair` are refused before any work, naming what is expected, and
+/// `--fair 0` is the plain least squares (no fairing block in report.json).
+#[test]
+fn fair_takes_auto_zero_or_a_positive_weight_and_refuses_the_rest() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    for bad in ["-1", "nan", "inf", "smooth"] {
+        let out = format!("bad{bad}");
+        let o = hullskin(dir.path(), &["fit", "--fair", bad, "--held-out", "0", "-o", &out]);
+        let (_, err) = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.contains("expected auto, 0, or a finite number > 0"), "{bad}: {err}");
+        assert!(!dir.path().join(&out).exists(), "{bad}");
+    }
+    let o = hullskin(dir.path(), &["fit", "--fair", "0", "--held-out", "0", "-o", "plain"]);
+    assert!(o.status.success(), "{:?}", text(&o));
+    assert!(read_json(&dir.path().join("plain/report.json")).get("fairing").is_none());
+    let o = hullskin(dir.path(), &["fit", "--held-out", "0", "-o", "auto"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    let r = read_json(&dir.path().join("auto/report.json"));
+    assert_eq!(r["fairing"]["setting"], "auto", "{r}");
+    assert!(out.contains("fairing (auto): "), "{out}");
+}

@@ -279,7 +279,7 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     };
     let kinds: Vec<&str> = out.validity.iter().map(|f| f.kind.name()).collect();
     kept.rejected.push(format!(
-        "the {} surface (true RMS {:.3e}, {} at the offsets) has {} validity finding(s) ({}); the sound approximation \
+        "the {} surface (true RMS {:.3e}, max {:.3e} at the offsets) has {} validity finding(s) ({}); the sound approximation \
          is kept (expected fewer control points or a larger --fair)",
         config.method.name(),
         out.error.overall.rms,
