@@ -10,6 +10,8 @@ mod common;
 use common::*;
 
 const METHODS: [&str; 7] = ["interp", "approx", "ga", "pso", "gsa", "lm", "gsa+lm"];
+/// The rows of `--fair auto` after them (`hull::FAIR_ROWS`).
+const FAIR_METHODS: [&str; 2] = ["approx+fair", "lm+fair"];
 
 fn num(v: &Value, what: &str) -> f64 {
     let x = v.as_f64().unwrap_or_else(|| panic!("{what} is not a number: {v}"));
@@ -40,8 +42,16 @@ fn compare(dir: &Path, input: Option<&Path>, extra: &[&str]) -> (Value, String, 
 fn check_comparison(json: &Value, md: &str, stdout: &str) {
     let rows = json["methods"].as_array().expect("methods array");
     let names: Vec<&str> = rows.iter().map(|r| r["method"].as_str().expect("name")).collect();
-    assert_eq!(names, METHODS);
+    assert_eq!(names, METHODS.iter().chain(&FAIR_METHODS).copied().collect::<Vec<_>>());
     assert_eq!(json["complete"], true);
+    // The fair rows: measured at the same control points, with their validity.
+    for r in &rows[METHODS.len()..] {
+        let m = r["method"].as_str().expect("name");
+        assert_eq!(r["status"], "done", "{m}");
+        assert!(num(&r["error"]["rms"], m) > 0.0 && r["validity"]["valid"].is_boolean(), "{m}: {r}");
+        assert_eq!(&r["control_points"], &json["control_points"], "{m}");
+    }
+    let rows = &rows[..METHODS.len()];
     let ctrl = &json["control_points"];
     let approx = &rows[1];
     let approx_rms = num(&approx["error"]["rms"], "approx RMS");
@@ -90,7 +100,7 @@ fn check_comparison(json: &Value, md: &str, stdout: &str) {
     let checks = json["floors"]["checks"].as_array().expect("floor checks");
     assert_eq!(checks.len(), 4);
     assert!(checks.iter().all(|c| c["holds"].is_boolean()), "a complete run checks every floor: {checks:?}");
-    for m in METHODS {
+    for m in METHODS.iter().chain(&FAIR_METHODS) {
         let row = format!("| {m} |");
         assert_eq!(md.lines().filter(|l| l.starts_with(&row)).count(), 1, "{m} in\n{md}");
         assert!(stdout.lines().any(|l| l.starts_with(&row)), "{m} printed:\n{stdout}");

@@ -1,7 +1,9 @@
 //! The comparison table: skinning interpolation, the plain skinning approximation, and the
 //! approximation with its weights optimised by GA, PSO, GSA, Levenberg-Marquardt and GSA then
 //! LM, all at the same control points, with their true error, Gaussian curvature range, time
-//! and objective evaluations, and the floors of issue 3 checked on the result.
+//! and objective evaluations, and the floors of issue 3 checked on the result (on these rows,
+//! all with `--fair 0`, the plain objective); then the fair fits of the default `--fair auto`
+//! ([`FAIR_ROWS`]: `approx+fair`, `lm+fair`).
 //!
 //! `compare.json` layout (stable; later features add fields):
 //!
@@ -90,6 +92,11 @@ pub const COMPARE_METHODS: [FitMethod; 7] = [
     FitMethod::Optimized(Algorithm::Lm),
     FitMethod::Optimized(Algorithm::GsaLm),
 ];
+
+/// The rows after [`COMPARE_METHODS`]: the approximation and LM with `--fair auto`
+/// ([`crate::fairing`]), named so.
+pub const FAIR_ROWS: [(&str, FitMethod); 2] =
+    [("approx+fair", FitMethod::Approx), ("lm+fair", FitMethod::Optimized(Algorithm::Lm))];
 
 /// Settings of [`compare_offsets`]: those of [`FitConfig`] but the method, shared by all rows.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -583,6 +590,37 @@ pub fn compare_offsets_with(
         };
         rows.push(row);
     }
+    // The fair fits of the command line's default (`--fair auto`) as rows of their own: the
+    // approximation and LM on the fair objective (LM's row is what `--method lm` writes, a sound
+    // approximation when LM's surface was rejected).
+    for (name, method) in FAIR_ROWS {
+        if stopped {
+            not_run.push(name);
+            continue;
+        }
+        let cfg = FitConfig { fair: crate::Fairing::Auto { tolerance: None }, ..config.fit_config(method) };
+        let mut saw_stop = false;
+        let mut fit = |control: &Control<'_>| {
+            let mut r = fit_offsets_with(offsets, &cfg, control);
+            if let Ok(out) = &mut r {
+                held_out(out, control);
+            }
+            saw_stop = control.stopped();
+            r
+        };
+        let result = match method.algorithm() {
+            Some(algorithm) => run(algorithm, &mut fit),
+            None => quiet(|control| fit(control)),
+        };
+        stopped = saw_stop;
+        let mut row = match result {
+            Ok(out) => CompareRow::from_outcome(offsets, &out),
+            Err(e @ HullError::Config(_)) => return Err(e),
+            Err(e) => CompareRow::failed(method, ctrl, method.algorithm().map(|_| config.optim.seed), &e),
+        };
+        row.method = name;
+        rows.push(row);
+    }
     mark_overfitting(&mut rows);
     let o = &config.optim;
     Ok(Comparison {
@@ -897,13 +935,15 @@ mod tests {
         let offsets = series60_sample();
         let c = compare_offsets(&offsets, &small_config()).expect("sample compares");
         let names: Vec<&str> = c.methods.iter().map(|r| r.method).collect();
-        assert_eq!(names, ["interp", "approx", "ga", "pso", "gsa", "lm", "gsa+lm"]);
+        assert_eq!(names, ["interp", "approx", "ga", "pso", "gsa", "lm", "gsa+lm", "approx+fair", "lm+fair"]);
         assert!(c.complete && c.not_run.is_empty());
         // Interpolation has its own count (one pole per offset), the rest the asked one.
         assert_eq!(c.methods[0].control_points, [8, 25]);
         assert!(c.methods[1..].iter().all(|r| r.control_points == [5, 8]));
         let approx = c.methods[1].error.expect("measured");
-        for r in &c.methods {
+        // The plain-objective rows (the fair rows' objective carries the fairness terms, and
+        // `lm+fair` may be a sound approximation kept for a rejected LM surface).
+        for r in &c.methods[..COMPARE_METHODS.len()] {
             let e = r.error.expect("measured");
             // The projection starts at the fit's parameters: the true distance never exceeds the
             // parametric residual (1e-12 relative: round-off of two evaluations).
@@ -931,7 +971,7 @@ mod tests {
             assert!(md.lines().any(|l| l.starts_with(&format!("| {n} |"))), "{n}: {md}");
         }
         let json: serde_json::Value = serde_json::from_str(&comparison_json(&c)).expect("valid JSON");
-        assert_eq!(json["methods"].as_array().map(Vec::len), Some(7));
+        assert_eq!(json["methods"].as_array().map(Vec::len), Some(COMPARE_METHODS.len() + FAIR_ROWS.len()));
         // Every row says whether its surface is valid, in both files.
         for (r, j) in c.methods.iter().zip(json["methods"].as_array().into_iter().flatten()) {
             let v = r.validity.as_ref().expect("measured rows are checked");
@@ -1016,7 +1056,7 @@ mod tests {
         let names: Vec<&str> = c.methods.iter().map(|r| r.method).collect();
         assert_eq!(names, ["interp", "approx", "ga"]);
         assert_eq!(c.methods[2].status, RowStatus::Interrupted);
-        assert_eq!(c.not_run, ["pso", "gsa", "lm", "gsa+lm"]);
+        assert_eq!(c.not_run, ["pso", "gsa", "lm", "gsa+lm", "approx+fair", "lm+fair"]);
         assert!(!c.complete);
         assert_eq!(c.floors.all_hold, None);
         assert!(comparison_markdown(&c).contains("ga (interrupted)"));

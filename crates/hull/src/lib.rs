@@ -35,7 +35,7 @@ pub use compare::{
     check_floors, compare_offsets, compare_offsets_with, comparison_json, comparison_markdown, comparison_table,
     floors_markdown, gaussian_curvature_range, CompareConfig, CompareOptimization, CompareRow, Comparison,
     CurvatureRange, CurvatureSampling, FloorCheck, Floors, OptimRunner, RowError, RowStatus, RowValidity,
-    COMPARE_METHODS, CURVATURE_GRID, FLOOR_RELATIVE_TOLERANCE,
+    COMPARE_METHODS, CURVATURE_GRID, FAIR_ROWS, FLOOR_RELATIVE_TOLERANCE,
 };
 pub use error::{HullError, InputErrorKind, Location};
 pub use fairing::{FairReport, Fairing};
