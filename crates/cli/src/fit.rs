@@ -108,9 +108,11 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     }
     let mut report = hull::Report::new(&offsets, &outcome);
     report.tolerance_search = search;
+    let overfit = overfitting(&offsets, &outcome);
+    report.overfitting = overfit.as_ref().map(|l| l.trim_start_matches("warning: ").to_string());
     write_outputs(&args.out, &offsets, &outcome, &report)?;
     print!("{}", hull::summary_table(&offsets, &outcome));
-    if let Some(line) = overfitting(&offsets, &outcome) {
+    if let Some(line) = overfit {
         println!("{line}");
     }
     if let Some(s) = &report.tolerance_search {

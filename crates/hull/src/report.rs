@@ -29,7 +29,8 @@
 //! `fairing` is present when the fit was faired ([`crate::FairReport`]: `setting`, `lambda`
 //! (0: the plain fit was kept), `tolerance`, `tried` (`lambda`, `max`, `folds`, `accepted`),
 //! `held_on_box`, `before` and `after` (`thin_plate`, `gaussian` [min, max])); `rejected`
-//! lists results not taken as the answer, and why. `tolerance_search` is
+//! lists results not taken as the answer, and why; `overfitting` (from `hullskin fit` with an
+//! optimised method) says when its held-out error shows over-fitting. `tolerance_search` is
 //! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
 //! `interp_control_points`, `ratio`, `fits`, `complete`, `tried`).
 //!
@@ -101,6 +102,11 @@ pub struct Report {
     /// Results not taken as the answer, and why.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub rejected: Vec<String>,
+    /// An optimised method's over-fitting, when its held-out error shows it (lower RMS at the
+    /// offsets than the approximation at the same control points, higher held out): the
+    /// command line's warning, set by the caller that cross-validated both.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub overfitting: Option<String>,
     /// Every defect of the surface (always present; empty when valid).
     pub validity: Vec<crate::analysis::Finding>,
 }
@@ -133,6 +139,7 @@ impl Report {
             folds: outcome.folds.clone(),
             fairing: outcome.fairing.clone(),
             rejected: outcome.rejected.clone(),
+            overfitting: None,
             validity: outcome.validity.clone(),
         }
     }
