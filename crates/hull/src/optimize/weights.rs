@@ -2111,56 +2111,67 @@ mod tests {
         }
     }
 
-    #[test]
-    fn normal_equations_match_the_dense_jacobians_products() {
-        let mut seed = 29;
-        // (8, 5) is assembled u-major, (6, 12) v-major; both layouts and modes.
+    /// The cases the products' tests sweep: `(8, 5)` is assembled u-major, `(6, 12)` v-major;
+    /// both layouts; fixed and re-solved control points, the latter also with the fairness term
+    /// and the log-weight smoothing (a prior with off-diagonal entries).
+    pub(super) fn product_sweep() -> Vec<((usize, usize), WeightLayout, WeightMode, f64)> {
+        let mut cases = Vec::new();
         for ctrl in [(8, 5), (6, 12)] {
             for layout in [WeightLayout::Full, WeightLayout::RankOne] {
                 for (mode, fair) in
                     [(WeightMode::Fixed, 0.0), (WeightMode::Resolved, 0.0), (WeightMode::Resolved, 0.05)]
                 {
-                    // The identity behind both needs the pure least-squares G = H^T H (+ the
-                    // fairness term): no anchor (with it, both are the same O(anchor)
-                    // approximation of the exact terms).
-                    let (fit, offsets) = sample_fit(ctrl);
-                    let opts = WeightOptions {
-                        mode,
-                        layout,
-                        regularization: 1e-3,
-                        anchor: 0.0,
-                        fair,
-                        weight_smoothing: fair / 10.0,
-                        ..Default::default()
-                    };
-                    let p = WeightProblem::from_fit(&fit, &offsets, opts).expect("shapes match");
-                    let x: Vec<f64> = (0..p.dim()).map(|_| 0.8 * noise(&mut seed)).collect();
-                    let lin = p.residuals_and_jacobian(&x, JacobianKind::Kaufman).expect("regular");
-                    let ne = p.normal_equations(&x).expect("regular");
-                    let d = p.dim();
-                    assert_eq!((ne.dim, ne.jtj.len(), ne.jtr.len()), (d, d * d, d));
-                    // The diagonal alone: the same sums, bit for bit.
-                    let diag = p.jtj_diagonal(&x).expect("regular");
-                    assert!((0..d).all(|i| diag[i] == ne.jtj[i * d + i]));
-                    let diag = (0..d).map(|i| dot_norm(lin.column(i)).powi(2)).fold(0.0, f64::max);
-                    let gscale = diag.sqrt() * dot_norm(&lin.residuals);
-                    let mut worst = (0.0f64, 0.0f64);
-                    for i in 0..d {
-                        for j in 0..d {
-                            let dense: f64 = lin.column(i).iter().zip(lin.column(j)).map(|(a, b)| a * b).sum();
-                            assert_eq!(ne.jtj[i * d + j], ne.jtj[j * d + i], "symmetric");
-                            worst.0 = worst.0.max((ne.jtj[i * d + j] - dense).abs() / diag);
-                        }
-                        let g: f64 = lin.column(i).iter().zip(&lin.residuals).map(|(a, b)| a * b).sum();
-                        worst.1 = worst.1.max((ne.jtr[i] - g).abs() / gscale);
-                    }
-                    // The same sums in exact arithmetic; A^T A - W^T W cancels the part of the
-                    // fixed-point derivative that the re-solved control points absorb, which
-                    // costs a few digits: measured up to 4e-14 of the largest diagonal entry (1e-15 for
-                    // the gradient, whose projected term vanishes at the least-squares solution).
-                    assert!(worst.0 < 1e-12 && worst.1 < 1e-12, "{ctrl:?} {layout:?} {mode:?}: {worst:?}");
+                    cases.push((ctrl, layout, mode, fair));
                 }
             }
+        }
+        cases
+    }
+
+    #[test]
+    fn normal_equations_match_the_dense_jacobians_products() {
+        let mut seed = 29;
+        // (8, 5) is assembled u-major, (6, 12) v-major; both layouts and modes.
+        for (ctrl, layout, mode, fair) in product_sweep() {
+            // The identity behind both needs the pure least-squares G = H^T H (+ the
+            // fairness term): no anchor (with it, both are the same O(anchor)
+            // approximation of the exact terms).
+            let (fit, offsets) = sample_fit(ctrl);
+            let opts = WeightOptions {
+                mode,
+                layout,
+                regularization: 1e-3,
+                anchor: 0.0,
+                fair,
+                weight_smoothing: fair / 10.0,
+                ..Default::default()
+            };
+            let p = WeightProblem::from_fit(&fit, &offsets, opts).expect("shapes match");
+            let x: Vec<f64> = (0..p.dim()).map(|_| 0.8 * noise(&mut seed)).collect();
+            let lin = p.residuals_and_jacobian(&x, JacobianKind::Kaufman).expect("regular");
+            let ne = p.normal_equations(&x).expect("regular");
+            let d = p.dim();
+            assert_eq!((ne.dim, ne.jtj.len(), ne.jtr.len()), (d, d * d, d));
+            // The diagonal alone: the same sums, bit for bit.
+            let diag = p.jtj_diagonal(&x).expect("regular");
+            assert!((0..d).all(|i| diag[i] == ne.jtj[i * d + i]));
+            let diag = (0..d).map(|i| dot_norm(lin.column(i)).powi(2)).fold(0.0, f64::max);
+            let gscale = diag.sqrt() * dot_norm(&lin.residuals);
+            let mut worst = (0.0f64, 0.0f64);
+            for i in 0..d {
+                for j in 0..d {
+                    let dense: f64 = lin.column(i).iter().zip(lin.column(j)).map(|(a, b)| a * b).sum();
+                    assert_eq!(ne.jtj[i * d + j], ne.jtj[j * d + i], "symmetric");
+                    worst.0 = worst.0.max((ne.jtj[i * d + j] - dense).abs() / diag);
+                }
+                let g: f64 = lin.column(i).iter().zip(&lin.residuals).map(|(a, b)| a * b).sum();
+                worst.1 = worst.1.max((ne.jtr[i] - g).abs() / gscale);
+            }
+            // The same sums in exact arithmetic; A^T A - W^T W cancels the part of the
+            // fixed-point derivative that the re-solved control points absorb, which
+            // costs a few digits: measured up to 4e-14 of the largest diagonal entry (1e-15 for
+            // the gradient, whose projected term vanishes at the least-squares solution).
+            assert!(worst.0 < 1e-12 && worst.1 < 1e-12, "{ctrl:?} {layout:?} {mode:?}: {worst:?}");
         }
         // An infeasible point gives None, like the value's infinity.
         let p = problem((6, 12), WeightMode::Resolved, WeightLayout::Full, 0.0);

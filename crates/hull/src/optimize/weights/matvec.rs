@@ -280,7 +280,7 @@ impl JacobianOp<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{noise, problem};
+    use super::super::tests::{noise, problem, product_sweep};
     use super::super::{JacobianKind, WeightLayout, WeightMode};
     use crate::optimize::linalg::dot;
     use crate::optimize::Objective;
@@ -289,62 +289,54 @@ mod tests {
     fn products_equal_the_dense_jacobians() {
         let mut seed = 17;
         // (8, 5) is factored u-major, (6, 12) v-major; both layouts and modes.
-        for ctrl in [(8, 5), (6, 12)] {
-            for layout in [WeightLayout::Full, WeightLayout::RankOne] {
-                // The fairness term and the log-weight smoothing (a prior with off-diagonal
-                // entries) as well.
-                for (mode, fair) in
-                    [(WeightMode::Fixed, 0.0), (WeightMode::Resolved, 0.0), (WeightMode::Resolved, 0.05)]
-                {
-                    let p = problem(ctrl, mode, layout, 1e-3).with_fairness(fair, fair / 10.0).expect("usable");
-                    let d = p.dim();
-                    let x: Vec<f64> = (0..d).map(|_| 0.8 * noise(&mut seed)).collect();
-                    let lin = p.residuals_and_jacobian(&x, JacobianKind::Kaufman).expect("regular");
-                    let ne = p.normal_equations(&x).expect("regular");
-                    let mut op = p.jacobian_op(&x).expect("regular");
-                    let rows = 3 * p.num_points();
-                    let v: Vec<f64> = (0..d).map(|_| noise(&mut seed)).collect();
-                    let w: Vec<f64> = (0..rows).map(|_| noise(&mut seed)).collect();
-                    // Dense references: J v, J^T w from the columns (data rows only).
-                    let jv: Vec<f64> = (0..rows).map(|r| (0..d).map(|c| lin.column(c)[r] * v[c]).sum()).collect();
-                    let jtw: Vec<f64> = (0..d).map(|c| dot(&lin.column(c)[..rows], &w)).collect();
-                    let scale_v = jv.iter().map(|t| t.abs()).fold(0.0, f64::max);
-                    let scale_w = jtw.iter().map(|t| t.abs()).fold(0.0, f64::max);
-                    let op_jv = op.apply(&v);
-                    let op_jtw = op.apply_t(&w);
-                    // The same sums in another order, through the same factor: round-off
-                    // amplified by cond(G) (<~ 1e4 here); with the anchor's ridge the dense
-                    // J carries the projector twice where the product has it once, an O(1e-9)
-                    // relative difference that only matters for J^T J (compared below with
-                    // the dense normal equations, which apply it once too).
-                    let err_v = jv.iter().zip(&op_jv).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-                    let err_w = jtw.iter().zip(&op_jtw).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-                    assert!(err_v <= 1e-11 * scale_v, "{ctrl:?} {layout:?} {mode:?}: J v {err_v:e} of {scale_v:e}");
-                    assert!(err_w <= 1e-11 * scale_w, "{ctrl:?} {layout:?} {mode:?}: J^T w {err_w:e} of {scale_w:e}");
-                    // (J^T J) v and J^T r against the dense normal equations (their prior
-                    // diagonal removed: the operator leaves it to the caller).
-                    let prior = p.prior_diag();
-                    let (mut rv, mut rx) = (vec![0.0; d], vec![0.0; d]);
-                    p.prior_apply(&v, &mut rv);
-                    p.prior_apply(&x, &mut rx);
-                    let mut out = vec![0.0; d];
-                    op.normal_apply(&v, &mut out, &mut Vec::new());
-                    let dense: Vec<f64> = (0..d).map(|i| dot(&ne.jtj[i * d..(i + 1) * d], &v) - rv[i]).collect();
-                    let sn = dense.iter().map(|t| t.abs()).fold(0.0, f64::max);
-                    let en = dense.iter().zip(&out).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-                    assert!(en <= 1e-11 * sn, "{ctrl:?} {layout:?} {mode:?}: J^T J v {en:e} of {sn:e}");
-                    let g = op.gradient();
-                    let gd: Vec<f64> = (0..d).map(|i| ne.jtr[i] - rx[i]).collect();
-                    let sg = gd.iter().map(|t| t.abs()).fold(0.0, f64::max);
-                    let eg = gd.iter().zip(&g).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-                    assert!(eg <= 1e-9 * sg, "{ctrl:?} {layout:?} {mode:?}: J^T r {eg:e} of {sg:e}");
-                    // diag(A^T A) / m bounds diag(J^T J) from above.
-                    let da = op.diag_ata();
-                    for i in 0..d {
-                        let jj = ne.jtj[i * d + i] - prior[i];
-                        assert!(jj <= da[i] * (1.0 + 1e-12), "{ctrl:?} {layout:?} {mode:?}: {i}: {jj} > {}", da[i]);
-                    }
-                }
+        for (ctrl, layout, mode, fair) in product_sweep() {
+            let p = problem(ctrl, mode, layout, 1e-3).with_fairness(fair, fair / 10.0).expect("usable");
+            let d = p.dim();
+            let x: Vec<f64> = (0..d).map(|_| 0.8 * noise(&mut seed)).collect();
+            let lin = p.residuals_and_jacobian(&x, JacobianKind::Kaufman).expect("regular");
+            let ne = p.normal_equations(&x).expect("regular");
+            let mut op = p.jacobian_op(&x).expect("regular");
+            let rows = 3 * p.num_points();
+            let v: Vec<f64> = (0..d).map(|_| noise(&mut seed)).collect();
+            let w: Vec<f64> = (0..rows).map(|_| noise(&mut seed)).collect();
+            // Dense references: J v, J^T w from the columns (data rows only).
+            let jv: Vec<f64> = (0..rows).map(|r| (0..d).map(|c| lin.column(c)[r] * v[c]).sum()).collect();
+            let jtw: Vec<f64> = (0..d).map(|c| dot(&lin.column(c)[..rows], &w)).collect();
+            let scale_v = jv.iter().map(|t| t.abs()).fold(0.0, f64::max);
+            let scale_w = jtw.iter().map(|t| t.abs()).fold(0.0, f64::max);
+            let op_jv = op.apply(&v);
+            let op_jtw = op.apply_t(&w);
+            // The same sums in another order, through the same factor: round-off
+            // amplified by cond(G) (<~ 1e4 here); with the anchor's ridge the dense
+            // J carries the projector twice where the product has it once, an O(1e-9)
+            // relative difference that only matters for J^T J (compared below with
+            // the dense normal equations, which apply it once too).
+            let err_v = jv.iter().zip(&op_jv).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            let err_w = jtw.iter().zip(&op_jtw).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            assert!(err_v <= 1e-11 * scale_v, "{ctrl:?} {layout:?} {mode:?}: J v {err_v:e} of {scale_v:e}");
+            assert!(err_w <= 1e-11 * scale_w, "{ctrl:?} {layout:?} {mode:?}: J^T w {err_w:e} of {scale_w:e}");
+            // (J^T J) v and J^T r against the dense normal equations (their prior
+            // diagonal removed: the operator leaves it to the caller).
+            let prior = p.prior_diag();
+            let (mut rv, mut rx) = (vec![0.0; d], vec![0.0; d]);
+            p.prior_apply(&v, &mut rv);
+            p.prior_apply(&x, &mut rx);
+            let mut out = vec![0.0; d];
+            op.normal_apply(&v, &mut out, &mut Vec::new());
+            let dense: Vec<f64> = (0..d).map(|i| dot(&ne.jtj[i * d..(i + 1) * d], &v) - rv[i]).collect();
+            let sn = dense.iter().map(|t| t.abs()).fold(0.0, f64::max);
+            let en = dense.iter().zip(&out).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            assert!(en <= 1e-11 * sn, "{ctrl:?} {layout:?} {mode:?}: J^T J v {en:e} of {sn:e}");
+            let g = op.gradient();
+            let gd: Vec<f64> = (0..d).map(|i| ne.jtr[i] - rx[i]).collect();
+            let sg = gd.iter().map(|t| t.abs()).fold(0.0, f64::max);
+            let eg = gd.iter().zip(&g).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            assert!(eg <= 1e-9 * sg, "{ctrl:?} {layout:?} {mode:?}: J^T r {eg:e} of {sg:e}");
+            // diag(A^T A) / m bounds diag(J^T J) from above.
+            let da = op.diag_ata();
+            for i in 0..d {
+                let jj = ne.jtj[i * d + i] - prior[i];
+                assert!(jj <= da[i] * (1.0 + 1e-12), "{ctrl:?} {layout:?} {mode:?}: {i}: {jj} > {}", da[i]);
             }
         }
     }
