@@ -234,8 +234,6 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config })?;
     crate::limits::check_optimization(&offsets.source, &config.optim, plain.surface.n_u(), plain.surface.n_v())?;
     let start = Instant::now();
-    // The optimisers work on the fair objective: the λ fairing chooses for the approximation
-    // (0 when no fair surface was fairer than the plain one) and the log-weights smoothed.
     let mut optim = config.optim;
     // The optimisers work on the fair objective: the net's second differences
     // ([`crate::fairing::NET_FAIR`], or the given weight) and smooth log-weights.
