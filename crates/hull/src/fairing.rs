@@ -6,7 +6,9 @@
 //! offsets stays within a tolerance, and a sound one (no fold). [`Fairing::Auto`] does that
 //! literally (see [`fair`]): the tolerance is `--tolerance` or, by default, the plain
 //! approximation's own max error at the same control points, so fairing never costs accuracy at
-//! the offsets unless the plain fit folds; "fairer" is measured as a naval architect would,
+//! the offsets unless the plain fit has validity findings (a fold, the surface leaving the
+//! offsets' envelope, ...: then the fit with fewer is worth up to twice the tolerance,
+//! [`UNSOUND_SLACK`]); "fairer" is measured as a naval architect would,
 //! by the thin-plate energy `∫ (k1^2 + k2^2) dA` and the largest Gaussian curvature, both no
 //! worse than the plain fit's.
 //!
@@ -48,7 +50,7 @@ impl Fairing {
     }
 }
 
-/// [`WeightOptions::weight_smoothing`] of the optimisers on the fair objective: a difference of
+/// [`WeightOptions::weight_smoothing`](crate::optimize::WeightOptions::weight_smoothing) of the optimisers on the fair objective: a difference of
 /// 1 between neighbouring log-weights (a factor e) costs as much as an RMS error of 1e-4 of the
 /// model size (12 mm on the Series 60 sample), so the weights vary smoothly over the net.
 pub const WEIGHT_SMOOTHING: f64 = 1e-4;
@@ -70,7 +72,7 @@ pub const NET_FAIR: f64 = 1e-4;
 /// tries, smallest first.
 pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.0];
 
-/// One `λ` tried.
+/// One smoothing weight tried.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct FairTry {
     pub lambda: f64,
@@ -78,7 +80,8 @@ pub struct FairTry {
     pub max: f64,
     /// Validity findings ([`crate::analysis::check_fit_validity`]).
     pub findings: usize,
-    /// Sound, within the tolerance and fairer (or, for a plain fit with findings, sound).
+    /// The one taken: sound, within the tolerance and fairer; or, for a plain fit with
+    /// findings, the least smoothing with the fewest (within twice the tolerance).
     pub accepted: bool,
 }
 
