@@ -104,7 +104,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     };
     let (mut outcome, search) = args.fit.fit(&args.skin, &offsets)?;
     if args.held_out > 0 && !progress::stopped() {
-        outcome.error.held_out = held_out_with_progress(&offsets, &outcome.config, args.held_out);
+        outcome.error.held_out = held_out_with_progress(&offsets, &held_out_config(&outcome), args.held_out);
     }
     let mut report = hull::Report::new(&offsets, &outcome);
     report.tolerance_search = search;
@@ -192,6 +192,23 @@ pub(crate) fn fit_with_progress(
     }
 }
 
+/// The settings the held-out refits use: the fit's own, with the approximation's automatic
+/// fairing replaced by the smoothing it chose (or none, where it kept the plain fit), so the
+/// refits measure the surface that was written between its offsets, at the cost of one fit
+/// each instead of a whole search each.
+pub(crate) fn held_out_config(outcome: &FitOutcome) -> FitConfig {
+    let mut config = outcome.config;
+    if config.method.algorithm().is_none() {
+        if let hull::Fairing::Auto { .. } = config.fair {
+            config.fair = match &outcome.fairing {
+                Some(r) if r.lambda > 0.0 => hull::Fairing::Lambda(r.lambda),
+                _ => hull::Fairing::Off,
+            };
+        }
+    }
+    config
+}
+
 /// The held-out error of the fit `config` with `folds` folds ([`hull::held_out_for_config`]),
 /// with a progress bar for the optimised methods (their refits take a while), stopped by
 /// SIGINT or SIGTERM like them. `None` after a stop, or when it cannot be computed (then a
@@ -219,7 +236,9 @@ fn overfitting(offsets: &Offsets, outcome: &FitOutcome) -> Option<String> {
     outcome.config.method.algorithm()?;
     let plain = FitConfig { method: FitMethod::Approx, ..outcome.config };
     let base = hull::fit_offsets(offsets, &plain).ok()?;
-    let base_held = hull::held_out_for_config(offsets, &plain, &hull::HeldOutOptions::with_folds(held.folds)).ok()?;
+    let base_held =
+        hull::held_out_for_config(offsets, &held_out_config(&base), &hull::HeldOutOptions::with_folds(held.folds))
+            .ok()?;
     let (at, at_base) = (outcome.error.overall.rms, base.error.overall.rms);
     held.overfits(at, at_base, &base_held).then(|| {
         let u = offsets.units.symbol();

@@ -168,14 +168,25 @@ fn auto_flats_keeps_the_cargo_ship_inside_its_flats() {
 }
 
 /// R/V Gunnerus's forecastle step (the deck jumps 3.5 m between stations 0.58 m apart) folds
-/// the default skin back on itself near x = 16.5 m: the run says so, report.json records the
-/// band, and the centripetal parameterization across the sections it suggests removes it.
+/// the plain skin (`--fair 0`) back on itself near x = 16.5 m: the run says so, report.json
+/// records the band, and the centripetal parameterization across the sections it suggests
+/// removes it; so does the default `--fair auto` (issue 11), which smooths the skin until the
+/// fold is gone.
 #[test]
 fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
     let dir = tempfile::tempdir().expect("temp dir");
     let input = testdata("gunnerus_offsets.csv");
     let input = input.to_str().expect("utf-8 path");
-    let o = hullskin(dir.path(), &["fit", input, "-o", "default"]);
+    let o = hullskin(dir.path(), &["fit", input, "--held-out", "0", "-o", "auto"]);
+    let (out, err) = text(&o);
+    assert!(
+        o.status.success(),
+        "{out}
+{err}"
+    );
+    assert!(!out.contains("folds back") && out.contains("fairing (auto): smoothing"), "{out}");
+    assert!(read_json(&dir.path().join("auto/report.json")).get("folds").is_none());
+    let o = hullskin(dir.path(), &["fit", input, "--fair", "0", "--held-out", "0", "-o", "default"]);
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}\n{err}");
     assert!(
@@ -188,7 +199,10 @@ fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
     let x = |i: usize| folds[0]["x"][i].as_f64().expect("number");
     // Between the stations at x = 16.24 and 16.82 m around the step (the table's header).
     assert!(x(0) > 16.24 && x(1) < 16.82 && x(0) <= x(1), "{}", folds[0]);
-    let o = hullskin(dir.path(), &["fit", input, "--param", "centripetal,centripetal", "-o", "centripetal"]);
+    let o = hullskin(
+        dir.path(),
+        &["fit", input, "--param", "centripetal,centripetal", "--fair", "0", "--held-out", "0", "-o", "centripetal"],
+    );
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}\n{err}");
     assert!(!out.contains("folds back"), "{out}");

@@ -272,13 +272,23 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
         candidates.push(f);
     }
     candidates.push(plain);
+    Ok(prefer_sound(config, out, candidates))
+}
+
+/// `out` (an optimised fit) unless it has validity findings and one of `candidates` has none:
+/// then the first such, named `approx`, with `out`'s rejection in `rejected` and the time
+/// spent on both.
+fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>) -> FitOutcome {
+    if out.validity.is_empty() {
+        return out;
+    }
     let Some(mut kept) = candidates.into_iter().find(|c| c.validity.is_empty()) else {
-        return Ok(out);
+        return out;
     };
     let kinds: Vec<&str> = out.validity.iter().map(|f| f.kind.name()).collect();
     kept.rejected.push(format!(
-        "the {} surface (true RMS {:.3e}, max {:.3e} at the offsets) has {} validity finding(s) ({}); the sound approximation \
-         is kept (expected fewer control points or a larger --fair)",
+        "the {} surface (true RMS {:.3e}, max {:.3e} at the offsets) has {} validity finding(s) ({}); the sound \
+         approximation is kept (expected fewer control points or a larger --fair)",
         config.method.name(),
         out.error.overall.rms,
         out.error.overall.max,
@@ -286,8 +296,8 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
         kinds.join(", ")
     ));
     kept.config = FitConfig { method: FitMethod::Approx, ..*config };
-    kept.fit_seconds += fit_seconds;
-    Ok(kept)
+    kept.fit_seconds += out.fit_seconds;
+    kept
 }
 
 /// Measure the true error of a fitted surface and assemble the outcome.
@@ -451,6 +461,30 @@ mod tests {
         // measured).
         let gap = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
         assert!(gap(&vs[0], &vs[1]) > 10.0 * gap(&vs[0], &vs[2]), "{vs:?}");
+    }
+
+    #[test]
+    fn an_optimised_surface_with_findings_gives_way_to_a_sound_approximation() {
+        let offsets = series60_sample();
+        let lm = FitConfig { method: FitMethod::Optimized(Algorithm::Lm), ctrl: Some((5, 8)), ..FitConfig::default() };
+        let out = fit_offsets(&offsets, &lm).expect("fits");
+        let plain = fit_offsets(&offsets, &FitConfig { ctrl: Some((5, 8)), ..FitConfig::default() }).expect("fits");
+        // The sample's fits have findings (the transom crosses the centre plane): judged by
+        // their lists, with the approximation's cleared to stand for a sound one.
+        assert!(!out.validity.is_empty());
+        let sound = FitOutcome { validity: Vec::new(), ..plain.clone() };
+        let kept = prefer_sound(&lm, out.clone(), vec![plain.clone(), sound.clone()]);
+        assert_eq!(kept.surface, sound.surface);
+        assert_eq!(kept.config.method, FitMethod::Approx, "the summary names what was written");
+        assert_eq!(kept.rejected.len(), 1);
+        assert!(kept.rejected[0].starts_with("the lm surface") && kept.rejected[0].contains("below_centre_plane"));
+        assert!(kept.fit_seconds >= out.fit_seconds);
+        // No sound candidate: the optimised fit stands, with its findings.
+        let same = prefer_sound(&lm, out.clone(), vec![plain]);
+        assert_eq!((same.surface, same.rejected.len()), (out.surface.clone(), 0));
+        // A sound optimised fit is never replaced.
+        let sound_lm = FitOutcome { validity: Vec::new(), ..out.clone() };
+        assert_eq!(prefer_sound(&lm, sound_lm, vec![sound]).surface, out.surface);
     }
 
     #[test]
