@@ -311,7 +311,7 @@ fn compare_adds_the_table_of_every_method() {
         .filter(|n| n.has_tag_name("tr") && n.ancestors().any(|a| a.has_tag_name("tbody")))
         .map(|tr| tr.children().find(|c| c.has_tag_name("td")).and_then(|c| c.text()).unwrap_or("").to_string())
         .collect();
-    assert_eq!(methods, ["interp", "approx", "ga", "pso", "gsa", "lm", "gsa+lm"]);
+    assert_eq!(methods, ["interp", "approx", "ga", "pso", "gsa", "lm", "gsa+lm", "approx+fair", "lm+fair"]);
     let rms: Vec<f64> = column(table, 5).iter().map(|s| s.parse().expect("number")).collect();
     // Interpolation passes through the offsets; every optimiser starts from the approximation.
     assert!(rms[0] < 1e-8 && rms[1] > 0.01, "{rms:?}");
@@ -358,7 +358,8 @@ fn bad_inputs_exit_with_a_message_naming_the_file() {
 fn a_folded_surface_is_flagged_on_the_page() {
     let dir = scratch("folded");
     let input = testdata("gunnerus_offsets.csv");
-    report_ok(&dir, &[input.to_str().expect("utf-8 path"), "-o", "R"]);
+    // The plain skin (`--fair 0`): the default `--fair auto` smooths the fold away.
+    report_ok(&dir, &[input.to_str().expect("utf-8 path"), "--fair", "0", "-o", "R"]);
     let html = read_text(&dir.join("R"), "report.html");
     let doc = parse(&html);
     let warning = doc
