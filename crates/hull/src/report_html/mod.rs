@@ -1386,7 +1386,7 @@ mod tests {
         let rms = column(table, 5);
         let want: Vec<f64> = comparison.methods.iter().map(|m| m.error.expect("done").rms).collect();
         assert_eq!(rms, want);
-        assert_eq!(rms.len(), crate::COMPARE_METHODS.len());
+        assert_eq!(rms.len(), crate::COMPARE_METHODS.len() + crate::FAIR_ROWS.len());
 
         // The convergence plot of the GA run: a PNG with more than the background's colour.
         assert!(by_id(&doc, "convergence").is_some());
