@@ -43,7 +43,9 @@
 //! Walker's forcing sequence as the gradient falls), that is used instead; the evaluation of an accepted point is
 //! reused for its model. On the tables of `testdata/` (the README's table, `tools/lm_speed.sh`)
 //! this took LM from 60x-970x the plain approximation's time to 7x-13x on 176 to 780 weights,
-//! at a higher final RMS where the old runs went furthest (WPB 0.37 mm against 0.027).
+//! at a higher final RMS where the old runs went furthest (WPB 0.37 mm against 0.027); CG's
+//! cap 8 -> 12 with the forcing sequence and a race probe of 20 iterations cut that to 0.317 mm
+//! (trawler 3.81 -> 1.99, against 1.77 dense) at 7x-16x.
 //! [`run_best_of`] runs several starts a few iterations each and only the lowest on.
 //!
 //! With [`run_with_parameters`] the unknowns are the log-weights and every offset's `u_k` (and
