@@ -8,10 +8,11 @@
 #
 # For each table: weights d (full grid: the control points), offsets m, the time column of
 # `hullskin fit` (fit plus error measurement, the summary's `time`) for the plain
-# approximation (`--fair 0`; best of 3, interleaved with the LM runs) and for `--method lm`
+# approximation (`--fair 0`; best of 3, interleaved with the LM runs), for `--method lm`
 # (on the fair objective of `--fair auto`, the default, with its fallback to a sound
-# approximation when LM's surface has a validity finding; best of 2), both `--held-out 0`,
-# their ratio, LM's true RMS; with BEFORE, the old binary's LM time and RMS too. Prints a
+# approximation when LM's surface has a validity finding; best of 2) and for `--method lm
+# --fair 0` (the plain objective; best of 2), all `--held-out 0`, the ratios to the
+# approximation and LM's true RMS; with BEFORE, the old binary's LM (`--fair 0`) too. Prints a
 # Markdown table. Needs jq. Times depend on the machine and its load.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -28,31 +29,34 @@ ms() { awk 'prev ~ /^method / { print $(NF - 1) } { prev = $0 }'; }
 best() { tr ' ' '\n' | grep -v '^$' | sort -g | head -1; }
 
 if [ -n "${BEFORE:-}" ]; then
-  echo "| table | d | m | approx ms | LM ms | ratio | LM RMS mm | before: LM ms | ratio | LM RMS mm |"
-  echo "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|"
+  echo "| table | d | m | approx ms | LM ms | ratio | LM RMS mm | LM fair 0 ms | ratio | RMS mm | before: LM fair 0 ms | ratio | RMS mm |"
+  echo "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|"
 else
-  echo "| table | d | m | approx ms | LM ms | ratio | LM RMS mm |"
-  echo "|---|--:|--:|--:|--:|--:|--:|"
+  echo "| table | d | m | approx ms | LM ms | ratio | LM RMS mm | LM fair 0 ms | ratio | RMS mm |"
+  echo "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|"
 fi
 for t in "${tables[@]}"; do
   name=$(basename "$t" .csv)
-  a="" l="" b=""
+  a="" l="" z="" b=""
   for r in 1 2 3; do
     a="$a $("$bin" fit "$t" --fair 0 --held-out 0 -o "$out/a" | ms approx)"
     if [ "$r" -le 2 ]; then
       l="$l $("$bin" fit "$t" --method lm --held-out 0 -o "$out/l" | ms lm)"
+      z="$z $("$bin" fit "$t" --method lm --fair 0 --held-out 0 -o "$out/z" | ms lm)"
       if [ -n "${BEFORE:-}" ] && [ "$r" -eq 1 ]; then
-        b=$("$BEFORE" fit "$t" --method lm -o "$out/b" | ms lm)
+        b=$("$BEFORE" fit "$t" --method lm --fair 0 --held-out 0 -o "$out/b" | ms lm)
       fi
     fi
   done
   a=$(echo "$a" | best)
   l=$(echo "$l" | best)
+  z=$(echo "$z" | best)
   d=$(jq '.surface.control_points[0] * .surface.control_points[1]' "$out/l/report.json")
   m=$(jq '.input.points' "$out/l/report.json")
   rms=$(jq '.error.rms * 1000' "$out/l/report.json")
-  row=$(awk -v n="$name" -v d="$d" -v m="$m" -v a="$a" -v l="$l" -v r="$rms" \
-    'BEGIN { printf "| %s | %d | %d | %.2f | %.1f | %.1f | %.4g |", n, d, m, a, l, l / a, r }')
+  zrms=$(jq '.error.rms * 1000' "$out/z/report.json")
+  row=$(awk -v n="$name" -v d="$d" -v m="$m" -v a="$a" -v l="$l" -v r="$rms" -v z="$z" -v zr="$zrms" \
+    'BEGIN { printf "| %s | %d | %d | %.2f | %.1f | %.1f | %.4g | %.1f | %.1f | %.4g |", n, d, m, a, l, l / a, r, z, z / a, zr }')
   if [ -n "${BEFORE:-}" ]; then
     brms=$(jq '.error.rms * 1000' "$out/b/report.json")
     row="$row$(awk -v a="$a" -v b="$b" -v r="$brms" 'BEGIN { printf " %.1f | %.1f | %.4g |", b, b / a, r }')"

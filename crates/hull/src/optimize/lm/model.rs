@@ -154,6 +154,11 @@ impl<'a> MatrixFree<'a> {
         })
     }
 
+    /// Sets CG's relative residual `η` (the forcing term of this step).
+    pub(super) fn set_tolerance(&mut self, tol: f64) {
+        self.tol = tol;
+    }
+
     /// `out = (J^T J + R) full`.
     fn product(&mut self) {
         self.op.normal_apply(&self.full, &mut self.out, &mut self.rows);
@@ -239,6 +244,30 @@ impl Model for MatrixFree<'_> {
     }
 }
 
+/// The inexact-Newton forcing term of the next step, Eisenstat and Walker's choice 2
+/// ("Choosing the forcing terms in an inexact Newton method", SIAM J. Sci. Comput. 17, 1996,
+/// eq. 2.6 with its safeguard 2.7): `η_k = γ (|g_k| / |g_{k-1}|)^α` with `γ = 0.9`, `α = 2`,
+/// raised to `γ η_{k-1}^α` when that exceeds `0.1` (so one lucky step does not make the next
+/// one needlessly exact), and kept within `[eta_min, eta_max]`. `prev` is `None` at the
+/// first step, which gets `eta_max`. The gradient norms are those of `|r|^2 / 2` at the
+/// accepted points: the step is solved as accurately as the iteration converges, loosely far
+/// from the minimum and tightly near it, where a truncated step would stall the run.
+pub(super) fn forcing(prev: Option<(f64, f64)>, g_norm: f64, eta_max: f64, eta_min: f64) -> f64 {
+    const GAMMA: f64 = 0.9;
+    const ALPHA: f64 = 2.0;
+    let Some((prev_eta, prev_g)) = prev else { return eta_max };
+    let ratio = if prev_g > 0.0 { g_norm / prev_g } else { 1.0 };
+    let mut eta = GAMMA * ratio.powf(ALPHA);
+    let safeguard = GAMMA * prev_eta.powf(ALPHA);
+    if safeguard > 0.1 {
+        eta = eta.max(safeguard);
+    }
+    if eta.is_nan() {
+        eta = eta_max;
+    }
+    eta.clamp(eta_min.min(eta_max), eta_max)
+}
+
 /// How the damped step is solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum StepPath {
@@ -246,10 +275,13 @@ pub(super) enum StepPath {
     MatrixFree,
 }
 
-/// Products per matrix-free iteration assumed by [`step_path`]: [`LmOptions::max_cg`] CG
-/// iterations (the default cap, reached on the large tables), the gradient and the model's
-/// decrease.
+/// Products per matrix-free iteration assumed by [`step_path`]: [`TYPICAL_CG`] CG iterations
+/// (or [`LmOptions::max_cg`] if fewer), the gradient and the model's decrease.
 const EXTRA_PRODUCTS: usize = 2;
+
+/// CG iterations of a typical matrix-free step for [`step_path`]'s estimate: the loose first
+/// steps of the forcing sequence take a few, the tight last ones up to the cap.
+const TYPICAL_CG: usize = 8;
 
 /// How much cheaper the matrix-free iteration must be to be chosen: a truncated step gains
 /// less than the exact one (on the Series 60 table, 114 weights, where it is estimated 2x
@@ -258,7 +290,8 @@ const MATRIX_FREE_MARGIN: usize = 4;
 
 /// The cheaper step for `problem`: forming and factoring the normal equations costs about
 /// `d n (bw + d / 3) + d^3 / 6` multiply-adds an iteration
-/// ([`WeightProblem::normal_equations`]), the matrix-free step about `max_cg + 2` products. [`LmOptions::matrix_free`] overrides the choice.
+/// ([`WeightProblem::normal_equations`]), the matrix-free step about
+/// `TYPICAL_CG + 2` products. [`LmOptions::matrix_free`] overrides the choice.
 pub(super) fn step_path(problem: &WeightProblem, opts: &LmOptions) -> StepPath {
     match opts.matrix_free {
         Some(true) => return StepPath::MatrixFree,
@@ -271,7 +304,7 @@ pub(super) fn step_path(problem: &WeightProblem, opts: &LmOptions) -> StepPath {
     let d = problem.dim();
     let (n, bw) = (problem.ctrl().0 * problem.ctrl().1, problem.bandwidth());
     let dense = d * n * (bw + d / 3) + d * d * d / 6;
-    let free = (opts.max_cg + EXTRA_PRODUCTS) * problem.product_cost();
+    let free = (opts.max_cg.min(TYPICAL_CG) + EXTRA_PRODUCTS) * problem.product_cost();
     if MATRIX_FREE_MARGIN * free < dense {
         StepPath::MatrixFree
     } else {
@@ -354,5 +387,28 @@ mod tests {
         let fit = fit_offsets(&offsets, &FitConfig { ctrl: Some((5, 8)), ..FitConfig::default() }).expect("fits");
         let p = WeightProblem::from_fit(&fit, &offsets, WeightOptions::default()).expect("shapes match");
         assert_eq!(step_path(&p, &forced), StepPath::MatrixFree);
+    }
+
+    /// The forcing term against Eisenstat and Walker's formula 2.6 and safeguard 2.7.
+    #[test]
+    fn the_forcing_term_follows_eisenstat_and_walker() {
+        let (max, min) = (0.5, 1e-4);
+        // The first step: the loosest.
+        assert_eq!(forcing(None, 1.0, max, min), max);
+        // The gradient fell 10x after a step at η = 0.01: 0.9 (0.1)^2 = 0.009 (the safeguard,
+        // 0.9 * 1e-4, is below 0.1 and does not apply).
+        let eta = forcing(Some((0.01, 1.0)), 0.1, max, min);
+        assert!((eta - 0.009).abs() < 1e-15, "{eta}");
+        // The same fall after a loose step (η = 0.5, safeguard 0.9 * 0.25 = 0.225 > 0.1).
+        let eta = forcing(Some((0.5, 1.0)), 0.1, max, min);
+        assert!((eta - 0.225).abs() < 1e-15, "{eta}");
+        // A rising gradient: capped at the loosest; a collapse: floored at the tightest.
+        assert_eq!(forcing(Some((0.01, 1.0)), 2.0, max, min), max);
+        assert_eq!(forcing(Some((0.01, 1.0)), 1e-6, max, min), min);
+        // Degenerate norms give a finite term within the bounds.
+        for (prev, g) in [(Some((0.01, 0.0)), 0.0), (Some((0.01, f64::NAN)), 1.0), (Some((0.01, 1.0)), f64::NAN)] {
+            let eta = forcing(prev, g, max, min);
+            assert!((min..=max).contains(&eta), "{prev:?} {g}: {eta}");
+        }
     }
 }
