@@ -61,7 +61,6 @@ impl OptimArgs {
             weights: WeightOptions { mode: self.control_points, layout: self.weights, ..WeightOptions::default() },
             parameter_correction: self.param_correction,
             foot_point_start: !self.fitted_params,
-            control_box: None,
         }
     }
 }

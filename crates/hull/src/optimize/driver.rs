@@ -87,9 +87,6 @@ pub struct OptimSettings {
     /// plain fit in true RMS (its parametric RMS at the foot points is the plain fit's true
     /// RMS, and the least squares at those parameters can only lower it). Default true.
     pub foot_point_start: bool,
-    /// Hold the result's control points in this box ([`WeightProblem::surface_within`]; the
-    /// fair objective's envelope, [`crate::fairing::envelope_box`]); `None`: free.
-    pub control_box: Option<super::ControlBox>,
 }
 
 impl Default for OptimSettings {
@@ -101,7 +98,6 @@ impl Default for OptimSettings {
             weights: WeightOptions::default(),
             parameter_correction: false,
             foot_point_start: true,
-            control_box: None,
         }
     }
 }
@@ -260,10 +256,7 @@ pub fn optimize_weights(
         let params = problem.params().to_vec();
         (problem, params)
     };
-    let surface = match &settings.control_box {
-        Some(bx) => problem.surface_within(&result.x, bx)?.0,
-        None => problem.surface(&result.x)?,
-    };
+    let surface = problem.surface(&result.x)?;
     let w = surface.weights();
     let (lo, hi) = settings.weights.bounds;
     let wmin = w.iter().copied().fold(f64::INFINITY, f64::min);

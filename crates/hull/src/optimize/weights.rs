@@ -578,8 +578,10 @@ impl WeightProblem {
                 self.net_band = net
                     .gram_lower(|c| pat.pos(c / n_v, c % n_v))
                     .into_iter()
-                    .filter(|&(r, c, _)| r - c <= bw)
-                    .map(|(r, c, v)| (r * stride + c + bw - r, v))
+                    .map(|(r, c, v)| {
+                        debug_assert!(r - c <= bw, "D^T D entry ({r}, {c}) outside the band {bw}");
+                        (r * stride + c + bw - r, v)
+                    })
                     .collect();
                 let rows = net.len() as f64;
                 self.fair_f = self.options.fair / rows;
@@ -661,14 +663,6 @@ impl WeightProblem {
     fn net_value(&self, sc: &Scratch) -> f64 {
         let (pat, n_v) = (&self.pat, self.pat.n_v);
         self.net.value(|c| sc.y[pat.pos(c / n_v, c % n_v)])
-    }
-
-    /// The fairness energy `|D P|^2` of the net of `surface`'s control points (Cartesian), with
-    /// this problem's creases; `0` when the problem has no fairness term.
-    pub fn net_energy_of(&self, surface: &NurbsSurface) -> f64 {
-        let n_v = surface.n_v();
-        NetEnergy::new(surface.n_u(), n_v, surface.knots_u(), surface.knots_v())
-            .value(|c| surface.control_point(c / n_v, c % n_v).to_array())
     }
 
     /// The evolutionary algorithms' search box (see [`WeightOptions::search_scale`]): the
@@ -945,25 +939,10 @@ impl WeightProblem {
             let sp = self.point_of(table, &sc, k);
             let qk = self.points[k];
             let e = [sp[0] - qk[0], sp[1] - qk[1], sp[2] - qk[2]];
-            row.clear();
-            for (&o, &hl) in pat.off.iter().zip(&h) {
-                let pos = first + o;
-                let r_kc = hl * sc.w[pos];
-                let pc = pts[pos];
-                let al = [r_kc * (pc[0] - sp[0]), r_kc * (pc[1] - sp[1]), r_kc * (pc[2] - sp[2])];
-                let (vars, nv) = self.vars_of(pos);
-                for &v in &vars[..nv] {
-                    match row.iter_mut().find(|(w, _)| *w == v) {
-                        Some((_, t)) => {
-                            t[0] += al[0];
-                            t[1] += al[1];
-                            t[2] += al[2];
-                        }
-                        None => row.push((v, al)),
-                    }
-                }
-                if resolved {
-                    let t = &mut hte[pos];
+            self.a_row(first, sp, &h, &sc.w, &pts, &mut row);
+            if resolved {
+                for (&o, &hl) in pat.off.iter().zip(&h) {
+                    let t = &mut hte[first + o];
                     t[0] += hl * e[0];
                     t[1] += hl * e[1];
                     t[2] += hl * e[2];
@@ -1441,6 +1420,41 @@ impl WeightProblem {
         match self.options.layout {
             WeightLayout::Full => ([c, 0], 1),
             WeightLayout::RankOne => ([c / self.pat.n_v, self.pat.n_u + c % self.pat.n_v], 2),
+        }
+    }
+
+    /// Offset `k`'s row of `A` (the derivative of `S_k` at fixed control points): one
+    /// `(variable, dS_k/dvariable)` entry per variable its control points feed, in order of
+    /// first appearance (the rank-one layout sums `2 (p+1) (q+1)` derivatives into
+    /// `(p+1) + (q+1)` entries), with `first` its first control point's band position, `sp`
+    /// the point `S_k`, `h` its `h_kl`, `w` the weights in band order and `pts` the
+    /// [`WeightProblem::derivative_points`]. `row` is cleared first.
+    fn a_row(
+        &self,
+        first: usize,
+        sp: [f64; 3],
+        h: &[f64],
+        w: &[f64],
+        pts: &[[f64; 3]],
+        row: &mut Vec<(usize, [f64; 3])>,
+    ) {
+        row.clear();
+        for (&o, &hl) in self.pat.off.iter().zip(h) {
+            let pos = first + o;
+            let r_kc = hl * w[pos];
+            let pc = pts[pos];
+            let al = [r_kc * (pc[0] - sp[0]), r_kc * (pc[1] - sp[1]), r_kc * (pc[2] - sp[2])];
+            let (vars, nv) = self.vars_of(pos);
+            for &v in &vars[..nv] {
+                match row.iter_mut().find(|(u, _)| *u == v) {
+                    Some((_, t)) => {
+                        t[0] += al[0];
+                        t[1] += al[1];
+                        t[2] += al[2];
+                    }
+                    None => row.push((v, al)),
+                }
+            }
         }
     }
 

@@ -106,36 +106,18 @@ impl WeightProblem {
             sc: Scratch::default(),
         };
         op.ptr.push(0);
+        let mut row = Vec::with_capacity(2 * nb);
         for k in 0..m {
             let first = table.first[k];
             let s = sc.s[k];
             let sp = self.point_of(table, &sc, k);
             let qk = self.points[k];
             op.e.push([sp[0] - qk[0], sp[1] - qk[1], sp[2] - qk[2]]);
-            let row0 = op.var.len();
-            for (&o, &bl) in pat.off.iter().zip(&table.vals[k * nb..(k + 1) * nb]) {
-                let hl = bl * s;
-                op.h.push(hl);
-                let pos = first + o;
-                let r_kc = hl * sc.w[pos];
-                let pc = pts[pos];
-                let al = [r_kc * (pc[0] - sp[0]), r_kc * (pc[1] - sp[1]), r_kc * (pc[2] - sp[2])];
-                let (vars, nv) = self.vars_of(pos);
-                for &v in &vars[..nv] {
-                    match op.var[row0..].iter().position(|&w| w == v) {
-                        Some(i) => {
-                            let t = &mut op.val[row0 + i];
-                            t[0] += al[0];
-                            t[1] += al[1];
-                            t[2] += al[2];
-                        }
-                        None => {
-                            op.var.push(v);
-                            op.val.push(al);
-                        }
-                    }
-                }
-            }
+            let h0 = op.h.len();
+            op.h.extend(table.vals[k * nb..(k + 1) * nb].iter().map(|bl| bl * s));
+            self.a_row(first, sp, &op.h[h0..], &sc.w, &pts, &mut row);
+            op.var.extend(row.iter().map(|&(v, _)| v));
+            op.val.extend(row.iter().map(|&(_, a)| a));
             op.ptr.push(op.var.len());
         }
         let finite = op.val.iter().chain(&op.e).all(|a| a.iter().all(|c| c.is_finite()));
