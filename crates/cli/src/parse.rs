@@ -27,7 +27,7 @@ pub(crate) fn parse_fair(s: &str) -> Result<Fairing, String> {
         return Ok(Fairing::Auto { tolerance: None });
     }
     match t.parse::<f64>() {
-        Ok(l) if l == 0.0 => Ok(Fairing::Off),
+        Ok(0.0) => Ok(Fairing::Off),
         Ok(l) if l > 0.0 && l.is_finite() => Ok(Fairing::Lambda(l)),
         _ => Err(format!("`{s}` is not a fairness weight (expected auto, 0, or a finite number > 0 such as 1e-3)")),
     }
