@@ -60,11 +60,20 @@ pub struct SkinArgs {
     pub corner_angle: f64,
     /// Fairness of the approximation and of the optimised weights: `auto` (the fairest
     /// surface whose max error at the offsets is within the plain approximation's, or within
-    /// --tolerance, that does not fold, control points held in the offsets' envelope), a weight
+    /// --tolerance, that does not fold), a weight
     /// LAMBDA of the control net's second differences (e.g. 1e-3), or 0 for the plain least
     /// squares. Interpolation is not faired.
     #[arg(long, value_name = "LAMBDA", default_value = "auto", value_parser = parse_fair, allow_hyphen_values = true)]
     pub fair: Fairing,
+    /// The offsets' envelope (the box of the offsets: the centre plane, the largest
+    /// half-breadth, the lowest and highest offsets, the end sections): `hold` refits an
+    /// approximation that leaves it by more than the validity allowance with its control net
+    /// held just past the faces it crossed (half the allowance), so that the surface stays
+    /// within the allowance (the convex-hull property); an optimised surface that leaves it
+    /// gives way to that approximation (under --fair). `free` keeps the plain least squares and
+    /// reports where it leaves.
+    #[arg(long, value_enum, default_value = "hold")]
+    pub envelope: EnvelopeMode,
     /// How a mesh input (`.stl`, `.stl.gz`, `.obj`) is sliced into sections first.
     #[command(flatten)]
     pub mesh: crate::slice::MeshArgs,
@@ -80,6 +89,15 @@ pub enum KnuckleMode {
     AutoFlats,
     /// One smooth surface.
     Off,
+}
+
+/// The values of `--envelope`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum EnvelopeMode {
+    /// Hold the surface within the offsets' envelope.
+    Hold,
+    /// Keep the plain least squares, its findings reported.
+    Free,
 }
 
 /// An angle in degrees strictly between 0 and 180.
@@ -106,6 +124,7 @@ impl Default for SkinArgs {
             knuckles: KnuckleMode::Auto,
             corner_angle: CornerOptions::default().min_angle_deg,
             fair: Fairing::Auto { tolerance: None },
+            envelope: EnvelopeMode::Hold,
             mesh: crate::slice::MeshArgs::default(),
         }
     }
@@ -153,6 +172,11 @@ impl SkinArgs {
             knuckles,
             fair: self.fair,
             smoothing: 0.0,
+            envelope: if self.envelope == EnvelopeMode::Hold {
+                hull::EnvelopeHold::Own
+            } else {
+                hull::EnvelopeHold::Free
+            },
         }
     }
 }

@@ -214,7 +214,8 @@ fn tolerance_picks_a_count_within_it_and_reports_the_search() {
     let input = input.to_str().expect("utf-8 path");
     // Interpolation (5 x 4 here) then each count: the plain fit's max error at 4 x 4 is
     // the loosest tolerance worth asking for.
-    let o = hullskin(dir.path(), &["fit", input, "-o", "c44", "--ctrl", "4,4"]);
+    // (The search measures the plain least squares: --fair 0.)
+    let o = hullskin(dir.path(), &["fit", input, "-o", "c44", "--ctrl", "4,4", "--fair", "0"]);
     assert!(o.status.success(), "{:?}", text(&o));
     let t = num(&read_json(&dir.path().join("c44/report.json"))["error"]["max"]);
     let o = hullskin(dir.path(), &["fit", input, "-o", "tol", "--tolerance", &format!("{t:e}")]);

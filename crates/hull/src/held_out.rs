@@ -341,6 +341,13 @@ pub fn held_out_for_config_with(
     let ctrl = config.ctrl.unwrap_or_else(|| default_ctrl(offsets, config.degree));
     let full = data_extent(offsets);
     let inner = Control { stop: control.stop, progress: &|_| {} };
+    // The refits keep the whole table's envelope (its principal dimensions), not the smaller
+    // one of what they are given.
+    let envelope = match (config.envelope, crate::Envelope::of_offsets(offsets)) {
+        (crate::EnvelopeHold::Own, Some(e)) => crate::EnvelopeHold::Given(e.bounds()),
+        (hold, _) => hold,
+    };
+    let config = &FitConfig { envelope, ..*config };
     let refit = |train: &Offsets| {
         let config = refit_config(train, config, ctrl, full);
         match fit_offsets_with(train, &config, &inner) {

@@ -50,7 +50,9 @@ pub use hydrostatics::{
 };
 pub use offsets::{Offsets, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
-pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, FitConfig, FitMethod, FitOutcome, Knuckles};
+pub use pipeline::{
+    default_ctrl, fit_offsets, fit_offsets_with, EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles, HOLD_SHARE,
+};
 pub use read::{
     decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
 };

@@ -1,17 +1,19 @@
 //! The offsets -> surface pipeline: validate the offsets, skin a surface through or near
 //! them, and measure its true error.
 
+use std::collections::BTreeMap;
 use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
 use nurbs::fit::{
-    find_flat_lines, find_knuckle_lines, knuckle_indices, refit_within_flats, skin_approximate_with_knuckles,
-    skin_interpolate_with_knuckles, CornerOptions, FlatLine, FlatOptions, KnuckleLine, SkinOptions,
-    SkinParameterization,
+    bounded_refit, find_flat_lines, find_knuckle_lines, knuckle_indices, refit_within_flats,
+    skin_approximate_with_knuckles, skin_interpolate_with_knuckles, CornerOptions, FlatLine, FlatOptions, KnuckleLine,
+    SkinOptions, SkinParameterization,
 };
 use nurbs::{NurbsError, NurbsSurface};
 
+use crate::analysis::Envelope;
 use crate::fairing::{FairReport, Fairing};
 use crate::fit_error::{measure_fit_error, FitError};
 use crate::optimize::{optimize_weights, quiet, Algorithm, Control, OptimReport, OptimSettings};
@@ -132,6 +134,27 @@ pub struct FitConfig {
     pub fair: Fairing,
     /// [`SkinOptions::smoothing`] of the skinning approximation (set by [`crate::fairing`]).
     pub smoothing: f64,
+    /// Whether an approximation (`approx`, and the start of the optimised methods) that leaves
+    /// the offsets' envelope is held within it ([`EnvelopeHold`]; the default holds it in the
+    /// offsets' own envelope). An optimised surface re-solves its control points: one that
+    /// leaves the envelope gives way to the sound approximation under a fairness setting.
+    pub envelope: EnvelopeHold,
+}
+
+/// How [`FitConfig::envelope`] holds a surface that leaves the offsets' envelope: a refit of
+/// its control net behind the faces it crossed ([`nurbs::fit::bounded_refit`]), so that by the
+/// convex-hull property no point of it can cross them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum EnvelopeHold {
+    /// Keep the least squares as it is (its findings reported).
+    Free,
+    /// Behind the faces of the offsets' own envelope ([`Envelope::bounds`]).
+    #[default]
+    Own,
+    /// Behind the faces of this box: the envelope of a whole table, for the cross-validation
+    /// refits of part of it (the principal dimensions of the hull are known even where some
+    /// of its offsets are held out).
+    Given(nurbs::fit::ControlBox),
 }
 
 impl Default for FitConfig {
@@ -145,6 +168,7 @@ impl Default for FitConfig {
             knuckles: Knuckles::default(),
             fair: Fairing::Off,
             smoothing: 0.0,
+            envelope: EnvelopeHold::Own,
         }
     }
 }
@@ -179,6 +203,10 @@ pub struct FitOutcome {
     /// offsets' envelope, bulging through a flat of the offsets, inward-facing facets); empty
     /// for a valid surface.
     pub validity: Vec<crate::analysis::Finding>,
+    /// Control-point coordinates held on the offsets' envelope: an approximation that left it
+    /// is refitted with its net within the envelope ([`nurbs::fit::bounded_refit`]); 0 when
+    /// none was needed.
+    pub envelope_held: usize,
 }
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
@@ -331,6 +359,7 @@ fn measured(
         fairing: None,
         rejected: Vec::new(),
         validity,
+        envelope_held: 0,
     })
 }
 
@@ -346,14 +375,7 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullErr
         }
     }
     offsets.validate(p + 1)?;
-    // A pointed end (all points within the validation tolerance) goes to the kernel as one
-    // exactly repeated point, so both agree on what is a point.
-    let tol = crate::COINCIDENT_REL * offsets.size();
-    let sections: Vec<Vec<nurbs::Vec3>> = offsets
-        .sections
-        .iter()
-        .map(|s| if s.is_point(tol) { vec![s.points[0]; s.points.len()] } else { s.points.clone() })
-        .collect();
+    let sections = kernel_sections(offsets);
     // The net before it is built: one pole per offset of the largest section by the number of
     // sections for interpolation (at most), the requested counts for approximation.
     let (nu, nv) = match (config.method, config.ctrl) {
@@ -400,10 +422,112 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullErr
     }
     let fit_seconds = start.elapsed().as_secs_f64();
     let mut out = measured(offsets, config, surface, result.params, fit_seconds, None)?;
-    out.knuckle_lines = lines;
     out.flat_lines = flat_lines;
+    if config.method != FitMethod::Interp {
+        out = within_envelope(offsets, config, &sections, out)?;
+    }
+    out.knuckle_lines = lines;
     Ok(out)
 }
+
+/// The sections as the kernel fits them: a pointed end (all points within the validation
+/// tolerance) goes to the kernel as one exactly repeated point, so both agree on what is a
+/// point.
+fn kernel_sections(offsets: &Offsets) -> Vec<Vec<nurbs::Vec3>> {
+    let tol = crate::COINCIDENT_REL * offsets.size();
+    offsets
+        .sections
+        .iter()
+        .map(|s| if s.is_point(tol) { vec![s.points[0]; s.points.len()] } else { s.points.clone() })
+        .collect()
+}
+
+/// An approximation that leaves the offsets' envelope (or bulges through a flat, a face of
+/// it), refitted with its control net held behind the faces it crossed ([`FitConfig::envelope`],
+/// [`bounded_refit`]), so that by the convex-hull property no point of it can leave. Its
+/// coordinates inside the box stay least squares; the outcome records how many were held
+/// ([`FitOutcome::envelope_held`]). A surface within the envelope is returned as it is.
+fn within_envelope(
+    offsets: &Offsets,
+    config: &FitConfig,
+    sections: &[Vec<nurbs::Vec3>],
+    out: FitOutcome,
+) -> Result<FitOutcome, HullError> {
+    let (full, given) = match config.envelope {
+        EnvelopeHold::Free => return Ok(out),
+        EnvelopeHold::Own => match Envelope::of_offsets(offsets) {
+            Some(e) => (e.bounds(), None),
+            None => return Ok(out),
+        },
+        EnvelopeHold::Given(b) => {
+            // The findings against the given box (that of the whole table), not against the
+            // smaller one of these offsets: flats are not looked for (their planes are those of
+            // these offsets).
+            let mut e = Envelope::of_offsets(offsets).unwrap_or_else(Envelope::unbounded);
+            (e.x, e.y, e.z) = ((b.lo[0], b.hi[0]), (b.lo[1], b.hi[1]), (b.lo[2], b.hi[2]));
+            (b, Some(e))
+        }
+    };
+    let mut out = out;
+    // Each face crossed, with how far past it the net may go: HOLD_SHARE of the allowance the
+    // surface exceeded (the least, where several findings cross one face).
+    let mut faces: BTreeMap<(usize, bool), f64> = BTreeMap::new();
+    // A fit refitted within its flats stays on their planes.
+    for kind in out.flat_lines.iter().map(|l| l.kind) {
+        faces.insert(if kind == nurbs::fit::FlatKind::Side { (1, true) } else { (2, false) }, 0.0);
+    }
+    // A refit of one coordinate can push it across that coordinate's other face, or leave a
+    // flat's bulge within the envelope's allowance: later rounds hold those too.
+    for _ in 0..3 {
+        let findings = match &given {
+            None => out.validity.clone(),
+            Some(e) => crate::analysis::check_validity(&out.surface, e, &[]),
+        };
+        let mut changed = false;
+        for f in &findings {
+            let Some(face) = f.envelope_face() else { continue };
+            let margin = HOLD_SHARE * f.limit;
+            let m = faces.entry(face).or_insert(f64::INFINITY);
+            if margin < *m {
+                *m = margin;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+        let start = Instant::now();
+        let params: Vec<(f64, f64)> = out.params.iter().flatten().copied().collect();
+        let points: Vec<nurbs::Vec3> = sections.iter().flatten().copied().collect();
+        let mut bounds = nurbs::fit::ControlBox::default();
+        for (&(axis, upper), &m) in &faces {
+            if upper {
+                bounds.hi[axis] = full.hi[axis] + m;
+            } else {
+                bounds.lo[axis] = full.lo[axis] - m;
+            }
+        }
+        let Some((surface, held)) =
+            bounded_refit(&out.surface, &params, &points, &bounds).map_err(|e| fit_error(config, e))?
+        else {
+            break;
+        };
+        let seconds = out.fit_seconds + start.elapsed().as_secs_f64();
+        let (held_before, flat_lines) = (out.envelope_held, std::mem::take(&mut out.flat_lines));
+        out = measured(offsets, config, surface, out.params, seconds, None)?;
+        out.envelope_held = held_before + held.total();
+        out.flat_lines = flat_lines;
+    }
+    Ok(out)
+}
+
+/// Where [`within_envelope`] holds a face the surface crossed: this share of the allowance the
+/// finding exceeded past the face (0.5 % of the half-beam, depth or length for the envelope,
+/// 0.05 % for a flat). Within the allowance, so the held surface has no finding there; past
+/// the face, because a surface touching a face from inside between its poles (the largest
+/// half-breadth at a station, with no flat there) has poles beyond it, which a hold on the face
+/// itself would flatten.
+pub const HOLD_SHARE: f64 = 0.5;
 
 fn fit_error(config: &FitConfig, source: NurbsError) -> HullError {
     HullError::Fit { method: config.method.name(), reason: source }
@@ -431,7 +555,9 @@ mod tests {
         let offsets = series60_sample();
         let mut last = f64::INFINITY;
         for (nu, nv) in [(4, 8), (6, 14), (8, 25)] {
-            let cfg = FitConfig { ctrl: Some((nu, nv)), ..FitConfig::default() };
+            // The plain least squares: held within the envelope, the sample's net at 8 x 25
+            // no longer interpolates (interpolation crosses the centre plane at the transom).
+            let cfg = FitConfig { ctrl: Some((nu, nv)), envelope: EnvelopeHold::Free, ..FitConfig::default() };
             let out = fit_offsets(&offsets, &cfg).expect("sample fits");
             assert_eq!((out.surface.n_u(), out.surface.n_v()), (nu, nv));
             assert!(out.error.overall.rms < last, "{nu}x{nv}: rms {} not below {last}", out.error.overall.rms);
@@ -466,9 +592,11 @@ mod tests {
     #[test]
     fn an_optimised_surface_with_findings_gives_way_to_a_sound_approximation() {
         let offsets = series60_sample();
-        let lm = FitConfig { method: FitMethod::Optimized(Algorithm::Lm), ctrl: Some((5, 8)), ..FitConfig::default() };
+        // The plain least squares (not held within the envelope).
+        let free = FitConfig { ctrl: Some((5, 8)), envelope: EnvelopeHold::Free, ..FitConfig::default() };
+        let lm = FitConfig { method: FitMethod::Optimized(Algorithm::Lm), ..free };
         let out = fit_offsets(&offsets, &lm).expect("fits");
-        let plain = fit_offsets(&offsets, &FitConfig { ctrl: Some((5, 8)), ..FitConfig::default() }).expect("fits");
+        let plain = fit_offsets(&offsets, &free).expect("fits");
         // The sample's fits have findings (the transom crosses the centre plane): judged by
         // their lists, with the approximation's cleared to stand for a sound one.
         assert!(!out.validity.is_empty());

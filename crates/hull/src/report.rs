@@ -28,11 +28,14 @@
 //! objective (parametric RMS of the offsets) after each iteration. `tolerance_search` is
 //! `fairing` is present when the fit was faired ([`crate::FairReport`]: `setting`, `lambda`
 //! (0: the plain fit was kept), `tolerance`, `tried` (`lambda`, `max`, `folds`, `accepted`),
-//! `held_on_box`, `before` and `after` (`thin_plate`, `gaussian` [min, max])); `rejected`
+//! `before` and `after` (`thin_plate`, `gaussian` [min, max])); `rejected`
 //! lists results not taken as the answer, and why; `overfitting` (from `hullskin fit` with an
 //! optimised method) says when its held-out error shows over-fitting. `tolerance_search` is
 //! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
 //! `interp_control_points`, `ratio`, `fits`, `complete`, `tried`).
+//!
+//! `envelope_held` (left out when 0) counts the control-point coordinates held on the offsets'
+//! envelope by `--envelope hold`.
 //!
 //! `folds` is left out when the surface does not fold. `validity` is always there: one finding
 //! per defect ([`crate::analysis::Finding`]; kinds `fold`, `below_centre_plane`,
@@ -109,6 +112,14 @@ pub struct Report {
     pub overfitting: Option<String>,
     /// Every defect of the surface (always present; empty when valid).
     pub validity: Vec<crate::analysis::Finding>,
+    /// Control-point coordinates held on the offsets' envelope by `--envelope hold`
+    /// ([`FitOutcome::envelope_held`]; left out when none was).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub envelope_held: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl Report {
@@ -141,6 +152,7 @@ impl Report {
             rejected: outcome.rejected.clone(),
             overfitting: None,
             validity: outcome.validity.clone(),
+            envelope_held: outcome.envelope_held,
         }
     }
 }
@@ -255,6 +267,14 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
     }
     if let Some(f) = &outcome.fairing {
         let _ = writeln!(t, "{}", f.summary(u));
+    }
+    if outcome.envelope_held > 0 {
+        let _ = writeln!(
+            t,
+            "envelope: the least squares left the offsets' envelope; refitted with {} control-point coordinates held \
+             on its faces, so the surface stays within it (--envelope free keeps the plain fit)",
+            outcome.envelope_held
+        );
     }
     for r in &outcome.rejected {
         let _ = writeln!(t, "rejected: {r}");

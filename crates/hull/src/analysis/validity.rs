@@ -129,6 +129,28 @@ pub struct Place {
     pub v: f64,
 }
 
+impl Finding {
+    /// The face of the envelope the surface crossed, `(axis, upper)` (axis 0, 1, 2 for x, y,
+    /// z; `upper` for the largest value's face): a flat's plane is a face too (the side's is
+    /// the largest half-breadth, the bottom's the lowest offset). `None` for a fold or
+    /// inward-facing facets.
+    pub fn envelope_face(&self) -> Option<(usize, bool)> {
+        match self.kind {
+            FindingKind::Fold | FindingKind::InwardFacing => None,
+            FindingKind::BelowCentrePlane => Some((1, false)),
+            FindingKind::BeyondHalfBreadth => Some((1, true)),
+            FindingKind::BelowLowestOffset => Some((2, false)),
+            FindingKind::AboveHighestOffset => Some((2, true)),
+            FindingKind::PastAftEnd => Some((0, false)),
+            FindingKind::PastForeEnd => Some((0, true)),
+            FindingKind::FlatBulge => match self.flat {
+                Some(Flat::Side) => Some((1, true)),
+                Some(Flat::Bottom) | None => Some((2, false)),
+            },
+        }
+    }
+}
+
 impl Place {
     fn at(surface: &NurbsSurface, u: f64, v: f64) -> Self {
         let p = surface.point(u, v);
@@ -309,6 +331,12 @@ impl Envelope {
     pub fn unbounded() -> Self {
         let all = (f64::NEG_INFINITY, f64::INFINITY);
         Envelope { x: all, y: all, z: all, sections_x: Vec::new() }
+    }
+
+    /// The envelope as a box for control points: a net within it keeps the surface within the envelope (the convex-hull
+    /// property), and so inside the flats' planes too.
+    pub fn bounds(&self) -> nurbs::fit::ControlBox {
+        nurbs::fit::ControlBox { lo: [self.x.0, self.y.0, self.z.0], hi: [self.x.1, self.y.1, self.z.1] }
     }
 
     /// Largest half-breadth above the centre plane.

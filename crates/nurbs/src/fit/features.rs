@@ -616,34 +616,73 @@ pub fn find_flat_lines(sections: &[Vec<Vec3>], opts: &FlatOptions) -> Result<Vec
     Ok(lines)
 }
 
-/// The half-spaces a hull's surface keeps to: `y <= y_max` (the flat of side's plane) and
-/// `z >= z_min` (the flat of bottom's), each where given.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct PlaneBounds {
-    pub y_max: Option<f64>,
-    pub z_min: Option<f64>,
+/// A box for the control points of a surface: `lo[c] <= P[c] <= hi[c]` for `c` = x, y, z. An
+/// infinite bound is no bound. By the convex-hull property (The NURBS Book P3.4 and P4.4: with
+/// positive weights every point of the surface is a convex combination of its control points),
+/// a net within the box keeps the whole surface within it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ControlBox {
+    pub lo: [f64; 3],
+    pub hi: [f64; 3],
 }
 
-impl PlaneBounds {
-    /// The planes of the flats `lines` bound ([`FlatLine::plane`]): the side's `y` if a line
-    /// of [`FlatKind::Side`] is there, the bottom's `z` if one of [`FlatKind::Bottom`] is.
-    pub fn of_lines(lines: &[FlatLine]) -> Self {
+impl Default for ControlBox {
+    /// No bound at all.
+    fn default() -> Self {
+        ControlBox { lo: [f64::NEG_INFINITY; 3], hi: [f64::INFINITY; 3] }
+    }
+}
+
+impl ControlBox {
+    /// The half-spaces of the flats `lines` ([`FlatLine::plane`]): `y <= plane` for a line of
+    /// [`FlatKind::Side`], `z >= plane` for one of [`FlatKind::Bottom`]; no other bound.
+    pub fn of_flats(lines: &[FlatLine]) -> Self {
         let plane = |kind| lines.iter().find(|l| l.kind == kind).map(|l| l.plane);
-        PlaneBounds { y_max: plane(FlatKind::Side), z_min: plane(FlatKind::Bottom) }
+        let mut b = ControlBox::default();
+        if let Some(y) = plane(FlatKind::Side) {
+            b.hi[1] = y;
+        }
+        if let Some(z) = plane(FlatKind::Bottom) {
+            b.lo[2] = z;
+        }
+        b
     }
 
-    /// Whether no plane is given.
+    /// Whether no coordinate is bounded.
     pub fn is_empty(&self) -> bool {
-        self.y_max.is_none() && self.z_min.is_none()
+        self.lo.iter().chain(&self.hi).all(|b| b.is_infinite())
+    }
+
+    /// Whether `p` lies within the box (bounds included).
+    pub fn contains(&self, p: Vec3) -> bool {
+        let a = p.to_array();
+        (0..3).all(|c| a[c] >= self.lo[c] && a[c] <= self.hi[c])
+    }
+
+    /// The bound of coordinate `c` that `x` lies past, if any.
+    fn crossed(&self, c: usize, x: f64) -> Option<f64> {
+        if x < self.lo[c] {
+            Some(self.lo[c])
+        } else if x > self.hi[c] {
+            Some(self.hi[c])
+        } else {
+            None
+        }
     }
 }
 
-/// What [`bounded_refit`] did: the control-point coordinates held on each plane (0 for a plane
-/// not given, or never crossed).
+/// What [`bounded_refit`] did: the control-point coordinates it held on a bound, by coordinate
+/// x, y, z (0 for a coordinate the net did not cross).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BoundedRefit {
-    pub held_y: usize,
-    pub held_z: usize,
+    pub held: [usize; 3],
+}
+
+impl BoundedRefit {
+    /// Coordinates held on a bound in all.
+    pub fn total(&self) -> usize {
+        self.held.iter().sum()
+    }
 }
 
 /// Relative weight `λ` of the pull towards the starting control points in [`bounded_refit`]:
@@ -652,43 +691,51 @@ pub struct BoundedRefit {
 /// reach (a pointed stem's row, the ends of a short section) where the skin put them.
 pub const BOUNDED_REFIT_PULL: f64 = 1e-3;
 
-/// Keep a non-rational surface on the inner side of the planes of its hull's flats, by the
-/// convex-hull property (The NURBS Book P3.4: `S(u, v)` lies in the convex hull of its control
-/// points, all weights being 1): once every control point has `y <= y_max` and `z >= z_min`,
-/// so has every point of the surface. A least-squares skin rings past a flat of side or bottom
-/// (a straight run meeting the bilge arc): on the 116 m cargo ship it dips 0.14 m below the
-/// flat bottom, on the Series 60 Cb 0.80 parent it bulges 36 mm beyond the flat side.
+/// Keep a surface within a box ([`ControlBox`]), by the convex-hull property (The NURBS Book
+/// P3.4 and P4.4: with positive weights `S(u, v)` lies in the convex hull of its control
+/// points): once every control point is within the box, so is every point of the surface. A
+/// least-squares skin rings past a flat of side or bottom (a straight run meeting the bilge
+/// arc): on the 116 m cargo ship it dips 0.14 m below the flat bottom, on the Series 60 Cb 0.80
+/// parent it bulges 36 mm beyond the flat side; it crosses the centre plane where a section
+/// leaves it steeply (the Series 60 sterns).
 ///
-/// Each bounded coordinate `c` (`y` for `y_max`, `z` for `z_min`) of the control points `x` is
-/// refitted on the surface's own knots, the offsets `Q_k` at their parameters `(u_k, v_k)`:
+/// Each coordinate `c` the net crosses is refitted on the surface's own knots, the points
+/// `Q_k` at their parameters `(u_k, v_k)`:
 ///
-/// `min sum_k (A_k x - Q_k,c)^2 + μ |x - x_0|^2`,  `A_ki = N_{i,p}(u_k) N_{j,q}(v_k)`,
+/// `min sum_k (A_k x - Q_k,c)^2 + μ |x - x_0|^2`,  `A_ki = R_ij(u_k, v_k)`,
 ///
-/// with `x_0` the surface's control points and `μ = BOUNDED_REFIT_PULL max_i (A^T A)_ii`,
-/// subject to `x_i <= y_max` (or `x_i >= z_min`), by an active set (Nocedal and Wright 16.5):
-/// each round holds on the plane the coordinates the last solve put across and releases the
-/// held ones the objective pulls inwards (a negative multiplier), then solves for the free
-/// ones, until nothing changes or after 60 rounds; whatever is still
-/// across then is put on the plane, so the bound holds in every case. The other coordinates
-/// are left as they are. The normal equations are banded
-/// (half-bandwidth `p n_v + q`, u-major unknowns) and solved by banded Cholesky,
-/// `O(n_u n_v (p n_v + q)^2)` per round.
+/// `R_ij = N_{i,p} N_{j,q} w_ij / sum N N w` the rational basis of the surface's weights, which
+/// are kept (`N_{i,p}(u_k) N_{j,q}(v_k)` for a non-rational surface), with `x_0` the surface's control points and `μ = BOUNDED_REFIT_PULL max_i (A^T A)_ii`,
+/// subject to `lo_c <= x_i <= hi_c`, by an active set (Nocedal and Wright 16.5): each round
+/// holds on its bound every coordinate the last solve put across and releases the held ones
+/// the objective pulls inwards (a multiplier of the wrong sign), then solves for the free
+/// ones, until nothing changes or after 60 rounds; whatever is still across then is put on
+/// its bound, so the box holds in every case. Coordinates the net does not cross are left as
+/// they are. The normal equations are banded (half-bandwidth `p n_v + q`, u-major unknowns)
+/// and solved by banded Cholesky, `O(n_u n_v (p n_v + q)^2)` per round.
 ///
-/// Returns `None` when no control point crosses a plane (the surface is left as it is).
+/// Returns `None` when no control point lies outside the box (the surface is left as it is).
 ///
 /// # Errors
-/// [`NurbsError::Incompatible`] for a rational surface, parameters and points of different
-/// lengths, or a parameter outside the domain; [`NurbsError::SingularSystem`] when the normal
-/// equations are too ill-conditioned (a pivot below `1e-12` of its diagonal);
-/// [`NurbsError::NonFinitePoint`]; [`NurbsError::NonFiniteResult`].
+/// [`NurbsError::Incompatible`] for a weight that is not positive, an empty box (`lo > hi` or a NaN
+/// bound), parameters and points of different lengths, or a parameter outside the domain;
+/// [`NurbsError::SingularSystem`] when the normal equations are too ill-conditioned (a pivot
+/// below `1e-12` of its diagonal); [`NurbsError::NonFinitePoint`];
+/// [`NurbsError::NonFiniteResult`].
 pub fn bounded_refit(
     surface: &NurbsSurface,
     params: &[(f64, f64)],
     points: &[Vec3],
-    bounds: &PlaneBounds,
+    bounds: &ControlBox,
 ) -> Result<Option<(NurbsSurface, BoundedRefit)>, NurbsError> {
-    if surface.is_rational() {
-        return Err(NurbsError::Incompatible { what: "bounded refit of a rational surface".into() });
+    let weights = surface.weights();
+    if weights.iter().any(|&w| !(w > 0.0)) {
+        return Err(NurbsError::Incompatible { what: "bounded refit of a surface with a weight <= 0".into() });
+    }
+    if (0..3).any(|c| !(bounds.lo[c] <= bounds.hi[c])) {
+        return Err(NurbsError::Incompatible {
+            what: format!("bounded refit: the box {:?}..{:?} is empty (expected lo <= hi)", bounds.lo, bounds.hi),
+        });
     }
     if params.len() != points.len() {
         return Err(NurbsError::Incompatible {
@@ -703,16 +750,14 @@ pub fn bounded_refit(
         return Err(NurbsError::Incompatible { what: "bounded refit: a parameter outside the domain".into() });
     }
     let mut net = surface.control_points();
-    let crosses = |x: f64, c: usize, b: f64| if c == 1 { x > b } else { x < b };
-    let planes: Vec<(usize, f64)> = [(1, bounds.y_max), (2, bounds.z_min)]
-        .into_iter()
-        .filter_map(|(c, b)| b.map(|b| (c, b)))
-        .filter(|&(c, b)| net.iter().any(|p| crosses(p.to_array()[c], c, b)))
-        .collect();
-    if planes.is_empty() {
+    let crossed: Vec<usize> =
+        (0..3).filter(|&c| net.iter().any(|p| bounds.crossed(c, p.to_array()[c]).is_some())).collect();
+    if crossed.is_empty() {
         return Ok(None);
     }
-    // The sparse rows of the collocation matrix: (control index, N_i(u) N_j(v)).
+    // The sparse rows of the collocation matrix: (control index, R_ij(u, v)), the rational
+    // basis `N_i(u) N_j(v) w_ij / sum N N w` of the fixed weights (`N_i(u) N_j(v)` when all
+    // are 1).
     let (ku, kv) = (surface.knots_u(), surface.knots_v());
     let (p, q, n_v, n_ctrl) = (ku.degree(), kv.degree(), surface.n_v(), net.len());
     let mut rows: Vec<Vec<(usize, f64)>> = Vec::with_capacity(points.len());
@@ -724,18 +769,22 @@ pub fn bounded_refit(
         let mut row = Vec::with_capacity((p + 1) * (q + 1));
         for (a, &nu) in bu[..=p].iter().enumerate() {
             for (b, &nv) in bv[..=q].iter().enumerate() {
-                row.push(((su - p + a) * n_v + (sv - q + b), nu * nv));
+                let i = (su - p + a) * n_v + (sv - q + b);
+                row.push((i, nu * nv * weights[i]));
             }
         }
+        let sum: f64 = row.iter().map(|(_, w)| w).sum();
+        row.iter_mut().for_each(|(_, w)| *w /= sum);
         rows.push(row);
     }
     let mut diag = vec![0.0; n_ctrl];
     rows.iter().flatten().for_each(|&(i, w)| diag[i] += w * w);
     let mu = BOUNDED_REFIT_PULL * diag.iter().copied().fold(0.0, f64::max);
     let mut report = BoundedRefit::default();
-    for (c, bound) in planes {
+    for c in crossed {
         let start: Vec<f64> = net.iter().map(|p| p.to_array()[c]).collect();
-        let mut held = vec![false; n_ctrl];
+        // The bound each coordinate is held on, if any.
+        let mut held: Vec<Option<f64>> = vec![None; n_ctrl];
         let mut x = start.clone();
         for _ in 0..MAX_ACTIVE_SET_ROUNDS {
             // Hold what lies across; release what the objective pulls inwards (its gradient
@@ -743,19 +792,26 @@ pub fn bounded_refit(
             let grad = gradient(&rows, points, &x, &start, mu, c);
             let mut changed = false;
             for i in 0..n_ctrl {
-                let pulls_in = if c == 1 { grad[i] > 0.0 } else { grad[i] < 0.0 };
-                if !held[i] && crosses(x[i], c, bound) {
-                    held[i] = true;
-                    changed = true;
-                } else if held[i] && pulls_in {
-                    held[i] = false;
-                    changed = true;
+                match held[i] {
+                    None => {
+                        if let Some(b) = bounds.crossed(c, x[i]) {
+                            held[i] = Some(b);
+                            changed = true;
+                        }
+                    }
+                    Some(b) => {
+                        let pulls_in = if b == bounds.hi[c] { grad[i] > 0.0 } else { grad[i] < 0.0 };
+                        if pulls_in {
+                            held[i] = None;
+                            changed = true;
+                        }
+                    }
                 }
             }
             if !changed {
                 break;
             }
-            let free: Vec<usize> = (0..n_ctrl).filter(|&i| !held[i]).collect();
+            let free: Vec<usize> = (0..n_ctrl).filter(|&i| held[i].is_none()).collect();
             let mut slot = vec![usize::MAX; n_ctrl];
             free.iter().enumerate().for_each(|(f, &i)| slot[i] = f);
             let m = free.len();
@@ -767,12 +823,11 @@ pub fn bounded_refit(
                 a.add(f, f, mu);
             }
             for (row, q) in rows.iter().zip(points) {
-                // The offset less the part of the held control points.
-                let target =
-                    q.to_array()[c] - row.iter().filter(|(i, _)| held[*i]).map(|(_, w)| w * bound).sum::<f64>();
-                for &(i, wi) in row.iter().filter(|(i, _)| !held[*i]) {
+                // The point less the part of the held control points.
+                let target = q.to_array()[c] - row.iter().filter_map(|&(i, w)| held[i].map(|b| w * b)).sum::<f64>();
+                for &(i, wi) in row.iter().filter(|(i, _)| held[*i].is_none()) {
                     sol[slot[i]][0] += wi * target;
-                    for &(j, wj) in row.iter().filter(|(j, _)| !held[*j] && slot[*j] <= slot[i]) {
+                    for &(j, wj) in row.iter().filter(|(j, _)| held[*j].is_none() && slot[*j] <= slot[i]) {
                         a.add(slot[i], slot[j], wi * wj);
                     }
                 }
@@ -782,38 +837,33 @@ pub fn bounded_refit(
             if sol.iter().any(|x| !x[0].is_finite()) {
                 return Err(NurbsError::NonFiniteResult { what: "bounded refit".into() });
             }
-            let sol: Vec<f64> = sol.into_iter().map(|x| x[0]).collect();
             for i in 0..n_ctrl {
-                x[i] = if held[i] { bound } else { sol[slot[i]] };
+                x[i] = held[i].unwrap_or_else(|| sol[slot[i]][0]);
             }
         }
-        // Whatever the rounds left across (a cycle cut short) goes onto the plane: the bound
+        // Whatever the rounds left across (a cycle cut short) goes onto its bound: the box
         // holds in every case.
         for xi in x.iter_mut() {
-            if crosses(*xi, c, bound) {
-                *xi = bound;
+            if let Some(b) = bounds.crossed(c, *xi) {
+                *xi = b;
             }
         }
-        let count = (0..n_ctrl).filter(|&i| x[i] == bound && start[i] != bound).count();
-        if c == 1 {
-            report.held_y = count;
-        } else {
-            report.held_z = count;
-        }
+        report.held[c] =
+            (0..n_ctrl).filter(|&i| (x[i] == bounds.lo[c] || x[i] == bounds.hi[c]) && start[i] != x[i]).count();
         for (pt, &xi) in net.iter_mut().zip(&x) {
             let mut arr = pt.to_array();
             arr[c] = xi;
             *pt = Vec3::from_array(arr);
         }
     }
-    let out = NurbsSurface::try_new(ku.clone(), kv.clone(), &net, None)?;
+    let out = NurbsSurface::try_new(ku.clone(), kv.clone(), &net, surface.is_rational().then_some(&weights[..]))?;
     Ok(Some((out, report)))
 }
 
 /// [`bounded_refit`] with room made for the flats first: a non-rational skin `surface` fitted
 /// to `sections` (offsets at `params[k][i]`) is refined by knot insertion (The NURBS Book
 /// A5.3 and 5.3: the surface is unchanged, only its control net grows), then refitted within
-/// the flats' planes ([`PlaneBounds::of_lines`]). Inserted, each up to multiplicity
+/// the flats' planes ([`ControlBox::of_flats`]). Inserted, each up to multiplicity
 /// `p - 1` (the surface may stay `C^1` there and its curvature jump, as the hull's does where a
 /// straight run meets the bilge arc, The NURBS Book P2.5):
 ///
@@ -874,7 +924,7 @@ pub fn refit_within_flats(
     }
     let flat_params: Vec<(f64, f64)> = params.iter().flatten().copied().collect();
     let points: Vec<Vec3> = sections.iter().flatten().copied().collect();
-    bounded_refit(&refined, &flat_params, &points, &PlaneBounds::of_lines(lines))
+    bounded_refit(&refined, &flat_params, &points, &ControlBox::of_flats(lines))
 }
 
 /// Rounds of the active set in [`bounded_refit`] (each one solve); the bound is enforced after
@@ -1112,15 +1162,16 @@ mod tests {
         let opts = crate::fit::SkinOptions::default();
         let fit = crate::fit::skin_approximate(&hull, 6, 7, &opts).expect("fits");
         let lines = find_flat_lines(&hull, &FlatOptions::default()).expect("valid");
-        let bounds = PlaneBounds::of_lines(&lines);
-        assert_eq!(bounds, PlaneBounds { y_max: Some(3.0), z_min: Some(0.0) });
+        let bounds = ControlBox::of_flats(&lines);
+        let open = ControlBox::default();
+        assert_eq!(bounds, ControlBox { lo: [open.lo[0], open.lo[1], 0.0], hi: [open.hi[0], 3.0, open.hi[2]] });
         let crossing = |s: &NurbsSurface| s.control_points().iter().any(|p| p.y > 3.0 || p.z < 0.0);
         // The least-squares net rings past the flats (else this test would show nothing).
         assert!(crossing(&fit.surface));
         let params: Vec<(f64, f64)> = fit.params.iter().flatten().copied().collect();
         let points: Vec<Vec3> = hull.iter().flatten().copied().collect();
         let (refit, report) = bounded_refit(&fit.surface, &params, &points, &bounds).expect("valid").expect("moved");
-        assert!(!crossing(&refit) && report.held_y + report.held_z > 0, "{report:?}");
+        assert!(!crossing(&refit) && report.held[0] == 0 && report.total() > 0, "{report:?}");
         // Same knots, and the convex-hull property on a grid (no round-off can cross: a convex
         // combination of values <= 3 is <= 3 up to one rounding of the sum, 4e-16 here).
         assert_eq!((refit.knots_u(), refit.knots_v()), (fit.surface.knots_u(), fit.surface.knots_v()));
@@ -1135,26 +1186,30 @@ mod tests {
         assert!(refit.control_points().iter().zip(&before).all(|(a, b)| a.x == b.x));
         // Already within: nothing to do; and the refit's own result is within.
         assert!(bounded_refit(&refit, &params, &points, &bounds).expect("valid").is_none());
-        assert!(bounded_refit(&fit.surface, &params, &points, &PlaneBounds::default()).expect("valid").is_none());
+        assert!(bounded_refit(&fit.surface, &params, &points, &ControlBox::default()).expect("valid").is_none());
         // Bad input.
         assert!(bounded_refit(&fit.surface, &params[1..], &points, &bounds).is_err());
         let outside = vec![(2.0, 0.5); params.len()];
         assert!(bounded_refit(&fit.surface, &outside, &points, &bounds).is_err());
-        let w = vec![2.0; fit.surface.control_points().len()];
-        let rational = NurbsSurface::try_new(
-            fit.surface.knots_u().clone(),
-            fit.surface.knots_v().clone(),
-            &fit.surface.control_points(),
-            Some(&w[..])
-                .map(|w| {
-                    let mut w = w.to_vec();
-                    w[0] = 1.0;
-                    w
-                })
-                .as_deref(),
-        )
-        .expect("valid");
-        assert!(bounded_refit(&rational, &params, &points, &bounds).is_err());
+        // A rational surface keeps its weights, and its net and every point come within the
+        // box (positive weights: the convex-hull property holds for the rational basis).
+        let w: Vec<f64> = (0..fit.surface.control_points().len()).map(|i| 1.0 + 0.5 * ((i % 5) as f64 / 4.0)).collect();
+        let rational =
+            NurbsSurface::try_new(fit.surface.knots_u().clone(), fit.surface.knots_v().clone(), &before, Some(&w))
+                .expect("valid");
+        assert!(crossing(&rational));
+        let (r, _) = bounded_refit(&rational, &params, &points, &bounds).expect("valid").expect("moved");
+        assert!(!crossing(&r) && r.weights() == w);
+        for i in 0..=40 {
+            for j in 0..=40 {
+                let p = r.point(i as f64 / 40.0, j as f64 / 40.0);
+                // The rational combination divides once more: a few roundings of 3, 1e-15.
+                assert!(p.y <= 3.0 + 1e-14 && p.z >= -1e-14, "{p:?}");
+            }
+        }
+        // An empty box is refused.
+        let empty = ControlBox { lo: [0.0, 1.0, 0.0], hi: [1.0, 0.5, 1.0] };
+        assert!(bounded_refit(&fit.surface, &params, &points, &empty).is_err());
     }
 
     #[test]
@@ -1183,7 +1238,7 @@ mod tests {
         let residual = |s: &NurbsSurface| {
             params.iter().zip(&points).map(|(&(u, v), q)| s.point(u, v).distance(*q)).fold(0.0, f64::max)
         };
-        let (bounded, _) = bounded_refit(&fit.surface, &params, &points, &PlaneBounds::of_lines(&lines))
+        let (bounded, _) = bounded_refit(&fit.surface, &params, &points, &ControlBox::of_flats(&lines))
             .expect("valid")
             .expect("moved");
         let (plain, held, knotted) = (residual(&fit.surface), residual(&bounded), residual(&s));

@@ -17,19 +17,12 @@
 //! whose multiplier `(G y - b)_c` has the wrong sign the most is released, one at a time, until
 //! the KKT conditions hold. Each step is one band factorization, `n bw^2 / 2`.
 
+pub use nurbs::fit::ControlBox;
 use nurbs::{NurbsError, NurbsSurface};
 
 use crate::optimize::Objective;
 
 use super::{band_cholesky, band_solve, HullError, Scratch, WeightMode, WeightProblem};
-
-/// A box for the control points: `lo[t] <= P_c[t] <= hi[t]` for `t` = x, y, z. An infinite
-/// bound is no bound.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ControlBox {
-    pub lo: [f64; 3],
-    pub hi: [f64; 3],
-}
 
 /// The lower-triangle band entry `(i, j)`, `j <= i`, of the layout in `linalg`.
 #[inline]
