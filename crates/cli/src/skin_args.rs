@@ -69,9 +69,10 @@ pub struct SkinArgs {
     /// half-breadth, the lowest and highest offsets, the end sections): `hold` refits an
     /// approximation that leaves it by more than the validity allowance with its control net
     /// held just past the faces it crossed (half the allowance), so that the surface stays
-    /// within the allowance (the convex-hull property); an optimised surface that leaves it
-    /// gives way to that approximation (under --fair). `free` keeps the plain least squares and
-    /// reports where it leaves.
+    /// within the allowance (the convex-hull property); an optimised surface that leaves it is
+    /// held the same way (its weights kept), or gives way to the held approximation where that
+    /// is closer to the offsets. `free` keeps the plain least squares and reports where it
+    /// leaves.
     #[arg(long, value_enum, default_value = "hold")]
     pub envelope: EnvelopeMode,
     /// How a mesh input (`.stl`, `.stl.gz`, `.obj`) is sliced into sections first.

@@ -137,7 +137,8 @@ pub struct FitConfig {
     /// Whether an approximation (`approx`, and the start of the optimised methods) that leaves
     /// the offsets' envelope is held within it ([`EnvelopeHold`]; the default holds it in the
     /// offsets' own envelope). An optimised surface re-solves its control points: one that
-    /// leaves the envelope gives way to the sound approximation under a fairness setting.
+    /// leaves the envelope is held too (its weights kept), or gives way to the held
+    /// approximation where that is closer to the offsets.
     pub envelope: EnvelopeHold,
 }
 
@@ -282,7 +283,26 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     }
     let opt = optimize_weights(offsets, &plain, algorithm, &optim, control)?;
     let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
-    let mut out = measured(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
+    let out = measured(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
+    let mut out = within_envelope(offsets, config, &kernel_sections(offsets), out)?;
+    if out.envelope_held > 0 && out.error.overall.rms > plain.error.overall.rms {
+        // Held within the envelope, the optimised net (its weights kept, its control points
+        // refitted) can end farther from the offsets than the held approximation it started
+        // from: that one is the answer then.
+        let mut kept = plain.clone();
+        kept.rejected.push(format!(
+            "the {} surface held within the offsets' envelope (true RMS {:.3e}, max {:.3e}) is farther from the \
+             offsets than the approximation (RMS {:.3e}), which is kept",
+            config.method.name(),
+            out.error.overall.rms,
+            out.error.overall.max,
+            plain.error.overall.rms
+        ));
+        kept.config = FitConfig { method: FitMethod::Approx, ..*config };
+        kept.fit_seconds += out.fit_seconds;
+        kept.optimization = out.optimization.take();
+        return Ok(kept);
+    }
     out.knuckle_lines = plain.knuckle_lines.clone();
     out.flat_lines = plain.flat_lines.clone();
     if out.validity.is_empty() || config.fair == Fairing::Off {
@@ -442,8 +462,9 @@ fn kernel_sections(offsets: &Offsets) -> Vec<Vec<nurbs::Vec3>> {
         .collect()
 }
 
-/// An approximation that leaves the offsets' envelope (or bulges through a flat, a face of
-/// it), refitted with its control net held behind the faces it crossed ([`FitConfig::envelope`],
+/// An approximation or an optimised surface that leaves the offsets' envelope (or bulges
+/// through a flat, a face of it), refitted with its control net held behind the faces it
+/// crossed, its weights kept ([`FitConfig::envelope`],
 /// [`bounded_refit`]), so that by the convex-hull property no point of it can leave. Its
 /// coordinates inside the box stay least squares; the outcome records how many were held
 /// ([`FitOutcome::envelope_held`]). A surface within the envelope is returned as it is.
@@ -513,10 +534,15 @@ fn within_envelope(
             break;
         };
         let seconds = out.fit_seconds + start.elapsed().as_secs_f64();
-        let (held_before, flat_lines) = (out.envelope_held, std::mem::take(&mut out.flat_lines));
-        out = measured(offsets, config, surface, out.params, seconds, None)?;
-        out.envelope_held = held_before + held.total();
-        out.flat_lines = flat_lines;
+        // The refitted surface, measured; what the fit did before carries over.
+        let prev = out;
+        out = measured(offsets, config, surface, prev.params, seconds, None)?;
+        out.envelope_held = prev.envelope_held + held.total();
+        out.optimization = prev.optimization;
+        out.knuckle_lines = prev.knuckle_lines;
+        out.flat_lines = prev.flat_lines;
+        out.fairing = prev.fairing;
+        out.rejected = prev.rejected;
     }
     Ok(out)
 }
