@@ -507,7 +507,9 @@ fn within_envelope(
         let mut changed = false;
         for f in &findings {
             let Some(face) = f.envelope_face() else { continue };
-            let margin = HOLD_SHARE * f.limit;
+            // The end sections' planes are held exactly: the surface meets them only along its
+            // end curves, which need no pole beyond, and any run past them is a fold.
+            let margin = if face.0 == 0 { 0.0 } else { HOLD_SHARE * f.limit };
             let m = faces.entry(face).or_insert(f64::INFINITY);
             if margin < *m {
                 *m = margin;
@@ -547,8 +549,8 @@ fn within_envelope(
     Ok(out)
 }
 
-/// Where [`within_envelope`] holds a face the surface crossed: this share of the allowance the
-/// finding exceeded past the face (0.5 % of the half-beam, depth or length for the envelope,
+/// Where [`within_envelope`] holds a face the surface crossed (but the end sections' planes,
+/// held exactly): this share of the allowance the finding exceeded past the face (0.5 % of the half-beam, depth or length for the envelope,
 /// 0.05 % for a flat). Within the allowance, so the held surface has no finding there; past
 /// the face, because a surface touching a face from inside between its poles (the largest
 /// half-breadth at a station, with no flat there) has poles beyond it, which a hold on the face

@@ -710,7 +710,8 @@ pub const BOUNDED_REFIT_PULL: f64 = 1e-3;
 /// holds on its bound every coordinate the last solve put across and releases the held ones
 /// the objective pulls inwards (a multiplier of the wrong sign), then solves for the free
 /// ones, until nothing changes or after 60 rounds; whatever is still across then is put on
-/// its bound, so the box holds in every case. Coordinates the net does not cross are left as
+/// its bound, so the box holds in every case. A collapsed boundary row or column of the net
+/// (a pointed end) stays where it is. Coordinates the net does not cross are left as
 /// they are. The normal equations are banded (half-bandwidth `p n_v + q`, u-major unknowns)
 /// and solved by banded Cholesky, `O(n_u n_v (p n_v + q)^2)` per round.
 ///
@@ -779,19 +780,20 @@ pub fn bounded_refit(
     }
     let mut diag = vec![0.0; n_ctrl];
     rows.iter().flatten().for_each(|&(i, w)| diag[i] += w * w);
+    let pinned = collapsed_edges(&net, surface.n_u(), n_v);
     let mu = BOUNDED_REFIT_PULL * diag.iter().copied().fold(0.0, f64::max);
     let mut report = BoundedRefit::default();
     for c in crossed {
         let start: Vec<f64> = net.iter().map(|p| p.to_array()[c]).collect();
-        // The bound each coordinate is held on, if any.
-        let mut held: Vec<Option<f64>> = vec![None; n_ctrl];
+        // The bound each coordinate is held on, if any; a pinned one at its start.
+        let mut held: Vec<Option<f64>> = (0..n_ctrl).map(|i| pinned[i].then_some(start[i])).collect();
         let mut x = start.clone();
         for _ in 0..MAX_ACTIVE_SET_ROUNDS {
             // Hold what lies across; release what the objective pulls inwards (its gradient
             // points outwards: a negative Lagrange multiplier, Nocedal and Wright 16.5).
             let grad = gradient(&rows, points, &x, &start, mu, c);
             let mut changed = false;
-            for i in 0..n_ctrl {
+            for i in (0..n_ctrl).filter(|&i| !pinned[i]) {
                 match held[i] {
                     None => {
                         if let Some(b) = bounds.crossed(c, x[i]) {
@@ -815,6 +817,10 @@ pub fn bounded_refit(
             let mut slot = vec![usize::MAX; n_ctrl];
             free.iter().enumerate().for_each(|(f, &i)| slot[i] = f);
             let m = free.len();
+            if m == 0 {
+                x.iter_mut().zip(&held).for_each(|(xi, h)| *xi = h.unwrap_or(*xi));
+                break;
+            }
             // Free unknowns u-major, as the net: two interact only within p rows and q columns,
             // so the normal matrix has half-bandwidth p n_v + q (fewer after holding some).
             let mut a = BandedCholesky::zeros(m, (p * n_v + q).min(m.saturating_sub(1)));
@@ -925,6 +931,27 @@ pub fn refit_within_flats(
     let flat_params: Vec<(f64, f64)> = params.iter().flatten().copied().collect();
     let points: Vec<Vec3> = sections.iter().flatten().copied().collect();
     bounded_refit(&refined, &flat_params, &points, &ControlBox::of_flats(lines))
+}
+
+/// The control points of the net's collapsed boundary rows and columns (all of one row or
+/// column at one place: a pointed end, a degenerate edge), u-major with `n_v` per row: a
+/// refit moving them apart would open the point into a tiny curve whose normals are noise, so
+/// [`bounded_refit`] keeps them where they are (a point within the box stays within it).
+fn collapsed_edges(net: &[Vec3], n_u: usize, n_v: usize) -> Vec<bool> {
+    let mut pinned = vec![false; net.len()];
+    let lines: [Vec<usize>; 4] = [
+        (0..n_v).collect(),
+        ((n_u - 1) * n_v..n_u * n_v).collect(),
+        (0..n_u).map(|i| i * n_v).collect(),
+        (0..n_u).map(|i| i * n_v + n_v - 1).collect(),
+    ];
+    for line in lines {
+        let first = net[line[0]];
+        if line.iter().all(|&i| net[i] == first) {
+            line.iter().for_each(|&i| pinned[i] = true);
+        }
+    }
+    pinned
 }
 
 /// Rounds of the active set in [`bounded_refit`] (each one solve); the bound is enforced after
@@ -1210,6 +1237,28 @@ mod tests {
         // An empty box is refused.
         let empty = ControlBox { lo: [0.0, 1.0, 0.0], hi: [1.0, 0.5, 1.0] };
         assert!(bounded_refit(&fit.surface, &params, &points, &empty).is_err());
+    }
+
+    #[test]
+    fn a_bounded_refit_keeps_a_pointed_end_a_point() {
+        // The box hull with its first section a pointed stem: the skin's first row of poles is
+        // one point, and the refit (which crosses the flats) leaves it there, where moving it
+        // apart would open the point into a tiny curve of noisy normals.
+        let mut hull = box_hull();
+        hull[0] = vec![Vec3::new(0.0, 0.0, 2.0); 8];
+        let fit = crate::fit::skin_approximate(&hull, 6, 7, &crate::fit::SkinOptions::default()).expect("fits");
+        let first: Vec<Vec3> = (0..fit.surface.n_u()).map(|i| fit.surface.control_point(i, 0)).collect();
+        assert!(first.iter().all(|p| *p == first[0]), "the skin's stem row is one point");
+        let params: Vec<(f64, f64)> = fit.params.iter().flatten().copied().collect();
+        let points: Vec<Vec3> = hull.iter().flatten().copied().collect();
+        let lines = find_flat_lines(&hull, &FlatOptions::default()).expect("valid");
+        let (refit, report) = bounded_refit(&fit.surface, &params, &points, &ControlBox::of_flats(&lines))
+            .expect("valid")
+            .expect("moved");
+        assert!(report.total() > 0);
+        for i in 0..refit.n_u() {
+            assert_eq!(refit.control_point(i, 0), first[0], "pole {i} of the stem row");
+        }
     }
 
     #[test]
