@@ -154,13 +154,15 @@ fn section_where(section: &Section, keep: impl Fn(usize) -> bool) -> Section {
     }
 }
 
+/// Sections with their index in the table.
+type Numbered<'a> = Vec<(usize, &'a Section)>;
+
 /// Fold `f` of the sections: interior sections `k mod K = f` held out, `None` if there is none
 /// or the rest would be fewer than `q + 1` sections.
 fn section_split(offsets: &Offsets, options: &HeldOutOptions, f: usize) -> Option<Split> {
     let n = offsets.sections.len();
     let out = |k: usize| k > 0 && k + 1 < n && k % options.folds == f;
-    let (held, train): (Vec<(usize, &Section)>, Vec<(usize, &Section)>) =
-        offsets.sections.iter().enumerate().partition(|&(k, _)| out(k));
+    let (held, train): (Numbered, Numbered) = offsets.sections.iter().enumerate().partition(|&(k, _)| out(k));
     if held.is_empty() || train.len() < options.degree.1 + 1 {
         return None;
     }
