@@ -1,7 +1,8 @@
 //! The fewest control points for a tolerance: search the counts `(nu, nv)` of a skinning
-//! approximation (plain or weight-optimised) for the smallest surface, `nu nv` control points,
-//! whose true max error (closest-point distance of every offset, `error.overall.max`) is
-//! within a tolerance `T`.
+//! approximation (plain or weight-optimised) for the smallest valid surface (no validity
+//! finding), `nu nv` control points, whose true max error (closest-point distance of every
+//! offset, `error.overall.max`) is within a tolerance `T`; where no valid count is within `T`,
+//! the smallest within it, marked (`valid: false`).
 //!
 //! Strategy. Counts range over `p + 1 <= nu <= N` and `q + 1 <= nv <= K` (`N` offsets in the
 //! largest non-degenerate section, `K` sections, `p`, `q` the degrees the kernel uses); `(N, K)`
@@ -75,8 +76,10 @@ pub struct TriedCount {
     pub control_points: [usize; 2],
     /// The true max error, `None` if the fit failed (the kernel refused the count).
     pub max: Option<f64>,
-    /// Whether `max <= tolerance`.
+    /// Whether `max <= tolerance` and the fit is valid (no validity finding).
     pub within: bool,
+    /// Whether the fit has no validity finding (false also for a failed fit).
+    pub valid: bool,
 }
 
 /// What the search did: `report.json`'s `"tolerance_search"`.
@@ -93,6 +96,9 @@ pub struct ToleranceSearch {
     pub fits: usize,
     /// False when the cap on fits or a stop (Ctrl-C) ended the search before it was done.
     pub complete: bool,
+    /// Whether the chosen fit is valid: false when no count within the tolerance was, and the
+    /// smallest within it (with its findings) was taken.
+    pub valid: bool,
     /// Every count fitted, in order.
     pub tried: Vec<TriedCount>,
 }
@@ -113,6 +119,9 @@ impl ToleranceSearch {
         );
         if !self.complete {
             s.push_str(", search cut short: the count may not be the smallest");
+        }
+        if !self.valid {
+            s.push_str("; no count within it is valid: the smallest within it is taken, with its findings");
         }
         s.push(')');
         s
@@ -165,6 +174,7 @@ pub fn fit_to_tolerance(
         memo: BTreeMap::new(),
         tried: Vec::new(),
         best: None,
+        unsound: None,
         cut: false,
     };
     // 1. Interpolation's count. Held within the offsets' envelope it may miss where fewer
@@ -212,7 +222,8 @@ pub fn fit_to_tolerance(
         }
     }
     let fits = s.tried.len();
-    let Some(outcome) = s.best else {
+    let valid = s.best.is_some();
+    let Some(outcome) = s.best.or(s.unsound) else {
         let (best, at) = s
             .tried
             .iter()
@@ -235,6 +246,7 @@ pub fn fit_to_tolerance(
         ratio: (nu * nv) as f64 / (big_n * k) as f64,
         fits,
         complete: !s.cut,
+        valid,
         tried: s.tried,
     };
     Ok(ToleranceFit { outcome, search })
@@ -258,6 +270,8 @@ struct Searcher<'a, 'c> {
     memo: BTreeMap<(usize, usize), bool>,
     tried: Vec<TriedCount>,
     best: Option<FitOutcome>,
+    /// The smallest surface within the tolerance that has validity findings.
+    unsound: Option<FitOutcome>,
     /// The cap or a stop ended the search.
     cut: bool,
 }
@@ -285,9 +299,18 @@ impl Searcher<'_, '_> {
             Err(HullError::Fit { .. }) => (None, None),
             Err(e) => return Err(e),
         };
-        let within = max.is_some_and(|m| m <= self.tolerance);
-        self.tried.push(TriedCount { control_points: [nu, nv], max, within });
+        let valid = outcome.as_ref().is_some_and(|o| o.validity.is_empty());
+        let close = max.is_some_and(|m| m <= self.tolerance);
+        let within = close && valid;
+        self.tried.push(TriedCount { control_points: [nu, nv], max, within, valid });
         self.memo.insert((nu, nv), within);
+        // Within T but with findings: the answer only if no valid count is.
+        if let (true, false, Some(out)) = (close, valid, &outcome) {
+            let count = |o: &FitOutcome| o.surface.n_u() * o.surface.n_v();
+            if self.unsound.as_ref().is_none_or(|b| nu * nv < count(b)) {
+                self.unsound = Some(out.clone());
+            }
+        }
         if let (true, Some(out)) = (within, outcome) {
             let better = match &self.best {
                 None => true,
@@ -360,7 +383,7 @@ mod tests {
         let chosen = r.search.tried.iter().find(|c| c.control_points == [nu, nv]).expect("recorded");
         assert_eq!(chosen.max, Some(r.outcome.error.overall.max));
         for c in &r.search.tried {
-            assert_eq!(c.within, c.max.is_some_and(|m| m <= t));
+            assert_eq!(c.within, c.valid && c.max.is_some_and(|m| m <= t));
         }
         for a in counts.0.clone() {
             for b in counts.1.clone() {
@@ -417,6 +440,14 @@ mod tests {
         assert_least(&r, t, (4..=8, 4..=25));
         let [nu, nv] = r.search.control_points;
         assert!(nu * nv <= 8 * 19, "chose {nu}x{nv}");
+        // Not held, every fit of the sample crosses the centre plane: the smallest within T is
+        // taken with its findings, and the record says so.
+        assert!(!r.search.valid && !r.outcome.validity.is_empty());
+        assert!(r.search.summary("m").contains("no count within it is valid"), "{}", r.search.summary("m"));
+        // Held within the envelope (the default) the fits are valid, and the one chosen is.
+        let held = search(&offsets, &FitConfig::default(), 0.2).expect("reachable");
+        assert!(held.search.valid && held.outcome.validity.is_empty(), "{:?}", held.outcome.validity);
+        assert!(held.search.tried.iter().all(|c| c.within == (c.valid && c.max.is_some_and(|m| m <= 0.2))));
     }
 
     #[test]
