@@ -32,7 +32,7 @@
 //! lists results not taken as the answer, and why; `overfitting` (from `hullskin fit` with an
 //! optimised method) says when its held-out error shows over-fitting. `tolerance_search` is
 //! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
-//! `interp_control_points`, `ratio`, `fits`, `complete`, `tried`).
+//! `interp_control_points`, `ratio`, `fits`, `complete`, `valid`, `tried`).
 //!
 //! `envelope_held` (left out when 0) counts the control-point coordinates held on the offsets'
 //! envelope by `--envelope hold`.
