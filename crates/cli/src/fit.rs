@@ -182,7 +182,20 @@ pub(crate) fn fit_with_progress(
             }
             let [nu, nv] = r.search.control_points;
             let faired = FitConfig { ctrl: Some((nu, nv)), fair, ..*config };
-            hull::fit_offsets_with(offsets, &faired, control).map(|o| (o, Some(r.search)))
+            let out = hull::fit_offsets_with(offsets, &faired, control)?;
+            // The faired fit must keep what the search found: within T, and valid if that was.
+            let keeps = out.error.overall.max <= t && (out.validity.is_empty() || !r.outcome.validity.is_empty());
+            if keeps || control.stopped() {
+                return Ok((out, Some(r.search)));
+            }
+            let mut plain = r.outcome;
+            plain.rejected.push(format!(
+                "the faired fit at {nu}x{nv} (max {:.3e}, {} validity finding(s)) does not keep the searched fit's \
+                 tolerance or soundness; the searched fit is kept",
+                out.error.overall.max,
+                out.validity.len()
+            ));
+            Ok((plain, Some(r.search)))
         }
         None => hull::fit_offsets_with(offsets, config, control).map(|o| (o, None)),
     };
