@@ -464,9 +464,9 @@ fn kernel_sections(offsets: &Offsets) -> Vec<Vec<nurbs::Vec3>> {
 
 /// An approximation or an optimised surface that leaves the offsets' envelope (or bulges
 /// through a flat, a face of it), refitted with its control net held behind the faces it
-/// crossed, its weights kept ([`FitConfig::envelope`],
-/// [`bounded_refit`]), so that by the convex-hull property no point of it can leave. Its
-/// coordinates inside the box stay least squares; the outcome records how many were held
+/// crossed, its weights kept ([`FitConfig::envelope`], [`bounded_refit`]), so that by the
+/// convex-hull property no point of it can leave. Its coordinates inside the box stay least
+/// squares; the outcome records how many were held
 /// ([`FitOutcome::envelope_held`]). A surface within the envelope is returned as it is.
 fn within_envelope(
     offsets: &Offsets,
@@ -550,11 +550,11 @@ fn within_envelope(
 }
 
 /// Where [`within_envelope`] holds a face the surface crossed (but the end sections' planes,
-/// held exactly): this share of the allowance the finding exceeded past the face (0.5 % of the half-beam, depth or length for the envelope,
-/// 0.05 % for a flat). Within the allowance, so the held surface has no finding there; past
-/// the face, because a surface touching a face from inside between its poles (the largest
-/// half-breadth at a station, with no flat there) has poles beyond it, which a hold on the face
-/// itself would flatten.
+/// held exactly): this share of the allowance the finding exceeded past the face (0.5 % of the
+/// half-beam, depth or length for the envelope, 0.05 % for a flat). Within the allowance, so
+/// the held surface has no finding there; past the face, because a surface touching a face
+/// from inside between its poles (the largest half-breadth at a station, with no flat there)
+/// has poles beyond it, which a hold on the face itself would flatten.
 pub const HOLD_SHARE: f64 = 0.5;
 
 fn fit_error(config: &FitConfig, source: NurbsError) -> HullError {

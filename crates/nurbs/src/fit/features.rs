@@ -719,8 +719,9 @@ pub const BOUNDED_REFIT_PULL: f64 = 1e-3;
 /// Returns `None` when no control point lies outside the box (the surface is left as it is).
 ///
 /// # Errors
-/// [`NurbsError::Incompatible`] for a weight that is not positive, an empty box (`lo > hi` or a NaN
-/// bound), parameters and points of different lengths, or a parameter outside the domain;
+/// [`NurbsError::Incompatible`] for a weight that is not positive, an empty box (`lo > hi` or
+/// a NaN bound), parameters and points of different lengths, or a parameter outside the
+/// domain;
 /// [`NurbsError::SingularSystem`] when the normal equations are too ill-conditioned (a pivot
 /// below `1e-12` of its diagonal); [`NurbsError::NonFinitePoint`];
 /// [`NurbsError::NonFiniteResult`].
