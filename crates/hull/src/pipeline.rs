@@ -289,17 +289,15 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
         // Held within the envelope, the optimised net (its weights kept, its control points
         // refitted) can end farther from the offsets than the held approximation it started
         // from: that one is the answer then.
-        let mut kept = plain.clone();
-        kept.rejected.push(format!(
+        let why = format!(
             "the {} surface held within the offsets' envelope (true RMS {:.3e}, max {:.3e}) is farther from the \
              offsets than the approximation (RMS {:.3e}), which is kept",
             config.method.name(),
             out.error.overall.rms,
             out.error.overall.max,
             plain.error.overall.rms
-        ));
-        kept.config = FitConfig { method: FitMethod::Approx, ..*config };
-        kept.fit_seconds += out.fit_seconds;
+        );
+        let mut kept = give_way(config, plain.clone(), &out, why);
         kept.optimization = out.optimization.take();
         return Ok(kept);
     }
@@ -330,11 +328,11 @@ fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>
     if out.validity.is_empty() {
         return out;
     }
-    let Some(mut kept) = candidates.into_iter().find(|c| c.validity.is_empty()) else {
+    let Some(kept) = candidates.into_iter().find(|c| c.validity.is_empty()) else {
         return out;
     };
     let kinds: Vec<&str> = out.validity.iter().map(|f| f.kind.name()).collect();
-    kept.rejected.push(format!(
+    let why = format!(
         "the {} surface (true RMS {:.3e}, max {:.3e} at the offsets) has {} validity finding(s) ({}); the sound \
          approximation is kept (expected fewer control points or a larger --fair)",
         config.method.name(),
@@ -342,9 +340,16 @@ fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>
         out.error.overall.max,
         out.validity.len(),
         kinds.join(", ")
-    ));
+    );
+    give_way(config, kept, &out, why)
+}
+
+/// `kept`, an approximation, written instead of the optimised fit `rejected` of `config`: named
+/// `approx`, with `why` in its `rejected` list and the time spent on both.
+fn give_way(config: &FitConfig, mut kept: FitOutcome, rejected: &FitOutcome, why: String) -> FitOutcome {
+    kept.rejected.push(why);
     kept.config = FitConfig { method: FitMethod::Approx, ..*config };
-    kept.fit_seconds += out.fit_seconds;
+    kept.fit_seconds += rejected.fit_seconds;
     kept
 }
 
