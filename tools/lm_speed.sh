@@ -14,19 +14,12 @@
 # --fair 0` (the plain objective; best of 2), all `--held-out 0`, the ratios to the
 # approximation and LM's true RMS; with BEFORE, the old binary's LM (`--fair 0`) too. Prints a
 # Markdown table. Needs jq. Times depend on the machine and its load.
-set -euo pipefail
-cd "$(dirname "${BASH_SOURCE[0]}")/.."
-cargo build --release -q -p hullskin
-bin=target/release/hullskin
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-if [ $# -gt 0 ]; then tables=("$@"); else tables=(testdata/*.csv); fi
+source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
 
 # ms of the summary row printed by `hullskin fit` (the row under the header: `lm`, or `approx`
 # when LM's surface was rejected for a sound approximation; the argument names the method
 # asked for).
 ms() { awk 'prev ~ /^method / { print $(NF - 1) } { prev = $0 }'; }
-best() { tr ' ' '\n' | grep -v '^$' | sort -g | head -1; }
 
 if [ -n "${BEFORE:-}" ]; then
   echo "| table | d | m | approx ms | LM ms | ratio | LM RMS mm | LM fair 0 ms | ratio | RMS mm | before: LM fair 0 ms | ratio | RMS mm |"

@@ -8,6 +8,7 @@ mod curve;
 mod elevate;
 mod error;
 pub mod fit;
+mod grid;
 mod knots;
 mod project;
 mod refine;
@@ -18,6 +19,7 @@ mod vec3;
 
 pub use curve::{Homogeneous, NurbsCurve};
 pub use error::NurbsError;
+pub use grid::FirstDerivatives;
 pub use knots::{KnotVector, MAX_DEGREE};
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
 pub use vec3::Vec3;

@@ -164,35 +164,49 @@ const MAX_INTERVALS: usize = 64;
 const TURN_STEPS: usize = 16;
 
 /// Intervals per span of `br`: at least `base`, and enough that the tangent `tangent(t)` turns
-/// by at most [`TURN_PER_INTERVAL`] per interval (measured with [`TURN_STEPS`] steps). Tangents
-/// shorter than 1e-6 of the longest in the span (a collapsed edge) have no direction and are
-/// skipped.
+/// by at most [`TURN_PER_INTERVAL`] per interval (measured at [`turning_params`]).
 fn intervals_by_turning(br: &[f64], base: usize, tangent: impl Fn(f64) -> Vec3) -> Vec<usize> {
+    let ts: Vec<Vec3> = turning_params(br).into_iter().map(tangent).collect();
+    ts.chunks(TURN_STEPS + 1).map(|span| intervals_for_turning(span, base)).collect()
+}
+
+/// The parameters at which a span's turning is measured: [`TURN_STEPS`] steps per span of
+/// `br`, both ends included, span `k`'s at `k * (TURN_STEPS + 1)..(k + 1) * (TURN_STEPS + 1)`.
+fn turning_params(br: &[f64]) -> Vec<f64> {
     br.windows(2)
-        .map(|w| {
-            let ts: Vec<Vec3> = (0..=TURN_STEPS)
-                .map(|k| {
-                    tangent(if k == TURN_STEPS { w[1] } else { w[0] + (w[1] - w[0]) * k as f64 / TURN_STEPS as f64 })
-                })
-                .collect();
-            let longest = ts.iter().map(|t| t.norm()).fold(0.0, f64::max);
-            let mut total = 0.0;
-            let mut prev: Option<Vec3> = None;
-            for &t in &ts {
-                let has_direction = t.norm() > 1e-6 * longest; // false for NaN too
-                if !has_direction {
-                    continue;
+        .flat_map(|w| {
+            (0..=TURN_STEPS).map(move |k| {
+                if k == TURN_STEPS {
+                    w[1]
+                } else {
+                    w[0] + (w[1] - w[0]) * k as f64 / TURN_STEPS as f64
                 }
-                if let Some(p) = prev {
-                    total += p.cross(t).norm().atan2(p.dot(t));
-                }
-                prev = Some(t);
-            }
-            let need = (total / TURN_PER_INTERVAL).ceil();
-            let need = if need.is_finite() { need as usize } else { base };
-            need.clamp(base, MAX_INTERVALS.max(base))
+            })
         })
         .collect()
+}
+
+/// Intervals for one span whose tangents at [`turning_params`] are `ts`: at least `base`, and
+/// enough that the tangent turns by at most [`TURN_PER_INTERVAL`] per interval. Tangents
+/// shorter than 1e-6 of the longest in the span (a collapsed edge) have no direction and are
+/// skipped.
+fn intervals_for_turning(ts: &[Vec3], base: usize) -> usize {
+    let longest = ts.iter().map(|t| t.norm()).fold(0.0, f64::max);
+    let mut total = 0.0;
+    let mut prev: Option<Vec3> = None;
+    for &t in ts {
+        let has_direction = t.norm() > 1e-6 * longest; // false for NaN too
+        if !has_direction {
+            continue;
+        }
+        if let Some(p) = prev {
+            total += p.cross(t).norm().atan2(p.dot(t));
+        }
+        prev = Some(t);
+    }
+    let need = (total / TURN_PER_INTERVAL).ceil();
+    let need = if need.is_finite() { need as usize } else { base };
+    need.clamp(base, MAX_INTERVALS.max(base))
 }
 
 /// `eps1` of the options for a model whose control net has bounding-box diagonal `size`.
@@ -394,14 +408,35 @@ impl<'a> SurfaceProjector<'a> {
         let (bu, bv) = (breaks(surface.knots_u()), breaks(surface.knots_v()));
         // Intervals per span: the base count, more where some iso-line bends sharply.
         let (lines_u, lines_v) = (sample_params(&bu, base_u), sample_params(&bv, base_v));
-        let counts_u: Vec<usize> = lines_v
-            .iter()
-            .map(|&v| intervals_by_turning(&bu, base_u, |u| surface.derivatives(u, v).su))
-            .fold(vec![base_u; bu.len() - 1], |m, c| m.iter().zip(&c).map(|(&a, &b)| a.max(b)).collect());
-        let counts_v: Vec<usize> = lines_u
-            .iter()
-            .map(|&u| intervals_by_turning(&bv, base_v, |v| surface.derivatives(u, v).sv))
-            .fold(vec![base_v; bv.len() - 1], |m, c| m.iter().zip(&c).map(|(&a, &b)| a.max(b)).collect());
+        // The tangents along each line sampled on one grid per direction.
+        let per_span = TURN_STEPS + 1;
+        let tu = turning_params(&bu);
+        let along_u = surface.first_derivatives_grid(&tu, &lines_v);
+        let counts_u: Vec<usize> = (0..bu.len() - 1)
+            .map(|k| {
+                along_u
+                    .chunks(tu.len())
+                    .map(|line| {
+                        let ts: Vec<Vec3> = line[k * per_span..(k + 1) * per_span].iter().map(|d| d.su).collect();
+                        intervals_for_turning(&ts, base_u)
+                    })
+                    .fold(base_u, usize::max)
+            })
+            .collect();
+        let tv = turning_params(&bv);
+        let along_v = surface.first_derivatives_grid(&lines_u, &tv);
+        let nl = lines_u.len();
+        let counts_v: Vec<usize> = (0..bv.len() - 1)
+            .map(|k| {
+                (0..nl)
+                    .map(|i| {
+                        let ts: Vec<Vec3> =
+                            (k * per_span..(k + 1) * per_span).map(|j| along_v[j * nl + i].sv).collect();
+                        intervals_for_turning(&ts, base_v)
+                    })
+                    .fold(base_v, usize::max)
+            })
+            .collect();
         // Collapsed edges, from samples along them; the grid is graded towards them.
         let (lo, hi) = surface.control_bounds();
         let eps = abs_tolerance(&options, (hi - lo).norm());
@@ -418,19 +453,28 @@ impl<'a> SurfaceProjector<'a> {
         let (us, starts_u, counts_u) = sample_params_by_span(&bu, &counts_u, (collapsed[0], collapsed[1]));
         let (vs, starts_v, counts_v) = sample_params_by_span(&bv, &counts_v, (collapsed[2], collapsed[3]));
         let (nu, nv) = (us.len(), vs.len());
+        // u-major samples from the v-major grid.
+        let grid = surface.first_derivatives_grid(&us, &vs);
         let mut samples = Vec::with_capacity(nu * nv);
-        for &u in &us {
-            for &v in &vs {
-                let d = surface.derivatives(u, v);
+        for i in 0..nu {
+            for j in 0..nv {
+                let d = &grid[j * nu + i];
                 samples.push(Sample { p: d.point, su: d.su, sv: d.sv });
             }
         }
+        // Each span's fine grid (twice its sampling) of points, all on one grid: span i's
+        // from index fine_u.1[i] along u.
+        let (fine_u, fine_v) = (fine_params(&bu, &counts_u), fine_params(&bv, &counts_v));
+        let fine = surface.points_grid(&fine_u.0, &fine_v.0);
+        let stride = fine_u.0.len();
         let mut blocks = Vec::with_capacity((bu.len() - 1) * (bv.len() - 1));
-        for (i, wu) in bu.windows(2).enumerate() {
-            for (j, wv) in bv.windows(2).enumerate() {
+        for i in 0..bu.len() - 1 {
+            for j in 0..bv.len() - 1 {
                 let (a0, b0, na, nb) = (starts_u[i], starts_v[j], counts_u[i], counts_v[j]);
                 let center = samples[(a0 + na / 2) * nv + b0 + nb / 2].p;
-                let radius = span_radius(surface, center, (wu[0], wu[1], na), (wv[0], wv[1], nb)) + eps;
+                let (fa, fb) = (fine_u.1[i], fine_v.1[j]);
+                let at = |a: usize, b: usize| fine[(fb + b) * stride + fa + a];
+                let radius = span_radius(at, center, 2 * na, 2 * nb) + eps;
                 blocks.push(Block { center, radius, a0, b0, na, nb });
             }
         }
@@ -891,27 +935,25 @@ fn tangential(sk: Vec3, r: Vec3, held: bool) -> f64 {
     }
 }
 
-/// Radius about `center` of a sphere holding the surface over one span `[u0,u1] x [v0,v1]`
-/// sampled with `gu x gv` intervals: the farthest of the samples at half that spacing, plus
-/// the largest deviation of the half-spacing samples from the bilinear interpolation of the
+/// The parameters of every span's fine grid for [`span_radius`]: `2 * counts[i] + 1` equal
+/// steps over span `i` of `br`, both ends included, and where each span's start in the list.
+fn fine_params(br: &[f64], counts: &[usize]) -> (Vec<f64>, Vec<usize>) {
+    let mut out = Vec::new();
+    let mut starts = Vec::with_capacity(counts.len());
+    for (w, &g) in br.windows(2).zip(counts) {
+        starts.push(out.len());
+        let f = 2 * g;
+        out.extend((0..=f).map(|a| if a == f { w[1] } else { w[0] + (w[1] - w[0]) * a as f64 / f as f64 }));
+    }
+    (out, starts)
+}
+
+/// Radius about `center` of a sphere holding the surface over one span sampled with
+/// `fu / 2 x fv / 2` intervals, from its points `at(a, b)` at half that spacing (`a <= fu`,
+/// `b <= fv`, [`fine_params`]): the farthest of them, plus the largest deviation of the half-spacing samples from the bilinear interpolation of the
 /// coarse ones. That deviation is a second-order sag, four times the sag left between the fine
 /// samples, so the bound holds wherever the second derivatives vary little over a cell.
-fn span_radius(
-    s: &NurbsSurface,
-    center: Vec3,
-    (u0, u1, gu): (f64, f64, usize),
-    (v0, v1, gv): (f64, f64, usize),
-) -> f64 {
-    let (fu, fv) = (2 * gu, 2 * gv);
-    let mut fine = Vec::with_capacity((fu + 1) * (fv + 1));
-    for a in 0..=fu {
-        let u = if a == fu { u1 } else { u0 + (u1 - u0) * a as f64 / fu as f64 };
-        for b in 0..=fv {
-            let v = if b == fv { v1 } else { v0 + (v1 - v0) * b as f64 / fv as f64 };
-            fine.push(s.point(u, v));
-        }
-    }
-    let at = |a: usize, b: usize| fine[a * (fv + 1) + b];
+fn span_radius(at: impl Fn(usize, usize) -> Vec3, center: Vec3, fu: usize, fv: usize) -> f64 {
     let mut far: f64 = 0.0;
     let mut sag: f64 = 0.0;
     for a in 0..=fu {

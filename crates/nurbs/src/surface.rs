@@ -236,16 +236,7 @@ impl NurbsSurface {
                 }
             }
         }
-        let w = |k: usize, l: usize| a[k][l][3];
-        let av = |k: usize, l: usize| Vec3::new(a[k][l][0], a[k][l][1], a[k][l][2]);
-        let w0 = w(0, 0);
-        let s00 = av(0, 0) / w0;
-        let s10 = (av(1, 0) - s00 * w(1, 0)) / w0;
-        let s01 = (av(0, 1) - s00 * w(0, 1)) / w0;
-        let s20 = (av(2, 0) - s10 * (2.0 * w(1, 0)) - s00 * w(2, 0)) / w0;
-        let s02 = (av(0, 2) - s01 * (2.0 * w(0, 1)) - s00 * w(0, 2)) / w0;
-        let s11 = (av(1, 1) - s10 * w(0, 1) - s01 * w(1, 0) - s00 * w(1, 1)) / w0;
-        SurfaceDerivatives { point: s00, su: s10, sv: s01, suu: s20, suv: s11, svv: s02 }
+        crate::grid::rational_surface_derivatives(&a)
     }
 
     /// The unit normal `S_u x S_v / |S_u x S_v|`. At a degenerate point (a collapsed edge, as at

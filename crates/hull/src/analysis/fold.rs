@@ -42,17 +42,9 @@ pub fn find_folds(surface: &NurbsSurface) -> Vec<Fold> {
     let us = param_grid(surface.knots_u(), 16, true, PER_SPAN);
     let vs = param_grid(surface.knots_v(), 16, true, PER_SPAN);
     // x and x_v on the grid, v-major: one row per v line.
-    let rows: Vec<Vec<(f64, f64)>> = vs
-        .iter()
-        .map(|&v| {
-            us.iter()
-                .map(|&u| {
-                    let d = surface.derivatives(u, v);
-                    (d.point.x, d.sv.x)
-                })
-                .collect()
-        })
-        .collect();
+    let grid = surface.first_derivatives_grid(&us, &vs);
+    let rows: Vec<Vec<(f64, f64)>> =
+        grid.chunks(us.len()).map(|row| row.iter().map(|d| (d.point.x, d.sv.x)).collect()).collect();
     folds_on_grid(surface, &vs, &rows).0
 }
 

@@ -365,6 +365,9 @@ impl Envelope {
     }
 }
 
+/// Rows of the grid evaluated together (the u basis functions are shared within a block).
+const ROWS_PER_BLOCK: usize = 16;
+
 /// One node of the sampling grid.
 #[derive(Clone, Copy)]
 struct Node {
@@ -384,19 +387,19 @@ impl Grid {
     fn sample(surface: &NurbsSurface) -> Self {
         let us = param_grid(surface.knots_u(), 16, true, PER_SPAN);
         let vs = param_grid(surface.knots_v(), 16, true, PER_SPAN);
-        // Rows in parallel, gathered in order: the same nodes whatever the thread count.
-        let rows: Vec<Vec<Node>> = vs
-            .par_iter()
-            .map(|&v| {
-                us.iter()
-                    .map(|&u| {
-                        let d = surface.derivatives(u, v);
-                        Node { p: d.point, su: d.su, sv: d.sv }
-                    })
+        // Blocks of rows in parallel, gathered in order; each node is computed the same way
+        // whatever the blocks, so the grid is the same whatever the thread count.
+        let blocks: Vec<Vec<Node>> = vs
+            .par_chunks(ROWS_PER_BLOCK)
+            .map(|block| {
+                surface
+                    .first_derivatives_grid(&us, block)
+                    .into_iter()
+                    .map(|d| Node { p: d.point, su: d.su, sv: d.sv })
                     .collect()
             })
             .collect();
-        Grid { us, vs, nodes: rows.into_iter().flatten().collect() }
+        Grid { us, vs, nodes: blocks.into_iter().flatten().collect() }
     }
 
     fn nu(&self) -> usize {
@@ -696,20 +699,23 @@ impl Orientation {
 
     /// The root of `k` and the parity of `k` to it, compressing the path.
     fn find(&mut self, k: usize) -> (usize, bool) {
-        let mut path = Vec::new();
-        let mut r = k;
+        // The root, and the parity of k to it (the xor of the parities on the path).
+        let (mut r, mut to_root) = (k, false);
         while self.parent[r] != r {
-            path.push(r);
+            to_root ^= self.parity[r];
             r = self.parent[r];
         }
-        // Parities to the root, from the node nearest the root outwards.
-        let mut acc = false;
-        for &n in path.iter().rev() {
-            acc ^= self.parity[n];
-            self.parity[n] = acc;
+        // Point the path at the root: each node's parity to the root is what is left of
+        // k's once the nodes before it are taken off.
+        let (mut n, mut acc) = (k, to_root);
+        while self.parent[n] != r && n != r {
+            let (next, own) = (self.parent[n], self.parity[n]);
             self.parent[n] = r;
+            self.parity[n] = acc;
+            acc ^= own;
+            n = next;
         }
-        (r, if k == r { false } else { self.parity[k] })
+        (r, to_root)
     }
 }
 
@@ -743,6 +749,11 @@ fn inward_facing(surface: &NurbsSurface, grid: &Grid, folded: impl Fn(usize) -> 
                 edges.push((1.0 - cos.abs(), k, m, cos < 0.0));
             }
         }
+    }
+    // With no edge flipping, every component has one orientation and no minority: nothing
+    // to find (the tree below would give every node parity 0).
+    if !edges.iter().any(|e| e.3) {
+        return None;
     }
     // Stable: equal weights keep the grid's order, so the tree does not depend on the sort.
     edges.sort_by(|a, b| a.0.total_cmp(&b.0));

@@ -1,0 +1,218 @@
+//! Evaluation on a tensor grid of parameters: a surface's points and derivatives at every
+//! `(us[i], vs[j])`, with the basis functions computed once per parameter instead of once per
+//! point.
+//!
+//! Validity checks, closest-point projectors and curvature maps sample a surface on such grids;
+//! pointwise [`NurbsSurface::derivatives`] spends most of its time in the basis functions
+//! (A2.3) and in the inner sum over the v row, both of which depend on one parameter only.
+//! Here the basis functions are found once per `u` and per `v`, and for each `v` the row sums
+//! `t_r^(l) = sum_s N_s^(l)(v) P_{r,s}` once per control row `r`; each point then costs one
+//! sum over `p + 1` rows. The arithmetic per point is the same, in the same order, as
+//! [`NurbsSurface::derivatives`], so the results are bit-identical to it.
+
+use crate::basis::{ders_basis_funs, BasisRow};
+use crate::knots::MAX_DEGREE;
+use crate::{NurbsSurface, SurfaceDerivatives, Vec3};
+
+/// Basis functions and their first two derivatives at one parameter, with its span.
+struct Basis {
+    span: usize,
+    ders: [BasisRow; 3],
+}
+
+impl Basis {
+    fn at(knots: &crate::KnotVector, t: f64) -> Self {
+        let t = knots.clamp(t);
+        let span = knots.find_span(t);
+        let mut ders = [[0.0; MAX_DEGREE + 1]; 3];
+        ders_basis_funs(knots.as_slice(), span, t, knots.degree(), 2, &mut ders);
+        Basis { span, ders }
+    }
+}
+
+/// The point and first partial derivatives at one `(u, v)`: what a validity grid or a
+/// closest-point search samples.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FirstDerivatives {
+    pub point: Vec3,
+    pub su: Vec3,
+    pub sv: Vec3,
+}
+
+impl NurbsSurface {
+    /// The points and partial derivatives up to second order at every `(us[i], vs[j])`,
+    /// v-major: node `(i, j)` is at index `j * us.len() + i`. Each entry is bit-identical to
+    /// [`derivatives(us[i], vs[j])`](NurbsSurface::derivatives) (parameters clamped to the
+    /// domain the same way), at a fraction of its cost when the grid has more than a few nodes
+    /// per line. Empty when either list is.
+    ///
+    /// ```
+    /// # use nurbs::{KnotVector, NurbsSurface, Vec3};
+    /// let k = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).unwrap();
+    /// let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0)];
+    /// let s = NurbsSurface::try_new(k.clone(), k, &pts, None).unwrap();
+    /// let (us, vs) = ([0.0, 0.25, 1.0], [0.5, 0.75]);
+    /// let grid = s.derivatives_grid(&us, &vs);
+    /// assert_eq!(grid.len(), 6);
+    /// assert_eq!(grid[1 * 3 + 2], s.derivatives(1.0, 0.75));
+    /// ```
+    pub fn derivatives_grid(&self, us: &[f64], vs: &[f64]) -> Vec<SurfaceDerivatives> {
+        let mut out = Vec::with_capacity(us.len() * vs.len());
+        self.homogeneous_grid(us, vs, 2, |a| out.push(rational_surface_derivatives(a)));
+        out
+    }
+
+    /// [`derivatives_grid`](NurbsSurface::derivatives_grid) to first order only (about half
+    /// the work): each entry bit-identical to the `point`, `su` and `sv` of
+    /// [`derivatives`](NurbsSurface::derivatives).
+    pub fn first_derivatives_grid(&self, us: &[f64], vs: &[f64]) -> Vec<FirstDerivatives> {
+        let mut out = Vec::with_capacity(us.len() * vs.len());
+        self.homogeneous_grid(us, vs, 1, |a| {
+            let (s00, s10, s01) = rational_first(a);
+            out.push(FirstDerivatives { point: s00, su: s10, sv: s01 });
+        });
+        out
+    }
+
+    /// The points at every `(us[i], vs[j])`, v-major as
+    /// [`derivatives_grid`](NurbsSurface::derivatives_grid), each bit-identical to
+    /// [`point`](NurbsSurface::point).
+    pub fn points_grid(&self, us: &[f64], vs: &[f64]) -> Vec<Vec3> {
+        let mut out = Vec::with_capacity(us.len() * vs.len());
+        self.homogeneous_grid(us, vs, 0, |a| out.push(Vec3::new(a[0][0][0], a[0][0][1], a[0][0][2]) / a[0][0][3]));
+        out
+    }
+
+    /// The homogeneous derivatives `a[k][l]` (`k + l <= order`, the rest left 0) at every
+    /// node, v-major, handed to `emit` in order.
+    fn homogeneous_grid(&self, us: &[f64], vs: &[f64], order: usize, mut emit: impl FnMut(&[[[f64; 4]; 3]; 3])) {
+        if us.is_empty() || vs.is_empty() {
+            return;
+        }
+        let (p, q) = (self.degree_u(), self.degree_v());
+        let bu: Vec<Basis> = us.iter().map(|&u| Basis::at(self.knots_u(), u)).collect();
+        // The control rows any u touches: only these get row sums.
+        let r_lo = bu.iter().map(|b| b.span - p).min().unwrap_or(0);
+        let r_hi = bu.iter().map(|b| b.span).max().unwrap_or(0);
+        let nvn = self.n_v();
+        let cw = self.homogeneous();
+        let mut t = vec![[[0.0f64; 4]; 3]; r_hi + 1 - r_lo];
+        for &v in vs {
+            let bv = Basis::at(self.knots_v(), v);
+            let dv = &bv.ders;
+            for (k, tr) in t.iter_mut().enumerate() {
+                // t[l] = sum_s dv[l][s] * P_{r,s}, as in `derivatives`.
+                let row = &cw[(r_lo + k) * nvn + bv.span - q..][..=q];
+                *tr = [[0.0f64; 4]; 3];
+                for (s, c) in row.iter().enumerate() {
+                    for l in 0..=order {
+                        let b = dv[l][s];
+                        for c4 in 0..4 {
+                            tr[l][c4] += b * c[c4];
+                        }
+                    }
+                }
+            }
+            for b in &bu {
+                let du = &b.ders;
+                let mut a = [[[0.0f64; 4]; 3]; 3];
+                for r in 0..=p {
+                    let tr = &t[b.span - p + r - r_lo];
+                    for k in 0..=order {
+                        for l in 0..=order - k {
+                            let bk = du[k][r];
+                            for c4 in 0..4 {
+                                a[k][l][c4] += bk * tr[l][c4];
+                            }
+                        }
+                    }
+                }
+                emit(&a);
+            }
+        }
+    }
+}
+
+/// A4.4 to first order: the point, `S_u` and `S_v` from the homogeneous derivatives.
+fn rational_first(a: &[[[f64; 4]; 3]; 3]) -> (Vec3, Vec3, Vec3) {
+    let w = |k: usize, l: usize| a[k][l][3];
+    let av = |k: usize, l: usize| Vec3::new(a[k][l][0], a[k][l][1], a[k][l][2]);
+    let w0 = w(0, 0);
+    let s00 = av(0, 0) / w0;
+    let s10 = (av(1, 0) - s00 * w(1, 0)) / w0;
+    let s01 = (av(0, 1) - s00 * w(0, 1)) / w0;
+    (s00, s10, s01)
+}
+
+/// A4.4 up to second order from the homogeneous derivatives `a[k][l]` (`k + l <= 2`).
+pub(crate) fn rational_surface_derivatives(a: &[[[f64; 4]; 3]; 3]) -> SurfaceDerivatives {
+    let w = |k: usize, l: usize| a[k][l][3];
+    let av = |k: usize, l: usize| Vec3::new(a[k][l][0], a[k][l][1], a[k][l][2]);
+    let w0 = w(0, 0);
+    let (s00, s10, s01) = rational_first(a);
+    let s20 = (av(2, 0) - s10 * (2.0 * w(1, 0)) - s00 * w(2, 0)) / w0;
+    let s02 = (av(0, 2) - s01 * (2.0 * w(0, 1)) - s00 * w(0, 2)) / w0;
+    let s11 = (av(1, 1) - s10 * w(0, 1) - s01 * w(1, 0) - s00 * w(1, 1)) / w0;
+    SurfaceDerivatives { point: s00, su: s10, sv: s01, suu: s20, suv: s11, svv: s02 }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{KnotVector, NurbsSurface, Vec3};
+
+    /// A rational bicubic-by-quadratic surface with interior knots (one double) and uneven
+    /// weights, from a fixed linear congruential sequence.
+    fn wavy() -> NurbsSurface {
+        let ku = KnotVector::try_new(3, vec![0., 0., 0., 0., 0.2, 0.5, 0.5, 0.8, 1., 1., 1., 1.]).expect("valid");
+        let kv = KnotVector::try_new(2, vec![0., 0., 0., 0.3, 0.6, 1., 1., 1.]).expect("valid");
+        let (nu, nv) = (ku.num_basis(), kv.num_basis());
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut pts = Vec::new();
+        let mut w = Vec::new();
+        for i in 0..nu {
+            for j in 0..nv {
+                pts.push(Vec3::new(i as f64 + 0.3 * next(), j as f64 + 0.3 * next(), next()));
+                w.push(0.5 + next());
+            }
+        }
+        NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+    }
+
+    /// Every node equals the pointwise evaluation exactly: same operations, same order. The
+    /// parameters include knots (where the span to the right is taken), both domain ends,
+    /// values outside the domain (clamped), NaN (clamped to the start) and an unsorted list.
+    #[test]
+    fn a_grid_evaluation_equals_pointwise_derivatives_bit_for_bit() {
+        let s = wavy();
+        let us = [0.0, 0.2, 0.5, 0.73, 1.0, -0.5, 1.5, 0.11, f64::NAN, 0.49999];
+        let vs = [1.0, 0.0, 0.3, 0.6, 0.45, 2.0, 0.05];
+        let grid = s.derivatives_grid(&us, &vs);
+        let first = s.first_derivatives_grid(&us, &vs);
+        let points = s.points_grid(&us, &vs);
+        assert_eq!((grid.len(), first.len()), (us.len() * vs.len(), us.len() * vs.len()));
+        for (j, &v) in vs.iter().enumerate() {
+            for (i, &u) in us.iter().enumerate() {
+                let d = s.derivatives(u, v);
+                assert_eq!(grid[j * us.len() + i], d, "node ({u}, {v})");
+                let f = first[j * us.len() + i];
+                assert_eq!((f.point, f.su, f.sv), (d.point, d.su, d.sv), "first order at ({u}, {v})");
+                assert_eq!(points[j * us.len() + i], s.point(u, v), "point at ({u}, {v})");
+            }
+        }
+        // A grid whose u values touch only some control rows (the row sums are restricted).
+        let narrow = [0.55, 0.6];
+        let g = s.derivatives_grid(&narrow, &vs);
+        for (j, &v) in vs.iter().enumerate() {
+            for (i, &u) in narrow.iter().enumerate() {
+                assert_eq!(g[j * narrow.len() + i], s.derivatives(u, v));
+            }
+        }
+        assert!(s.derivatives_grid(&[], &vs).is_empty());
+        assert!(s.derivatives_grid(&us, &[]).is_empty());
+        assert!(s.first_derivatives_grid(&[], &vs).is_empty());
+    }
+}

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The default fit's cost against the plain approximation's, per table in testdata/ (issue 11:
+# the default fit, cross-validation included, within 50x the plain approximation of the same
+# table, measured in the same run).
+#
+#   tools/default_speed.sh                     # every table; about 2 min
+#   tools/default_speed.sh testdata/matlab_yacht.csv ...
+#
+# For each table: the control points and offsets of the default fit; the seconds of the plain
+# approximation (`--fair 0 --envelope free --held-out 0`: the least squares alone, the
+# summary's `time`, i.e. report.json `seconds`, fit plus error measurement; best of 3,
+# interleaved), of the default fit without cross-validation (`--held-out 0`; best of 2) and
+# of the default fit (`hullskin fit T`: fairing search, envelope hold, validity and the
+# 4-fold cross-validation, report.json `seconds` + `error.held_out.seconds`; best of 2), and
+# the ratios. Process start and file writing are left out of every column. Prints a Markdown
+# table. Needs jq. Times depend on the machine and its load.
+source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
+secs() { jq '.seconds + (.error.held_out.seconds // 0)' "$1/report.json"; }
+
+echo "| table | ctrl | m | plain ms | default, no CV ms | ratio | default ms | ratio |"
+echo "|---|--:|--:|--:|--:|--:|--:|--:|"
+for t in "${tables[@]}"; do
+  name=$(basename "$t" .csv)
+  a="" h="" d=""
+  for r in 1 2 3; do
+    "$bin" fit "$t" --fair 0 --envelope free --held-out 0 -o "$out/a" >/dev/null 2>&1
+    a="$a $(secs "$out/a")"
+    if [ "$r" -le 2 ]; then
+      "$bin" fit "$t" --held-out 0 -o "$out/h" >/dev/null 2>&1
+      h="$h $(secs "$out/h")"
+      "$bin" fit "$t" -o "$out/d" >/dev/null 2>&1
+      d="$d $(secs "$out/d")"
+    fi
+  done
+  a=$(echo "$a" | best)
+  h=$(echo "$h" | best)
+  d=$(echo "$d" | best)
+  ctrl=$(jq -r '.surface.control_points | map(tostring) | join("x")' "$out/d/report.json")
+  m=$(jq '.input.points' "$out/d/report.json")
+  awk -v n="$name" -v c="$ctrl" -v m="$m" -v a="$a" -v h="$h" -v d="$d" \
+    'BEGIN { printf "| %s | %s | %d | %.1f | %.0f | %.1f | %.0f | %.1f |\n", n, c, m, 1000 * a, 1000 * h, h / a, 1000 * d, d / a }'
+done
