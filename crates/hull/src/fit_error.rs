@@ -81,6 +81,29 @@ pub struct FitError {
 /// than the parametric residual, whatever the global search finds.
 pub fn measure_fit_error(surface: &NurbsSurface, offsets: &Offsets, hints: Option<&[Vec<(f64, f64)>]>) -> FitError {
     let projections = project_offsets(surface, offsets, hints);
+    fit_error_of(offsets, &projections)
+}
+
+/// The parametric residual of every offset, `|S(u_k, v_k) - Q_k|` at the parameters `params`
+/// the fit gave it (`params[k][i]` for point `i` of section `k`), in the form of
+/// [`measure_fit_error`]: an upper bound of the true distance, at the cost of one evaluation
+/// per offset, for the fits whose error nobody reads (the cross-validation refits).
+pub(crate) fn parametric_fit_error(surface: &NurbsSurface, offsets: &Offsets, params: &[Vec<(f64, f64)>]) -> FitError {
+    let feet: Vec<SurfaceProjection> = offsets
+        .sections
+        .iter()
+        .zip(params)
+        .flat_map(|(s, uv)| s.points.iter().zip(uv))
+        .map(|(&q, &(u, v))| {
+            let point = surface.point(u, v);
+            SurfaceProjection { u, v, point, distance: (point - q).norm(), iterations: 0, converged: true }
+        })
+        .collect();
+    fit_error_of(offsets, &feet)
+}
+
+/// The error of `offsets` from the feet `projections` of its points, in input order.
+fn fit_error_of(offsets: &Offsets, projections: &[SurfaceProjection]) -> FitError {
     let mut all = Vec::with_capacity(projections.len());
     let mut per_section = Vec::with_capacity(offsets.sections.len());
     let mut worst: Option<WorstPoint> = None;

@@ -39,7 +39,8 @@ use serde::Serialize;
 
 use crate::fit_error::{project_offsets, ErrorStats};
 use crate::optimize::{quiet, Control, Progress};
-use crate::{default_ctrl, fit_offsets_with, FitConfig, FitMethod, HullError, Offsets, Section};
+use crate::pipeline::fit_surface_with;
+use crate::{default_ctrl, FitConfig, FitMethod, HullError, Offsets, Section};
 
 /// Settings of the cross-validation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -352,18 +353,17 @@ pub fn held_out_for_config_with(
     let config = &FitConfig { envelope, ..*config };
     let refit = |train: &Offsets| {
         let config = refit_config(train, config, ctrl, full);
-        match fit_offsets_with(train, &config, &inner) {
+        match fit_surface_with(train, &config, &inner) {
             // Knuckle points are shared between the pieces of a section, which narrows the
             // counts that work: take the nearest, as the pipeline does for its default.
             Err(HullError::Fit { reason: NurbsError::BadControlPointCount { count, min, max, .. }, .. })
                 if config.ctrl.is_some_and(|(nu, _)| nu == count) && min <= max =>
             {
                 let ctrl = config.ctrl.map(|(nu, nv)| (nu.clamp(min, max), nv));
-                fit_offsets_with(train, &FitConfig { ctrl, ..config }, &inner)
+                fit_surface_with(train, &FitConfig { ctrl, ..config }, &inner)
             }
             other => other,
         }
-        .map(|outcome| outcome.surface)
     };
     held_out_error_with(offsets, refit, &options, control)
 }

@@ -242,25 +242,9 @@ pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, 
 /// As [`fit_offsets`].
 pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control<'_>) -> Result<FitOutcome, HullError> {
     let Some(algorithm) = config.method.algorithm() else {
-        let plain = fit_skin(offsets, config)?;
-        if config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
-            return Ok(plain);
-        }
-        let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..*config });
-        let start = Instant::now();
-        return Ok(match crate::fairing::fair(&plain, config.fair, skin)? {
-            Some((mut out, report)) => {
-                // The time of the whole choice, the plain fit and every smoothed one measured.
-                let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
-                out.fit_seconds = total - out.error_seconds;
-                out.config = *config;
-                out.fairing = Some(report);
-                out
-            }
-            None => plain,
-        });
+        return fit_skinned(offsets, config, Measure::Full);
     };
-    let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config })?;
+    let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config }, Measure::Full)?;
     crate::limits::check_optimization(&offsets.source, &config.optim, plain.surface.n_u(), plain.surface.n_v())?;
     let start = Instant::now();
     let mut optim = config.optim;
@@ -283,8 +267,9 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     }
     let opt = optimize_weights(offsets, &plain, algorithm, &optim, control)?;
     let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
-    let out = measured(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
-    let mut out = within_envelope(offsets, config, &kernel_sections(offsets), out)?;
+    let out = assembled(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
+    let out = within_envelope(offsets, config, &kernel_sections(offsets), out)?;
+    let mut out = measured(offsets, config, out)?;
     if out.envelope_held > 0 && out.error.overall.rms > plain.error.overall.rms {
         // Held within the envelope, the optimised net (its weights kept, its control points
         // refitted) can end farther from the offsets than the held approximation it started
@@ -310,7 +295,7 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     // fair approximation (its choice, [`crate::fairing::fair`], removes a fold if it can) or the
     // plain one.
     let approx = FitConfig { method: FitMethod::Approx, ..*config };
-    let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx });
+    let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx }, Measure::Full);
     let fair = if plain.flat_lines.is_empty() { crate::fairing::fair(&plain, config.fair, skin)? } else { None };
     let mut candidates: Vec<FitOutcome> = Vec::new();
     if let Some((mut f, report)) = fair {
@@ -319,6 +304,61 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     }
     candidates.push(plain);
     Ok(prefer_sound(config, out, candidates))
+}
+
+/// The surface [`fit_offsets_with`] fits, without measuring it more than the fit itself
+/// needs: for interpolation and approximation with [`Fairing::Off`] or a given `λ` the true
+/// error at the offsets is not computed, nor (with [`EnvelopeHold::Given`] or
+/// [`EnvelopeHold::Free`]) the findings against the offsets' own envelope. The same surface,
+/// bit for bit, at a fraction of the cost: what the cross-validation refits need
+/// ([`crate::held_out`]).
+///
+/// # Errors
+/// As [`fit_offsets`].
+pub(crate) fn fit_surface_with(
+    offsets: &Offsets,
+    config: &FitConfig,
+    control: &Control<'_>,
+) -> Result<NurbsSurface, HullError> {
+    match (config.method.algorithm(), config.fair) {
+        (None, Fairing::Off | Fairing::Lambda(_)) => Ok(fit_skinned(offsets, config, Measure::Lean)?.surface),
+        _ => Ok(fit_offsets_with(offsets, config, control)?.surface),
+    }
+}
+
+/// What [`measured`] computes of a surface on the way to the answer.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Measure {
+    /// The true error at the offsets and every validity finding: an outcome to report.
+    Full,
+    /// Only what the fit's own decisions read ([`fit_surface_with`]): the findings against
+    /// the offsets' envelope when the hold uses them ([`EnvelopeHold::Own`]); the error is the
+    /// parametric residual `|S(u_k, v_k) - Q_k|` at the fit's parameters (an upper bound of
+    /// the true distance), which nothing on this path reads.
+    Lean,
+}
+
+/// Interpolation or approximation, faired as `config.fair` says ([`crate::fairing::fair`],
+/// which measures every fit it tries in full).
+fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<FitOutcome, HullError> {
+    let measure = if matches!(config.fair, Fairing::Auto { .. }) { Measure::Full } else { measure };
+    let plain = fit_skin(offsets, config, measure)?;
+    if config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
+        return Ok(plain);
+    }
+    let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..*config }, measure);
+    let start = Instant::now();
+    Ok(match crate::fairing::fair(&plain, config.fair, skin)? {
+        Some((mut out, report)) => {
+            // The time of the whole choice, the plain fit and every smoothed one measured.
+            let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
+            out.fit_seconds = total - out.error_seconds;
+            out.config = *config;
+            out.fairing = Some(report);
+            out
+        }
+        None => plain,
+    })
 }
 
 /// `out` (an optimised fit) unless it has validity findings and one of `candidates` has none:
@@ -353,8 +393,11 @@ fn give_way(config: &FitConfig, mut kept: FitOutcome, rejected: &FitOutcome, why
     kept
 }
 
-/// Measure the true error of a fitted surface and assemble the outcome.
-fn measured(
+/// The outcome of a fitted surface with what the fit's own decisions read
+/// ([`Measure::Lean`]): the findings against the offsets' envelope when the hold uses them
+/// ([`EnvelopeHold::Own`]), and as its error the parametric residual at the fit's parameters.
+/// [`measured`] completes it.
+fn assembled(
     offsets: &Offsets,
     config: &FitConfig,
     surface: NurbsSurface,
@@ -364,12 +407,16 @@ fn measured(
 ) -> Result<FitOutcome, HullError> {
     nurbs::fit::check_surface(&surface, "fitted surface").map_err(|e| fit_error(config, e))?;
     let start = Instant::now();
-    let error = measure_fit_error(&surface, offsets, Some(&params));
+    let error = crate::fit_error::parametric_fit_error(&surface, offsets, &params);
     let error_seconds = start.elapsed().as_secs_f64();
     if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
         return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
     }
-    let (validity, folds) = crate::analysis::validity::fit_validity_and_folds(&surface, offsets)?;
+    let (validity, folds) = if config.envelope == EnvelopeHold::Own {
+        crate::analysis::validity::fit_validity_and_folds(&surface, offsets)?
+    } else {
+        (Vec::new(), Vec::new())
+    };
     Ok(FitOutcome {
         config: *config,
         surface,
@@ -388,8 +435,25 @@ fn measured(
     })
 }
 
+/// `out` ([`assembled`]) measured in full ([`Measure::Full`]): the true error of every offset
+/// by closest-point projection, and every validity finding against the offsets' envelope.
+fn measured(offsets: &Offsets, config: &FitConfig, out: FitOutcome) -> Result<FitOutcome, HullError> {
+    let start = Instant::now();
+    let error = measure_fit_error(&out.surface, offsets, Some(&out.params));
+    let error_seconds = start.elapsed().as_secs_f64();
+    if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
+        return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
+    }
+    let (validity, folds) = if config.envelope == EnvelopeHold::Own {
+        (out.validity, out.folds)
+    } else {
+        crate::analysis::validity::fit_validity_and_folds(&out.surface, offsets)?
+    };
+    Ok(FitOutcome { error, error_seconds, validity, folds, ..out })
+}
+
 /// Skinning interpolation or approximation.
-fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullError> {
+fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<FitOutcome, HullError> {
     let (p, q) = config.degree;
     for (d, dir) in [(p, "u (along the sections)"), (q, "v (across the sections)")] {
         if d == 0 || d > nurbs::MAX_DEGREE {
@@ -446,10 +510,13 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullErr
         }
     }
     let fit_seconds = start.elapsed().as_secs_f64();
-    let mut out = measured(offsets, config, surface, result.params, fit_seconds, None)?;
+    let mut out = assembled(offsets, config, surface, result.params, fit_seconds, None)?;
     out.flat_lines = flat_lines;
     if config.method != FitMethod::Interp {
         out = within_envelope(offsets, config, &sections, out)?;
+    }
+    if measure == Measure::Full {
+        out = measured(offsets, config, out)?;
     }
     out.knuckle_lines = lines;
     Ok(out)
@@ -541,9 +608,9 @@ fn within_envelope(
             break;
         };
         let seconds = out.fit_seconds + start.elapsed().as_secs_f64();
-        // The refitted surface, measured; what the fit did before carries over.
+        // The refitted surface, with its findings; what the fit did before carries over.
         let prev = out;
-        out = measured(offsets, config, surface, prev.params, seconds, None)?;
+        out = assembled(offsets, config, surface, prev.params, seconds, None)?;
         out.envelope_held = prev.envelope_held + held.total();
         out.optimization = prev.optimization;
         out.knuckle_lines = prev.knuckle_lines;
@@ -646,6 +713,31 @@ mod tests {
         // A sound optimised fit is never replaced.
         let sound_lm = FitOutcome { validity: Vec::new(), ..out.clone() };
         assert_eq!(prefer_sound(&lm, sound_lm, vec![sound]).surface, out.surface);
+    }
+
+    /// The cross-validation's lean path measures less, never fits differently: the same
+    /// surface bit for bit as the full fit, for every hold, fairing and method it serves.
+    #[test]
+    fn the_lean_path_fits_the_same_surface_as_the_full_fit() {
+        let offsets = series60_sample();
+        let whole = Envelope::of_offsets(&offsets).expect("a hull").bounds();
+        let mut tried = 0;
+        for envelope in [EnvelopeHold::Own, EnvelopeHold::Free, EnvelopeHold::Given(whole)] {
+            for fair in [Fairing::Off, Fairing::Lambda(1e-2)] {
+                for (method, knuckles) in [
+                    (FitMethod::Approx, Knuckles::Off),
+                    (FitMethod::Interp, Knuckles::Off),
+                    (FitMethod::Approx, Knuckles::AutoFlats(CornerOptions::default())),
+                ] {
+                    let cfg = FitConfig { method, knuckles, fair, envelope, ..FitConfig::default() };
+                    let full = fit_offsets(&offsets, &cfg).expect("fits");
+                    let lean = quiet(|c| fit_surface_with(&offsets, &cfg, c)).expect("fits");
+                    assert_eq!(lean, full.surface, "{cfg:?}");
+                    tried += 1;
+                }
+            }
+        }
+        assert_eq!(tried, 18);
     }
 
     #[test]

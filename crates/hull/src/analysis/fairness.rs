@@ -196,15 +196,21 @@ pub fn default_quadrature(surface: &NurbsSurface) -> (usize, usize) {
 pub fn bending_energy(surface: &NurbsSurface, points: (usize, usize)) -> BendingEnergy {
     let (gu, gv) = (gauss_legendre(points.0), gauss_legendre(points.1));
     let (bu, bv) = (breaks(surface.knots_u()), breaks(surface.knots_v()));
+    // Every Gauss point of every span on one grid: span i's points from i * gu.len() along u.
+    let nodes = |b: &[f64], g: &[(f64, f64)]| -> Vec<f64> {
+        b.windows(2).flat_map(|w| g.iter().map(move |&(x, _)| 0.5 * (w[1] + w[0]) + 0.5 * (w[1] - w[0]) * x)).collect()
+    };
+    let (us, vs) = (nodes(&bu, &gu), nodes(&bv, &gv));
+    let grid = surface.derivatives_grid(&us, &vs);
     let (mut area, mut thin, mut param, mut skipped) = (0.0, 0.0, 0.0, 0);
-    for wu in bu.windows(2) {
-        let (hu, cu) = (0.5 * (wu[1] - wu[0]), 0.5 * (wu[1] + wu[0]));
-        for wv in bv.windows(2) {
-            let (hv, cv) = (0.5 * (wv[1] - wv[0]), 0.5 * (wv[1] + wv[0]));
-            for &(xu, au) in &gu {
-                for &(xv, av) in &gv {
+    for (i, wu) in bu.windows(2).enumerate() {
+        let hu = 0.5 * (wu[1] - wu[0]);
+        for (j, wv) in bv.windows(2).enumerate() {
+            let hv = 0.5 * (wv[1] - wv[0]);
+            for (a, &(_, au)) in gu.iter().enumerate() {
+                for (b, &(_, av)) in gv.iter().enumerate() {
                     let w = au * hu * av * hv;
-                    let d = surface.derivatives(cu + hu * xu, cv + hv * xv);
+                    let d = grid[(j * gv.len() + b) * us.len() + i * gu.len() + a];
                     param += w * (d.suu.norm_squared() + 2.0 * d.suv.norm_squared() + d.svv.norm_squared());
                     let da = d.su.cross(d.sv).norm();
                     area += w * da;

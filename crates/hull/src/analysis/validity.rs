@@ -690,11 +690,23 @@ fn fold_finding(surface: &NurbsSurface, grid: &Grid, fold: &Fold, sign: f64) -> 
 struct Orientation {
     parent: Vec<usize>,
     parity: Vec<bool>,
+    /// Nodes under each root (union by size keeps the trees shallow).
+    size: Vec<usize>,
 }
 
 impl Orientation {
     fn new(n: usize) -> Self {
-        Orientation { parent: (0..n).collect(), parity: vec![false; n] }
+        Orientation { parent: (0..n).collect(), parity: vec![false; n], size: vec![1; n] }
+    }
+
+    /// Join the trees of roots `ra` and `rb`, the parity between them `parity`: the smaller
+    /// under the larger. Which root stays does not change the orientation of any node relative
+    /// to another, which is all [`inward_facing`] reads.
+    fn join(&mut self, ra: usize, rb: usize, parity: bool) {
+        let (big, small) = if self.size[ra] >= self.size[rb] { (ra, rb) } else { (rb, ra) };
+        self.parent[small] = big;
+        self.parity[small] = parity;
+        self.size[big] += self.size[small];
     }
 
     /// The root of `k` and the parity of `k` to it, compressing the path.
@@ -755,14 +767,14 @@ fn inward_facing(surface: &NurbsSurface, grid: &Grid, folded: impl Fn(usize) -> 
     if !edges.iter().any(|e| e.3) {
         return None;
     }
-    // Stable: equal weights keep the grid's order, so the tree does not depend on the sort.
-    edges.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Equal weights in the grid's order (the nodes break ties), so the tree does not depend
+    // on the sort.
+    edges.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
     let mut orient = Orientation::new(nu * nv);
     for &(_, a, b, flip) in &edges {
         let ((ra, pa), (rb, pb)) = (orient.find(a), orient.find(b));
         if ra != rb {
-            orient.parent[rb] = ra;
-            orient.parity[rb] = pa ^ pb ^ flip;
+            orient.join(ra, rb, pa ^ pb ^ flip);
         }
     }
     let label: Vec<(usize, bool)> = (0..nu * nv).map(|k| orient.find(k)).collect();
