@@ -19,6 +19,7 @@
 //! (max 85 mm against 63); on the exact Wigley hull any smoothing costs accuracy (2.4 µm RMS
 //! plain, 29 µm at 1e-3), so the plain fit stays.
 
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::analysis::{bending_energy, default_quadrature};
@@ -181,7 +182,7 @@ fn extreme(f: &FairnessFigures) -> f64 {
 pub fn fair(
     plain: &FitOutcome,
     fairing: Fairing,
-    skin: impl Fn(f64) -> Result<FitOutcome, HullError>,
+    skin: impl Fn(f64) -> Result<FitOutcome, HullError> + Sync,
 ) -> Result<Option<(FitOutcome, FairReport)>, HullError> {
     let check = |name: &str, v: f64| {
         if v >= 0.0 && v.is_finite() {
@@ -240,8 +241,11 @@ pub fn fair(
                 // findings of any kind), fewer than the plain fit's, within the slack.
                 let defects = |o: &FitOutcome| (o.folds.len(), o.validity.len());
                 let mut best: Option<(usize, FitOutcome)> = None;
-                for &l in &AUTO_LAMBDAS {
-                    let Ok(out) = skin(l) else { continue };
+                // Every weight is tried here: the fits run in parallel, the choice is made in
+                // their order, so it does not depend on the thread count.
+                let fits: Vec<Result<FitOutcome, HullError>> = AUTO_LAMBDAS.par_iter().map(|&l| skin(l)).collect();
+                for (&l, fit) in AUTO_LAMBDAS.iter().zip(fits) {
+                    let Ok(out) = fit else { continue };
                     let (max, findings) = (out.error.overall.max, out.validity.len());
                     let better = defects(&out) < best.as_ref().map_or(defects(plain), |(_, b)| defects(b));
                     if better && max <= UNSOUND_SLACK * limit {

@@ -339,14 +339,33 @@ enum Measure {
 }
 
 /// Interpolation or approximation, faired as `config.fair` says ([`crate::fairing::fair`],
-/// which measures every fit it tries in full).
+/// which measures every fit it tries in full); with [`Measure::Lean`] and no search to make
+/// (fairing off or a given weight), only the fit whose surface is the answer.
 fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<FitOutcome, HullError> {
-    let measure = if matches!(config.fair, Fairing::Auto { .. }) { Measure::Full } else { measure };
-    let plain = fit_skin(offsets, config, measure)?;
+    let smoothed = |nu: f64, measure| fit_skin(offsets, &FitConfig { smoothing: nu, ..*config }, measure);
+    match (measure, config.fair) {
+        (Measure::Lean, Fairing::Off) => return fit_skin(offsets, config, measure),
+        // The surface `fair` would choose for a given weight, without the fairness figures of
+        // its report: the smoothed fit, but for interpolation and a fit within flats (which
+        // only `auto+flats` can find), which keep the plain one.
+        (Measure::Lean, Fairing::Lambda(l)) if l >= 0.0 && l.is_finite() => {
+            let flats = matches!(config.knuckles, Knuckles::AutoFlats(_));
+            if l > 0.0 && config.method == FitMethod::Approx && !flats {
+                return smoothed(l, measure);
+            }
+            let plain = fit_skin(offsets, config, measure)?;
+            if l == 0.0 || config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
+                return Ok(plain);
+            }
+            return smoothed(l, measure);
+        }
+        _ => {}
+    }
+    let plain = fit_skin(offsets, config, Measure::Full)?;
     if config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
         return Ok(plain);
     }
-    let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..*config }, measure);
+    let skin = |nu: f64| smoothed(nu, Measure::Full);
     let start = Instant::now();
     Ok(match crate::fairing::fair(&plain, config.fair, skin)? {
         Some((mut out, report)) => {
