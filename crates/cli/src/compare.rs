@@ -20,6 +20,7 @@ use hull::CompareConfig;
 use crate::optim_args::OptimArgs;
 use crate::progress;
 use crate::skin_args::SkinArgs;
+use crate::stdout::{out, outln};
 
 /// Arguments of `hullskin compare`.
 #[derive(Debug, Args)]
@@ -63,8 +64,8 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
         out.write_bytes(name, text.as_bytes()).with_context(|| format!("cannot write {name}"))?;
     }
     out.commit().with_context(|| format!("cannot write into {}", dir.display()))?;
-    print!("{markdown}");
-    println!("\nwrote {}", dir.join("{compare.json,compare.md}").display());
+    out!("{markdown}");
+    outln!("\nwrote {}", dir.join("{compare.json,compare.md}").display());
     if !comparison.complete || progress::stopped() {
         let status = progress::stop_status().unwrap_or(130);
         eprintln!("hullskin: interrupted: wrote the methods done before the stop (exit status {status})");

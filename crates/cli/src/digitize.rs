@@ -12,6 +12,7 @@ use hull::digitize::{
 use hull::{write_atomic, Units};
 
 use crate::parse::parse_units;
+use crate::stdout::outln;
 
 /// The order of the station curves when neither layers nor labels name them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -187,19 +188,19 @@ pub fn run(args: &DigitizeArgs) -> anyhow::Result<ExitCode> {
         eprintln!("note: {n}");
     }
     let units = o.units.symbol();
-    println!("{}: {} curves, {} labels", sketch.source, sketch.curves.len(), sketch.labels.len());
-    println!("{:<12} {:>14} {:<10} {:>6} {:>6}", "station", format!("x ({units})"), "side", "curves", "points");
+    outln!("{}: {} curves, {} labels", sketch.source, sketch.curves.len(), sketch.labels.len());
+    outln!("{:<12} {:>14} {:<10} {:>6} {:>6}", "station", format!("x ({units})"), "side", "curves", "points");
     for s in &d.stations {
         let side = match s.side {
             Side::Aft => "aft",
             Side::Fore => "fore",
             Side::Centreline => "centreline",
         };
-        println!("{:<12} {:>14} {:<10} {:>6} {:>6}", s.label, format!("{}", s.x), side, s.curves, s.points);
+        outln!("{:<12} {:>14} {:<10} {:>6} {:>6}", s.label, format!("{}", s.x), side, s.curves, s.points);
     }
     write_atomic(&args.out, |w| write_sections_csv(w, &d.offsets))
         .with_context(|| format!("cannot write {}", args.out.display()))?;
-    println!(
+    outln!(
         "wrote {}: {} sections, {} points ({})",
         args.out.display(),
         d.offsets.sections.len(),

@@ -19,6 +19,7 @@ use nurbs::{NurbsSurface, Vec3};
 
 use crate::fit::fit_with_progress;
 use crate::skin_args::SkinArgs;
+use crate::stdout::outln;
 use crate::surface_arg::{read_input, Input};
 
 /// What to write.
@@ -266,7 +267,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
             )
         }
     };
-    println!("wrote {} ({}: {note})", out.display(), format.name());
+    outln!("wrote {} ({}: {note})", out.display(), format.name());
     Ok(ExitCode::SUCCESS)
 }
 

@@ -10,6 +10,7 @@ use hull::{FitConfig, FitMethod, FitOutcome, HeldOutError, HullError, Offsets, T
 use crate::optim_args::OptimArgs;
 use crate::progress;
 use crate::skin_args::SkinArgs;
+use crate::stdout::{out, outln};
 
 /// Arguments of `hullskin fit`.
 #[derive(Debug, Args)]
@@ -111,17 +112,17 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     let overfit = overfitting(&offsets, &outcome);
     report.overfitting = overfit.as_ref().map(|l| l.trim_start_matches("warning: ").to_string());
     write_outputs(&args.out, &offsets, &outcome, &report)?;
-    print!("{}", hull::summary_table(&offsets, &outcome));
+    out!("{}", hull::summary_table(&offsets, &outcome));
     if let Some(line) = overfit {
-        println!("{line}");
+        outln!("{line}");
     }
     if let Some(s) = &report.tolerance_search {
-        println!("{}", s.summary(offsets.units.symbol()));
+        outln!("{}", s.summary(offsets.units.symbol()));
     }
     if let Some(mesh) = &mesh {
         print_mesh_distance(mesh, &offsets, &outcome.surface);
     }
-    println!("wrote {}", args.out.join("{surface.igs,surface.json,report.json}").display());
+    outln!("wrote {}", args.out.join("{surface.igs,surface.json,report.json}").display());
     if let Some(status) = progress::stop_status() {
         eprintln!("hullskin: interrupted: wrote the best surface found before the stop (exit status {status})");
         return Ok(ExitCode::from(status));
@@ -140,13 +141,18 @@ fn print_mesh_distance(mesh: &hull::mesh::TriMesh, offsets: &Offsets, surface: &
     let d = hull::mesh::mesh_distance(mesh, surface, &filter);
     let u = offsets.units.symbol();
     let h = &d.over_hull;
-    println!(
+    outln!(
         "mesh {}: distance of {} starboard vertices over the surface: max {:.3e} {u}, mean {:.3e} {u}, RMS {:.3e} {u} \
          ({} more face another way: deck, transom, centre-plane lid or sharp edges)",
-        mesh.source, h.points, h.max, h.mean, h.rms, d.left_out
+        mesh.source,
+        h.points,
+        h.max,
+        h.mean,
+        h.rms,
+        d.left_out
     );
     if let Some((q, foot)) = d.worst {
-        println!("  farthest vertex ({}, {}, {}), foot ({:.6}, {:.6}, {:.6})", q.x, q.y, q.z, foot.x, foot.y, foot.z);
+        outln!("  farthest vertex ({}, {}, {}), foot ({:.6}, {:.6}, {:.6})", q.x, q.y, q.z, foot.x, foot.y, foot.z);
     }
     if d.unconverged > 0 {
         eprintln!(

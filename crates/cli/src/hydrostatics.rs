@@ -11,6 +11,7 @@ use hull::{FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, SEA_
 
 use crate::fit::fit_with_progress;
 use crate::skin_args::SkinArgs;
+use crate::stdout::{out, outln};
 use crate::surface_arg::{read_input, Input};
 
 /// Output format of the table.
@@ -131,9 +132,9 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
         Some(path) => {
             hull::write_atomic(path, |w| w.write_all(text.as_bytes()))
                 .with_context(|| format!("cannot write {}", path.display()))?;
-            println!("wrote {}", path.display());
+            outln!("wrote {}", path.display());
         }
-        None => print!("{text}"),
+        None => out!("{text}"),
     }
     Ok(ExitCode::SUCCESS)
 }

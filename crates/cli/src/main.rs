@@ -19,6 +19,7 @@ mod progress;
 mod report;
 mod skin_args;
 mod slice;
+mod stdout;
 mod surface_arg;
 
 /// Fit one fair NURBS hull surface to offset data by skinning.
@@ -98,12 +99,19 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    match run() {
+    let code = match run() {
         Ok(code) => code,
         Err(err) => {
             eprintln!("hullskin: error: {err:#}");
             ExitCode::from(2)
         }
+    };
+    match stdout::failure() {
+        Some(why) => {
+            eprintln!("hullskin: error: could not write to standard output: {why}");
+            ExitCode::from(2)
+        }
+        None => code,
     }
 }
 

@@ -20,6 +20,7 @@ use nurbs::NurbsSurface;
 use crate::fit::MethodArgs;
 use crate::progress;
 use crate::skin_args::SkinArgs;
+use crate::stdout::outln;
 use crate::surface_arg::{read_input, Input};
 
 /// Arguments of `hullskin report`.
@@ -195,10 +196,10 @@ fn compare(args: &ReportArgs, offsets: &Offsets) -> anyhow::Result<Comparison> {
 
 fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, written: &[PathBuf], seconds: f64) {
     let u = loaded.units.symbol();
-    println!("report of {}", loaded.source);
+    outln!("report of {}", loaded.source);
     if let Some(f) = &loaded.fit {
         let e = &f.error.overall;
-        println!(
+        outln!(
             "fit: {} {}x{} control points, error max {:.3e} {u}, RMS {:.3e} {u}",
             f.config.method.name(),
             f.surface.n_u(),
@@ -207,28 +208,28 @@ fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, writt
             e.rms
         );
         if let Some(s) = &loaded.search {
-            println!("{}", s.summary(u));
+            outln!("{}", s.summary(u));
         }
     } else if let Some(e) = &report.error {
-        println!("error of the offsets: max {:.3e} {u}, RMS {:.3e} {u}", e.overall.max, e.overall.rms);
+        outln!("error of the offsets: max {:.3e} {u}, RMS {:.3e} {u}", e.overall.max, e.overall.rms);
     }
     match (&report.drafts, report.hydrostatics.rows.last()) {
         (DraftChoice::Design(t), Some(r)) => {
-            println!("hydrostatics at T {t} {u}: Vol {:.2} {u}³, CB {:.4}, LCB {:.3} {u}", r.vol, r.cb, r.lcb)
+            outln!("hydrostatics at T {t} {u}: Vol {:.2} {u}³, CB {:.4}, LCB {:.3} {u}", r.vol, r.cb, r.lcb)
         }
         (DraftChoice::Range { count, top, limit, .. }, _) => {
-            println!("hydrostatics at {count} drafts up to {limit} ({top:.4} {u})")
+            outln!("hydrostatics at {count} drafts up to {limit} ({top:.4} {u})")
         }
         _ => {}
     }
     let size = |p: &Path| std::fs::metadata(p).map(|m| m.len()).unwrap_or(0);
     let total: u64 = written.iter().map(|p| size(p)).sum();
     if let Some(html) = written.first() {
-        println!("wrote {} ({:.2} MB, self-contained) in {seconds:.1} s", html.display(), size(html) as f64 / 1e6);
+        outln!("wrote {} ({:.2} MB, self-contained) in {seconds:.1} s", html.display(), size(html) as f64 / 1e6);
     }
     let names: Vec<String> =
         written.iter().skip(1).filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
-    println!("and {} ({:.2} MB in all)", names.join(", "), total as f64 / 1e6);
+    outln!("and {} ({:.2} MB in all)", names.join(", "), total as f64 / 1e6);
 }
 
 #[cfg(test)]

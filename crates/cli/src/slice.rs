@@ -17,6 +17,7 @@ use hull::{Hydrostatics, HydrostaticsOptions, Offsets, Units};
 use nurbs::Vec3;
 
 use crate::parse::parse_units;
+use crate::stdout::outln;
 
 /// How a mesh is read and sliced into sections.
 #[derive(Debug, Clone, Args)]
@@ -155,7 +156,7 @@ pub struct SliceArgs {
 pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
     let (mesh, out) = args.mesh.read_and_slice(&args.input, args.units)?;
     let edges = mesh.edge_counts();
-    println!(
+    outln!(
         "{}: {} triangles, {} vertices ({} degenerate triangles dropped), {} open and {} non-manifold edges",
         mesh.source,
         mesh.triangles.len(),
@@ -165,10 +166,10 @@ pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
         edges.non_manifold
     );
     if let Some((lo, hi)) = mesh.bounds() {
-        println!("  x {} .. {}, y {} .. {}, z {} .. {}", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
+        outln!("  x {} .. {}, y {} .. {}, z {} .. {}", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
     }
     let points: usize = out.offsets.sections.iter().map(|s| s.points.len()).sum();
-    println!(
+    outln!(
         "{} sections of {} points ({} stations dropped), keel to deck edge (or the mesh's top) on the starboard side",
         out.offsets.sections.len(),
         points / out.offsets.sections.len().max(1),
@@ -185,21 +186,24 @@ pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
     // an earlier file as it was.
     hull::write_atomic(&args.out, |w| write_sections_csv(w, &out.offsets))
         .with_context(|| format!("cannot write {}", args.out.display()))?;
-    println!("wrote {}", args.out.display());
+    outln!("wrote {}", args.out.display());
     Ok(ExitCode::SUCCESS)
 }
 
 fn print_mesh_hydrostatics(m: &MeshHydrostatics, units: Units) {
     let u = units.symbol();
-    println!("mesh at draft {} {u}{}:", m.draft, if m.half { " (starboard half, doubled)" } else { "" });
-    println!("  volume {:.6} {u}3, LCB {:.6} {u}, KB {:.6} {u}", m.volume, m.lcb, m.vcb);
-    println!("  wetted surface {:.6} {u}2", m.wetted_surface);
-    println!(
+    outln!("mesh at draft {} {u}{}:", m.draft, if m.half { " (starboard half, doubled)" } else { "" });
+    outln!("  volume {:.6} {u}3, LCB {:.6} {u}, KB {:.6} {u}", m.volume, m.lcb, m.vcb);
+    outln!("  wetted surface {:.6} {u}2", m.wetted_surface);
+    outln!(
         "  waterplane {:.6} {u}2, LCF {:.6} {u}, Lwl {:.6} {u}, Bwl {:.6} {u}",
-        m.waterplane_area, m.lcf, m.lwl, m.bwl
+        m.waterplane_area,
+        m.lcf,
+        m.lwl,
+        m.bwl
     );
     if m.inward {
-        println!("  (the mesh's triangles face inward; measured as if turned outward)");
+        outln!("  (the mesh's triangles face inward; measured as if turned outward)");
     }
     if m.open_edges_below > 0 {
         eprintln!(
@@ -219,8 +223,8 @@ fn check_surface(path: &Path, mesh: &TriMesh, offsets: &Offsets, m: &MeshHydrost
         .and_then(|h| h.at(m.draft))
         .with_context(|| format!("hydrostatics of {}", path.display()))?;
     let pct = |a: f64, b: f64| if b != 0.0 { 100.0 * (a - b) / b } else { f64::NAN };
-    println!("surface {} against the mesh at draft {}:", path.display(), m.draft);
-    println!(
+    outln!("surface {} against the mesh at draft {}:", path.display(), m.draft);
+    outln!(
         "  volume {:.6} ({:+.3} %), LCB {:.6} ({:+.6}), KB {:.6} ({:+.6})",
         row.vol,
         pct(row.vol, m.volume),
@@ -229,21 +233,22 @@ fn check_surface(path: &Path, mesh: &TriMesh, offsets: &Offsets, m: &MeshHydrost
         row.vcb,
         row.vcb - m.vcb
     );
-    println!("  wetted surface {:.6} ({:+.3} %)", row.s, pct(row.s, m.wetted_surface));
-    println!("  waterplane {:.6} ({:+.3} %)", row.aw, pct(row.aw, m.waterplane_area));
+    outln!("  wetted surface {:.6} ({:+.3} %)", row.s, pct(row.s, m.wetted_surface));
+    outln!("  waterplane {:.6} ({:+.3} %)", row.aw, pct(row.aw, m.waterplane_area));
     if let Some(filter) = VertexFilter::for_sections(offsets, m.draft) {
         let d = mesh_distance(mesh, &surface, &filter);
         let h = &d.over_hull;
-        println!(
+        outln!(
             "  distance of {} wetted starboard mesh vertices to the surface: max {:.3e}, mean {:.3e}, RMS {:.3e} \
              ({} more face another way: transom, centre-plane lid or sharp edges)",
-            h.points, h.max, h.mean, h.rms, d.left_out
+            h.points,
+            h.max,
+            h.mean,
+            h.rms,
+            d.left_out
         );
         if let Some((q, foot)) = d.worst {
-            println!(
-                "  farthest vertex ({}, {}, {}), foot ({:.6}, {:.6}, {:.6})",
-                q.x, q.y, q.z, foot.x, foot.y, foot.z
-            );
+            outln!("  farthest vertex ({}, {}, {}), foot ({:.6}, {:.6}, {:.6})", q.x, q.y, q.z, foot.x, foot.y, foot.z);
         }
     }
     Ok(())

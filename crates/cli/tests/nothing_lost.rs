@@ -291,3 +291,38 @@ fn a_surface_no_file_may_hold_is_refused_before_any_file_is_created() {
     assert!(!dir.join("rep").exists());
     assert!(leftovers(dir).is_empty(), "{:?}", leftovers(dir));
 }
+
+/// `hullskin fit | head -1`: the reader goes before the summary is printed. The run goes on:
+/// exit 0, the files written and whole, no panic.
+#[test]
+fn a_reader_that_goes_away_ends_the_printing_not_the_run() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut child = spawn(dir.path(), &["fit", "--held-out", "0", "-o", "out"]);
+    // Close the read end at once: every write to standard output fails with a broken pipe.
+    drop(child.stdout.take());
+    let o = child.wait_with_output().expect("wait");
+    let (_, err) = text(&o);
+    assert!(o.status.success(), "exit {:?}: {err}", o.status);
+    assert!(!err.contains("panicked"), "{err}");
+    let report = read_json(&dir.path().join("out/report.json"));
+    assert!(num(&report["error"]["max"]) > 0.0);
+    assert!(dir.path().join("out/surface.igs").is_file());
+}
+
+/// Standard output on a full disk: a clear error and a non-zero exit, never a panic.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_disk_on_standard_output_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let full = fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full on Linux");
+    let o = Command::new(env!("CARGO_BIN_EXE_hullskin"))
+        .args(["fit", "--held-out", "0", "-o", "out"])
+        .current_dir(dir.path())
+        .stdout(Stdio::from(full))
+        .output()
+        .expect("run hullskin");
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("could not write to standard output") && err.contains("No space left"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
