@@ -259,7 +259,7 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
             o.final_value,
             o.evaluations,
             o.iterations,
-            serde_json::to_value(o.stop).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default(),
+            o.stop.phrase(),
             o.weight_range[0],
             o.weight_range[1],
             o.seconds,

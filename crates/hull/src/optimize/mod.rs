@@ -69,6 +69,17 @@ pub enum StopReason {
     Interrupted,
 }
 
+impl StopReason {
+    /// How the run ended, in words for the summary and the report page.
+    pub fn phrase(self) -> &'static str {
+        match self {
+            StopReason::Iterations => "iteration budget used",
+            StopReason::Converged => "converged",
+            StopReason::Interrupted => "interrupted",
+        }
+    }
+}
+
 /// The outcome of a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OptimResult {

@@ -34,7 +34,7 @@ use self::html::{
 };
 use crate::analysis::{self, CurvatureMap, CurvatureSummary, FairnessOptions, FairnessReport, FieldStats, Finding};
 use crate::drawing::{lines_3d, lines_plan, write_dxf, write_dxf_3d_lines, write_svg, LinesPlanOptions};
-use crate::optimize::{OptimReport, StopReason};
+use crate::optimize::OptimReport;
 use crate::render::{self, RasterOptions};
 use crate::viewer::{write_viewer_html, ViewerOptions};
 use crate::{
@@ -972,11 +972,7 @@ impl Page<'_, '_> {
     }
 
     fn convergence(&self, o: &OptimReport, (png, w, h): (&[u8], u32, u32)) -> String {
-        let stop = match o.stop {
-            StopReason::Iterations => "iteration budget used",
-            StopReason::Converged => "converged",
-            StopReason::Interrupted => "interrupted",
-        };
+        let stop = o.stop.phrase();
         let rows = vec![
             ("Algorithm".to_string(), format!("<code>{}</code>, seed {}", esc(o.algorithm), o.seed)),
             ("Weights".into(), format!("layout {}, control points {}", esc(o.weight_layout), esc(o.control_points))),
