@@ -87,7 +87,8 @@ pub fn measure_fit_error(surface: &NurbsSurface, offsets: &Offsets, hints: Optio
 /// The parametric residual of every offset, `|S(u_k, v_k) - Q_k|` at the parameters `params`
 /// the fit gave it (`params[k][i]` for point `i` of section `k`), in the form of
 /// [`measure_fit_error`]: an upper bound of the true distance, at the cost of one evaluation
-/// per offset, for the fits whose error nobody reads (the cross-validation refits).
+/// per offset, for the surfaces on the way to an answer (a fit the envelope hold refits, a
+/// cross-validation refit), whose true error nobody reads.
 pub(crate) fn parametric_fit_error(surface: &NurbsSurface, offsets: &Offsets, params: &[Vec<(f64, f64)>]) -> FitError {
     let feet: Vec<SurfaceProjection> = offsets
         .sections

@@ -326,7 +326,8 @@ pub(crate) fn fit_surface_with(
     }
 }
 
-/// What [`measured`] computes of a surface on the way to the answer.
+/// How much of a fitted surface is measured on the way to the answer: what [`assembled`]
+/// records of it (`Lean`), or that completed by [`measured`] (`Full`).
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Measure {
     /// The true error at the offsets and every validity finding: an outcome to report.
