@@ -33,12 +33,12 @@ pub(crate) fn failure() -> Option<String> {
     FAILURE.lock().unwrap_or_else(|p| p.into_inner()).clone()
 }
 
-/// `print!` to standard output through [`write`].
+/// `print!` to standard output through [`write()`].
 macro_rules! out {
     ($($arg:tt)*) => { $crate::stdout::write(format_args!($($arg)*)) };
 }
 
-/// `println!` to standard output through [`write`].
+/// `println!` to standard output through [`write()`].
 macro_rules! outln {
     () => { $crate::stdout::write(format_args!("\n")) };
     ($($arg:tt)*) => { $crate::stdout::write(format_args!("{}\n", format_args!($($arg)*))) };
