@@ -12,7 +12,9 @@ holds
    "samples": [[u, v, x, y, z], ...],           # points of our own evaluator, in the file's units
    "curves": [{"degree": p, "knots": [...], "control_points": [[x, y, z], ...],
                "weights": [...], "samples": [[t, x, y, z], ...]}, ...],   # optional
-   "reference": {"samples": [[u, v, x, y, z], ...], "tolerance": t}}     # optional
+   "reference": {"samples": [[u, v, x, y, z], ...], "tolerance": t},    # optional
+   "envelope": {"lo": [x, y, z], "hi": [x, y, z], "allowance": [ax, ay, az], "grid": n}}
+                                                # optional, in the file's units
 
 The file is read twice:
   * "native": xstep.cascade.unit set to the file's own unit, so OCCT must not scale;
@@ -28,7 +30,11 @@ hold exactly that many free edges (not bounding a face), in order, each a Geom_B
 with our degree, pole count, knots, poles, weights and C(t) at the samples, within the same
 tolerance. With "reference" (the rational surface a polynomial export approximates), OCCT's
 S(u, v) must be within "tolerance" (a length in the file's units) of every reference point;
-the largest distance is reported as reference_deviation.
+the largest distance is reported as reference_deviation. With "envelope" (the offsets' box
+and how far past each face hullskin's validity check allows the surface), OCCT's S(u, v)
+on an n x n grid over the face's parameter rectangle must stay within the box widened by
+the allowance on every side; how far it goes past each face is reported as
+envelope_excess (below lo, above hi, per coordinate; negative inside).
 
 Prints a JSON summary on stdout; exit status 0 if every check passed, 1 on a mismatch,
 2 if the inputs could not be read.
@@ -341,6 +347,30 @@ def check_read(checks, label, path, cascade_unit, factor, expected):
             f"{label}: within {reference['tolerance']} of the reference at {len(reference['samples'])} points",
             dev <= reference["tolerance"] and len(reference["samples"]) > 0,
             f"max deviation {dev:.3e}",
+        )
+    # The offsets' envelope, seen by OCCT's own evaluator on a grid over the face.
+    envelope = expected.get("envelope")
+    if envelope:
+        n = int(envelope["grid"])
+        lo = [c * factor for c in envelope["lo"]]
+        hi = [c * factor for c in envelope["hi"]]
+        allow = [c * factor for c in envelope["allowance"]]
+        least, most = [math.inf] * 3, [-math.inf] * 3
+        for a in range(n + 1):
+            u = fu1 + (fu2 - fu1) * a / n
+            for b in range(n + 1):
+                pt = s.Value(u, fv1 + (fv2 - fv1) * b / n)
+                for k, c in enumerate((pt.X(), pt.Y(), pt.Z())):
+                    least[k] = min(least[k], c)
+                    most[k] = max(most[k], c)
+        below = [(lo[k] - least[k]) / factor for k in range(3)]
+        above = [(most[k] - hi[k]) / factor for k in range(3)]
+        info["envelope_excess"] = {"below": below, "above": above, "grid": n}
+        inside = all(below[k] <= allow[k] / factor and above[k] <= allow[k] / factor for k in range(3))
+        checks.add(
+            f"{label}: within the envelope at {(n + 1) ** 2} points",
+            inside,
+            f"past the faces below {below}, above {above}, allowed {[c / factor for c in allow]}",
         )
     # The scale OCCT applied, measured: the largest pole coordinate over ours.
     ours_max = max(abs(c) for pt in points for c in pt)
