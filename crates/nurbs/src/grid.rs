@@ -11,6 +11,7 @@
 //! [`NurbsSurface::derivatives`], so the results are bit-identical to it.
 
 use crate::basis::{ders_basis_funs, BasisRow};
+use crate::curve::Homogeneous;
 use crate::knots::MAX_DEGREE;
 use crate::{NurbsSurface, SurfaceDerivatives, Vec3};
 
@@ -58,7 +59,7 @@ impl NurbsSurface {
     /// ```
     pub fn derivatives_grid(&self, us: &[f64], vs: &[f64]) -> Vec<SurfaceDerivatives> {
         let mut out = Vec::with_capacity(us.len() * vs.len());
-        self.homogeneous_grid(us, vs, 2, |a| out.push(rational_surface_derivatives(a)));
+        self.homogeneous_grid::<2>(us, vs, |a| out.push(rational_surface_derivatives(a)));
         out
     }
 
@@ -67,7 +68,7 @@ impl NurbsSurface {
     /// [`derivatives`](NurbsSurface::derivatives).
     pub fn first_derivatives_grid(&self, us: &[f64], vs: &[f64]) -> Vec<FirstDerivatives> {
         let mut out = Vec::with_capacity(us.len() * vs.len());
-        self.homogeneous_grid(us, vs, 1, |a| {
+        self.homogeneous_grid::<1>(us, vs, |a| {
             let (s00, s10, s01) = rational_first(a);
             out.push(FirstDerivatives { point: s00, su: s10, sv: s01 });
         });
@@ -79,13 +80,15 @@ impl NurbsSurface {
     /// [`point`](NurbsSurface::point).
     pub fn points_grid(&self, us: &[f64], vs: &[f64]) -> Vec<Vec3> {
         let mut out = Vec::with_capacity(us.len() * vs.len());
-        self.homogeneous_grid(us, vs, 0, |a| out.push(Vec3::new(a[0][0][0], a[0][0][1], a[0][0][2]) / a[0][0][3]));
+        self.homogeneous_grid::<0>(us, vs, |a| out.push(Vec3::new(a[0][0][0], a[0][0][1], a[0][0][2]) / a[0][0][3]));
         out
     }
 
-    /// The homogeneous derivatives `a[k][l]` (`k + l <= order`, the rest left 0) at every
-    /// node, v-major, handed to `emit` in order.
-    fn homogeneous_grid(&self, us: &[f64], vs: &[f64], order: usize, mut emit: impl FnMut(&[[[f64; 4]; 3]; 3])) {
+    /// The homogeneous derivatives `a[k][l]` (`k + l <= ORDER`, the rest left 0) at every
+    /// node, v-major, handed to `emit` in order: the sums of
+    /// [`derivatives`](NurbsSurface::derivatives), with each control row's sums
+    /// ([`row_sums`]) made once per v.
+    fn homogeneous_grid<const ORDER: usize>(&self, us: &[f64], vs: &[f64], mut emit: impl FnMut(&[[[f64; 4]; 3]; 3])) {
         if us.is_empty() || vs.is_empty() {
             return;
         }
@@ -99,35 +102,45 @@ impl NurbsSurface {
         let mut t = vec![[[0.0f64; 4]; 3]; r_hi + 1 - r_lo];
         for &v in vs {
             let bv = Basis::at(self.knots_v(), v);
-            let dv = &bv.ders;
             for (k, tr) in t.iter_mut().enumerate() {
-                // t[l] = sum_s dv[l][s] * P_{r,s}, as in `derivatives`.
-                let row = &cw[(r_lo + k) * nvn + bv.span - q..][..=q];
-                *tr = [[0.0f64; 4]; 3];
-                for (s, c) in row.iter().enumerate() {
-                    for l in 0..=order {
-                        let b = dv[l][s];
-                        for c4 in 0..4 {
-                            tr[l][c4] += b * c[c4];
-                        }
-                    }
-                }
+                *tr = row_sums::<ORDER>(&cw[(r_lo + k) * nvn + bv.span - q..][..=q], &bv.ders);
             }
             for b in &bu {
-                let du = &b.ders;
                 let mut a = [[[0.0f64; 4]; 3]; 3];
                 for r in 0..=p {
-                    let tr = &t[b.span - p + r - r_lo];
-                    for k in 0..=order {
-                        for l in 0..=order - k {
-                            let bk = du[k][r];
-                            for c4 in 0..4 {
-                                a[k][l][c4] += bk * tr[l][c4];
-                            }
-                        }
-                    }
+                    add_row::<ORDER>(&mut a, &b.ders, r, &t[b.span - p + r - r_lo]);
                 }
                 emit(&a);
+            }
+        }
+    }
+}
+
+/// The sums of one control row `row` (its `q + 1` homogeneous points) against the v basis
+/// functions and their derivatives `dv`: `t[l] = sum_s dv[l][s] P_s`, `l <= ORDER`.
+#[inline]
+pub(crate) fn row_sums<const ORDER: usize>(row: &[Homogeneous], dv: &[BasisRow; 3]) -> [[f64; 4]; 3] {
+    let mut t = [[0.0f64; 4]; 3];
+    for (s, c) in row.iter().enumerate() {
+        for l in 0..=ORDER {
+            let b = dv[l][s];
+            for c4 in 0..4 {
+                t[l][c4] += b * c[c4];
+            }
+        }
+    }
+    t
+}
+
+/// `a[k][l] += du[k][r] t[l]` for `k + l <= ORDER`: row `r`'s share (its [`row_sums`] `t`)
+/// of the homogeneous derivatives, `du` the u basis functions and their derivatives.
+#[inline]
+pub(crate) fn add_row<const ORDER: usize>(a: &mut [[[f64; 4]; 3]; 3], du: &[BasisRow; 3], r: usize, t: &[[f64; 4]; 3]) {
+    for k in 0..=ORDER {
+        for l in 0..=ORDER - k {
+            let b = du[k][r];
+            for c4 in 0..4 {
+                a[k][l][c4] += b * t[l][c4];
             }
         }
     }

@@ -216,25 +216,8 @@ impl NurbsSurface {
         // a[k][l] homogeneous derivative d^(k+l)/du^k dv^l, k + l <= 2.
         let mut a = [[[0.0f64; 4]; 3]; 3];
         for r in 0..=p {
-            let row = &self.cw[(su - p + r) * nvn + sv - q..][..=q];
-            // t[l] = sum_s dv[l][s] * P_{r,s}
-            let mut t = [[0.0f64; 4]; 3];
-            for (s, c) in row.iter().enumerate() {
-                for l in 0..3 {
-                    let b = dv[l][s];
-                    for c4 in 0..4 {
-                        t[l][c4] += b * c[c4];
-                    }
-                }
-            }
-            for k in 0..3 {
-                for l in 0..3 - k {
-                    let b = du[k][r];
-                    for c4 in 0..4 {
-                        a[k][l][c4] += b * t[l][c4];
-                    }
-                }
-            }
+            let t = crate::grid::row_sums::<2>(&self.cw[(su - p + r) * nvn + sv - q..][..=q], &dv);
+            crate::grid::add_row::<2>(&mut a, &du, r, &t);
         }
         crate::grid::rational_surface_derivatives(&a)
     }
