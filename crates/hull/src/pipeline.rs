@@ -344,23 +344,24 @@ enum Measure {
 /// (fairing off or a given weight), only the fit whose surface is the answer.
 fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<FitOutcome, HullError> {
     let smoothed = |nu: f64, measure| fit_skin(offsets, &FitConfig { smoothing: nu, ..*config }, measure);
-    match (measure, config.fair) {
-        (Measure::Lean, Fairing::Off) => return fit_skin(offsets, config, measure),
-        // The surface `fair` would choose for a given weight, without the fairness figures of
-        // its report: the smoothed fit, but for interpolation and a fit within flats (which
-        // only `auto+flats` can find), which keep the plain one.
-        (Measure::Lean, Fairing::Lambda(l)) if l >= 0.0 && l.is_finite() => {
-            let flats = matches!(config.knuckles, Knuckles::AutoFlats(_));
-            if l > 0.0 && config.method == FitMethod::Approx && !flats {
-                return smoothed(l, measure);
-            }
-            let plain = fit_skin(offsets, config, measure)?;
-            if l == 0.0 || config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
-                return Ok(plain);
-            }
+    // The surface `fair` would choose for fairing off (weight 0) or a given weight, without
+    // the fairness figures of its report: the smoothed fit, but for interpolation and a fit
+    // within flats (which only `auto+flats` can find), which keep the plain one.
+    let given = match config.fair {
+        Fairing::Off => Some(0.0),
+        Fairing::Lambda(l) if l >= 0.0 && l.is_finite() => Some(l),
+        _ => None,
+    };
+    if let (Measure::Lean, Some(l)) = (measure, given) {
+        let flats = matches!(config.knuckles, Knuckles::AutoFlats(_));
+        if l > 0.0 && config.method == FitMethod::Approx && !flats {
             return smoothed(l, measure);
         }
-        _ => {}
+        let plain = fit_skin(offsets, config, measure)?;
+        if l == 0.0 || config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
+            return Ok(plain);
+        }
+        return smoothed(l, measure);
     }
     let plain = fit_skin(offsets, config, Measure::Full)?;
     if config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
@@ -427,11 +428,8 @@ fn assembled(
 ) -> Result<FitOutcome, HullError> {
     nurbs::fit::check_surface(&surface, "fitted surface").map_err(|e| fit_error(config, e))?;
     let start = Instant::now();
-    let error = crate::fit_error::parametric_fit_error(&surface, offsets, &params);
+    let error = finite(config, crate::fit_error::parametric_fit_error(&surface, offsets, &params))?;
     let error_seconds = start.elapsed().as_secs_f64();
-    if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
-        return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
-    }
     let (validity, folds) = if config.envelope == EnvelopeHold::Own {
         crate::analysis::validity::fit_validity_and_folds(&surface, offsets)?
     } else {
@@ -459,17 +457,23 @@ fn assembled(
 /// by closest-point projection, and every validity finding against the offsets' envelope.
 fn measured(offsets: &Offsets, config: &FitConfig, out: FitOutcome) -> Result<FitOutcome, HullError> {
     let start = Instant::now();
-    let error = measure_fit_error(&out.surface, offsets, Some(&out.params));
+    let error = finite(config, measure_fit_error(&out.surface, offsets, Some(&out.params)))?;
     let error_seconds = start.elapsed().as_secs_f64();
-    if !(error.overall.max.is_finite() && error.overall.rms.is_finite()) {
-        return Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }));
-    }
     let (validity, folds) = if config.envelope == EnvelopeHold::Own {
         (out.validity, out.folds)
     } else {
         crate::analysis::validity::fit_validity_and_folds(&out.surface, offsets)?
     };
     Ok(FitOutcome { error, error_seconds, validity, folds, ..out })
+}
+
+/// `error`, or the fit's error when its max or RMS is not finite.
+fn finite(config: &FitConfig, error: FitError) -> Result<FitError, HullError> {
+    if error.overall.max.is_finite() && error.overall.rms.is_finite() {
+        Ok(error)
+    } else {
+        Err(fit_error(config, NurbsError::NonFiniteResult { what: "fit error".into() }))
+    }
 }
 
 /// Skinning interpolation or approximation.
