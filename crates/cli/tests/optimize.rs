@@ -132,10 +132,26 @@ fn lm_beats_the_plain_approximation_and_reports_its_run() {
     assert!(plain.get("optimization").is_none());
     assert_optimization_block(&lm, "lm", 1, "converged");
     assert_eq!(lm["surface"]["control_points"], plain["surface"]["control_points"]);
-    // The true (closest-point) RMS, not the objective: measured 3.3 mm against 28.1 mm at
-    // 6 x 19; half is a floor that still fails a solver that barely moves.
+    // The true (closest-point) RMS, not the objective. On the fair objective (the default) the
+    // weights are smooth and trade some of the gain at the offsets for the surface between
+    // them: measured 26.5 mm against the approximation's 35.1 (held out: 333 mm against 396).
     let (a, l) = (num(&plain["error"]["rms"]), num(&lm["error"]["rms"]));
-    assert!(l < 0.5 * a, "lm RMS {l} against approx {a}");
+    assert!(l < 0.9 * a, "lm RMS {l} against approx {a}");
+    let (ha, hl) = (num(&plain["error"]["held_out"]["max"]), num(&lm["error"]["held_out"]["max"]));
+    assert!(hl < ha, "lm held-out max {hl} against approx {ha}");
+    assert_eq!(lm["optimization"]["weights_at_bounds"], 0, "{}", lm["optimization"]);
+    // On the plain objective, not held in the envelope (`--fair 0 --envelope free`), the
+    // weights are free: measured 3.3 mm against the plain approximation's 28.1 at 6 x 19 (and
+    // a held-out max of 584 mm against 374: over-fitting); half is a floor that still fails a
+    // solver that barely moves.
+    let o = hullskin(dir.path(), &["fit", "-o", "plain", "--fair", "0", "--envelope", "free"]);
+    assert!(o.status.success(), "{:?}", text(&o));
+    let o = hullskin(dir.path(), &["fit", "-o", "lm0", "--method", "lm", "--fair", "0", "--envelope", "free"]);
+    assert!(o.status.success(), "{:?}", text(&o));
+    let plain0 = read_json(&dir.path().join("plain/report.json"));
+    let lm0 = read_json(&dir.path().join("lm0/report.json"));
+    let (a, l) = (num(&plain0["error"]["rms"]), num(&lm0["error"]["rms"]));
+    assert!(l < 0.5 * a, "lm --fair 0 RMS {l} against approx {a}");
 }
 
 #[cfg(unix)]

@@ -11,7 +11,9 @@
 //! over `d` log-weights `θ` in a box (weights in `[0.1, 10]` by default), `m` offsets, and a
 //! mild regularisation `ρ = regularization x model size` that keeps the log-weights near 0
 //! (weights near 1) where the data do not care, and fixes the scale gauge (multiplying all weights
-//! by one factor changes nothing else). At `θ = 0` the penalty vanishes.
+//! by one factor changes nothing else). At `θ = 0` the penalty vanishes. With a fairness term
+//! ([`WeightOptions::fair`]) the data and fairness parts are taken at the gauge-fixed `Π θ`
+//! (`gauge`), as the energy of the homogeneous net would otherwise fall with the weights' scale.
 //!
 //! * [`WeightMode::Fixed`]: `P_c` are the control points of the plain approximation.
 //! * [`WeightMode::Resolved`] (variable projection, Golub and Pereyra 1973): for each `w`,
@@ -39,6 +41,7 @@ use nurbs::{KnotVector, NurbsError, NurbsSurface, Vec3, MAX_DEGREE};
 use super::linalg::{band_cholesky, band_solve, dot};
 use super::net_energy::NetEnergy;
 
+mod gauge;
 mod within;
 use super::Objective;
 use crate::{FitOutcome, HullError, Offsets};
@@ -128,8 +131,10 @@ pub struct WeightOptions {
     /// Fairness `λ` of the control net ([`NetEnergy`], re-solved mode only): the control points
     /// minimise `(1/m) sum_k |S_k - Q_k|^2 + λ (1/r) |D Y|^2` (`r` rows of the second-difference
     /// operator `D`, `Y = w P` the homogeneous control points), and the objective carries the
-    /// same term. Dimensionless: a mean squared second difference of the net costs `λ` times as
-    /// much as a mean squared residual. `0` (the default) is the plain least squares.
+    /// same term, measured in a fixed scale gauge (the weights' geometric mean brought to 1,
+    /// see `gauge`) so that scaling all weights together does not lower it. Dimensionless: a
+    /// mean squared second difference of the net costs `λ` times as much as a mean squared
+    /// residual. `0` (the default) is the plain least squares.
     pub fair: f64,
     /// Smoothness of the log-weights, `σ / model size`: the objective gains
     /// `σ^2 (1/e) sum (θ_a - θ_b)^2` over the `e` pairs of neighbouring weights (grid
@@ -339,6 +344,8 @@ pub(crate) struct BasisTable {
 /// Per-thread scratch of one evaluation.
 #[derive(Default)]
 struct Scratch {
+    /// The variables the weights are filled from: `Π θ` when the gauge is fixed (`gauge`).
+    xg: Vec<f64>,
     /// Weights in band order.
     w: Vec<f64>,
     /// Rank-one factors `a`, `b`.
@@ -823,11 +830,7 @@ impl WeightProblem {
                 reason: NurbsError::SingularSystem { what: "least-squares control points for these weights".into() },
             });
         }
-        let mut cw = vec![[0.0; 4]; self.pat.n()];
-        for (pos, &c) in self.pat.grid.iter().enumerate() {
-            let y = sc.y[pos];
-            cw[c] = [y[0], y[1], y[2], sc.w[pos]];
-        }
+        let cw = self.homogeneous_net(x, &sc.y, &sc.w);
         NurbsSurface::try_from_homogeneous(self.ku.clone(), self.kv.clone(), cw)
             .map_err(|source| HullError::Fit { method: "weights", reason: source })
     }
@@ -907,7 +910,9 @@ impl WeightProblem {
     }
 
     /// `(J^T J, J^T r)` (`full`: row-major `d x d`) or `(diag(J^T J), J^T r)`.
-    fn gauss_newton(&self, x: &[f64], full: bool) -> Option<(Vec<f64>, Vec<f64>)> {
+    fn gauss_newton(&self, x: &[f64], full_out: bool) -> Option<(Vec<f64>, Vec<f64>)> {
+        // With the gauge fixed the diagonal of `Π J^T J Π` needs the whole matrix.
+        let full = full_out || self.gauge_fixed();
         let mut sc = Scratch::default();
         let table = &self.table;
         if !self.solve(table, x, &mut sc) {
@@ -1013,6 +1018,17 @@ impl WeightProblem {
             }
             jtj[v * d + v] *= scale;
             jtr[v] *= scale;
+        }
+        // The data and fairness rows were differentiated at `Π x` (see `gauge`).
+        self.project_gauge_symmetric(&mut jtj);
+        self.project_gauge(&mut jtr);
+        if !full_out {
+            let prior = self.prior_diag();
+            let mut diag: Vec<f64> = (0..d).map(|v| jtj[v * d + v] + prior[v]).collect();
+            std::mem::swap(&mut jtj, &mut diag);
+            self.prior_apply(x, &mut jtr);
+            let finite = jtj.iter().chain(&jtr).all(|t| t.is_finite());
+            return finite.then_some((jtj, jtr));
         }
         // The prior: J^T J += R (a column at a time: the diagonal and the smoothing's Laplacian),
         // J^T r += R x.
@@ -1140,7 +1156,14 @@ impl WeightProblem {
         }
         let pat = &self.pat;
         let (n, nb, bw) = (pat.n(), pat.nb, pat.bw);
-        self.fill_weights(x, &mut sc.w, &mut sc.ab);
+        if self.gauge_fixed() {
+            sc.xg.clear();
+            sc.xg.extend_from_slice(x);
+            self.project_gauge(&mut sc.xg);
+            self.fill_weights(&sc.xg, &mut sc.w, &mut sc.ab);
+        } else {
+            self.fill_weights(x, &mut sc.w, &mut sc.ab);
+        }
         let m = table.first.len();
         sc.s.clear();
         sc.s.resize(m, 0.0);
@@ -1647,6 +1670,9 @@ impl WeightProblem {
                 project(&mut jac[v * rows..(v + 1) * rows], &mut y);
             }
         }
+        // The data and fairness rows were differentiated at `Π x` (see `gauge`); the prior's
+        // rows, set below, at `x`.
+        self.project_gauge_columns(&mut jac, rows);
         let scale = 1.0 / (m as f64).sqrt();
         let reg = self.rho / (d as f64).sqrt();
         for v in 0..cols {

@@ -61,6 +61,8 @@ pub(crate) struct JacobianOp<'a> {
     resolved: bool,
     /// Scratch of the projection, `n` homogeneous rows.
     t: Vec<[f64; 3]>,
+    /// Scratch of the gauge projection of a product's vector (see `gauge`).
+    pv: Vec<f64>,
 }
 
 impl WeightProblem {
@@ -103,6 +105,7 @@ impl WeightProblem {
             e: Vec::with_capacity(m),
             resolved: self.options.mode == WeightMode::Resolved,
             t: vec![[0.0; 3]; pat.n()],
+            pv: Vec::new(),
             sc: Scratch::default(),
         };
         op.ptr.push(0);
@@ -210,7 +213,9 @@ impl JacobianOp<'_> {
     #[cfg(test)]
     pub(crate) fn apply(&mut self, v: &[f64]) -> Vec<f64> {
         let mut u = Vec::new();
-        self.apply_a(v, &mut u);
+        let mut v = v.to_vec();
+        self.problem.project_gauge(&mut v);
+        self.apply_a(&v, &mut u);
         self.project(&mut u);
         let scale = 1.0 / (self.m() as f64).sqrt();
         u.iter().flat_map(|r| r.map(|c| c * scale)).collect()
@@ -223,15 +228,27 @@ impl JacobianOp<'_> {
         self.project(&mut u);
         let mut out = vec![0.0; self.problem.dim()];
         self.add_at(&u, 1.0 / (self.m() as f64).sqrt(), &mut out);
+        self.problem.project_gauge(&mut out);
         out
     }
 
-    /// `out = (J^T J) v` as the dense path forms it: `A^T (I - H G^{-1} H^T) A v / m`.
+    /// `out = (J^T J) v` as the dense path forms it: `A^T (I - H G^{-1} H^T) A v / m`
+    /// (`Π` on both sides when the gauge is fixed, see `gauge`).
     pub(crate) fn normal_apply(&mut self, v: &[f64], out: &mut [f64], u: &mut Vec<[f64; 3]>) {
-        self.apply_a(v, u);
+        if self.problem.gauge_fixed() {
+            self.pv.clear();
+            self.pv.extend_from_slice(v);
+            self.problem.project_gauge(&mut self.pv);
+            let pv = std::mem::take(&mut self.pv);
+            self.apply_a(&pv, u);
+            self.pv = pv;
+        } else {
+            self.apply_a(v, u);
+        }
         self.project(u);
         out.iter_mut().for_each(|t| *t = 0.0);
         self.add_at(u, 1.0 / self.m() as f64, out);
+        self.problem.project_gauge(out);
     }
 
     /// `J^T r` of the data rows: `A^T (I - H G^{-1} H^T) e / m`. With the fairness term the
@@ -244,15 +261,38 @@ impl JacobianOp<'_> {
         }
         let mut out = vec![0.0; self.problem.dim()];
         self.add_at(&u, 1.0 / self.m() as f64, &mut out);
+        self.problem.project_gauge(&mut out);
         out
     }
 
-    /// `diag(A^T A) / m`: an upper bound of `diag(J^T J)` (the projection only removes), for
-    /// the damping's scaling and the Jacobi preconditioner.
+    /// `diag(A^T A) / m` (`diag(Π A^T A Π) / m` when the gauge is fixed): an upper bound of
+    /// `diag(J^T J)` (the projection by `H` only removes), for the damping's scaling and the
+    /// Jacobi preconditioner.
     pub(crate) fn diag_ata(&self) -> Vec<f64> {
-        let mut d = vec![0.0; self.problem.dim()];
+        let dim = self.problem.dim();
+        let mut d = vec![0.0; dim];
         for (&var, a) in self.var.iter().zip(&self.val) {
             d[var] += a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+        }
+        if self.problem.gauge_fixed() {
+            // (Π M Π)_vv = M_vv - 2 (M 1_g)_v / n_g + 1_g^T M 1_g / n_g^2 for v in group g,
+            // M = A^T A: one product A^T (A 1_g) per group.
+            let mut u = Vec::new();
+            for g in self.problem.gauge_groups() {
+                if g.is_empty() {
+                    continue;
+                }
+                let mut ones = vec![0.0; dim];
+                ones[g.clone()].iter_mut().for_each(|t| *t = 1.0);
+                self.apply_a(&ones, &mut u);
+                let mut m1 = vec![0.0; dim];
+                self.add_at(&u, 1.0, &mut m1);
+                let n = g.len() as f64;
+                let total: f64 = m1[g.clone()].iter().sum();
+                for v in g {
+                    d[v] += total / (n * n) - 2.0 * m1[v] / n;
+                }
+            }
         }
         let scale = 1.0 / self.m() as f64;
         d.iter_mut().for_each(|t| *t *= scale);

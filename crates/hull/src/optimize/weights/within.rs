@@ -79,10 +79,7 @@ impl WeightProblem {
                 y[c][t] = v;
             }
         }
-        let mut cw = vec![[0.0; 4]; n];
-        for (pos, &c) in pat.grid.iter().enumerate() {
-            cw[c] = [y[pos][0], y[pos][1], y[pos][2], sc.w[pos]];
-        }
+        let cw = self.homogeneous_net(x, &y, &sc.w);
         let surface = NurbsSurface::try_from_homogeneous(self.ku.clone(), self.kv.clone(), cw)
             .map_err(|source| HullError::Fit { method: "weights", reason: source })?;
         Ok((surface, active_total))
