@@ -37,7 +37,7 @@ use nurbs::{NurbsError, NurbsSurface};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::fit_error::{project_offsets, ErrorStats, WorstPoint};
+use crate::fit_error::{project_offsets, ErrorStats};
 use crate::optimize::{quiet, Control, Progress};
 use crate::pipeline::fit_surface_with;
 use crate::{default_ctrl, FitConfig, FitMethod, HullError, Offsets, Section};
@@ -105,9 +105,6 @@ pub struct HeldOutError {
     pub sections: ErrorStats,
     /// The held-out points within sections.
     pub points: ErrorStats,
-    /// The held-out offset farthest from its refit: where the surface is least sure between
-    /// the offsets.
-    pub worst: Option<HeldOutWorst>,
     /// `K`.
     pub folds: usize,
     /// Refits done (folds of either kind that held something out).
@@ -125,25 +122,12 @@ impl HeldOutError {
     }
 }
 
-/// The held-out offset farthest from the refit that did not see it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct HeldOutWorst {
-    /// `"section"` (its whole section was held out) or `"point"` (held out of its section).
-    pub held: &'static str,
-    /// The offset (its index and line in the input), its foot point on the refit, the distance.
-    #[serde(flatten)]
-    pub at: WorstPoint,
-}
-
 /// Over-fitting of fit `a` against fit `b`: `a` is closer to the offsets than `b`
 /// (`at_offsets_a < at_offsets_b`) but farther from the held-out ones (`held_a > held_b`), so
 /// what it gained at the offsets it lost between them.
 pub fn overfit(at_offsets_a: f64, held_a: f64, at_offsets_b: f64, held_b: f64) -> bool {
     at_offsets_a < at_offsets_b && held_a > held_b
 }
-
-/// A held-out offset's distance to its refit and its foot point there.
-type Measured = (f64, [f64; 3]);
 
 /// Which kind of offsets a split holds out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -158,8 +142,6 @@ struct Split {
     kind: Kind,
     train: Offsets,
     held: Offsets,
-    /// The index in its own section of each held-out offset, section by section of `held`.
-    index: Vec<Vec<usize>>,
 }
 
 /// The points of `section` whose index satisfies `keep` (their source lines kept in step).
@@ -185,12 +167,11 @@ fn section_split(offsets: &Offsets, options: &HeldOutOptions, f: usize) -> Optio
     if held.is_empty() || train.len() < options.degree.1 + 1 {
         return None;
     }
-    let pick = |v: &[(usize, &Section)]| Offsets {
-        sections: v.iter().map(|(_, s)| (*s).clone()).collect(),
+    let pick = |v: Vec<(usize, &Section)>| Offsets {
+        sections: v.into_iter().map(|(_, s)| s.clone()).collect(),
         ..offsets.clone()
     };
-    let index = held.iter().map(|(_, s)| (0..s.points.len()).collect()).collect();
-    Some(Split { kind: Kind::Sections, train: pick(&train), held: pick(&held), index })
+    Some(Split { kind: Kind::Sections, train: pick(train), held: pick(held) })
 }
 
 /// Fold `f` of the points: interior points `i mod K = f` of every section that can spare them
@@ -198,7 +179,7 @@ fn section_split(offsets: &Offsets, options: &HeldOutOptions, f: usize) -> Optio
 fn point_split(offsets: &Offsets, options: &HeldOutOptions, f: usize) -> Option<Split> {
     let tol = crate::COINCIDENT_REL * offsets.size();
     let mut train = Vec::with_capacity(offsets.sections.len());
-    let (mut held, mut index) = (Vec::new(), Vec::new());
+    let mut held = Vec::new();
     for s in &offsets.sections {
         let n = s.points.len();
         let out = |i: usize| i > 0 && i + 1 < n && i % options.folds == f;
@@ -208,14 +189,13 @@ fn point_split(offsets: &Offsets, options: &HeldOutOptions, f: usize) -> Option<
         } else {
             train.push(section_where(s, |i| !out(i)));
             held.push(section_where(s, out));
-            index.push((0..n).filter(|&i| out(i)).collect());
         }
     }
     if held.is_empty() {
         return None;
     }
     let with = |sections| Offsets { sections, ..offsets.clone() };
-    Some(Split { kind: Kind::Points, train: with(train), held: with(held), index })
+    Some(Split { kind: Kind::Points, train: with(train), held: with(held) })
 }
 
 /// Every split of `options`, sections' folds first, in fold order.
@@ -279,21 +259,18 @@ pub fn held_out_error_with(
     // The largest distance so far, for the progress report: the bits of a non-negative float
     // order as the float does.
     let worst = AtomicU64::new(0);
-    let measured: Vec<Option<Result<Vec<Measured>, HullError>>> = splits
+    let measured: Vec<Option<Result<Vec<f64>, HullError>>> = splits
         .par_iter()
         .map(|split| {
             if control.stopped() {
                 return None;
             }
             let result = fit(&split.train).map(|surface| {
-                project_offsets(&surface, &split.held, None)
-                    .iter()
-                    .map(|p| (p.distance, p.point.to_array()))
-                    .collect::<Vec<_>>()
+                project_offsets(&surface, &split.held, None).iter().map(|p| p.distance).collect::<Vec<f64>>()
             });
             if let Ok(d) = &result {
-                let far = d.iter().map(|&(d, _)| d).filter(|d| *d >= 0.0).fold(0.0, f64::max);
-                worst.fetch_max(far.to_bits(), Ordering::SeqCst);
+                worst
+                    .fetch_max(d.iter().copied().filter(|d| *d >= 0.0).fold(0.0, f64::max).to_bits(), Ordering::SeqCst);
             }
             let best = f64::from_bits(worst.load(Ordering::SeqCst));
             let iteration = done.fetch_add(1, Ordering::SeqCst) + 1;
@@ -302,38 +279,15 @@ pub fn held_out_error_with(
         })
         .collect();
     let (mut sections, mut points) = (Vec::new(), Vec::new());
-    let mut far: Option<HeldOutWorst> = None;
     for (split, m) in splits.iter().zip(measured) {
-        let Some(measured) = m else { return Ok(None) };
-        let measured = measured?;
-        if let Some((d, _)) = measured.iter().find(|(d, _)| !d.is_finite()) {
+        let Some(distances) = m else { return Ok(None) };
+        let distances = distances?;
+        if let Some(d) = distances.iter().find(|d| !d.is_finite()) {
             return Err(HullError::Fit {
                 method: "held-out refit",
                 reason: NurbsError::NonFiniteResult { what: format!("held-out distance {d}") },
             });
         }
-        // In the fixed order of the splits, their sections and points: the first of equals.
-        let mut feet = measured.iter();
-        for (section, index) in split.held.sections.iter().zip(&split.index) {
-            for (j, (q, &i)) in section.points.iter().zip(index).enumerate() {
-                let Some(&(distance, foot)) = feet.next() else { break };
-                if far.as_ref().is_none_or(|w| distance > w.at.distance) {
-                    let held = if split.kind == Kind::Sections { "section" } else { "point" };
-                    // The held section keeps its points' lines in step (`section_where`).
-                    let line = section.lines.get(j).copied();
-                    let at = WorstPoint {
-                        section: section.label.clone(),
-                        index: i,
-                        line,
-                        point: q.to_array(),
-                        foot,
-                        distance,
-                    };
-                    far = Some(HeldOutWorst { held, at });
-                }
-            }
-        }
-        let distances = measured.iter().map(|&(d, _)| d);
         match split.kind {
             Kind::Sections => sections.extend(distances),
             Kind::Points => points.extend(distances),
@@ -349,7 +303,6 @@ pub fn held_out_error_with(
         max: overall.max,
         sections: ErrorStats::from_distances(&sections),
         points: ErrorStats::from_distances(&points),
-        worst: far,
         folds: options.folds,
         refits: splits.len(),
         seconds: start.elapsed().as_secs_f64(),
@@ -612,7 +565,6 @@ mod tests {
             max: rms,
             sections: ErrorStats::default(),
             points: ErrorStats::default(),
-            worst: None,
             folds: 4,
             refits: 8,
             seconds: 0.0,

@@ -13,7 +13,6 @@ pub mod export;
 pub mod fairing;
 pub mod fit_error;
 mod held_out;
-mod hold;
 pub mod hydrostatics;
 pub mod limits;
 mod markup;
@@ -43,7 +42,7 @@ pub use fairing::{FairReport, Fairing};
 pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
 pub use held_out::{
     held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, overfit, HeldOutError,
-    HeldOutOptions, HeldOutWorst,
+    HeldOutOptions,
 };
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,

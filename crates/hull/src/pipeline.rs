@@ -142,9 +142,9 @@ pub struct FitConfig {
     pub envelope: EnvelopeHold,
 }
 
-/// How [`FitConfig::envelope`] holds a surface that leaves the offsets' envelope: a least-squares
-/// refit of its control net with the surface held within the faces it crossed at the samples of
-/// the validity grid ([`crate::hold::sampled_refit`]).
+/// How [`FitConfig::envelope`] holds a surface that leaves the offsets' envelope: a refit of
+/// its control net behind the faces it crossed ([`nurbs::fit::bounded_refit`]), so that by the
+/// convex-hull property no point of it can cross them.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum EnvelopeHold {
     /// Keep the least squares as it is (its findings reported).
@@ -204,9 +204,9 @@ pub struct FitOutcome {
     /// offsets' envelope, bulging through a flat of the offsets, inward-facing facets); empty
     /// for a valid surface.
     pub validity: Vec<crate::analysis::Finding>,
-    /// Samples of the surface held on the offsets' envelope: an approximation that left it is
-    /// refitted with the surface held within the envelope ([`crate::hold::sampled_refit`]); 0
-    /// when none was needed.
+    /// Control-point coordinates held on the offsets' envelope: an approximation that left it
+    /// is refitted with its net within the envelope ([`nurbs::fit::bounded_refit`]); 0 when
+    /// none was needed.
     pub envelope_held: usize,
 }
 
@@ -559,9 +559,10 @@ fn kernel_sections(offsets: &Offsets) -> Vec<Vec<nurbs::Vec3>> {
 }
 
 /// An approximation or an optimised surface that leaves the offsets' envelope (or bulges
-/// through a flat, a face of it), refitted with the surface held within the faces it crossed
-/// at the samples of the validity grid, its weights kept ([`FitConfig::envelope`],
-/// [`crate::hold::sampled_refit`]). The outcome records how many samples were held
+/// through a flat, a face of it), refitted with its control net held behind the faces it
+/// crossed, its weights kept ([`FitConfig::envelope`], [`bounded_refit`]), so that by the
+/// convex-hull property no point of it can leave. Its coordinates inside the box stay least
+/// squares; the outcome records how many were held
 /// ([`FitOutcome::envelope_held`]). A surface within the envelope is returned as it is.
 fn within_envelope(
     offsets: &Offsets,
@@ -603,7 +604,7 @@ fn within_envelope(
         for f in &findings {
             let Some(face) = f.envelope_face() else { continue };
             // The end sections' planes are held exactly: the surface meets them only along its
-            // end curves, and any run past them is a fold.
+            // end curves, which need no pole beyond, and any run past them is a fold.
             let margin = if face.0 == 0 { 0.0 } else { HOLD_SHARE * f.limit };
             let m = faces.entry(face).or_insert(f64::INFINITY);
             if margin < *m {
@@ -625,53 +626,16 @@ fn within_envelope(
                 bounds.lo[axis] = full.lo[axis] - m;
             }
         }
-        // The surface held on samples of itself (`hold`), but for the end sections' planes,
-        // held on the control net by the convex-hull property, which keeps the net's rows in
-        // order along x there (held on samples, a refit of x may run the net back behind the
-        // end and fold it).
-        let (mut ends, mut sides) = (nurbs::fit::ControlBox::default(), bounds);
-        (ends.lo[0], ends.hi[0]) = (bounds.lo[0], bounds.hi[0]);
-        (sides.lo[0], sides.hi[0]) = (f64::NEG_INFINITY, f64::INFINITY);
-        let sampled =
-            crate::hold::sampled_refit(&out.surface, &params, &points, &sides).map_err(|e| fit_error(config, e))?;
-        let base = sampled.as_ref().map_or(&out.surface, |(s, _)| s);
-        let boxed = bounded_refit(base, &params, &points, &ends).map_err(|e| fit_error(config, e))?;
-        let candidate = match (sampled, boxed) {
-            (None, None) => None,
-            (Some((s, h)), None) => Some((s, h)),
-            (s, Some((b, h))) => Some((b, h.total() + s.map_or(0, |(_, h)| h))),
-        };
-        // Touching a face along a line of samples, the surface may curl at an edge of the net
-        // and face inwards, or fold, where the net held in the box would not: then the box.
-        let defects = |f: &[crate::analysis::Finding]| {
-            f.iter()
-                .filter(|f| {
-                    matches!(f.kind, crate::analysis::FindingKind::Fold | crate::analysis::FindingKind::InwardFacing)
-                })
-                .count()
-        };
-        let worse = candidate.as_ref().is_some_and(|(s, _)| {
-            let found = match &given {
-                None => crate::analysis::check_fit_validity(s, offsets).unwrap_or_default(),
-                Some(e) => crate::analysis::check_validity(s, e, &[]),
-            };
-            defects(&found) > defects(&findings)
-        });
-        let candidate = if worse {
-            bounded_refit(&out.surface, &params, &points, &bounds)
-                .map_err(|e| fit_error(config, e))?
-                .map(|(s, h)| (s, h.total()))
-        } else {
-            candidate
-        };
-        let Some((surface, held)) = candidate else {
+        let Some((surface, held)) =
+            bounded_refit(&out.surface, &params, &points, &bounds).map_err(|e| fit_error(config, e))?
+        else {
             break;
         };
         let seconds = out.fit_seconds + start.elapsed().as_secs_f64();
         // The refitted surface, with its findings; what the fit did before carries over.
         let prev = out;
         out = assembled(offsets, config, surface, prev.params, seconds, None)?;
-        out.envelope_held = prev.envelope_held + held;
+        out.envelope_held = prev.envelope_held + held.total();
         out.optimization = prev.optimization;
         out.knuckle_lines = prev.knuckle_lines;
         out.flat_lines = prev.flat_lines;
@@ -684,8 +648,9 @@ fn within_envelope(
 /// Where [`within_envelope`] holds a face the surface crossed (but the end sections' planes,
 /// held exactly): this share of the allowance the finding exceeded past the face (0.5 % of the
 /// half-beam, depth or length for the envelope, 0.05 % for a flat). Within the allowance, so
-/// the held surface has no finding there: the rest of the allowance takes what the surface
-/// does between the samples it is held at.
+/// the held surface has no finding there; past the face, because a surface touching a face
+/// from inside between its poles (the largest half-breadth at a station, with no flat there)
+/// has poles beyond it, which a hold on the face itself would flatten.
 pub const HOLD_SHARE: f64 = 0.5;
 
 fn fit_error(config: &FitConfig, source: NurbsError) -> HullError {

@@ -40,11 +40,7 @@ struct Plan {
 }
 
 fn sample_plan() -> Plan {
-    // The plain least squares (not held in the envelope): its stations widen strictly towards
-    // midships, which the body-plan order below relies on; the envelope hold lets the
-    // midbody's stations touch the flat side at widths equal to round-off.
-    let config = FitConfig { envelope: hull::EnvelopeHold::Free, ..FitConfig::default() };
-    let fit = fit_offsets(&series60_sample(), &config).expect("the sample fits");
+    let fit = fit_offsets(&series60_sample(), &FitConfig::default()).expect("the sample fits");
     let s = fit.surface;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for i in 0..=64 {

@@ -231,8 +231,9 @@ fn past_envelope(o: &Offsets, s: &NurbsSurface) -> [f64; 6] {
 /// The tables whose plain least squares leave the envelope (the sample and the cargo ship at
 /// their centre plane, the Cb 0.80 parent through its flat side, Gunnerus below its keel):
 /// the default fit holds them within it. No envelope or flat finding is left, a dense sampling
-/// independent of the hold's and the checks' grids agrees (nowhere past the allowance), and the
-/// offsets are still met within a little more than the plain fit's error.
+/// agrees (nowhere past the allowance, and on a face the refit held nowhere past where it held
+/// the net, which the convex-hull property guarantees), and the offsets are still met within a few
+/// times the plain fit's error.
 #[test]
 fn the_default_fit_holds_the_surface_within_the_envelope() {
     for (name, o) in [
@@ -248,20 +249,20 @@ fn the_default_fit_holds_the_surface_within_the_envelope() {
         assert!(out.validity.iter().all(|f| f.envelope_face().is_none()), "{name}: {:?}", out.validity);
         let past = past_envelope(&o, &out.surface);
         eprintln!(
-            "{name}: held {} samples; max error {:.3} m (plain {:.3}); past the faces / allowance {past:.3?}",
+            "{name}: held {} coordinates; max error {:.3} m (plain {:.3}); past the faces / allowance {past:.3?}",
             out.envelope_held, out.error.overall.max, plain.error.overall.max
         );
-        // Held at HOLD_SHARE of the allowance past the face on the samples of the validity
-        // grid; the rest of the allowance takes what the surface does between them.
         assert!(past.iter().all(|&w| w <= 1.0), "{name}: {past:?}");
         for (axis, upper) in faces {
+            // Held HOLD_SHARE of the allowance past the face: a convex combination of values
+            // within that bound is within it up to a few roundings (1e-15 of a 100 m hull, 1e-10
+            // of the allowance).
             let w = past[2 * axis + usize::from(upper)];
-            assert!(w <= 1.0, "{name}: face ({axis}, {upper}): {past:?}");
+            assert!(w <= hull::HOLD_SHARE + 1e-9, "{name}: face ({axis}, {upper}): {past:?}");
         }
-        // The held refit is least squares under bounds on the surface, at the same control
-        // points: its price measured is 1.1 (sample) to 1.4 (cargo ship, Cb 0.80) times the
-        // plain max error (with the control net held in the box instead: 1.4 to 3.4); 2 times
-        // is the floor.
-        assert!(out.error.overall.max < 2.0 * plain.error.overall.max, "{name}");
+        // The held refit is least squares under bounds, at the same control points: its price
+        // measured is 1.4 (sample) to 3.4 (Cb 0.80, its stern leaves the centre plane steeply)
+        // times the plain max error; 4 times is the floor.
+        assert!(out.error.overall.max < 4.0 * plain.error.overall.max, "{name}");
     }
 }

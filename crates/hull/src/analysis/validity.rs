@@ -603,23 +603,17 @@ fn regions(grid: &Grid, inside: impl Fn(usize) -> bool) -> Vec<Vec<usize>> {
 /// `u` and `v`, over the grid cells on either side, never worse than the node. Returns
 /// `(u, v, f)`.
 fn refine(surface: &NurbsSurface, grid: &Grid, i: usize, j: usize, f: impl Fn(Vec3) -> f64) -> (f64, f64, f64) {
-    refine_max(&grid.us, &grid.vs, i, j, |u, v| f(surface.point(u, v)))
-}
-
-/// The largest `f(u, v)` near node `(i, j)` of the parameter grid `us x vs`, as [`refine`]
-/// (which is this with `f` of the surface point).
-pub(crate) fn refine_max(us: &[f64], vs: &[f64], i: usize, j: usize, f: impl Fn(f64, f64) -> f64) -> (f64, f64, f64) {
     let span = |t: &[f64], k: usize| (t[k.saturating_sub(1)], t[(k + 1).min(t.len() - 1)]);
-    let (ua, ub) = span(us, i);
-    let (va, vb) = span(vs, j);
-    let (mut u, mut v) = (us[i], vs[j]);
-    let mut best = f(u, v);
+    let (ua, ub) = span(&grid.us, i);
+    let (va, vb) = span(&grid.vs, j);
+    let (mut u, mut v) = (grid.us[i], grid.vs[j]);
+    let mut best = f(surface.point(u, v));
     for _ in 0..REFINE_ROUNDS {
-        let (t, g) = golden_max(ua, ub, |t| f(t, v));
+        let (t, g) = golden_max(ua, ub, |t| f(surface.point(t, v)));
         if g > best {
             (u, best) = (t, g);
         }
-        let (t, g) = golden_max(va, vb, |t| f(u, t));
+        let (t, g) = golden_max(va, vb, |t| f(surface.point(u, t)));
         if g > best {
             (v, best) = (t, g);
         }

@@ -731,8 +731,27 @@ pub fn bounded_refit(
     points: &[Vec3],
     bounds: &ControlBox,
 ) -> Result<Option<(NurbsSurface, BoundedRefit)>, NurbsError> {
-    check_refit("bounded refit", surface, params, points, bounds)?;
     let weights = surface.weights();
+    if weights.iter().any(|&w| !(w > 0.0)) {
+        return Err(NurbsError::Incompatible { what: "bounded refit of a surface with a weight <= 0".into() });
+    }
+    if (0..3).any(|c| !(bounds.lo[c] <= bounds.hi[c])) {
+        return Err(NurbsError::Incompatible {
+            what: format!("bounded refit: the box {:?}..{:?} is empty (expected lo <= hi)", bounds.lo, bounds.hi),
+        });
+    }
+    if params.len() != points.len() {
+        return Err(NurbsError::Incompatible {
+            what: format!("bounded refit: {} parameters for {} points", params.len(), points.len()),
+        });
+    }
+    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+        return Err(NurbsError::NonFinitePoint { index });
+    }
+    let ((u0, u1), (v0, v1)) = (surface.domain_u(), surface.domain_v());
+    if params.iter().any(|&(u, v)| !(u >= u0 && u <= u1 && v >= v0 && v <= v1)) {
+        return Err(NurbsError::Incompatible { what: "bounded refit: a parameter outside the domain".into() });
+    }
     let mut net = surface.control_points();
     let crossed: Vec<usize> =
         (0..3).filter(|&c| net.iter().any(|p| bounds.crossed(c, p.to_array()[c]).is_some())).collect();
@@ -744,8 +763,23 @@ pub fn bounded_refit(
     // are 1).
     let (ku, kv) = (surface.knots_u(), surface.knots_v());
     let (p, q, n_v, n_ctrl) = (ku.degree(), kv.degree(), surface.n_v(), net.len());
-    let rows: Vec<Vec<(usize, f64)>> =
-        params.iter().map(|&(u, v)| rational_basis_row(surface, &weights, u, v)).collect();
+    let mut rows: Vec<Vec<(usize, f64)>> = Vec::with_capacity(points.len());
+    let (mut bu, mut bv): (BasisRow, BasisRow) = ([0.0; crate::MAX_DEGREE + 1], [0.0; crate::MAX_DEGREE + 1]);
+    for &(u, v) in params {
+        let (su, sv) = (ku.find_span(u), kv.find_span(v));
+        basis_funs(ku.as_slice(), su, u, p, &mut bu);
+        basis_funs(kv.as_slice(), sv, v, q, &mut bv);
+        let mut row = Vec::with_capacity((p + 1) * (q + 1));
+        for (a, &nu) in bu[..=p].iter().enumerate() {
+            for (b, &nv) in bv[..=q].iter().enumerate() {
+                let i = (su - p + a) * n_v + (sv - q + b);
+                row.push((i, nu * nv * weights[i]));
+            }
+        }
+        let sum: f64 = row.iter().map(|(_, w)| w).sum();
+        row.iter_mut().for_each(|(_, w)| *w /= sum);
+        rows.push(row);
+    }
     let mut diag = vec![0.0; n_ctrl];
     rows.iter().flatten().for_each(|&(i, w)| diag[i] += w * w);
     let pinned = collapsed_edges(&net, surface.n_u(), n_v);
@@ -909,69 +943,11 @@ pub fn refit_within_flats(
     bounded_refit(&refined, &flat_params, &points, &ControlBox::of_flats(lines))
 }
 
-/// The rational basis of `surface` with the weights `w` (u-major, as [`NurbsSurface::weights`])
-/// at `(u, v)`, as sparse `(control index i n_v + j, R_ij(u, v))`:
-/// `R_ij = N_{i,p}(u) N_{j,q}(v) w_ij / sum N N w` (The NURBS Book eq. 4.15), the
-/// `(p+1)(q+1)` non-zeros in order of `i`, then `j`.
-pub fn rational_basis_row(surface: &NurbsSurface, w: &[f64], u: f64, v: f64) -> Vec<(usize, f64)> {
-    let (ku, kv) = (surface.knots_u(), surface.knots_v());
-    let (p, q, n_v) = (ku.degree(), kv.degree(), surface.n_v());
-    let (mut bu, mut bv): (BasisRow, BasisRow) = ([0.0; crate::MAX_DEGREE + 1], [0.0; crate::MAX_DEGREE + 1]);
-    let (su, sv) = (ku.find_span(u), kv.find_span(v));
-    basis_funs(ku.as_slice(), su, u, p, &mut bu);
-    basis_funs(kv.as_slice(), sv, v, q, &mut bv);
-    let mut row = Vec::with_capacity((p + 1) * (q + 1));
-    for (a, &nu) in bu[..=p].iter().enumerate() {
-        for (b, &nv) in bv[..=q].iter().enumerate() {
-            let i = (su - p + a) * n_v + (sv - q + b);
-            row.push((i, nu * nv * w[i]));
-        }
-    }
-    let sum: f64 = row.iter().map(|(_, r)| r).sum();
-    row.iter_mut().for_each(|(_, r)| *r /= sum);
-    row
-}
-
-/// The inputs of a refit of `surface` within `bounds` (`what` names it in the errors): positive
-/// weights, a box that is not empty, one finite point per parameter, parameters in the domain.
-///
-/// # Errors
-/// [`NurbsError::Incompatible`] or [`NurbsError::NonFinitePoint`] saying which.
-pub fn check_refit(
-    what: &str,
-    surface: &NurbsSurface,
-    params: &[(f64, f64)],
-    points: &[Vec3],
-    bounds: &ControlBox,
-) -> Result<(), NurbsError> {
-    if surface.weights().iter().any(|&w| !(w > 0.0)) {
-        return Err(NurbsError::Incompatible { what: format!("{what} of a surface with a weight <= 0") });
-    }
-    if (0..3).any(|c| !(bounds.lo[c] <= bounds.hi[c])) {
-        return Err(NurbsError::Incompatible {
-            what: format!("{what}: the box {:?}..{:?} is empty (expected lo <= hi)", bounds.lo, bounds.hi),
-        });
-    }
-    if params.len() != points.len() {
-        return Err(NurbsError::Incompatible {
-            what: format!("{what}: {} parameters for {} points", params.len(), points.len()),
-        });
-    }
-    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-        return Err(NurbsError::NonFinitePoint { index });
-    }
-    let ((u0, u1), (v0, v1)) = (surface.domain_u(), surface.domain_v());
-    if params.iter().any(|&(u, v)| !(u >= u0 && u <= u1 && v >= v0 && v <= v1)) {
-        return Err(NurbsError::Incompatible { what: format!("{what}: a parameter outside the domain") });
-    }
-    Ok(())
-}
-
 /// The control points of the net's collapsed boundary rows and columns (all of one row or
 /// column at one place: a pointed end, a degenerate edge), u-major with `n_v` per row: a
 /// refit moving them apart would open the point into a tiny curve whose normals are noise, so
 /// [`bounded_refit`] keeps them where they are (a point within the box stays within it).
-pub fn collapsed_edges(net: &[Vec3], n_u: usize, n_v: usize) -> Vec<bool> {
+fn collapsed_edges(net: &[Vec3], n_u: usize, n_v: usize) -> Vec<bool> {
     let mut pinned = vec![false; net.len()];
     let lines: [Vec<usize>; 4] = [
         (0..n_v).collect(),

@@ -21,10 +21,9 @@ mod skin;
 
 pub use constrained::{energy_order, fair_interpolate_curve, row_schoenberg_whitney, FairInterpolationSolver};
 pub use features::{
-    bounded_refit, check_refit, collapsed_edges, find_flat_lines, find_knuckle_lines, join_knot_vectors,
-    knot_multiplicity, knuckle_indices, rational_basis_row, refit_within_flats, section_corners, turning_angles,
-    BoundedRefit, Continuity, ControlBox, CornerOptions, FlatKind, FlatLine, FlatOptions, KnuckleLine, SectionCorner,
-    BOUNDED_REFIT_PULL,
+    bounded_refit, find_flat_lines, find_knuckle_lines, join_knot_vectors, knot_multiplicity, knuckle_indices,
+    refit_within_flats, section_corners, turning_angles, BoundedRefit, Continuity, ControlBox, CornerOptions, FlatKind,
+    FlatLine, FlatOptions, KnuckleLine, SectionCorner, BOUNDED_REFIT_PULL,
 };
 pub use interp::{interpolate_curve, interpolate_curve_auto, InterpolationSolver};
 pub use knots::{
