@@ -96,18 +96,22 @@ fn parse_method(s: &str) -> Result<FitMethod, String> {
 pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     progress::install_stop_handler();
     // A mesh input is kept to measure the fitted surface against it.
-    let (offsets, mesh) = match &args.skin.input {
+    let (offsets, mesh, warnings) = match &args.skin.input {
         Some(path) if crate::slice::is_mesh_path(path) => {
             let (mesh, sliced) = args.skin.mesh.read_and_slice(path, args.skin.units)?;
-            (sliced.offsets, Some(mesh))
+            (sliced.offsets, Some(mesh), Vec::new())
         }
-        _ => (args.skin.offsets()?, None),
+        _ => {
+            let (offsets, warnings) = args.skin.offsets_with_warnings()?;
+            (offsets, None, warnings)
+        }
     };
     let (mut outcome, search) = args.fit.fit(&args.skin, &offsets)?;
     if args.held_out > 0 && !progress::stopped() {
         outcome.error.held_out = held_out_with_progress(&offsets, &held_out_config(&outcome), args.held_out);
     }
     let mut report = hull::Report::new(&offsets, &outcome);
+    report.input.warnings = warnings;
     report.tolerance_search = search;
     let overfit = overfitting(&offsets, &outcome);
     report.overfitting = overfit.as_ref().map(|l| l.trim_start_matches("warning: ").to_string());

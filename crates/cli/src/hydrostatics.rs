@@ -92,19 +92,23 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
     if !(args.density.is_finite() && args.density > 0.0) {
         bail!("--density {}: expected a positive density in t/m³", args.density);
     }
-    let (surface, units, source) = match read_input(&args.skin)? {
-        Input::Surface { surface, units, source } => (surface, units, source),
+    let (surface, units, source, data_pp) = match read_input(&args.skin)? {
+        Input::Surface { surface, units, source } => (surface, units, source, None),
         Input::Offsets(offsets) => {
             let config = args.skin.fit_config(args.method, OptimSettings::default());
             let (outcome, _) =
                 fit_with_progress(&offsets, &config, None).with_context(|| format!("cannot fit {}", offsets.source))?;
-            (outcome.surface, offsets.units, format!("{}, fitted by {}", offsets.source, args.method.name()))
+            (
+                outcome.surface,
+                offsets.units,
+                format!("{}, fitted by {}", offsets.source, args.method.name()),
+                offsets.perpendiculars,
+            )
         }
     };
-    let options = HydrostaticsOptions {
-        density: hull::density_per_cubic_unit(args.density, units),
-        ..HydrostaticsOptions::default()
-    };
+    let perpendiculars = args.skin.perpendiculars(data_pp)?;
+    let options =
+        HydrostaticsOptions { density: args.density, units, perpendiculars, ..HydrostaticsOptions::default() };
     let hydro = Hydrostatics::new(&surface, &options)?;
     let rows = hydro.rows(&drafts).with_context(|| format!("hydrostatics of {source}"))?;
     // Centre-plane webs (a station sliced from a mesh as two pieces joined on y = 0): their
@@ -122,7 +126,7 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
         let at = if drafts.len() > 1 { format!(" (largest, at draft {})", web.1) } else { String::new() };
         eprintln!("hullskin: note: centre-plane web of {:.6} {u}² left out of S and Lwl{at}", web.0);
     }
-    let table = HydrostaticsTable { source, units, density: args.density, rows };
+    let table = HydrostaticsTable { source, units, density: args.density, perpendiculars, rows };
     let text = match args.format {
         Format::Text => table.text(),
         Format::Csv => table.csv(),

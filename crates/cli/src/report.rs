@@ -96,6 +96,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
         fit: loaded.fit.as_ref(),
         comparison: comparison.as_ref(),
         draft: args.draft,
+        perpendiculars: args.skin.perpendiculars(None)?,
         notes: loaded.notes.clone(),
         ..ReportInputs::new(&loaded.surface, loaded.units, loaded.source.clone())
     };

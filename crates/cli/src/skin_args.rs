@@ -39,8 +39,18 @@ pub struct SkinArgs {
     /// Length between perpendiculars, breadth and design draft (in `--units`) that scale a
     /// dimensionless Series 60 table (default: the Cb 0.60 parent's 121.92, 16.26, 6.50 m);
     /// `--lpp` alone also gives the station spacing (Lpp / 20) of an OpenHull JSON table.
-    #[arg(long)]
+    /// In `hydrostatics` and `report`, `--lpp` (with `--ap`) also places the perpendiculars for
+    /// the coefficients on Lpp and LCB, LCF in % Lpp from amidships.
+    #[arg(long, allow_negative_numbers = true)]
     pub lpp: Option<f64>,
+    /// Outlier cells of the offsets (a half-breadth out of line with its neighbours along
+    /// both its station and its waterline: a typo, a shifted decimal point): `warn` names each
+    /// and fits the offsets as read, `refuse` stops at the first, `keep` fits them silently.
+    #[arg(long, value_name = "POLICY", default_value = "warn", value_parser = parse_outliers)]
+    pub outliers: hull::read::OutlierPolicy,
+    /// x of the aft perpendicular (default 0), with `--lpp`: the FP is at AP + Lpp.
+    #[arg(long, value_name = "X", requires = "lpp", allow_negative_numbers = true)]
+    pub ap: Option<f64>,
     /// Moulded breadth B for a Series 60 table (with `--lpp` and `--design-draft`).
     #[arg(long, requires_all = ["lpp", "design_draft"])]
     pub beam: Option<f64>,
@@ -120,6 +130,8 @@ impl Default for SkinArgs {
             param: SkinParameterization::default(),
             units: Units::Metre,
             lpp: None,
+            ap: None,
+            outliers: hull::read::OutlierPolicy::Warn,
             beam: None,
             design_draft: None,
             knuckles: KnuckleMode::Auto,
@@ -134,11 +146,32 @@ impl Default for SkinArgs {
 impl SkinArgs {
     /// The offsets: the input file read in `units`, or the built-in sample.
     pub fn offsets(&self) -> anyhow::Result<Offsets> {
+        Ok(self.offsets_with_warnings()?.0)
+    }
+
+    /// [`SkinArgs::offsets`] with the sense warnings of the reading (printed as they are found).
+    pub fn offsets_with_warnings(&self) -> anyhow::Result<(Offsets, Vec<hull::read::SenseWarning>)> {
         Ok(match &self.input {
-            Some(path) if crate::slice::is_mesh_path(path) => crate::slice::mesh_offsets(path, &self.mesh, self.units)?,
-            Some(path) => report_reading(hull::read_offsets_with(path, &self.read_options())?),
-            None => hull::series60_sample(),
+            Some(path) if crate::slice::is_mesh_path(path) => {
+                (crate::slice::mesh_offsets(path, &self.mesh, self.units)?, Vec::new())
+            }
+            Some(path) => read_with_warnings(hull::read_offsets_with(path, &self.read_options())?),
+            None => (hull::series60_sample(), Vec::new()),
         })
+    }
+
+    /// The perpendiculars: `--lpp` from `--ap` (default 0) when given, else the data's own
+    /// (`data`, where the input gives them).
+    ///
+    /// # Errors
+    /// An Lpp that is not a positive length, or an AP that is not finite.
+    pub fn perpendiculars(&self, data: Option<hull::Perpendiculars>) -> anyhow::Result<Option<hull::Perpendiculars>> {
+        match self.lpp {
+            Some(lpp) => Ok(Some(hull::Perpendiculars::try_new(self.ap.unwrap_or(0.0), lpp).map_err(|_| {
+                anyhow::anyhow!("--lpp {lpp} --ap {}: expected a positive Lpp and a finite AP", self.ap.unwrap_or(0.0))
+            })?)),
+            None => Ok(data),
+        }
     }
 
     /// The readers' options: `--units`, and `--lpp`, `--beam`, `--design-draft` as the dimensions
@@ -152,7 +185,13 @@ impl SkinArgs {
         // Sections too short for the degree along them are left out (noted) by the readers of
         // the formats where they are a property of the source (end stations beyond a stem).
         let min_points = self.degree.0 + 1;
-        hull::ReadOptions { units: self.units, dimensions, min_points, ..hull::ReadOptions::default() }
+        hull::ReadOptions {
+            units: self.units,
+            dimensions,
+            min_points,
+            outliers: self.outliers,
+            ..hull::ReadOptions::default()
+        }
     }
 
     /// The library's fit settings: these skinning flags with `method` and the weight
@@ -182,9 +221,19 @@ impl SkinArgs {
     }
 }
 
+fn parse_outliers(s: &str) -> Result<hull::read::OutlierPolicy, String> {
+    s.parse()
+}
+
 /// Prints what a reader assumed and found (axes, notes, suspicious values, disagreements
-/// between views) on stderr, one `hullskin: note:` line each, and returns the offsets.
+/// between views) on stderr, one `hullskin: note:` line each, and every sense warning as a
+/// `hullskin: warning:` line; returns the offsets.
 pub fn report_reading(outcome: hull::ReadOutcome) -> Offsets {
+    read_with_warnings(outcome).0
+}
+
+/// [`report_reading`], keeping the sense warnings (for `report.json`).
+pub fn read_with_warnings(outcome: hull::ReadOutcome) -> (Offsets, Vec<hull::read::SenseWarning>) {
     if outcome.format != hull::InputFormat::SectionsCsv && outcome.format != hull::InputFormat::OffsetTable
         || !outcome.notes.is_empty()
         || !outcome.suspicious.is_empty()
@@ -194,5 +243,8 @@ pub fn report_reading(outcome: hull::ReadOutcome) -> Offsets {
             eprintln!("hullskin: note: {m}");
         }
     }
-    outcome.offsets
+    for w in &outcome.warnings {
+        eprintln!("hullskin: warning: {w}");
+    }
+    (outcome.offsets, outcome.warnings)
 }

@@ -309,3 +309,50 @@ fn spreadsheet_exports_fit_exactly_like_the_clean_files() {
     }
     assert!(failures.is_empty(), "accepted files read differently:\n{}", failures.join("\n"));
 }
+
+/// A plausible mistake in a clean table (a decimal point shifted in one cell) is fitted as read
+/// but named on standard error and in `report.json` at its file, line and field; `--outliers
+/// refuse` stops with that place, `--outliers keep` fits silently; the clean table fits with
+/// no warning to the same surface as before the checks (they only read).
+#[test]
+fn a_typo_in_one_cell_is_named_at_its_place_and_refused_on_request() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let clean = fs::read_to_string(testdata("series60_cb060_offsets.csv")).expect("the sample table");
+    // Line 6 (the 1.0 WL), field 14 (station x = 60.96): 8.13 m typed 81.3.
+    let mut lines: Vec<String> = clean.lines().map(str::to_string).collect();
+    let mut cells: Vec<String> = lines[5].split(',').map(str::to_string).collect();
+    let value: f64 = cells[13].parse().expect("a number");
+    cells[13] = format!("{}", value * 10.0);
+    lines[5] = cells.join(",");
+    let bad = tmp.path().join("s60.csv");
+    fs::write(&bad, lines.join("\n") + "\n").expect("write");
+    let bad = bad.display().to_string();
+    let o = common::hullskin(tmp.path(), &["fit", &bad, "-o", "out", "--ctrl", "8,12"]);
+    let (_, stderr) = common::text(&o);
+    assert!(o.status.success(), "{stderr}");
+    let place = format!("{bad}:6:14:");
+    let warning =
+        stderr.lines().find(|l| l.contains(&place)).unwrap_or_else(|| panic!("no warning at {place}: {stderr}"));
+    assert!(warning.starts_with("hullskin: warning: ") && warning.contains("--outliers"), "{warning}");
+    let report = read_json(&tmp.path().join("out/report.json"));
+    let warnings = report["input"]["warnings"].as_array().expect("input.warnings");
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert_eq!(warnings[0]["at"].as_str(), Some(place.trim_end_matches(':')));
+    assert_eq!((warnings[0]["kind"].as_str(), warnings[0]["value"].as_f64()), (Some("outlier"), Some(value * 10.0)));
+
+    let o = common::hullskin(tmp.path(), &["fit", &bad, "-o", "refused", "--outliers", "refuse"]);
+    let (_, stderr) = common::text(&o);
+    assert!(!o.status.success() && stderr.contains(&place), "{stderr}");
+    assert!(!tmp.path().join("refused").exists(), "a refused input writes nothing");
+    let o = common::hullskin(tmp.path(), &["fit", &bad, "-o", "kept", "--ctrl", "8,12", "--outliers", "keep"]);
+    let (_, stderr) = common::text(&o);
+    assert!(o.status.success() && !stderr.contains("warning"), "{stderr}");
+
+    // The clean table: no warning, an empty list.
+    let path = testdata("series60_cb060_offsets.csv").display().to_string();
+    let o = common::hullskin(tmp.path(), &["fit", &path, "-o", "clean", "--ctrl", "8,12"]);
+    let (_, stderr) = common::text(&o);
+    assert!(o.status.success() && !stderr.contains("warning"), "{stderr}");
+    let report = read_json(&tmp.path().join("clean/report.json"));
+    assert_eq!(report["input"]["warnings"].as_array().map(Vec::len), Some(0));
+}

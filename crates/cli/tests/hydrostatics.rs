@@ -10,11 +10,43 @@ use serde_json::Value;
 mod common;
 use common::*;
 
-/// The column keys, in order.
-const KEYS: [&str; 17] = [
-    "draft", "lwl", "bwl", "vol", "displ", "lcb", "vcb", "cb", "am", "cm", "aw", "cw", "cp", "lcf", "s", "kmtrv",
-    "kmlong",
+/// The column keys, in order, with the perpendiculars known (the sample's, or `--lpp`).
+const KEYS: [&str; 26] = [
+    "draft",
+    "lwl",
+    "bwl",
+    "vol",
+    "displ",
+    "lcb",
+    "lcb_pct_lpp",
+    "vcb",
+    "cb",
+    "cb_lpp",
+    "am",
+    "cm",
+    "cm_lpp",
+    "aw",
+    "cw",
+    "cp",
+    "cp_lpp",
+    "lcf",
+    "lcf_pct_lpp",
+    "s",
+    "tpc",
+    "mct",
+    "bmt",
+    "bml",
+    "kmt",
+    "kml",
 ];
+
+/// The keys only given with the perpendiculars.
+const LPP_KEYS: [&str; 5] = ["lcb_pct_lpp", "cb_lpp", "cm_lpp", "cp_lpp", "lcf_pct_lpp"];
+
+/// The index of `key` in [`KEYS`].
+fn col(key: &str) -> usize {
+    KEYS.iter().position(|k| *k == key).expect("a key")
+}
 
 /// The sample's particulars (Todd 1963, Series 60 Cb 0.60 as scaled in testdata/README.md).
 const LPP: f64 = 121.92;
@@ -28,10 +60,15 @@ fn run_ok(dir: &Path, args: &[&str]) -> String {
     out
 }
 
-/// CSV text as rows of numbers, checking the header.
+/// CSV text as rows of numbers, checking the header is all of [`KEYS`].
 fn csv_rows(csv: &str) -> Vec<Vec<f64>> {
+    csv_rows_of(csv, &KEYS)
+}
+
+/// CSV text as rows of numbers, checking the header is `keys`.
+fn csv_rows_of(csv: &str, keys: &[&str]) -> Vec<Vec<f64>> {
     let mut lines = csv.lines();
-    assert_eq!(lines.next(), Some(KEYS.join(",").as_str()));
+    assert_eq!(lines.next(), Some(keys.join(",").as_str()));
     lines.map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect()).collect()
 }
 
@@ -52,15 +89,26 @@ fn sample_at_its_draft_has_todds_block_coefficient_in_json_and_csv() {
     want.sort_unstable();
     assert_eq!(keys, want);
     let get = |k: &str| row[k].as_f64().expect("a number");
-    // Todd's Cb is V / (Lpp B T): within the 1 % floor of the brief, LCB within 0.5 % Lpp.
+    // The sample's perpendiculars are its table's ends, AP at x = 0. Todd's Cb is
+    // V / (Lpp B T): within the 1 % floor of the brief, LCB within 0.5 % Lpp from amidships
+    // (positive forward: -1.5 is aft).
+    assert_eq!((doc["perpendiculars"]["aft"].as_f64(), doc["perpendiculars"]["fore"].as_f64()), (Some(0.0), Some(LPP)));
     let cb_pp = get("vol") / (LPP * B * T);
     assert!((cb_pp / 0.60 - 1.0).abs() < 0.01, "Cb {cb_pp}");
+    // The library's CB(Lpp) takes Bwl for B: the fitted 1.0 WL is within 0.1 % of B.
+    assert!((get("cb_lpp") / cb_pp - 1.0).abs() < 1e-3, "CB(Lpp) {} vs {cb_pp}", get("cb_lpp"));
     let lcb_pct = (get("lcb") - LPP / 2.0) / LPP * 100.0;
     assert!((lcb_pct + 1.5).abs() < 0.5, "LCB {lcb_pct} % Lpp");
+    assert!((get("lcb_pct_lpp") - lcb_pct).abs() < 1e-12, "LCB {} % Lpp", get("lcb_pct_lpp"));
     // Displacement is the volume times the density; the coefficients are FREE!ship's.
     assert_eq!(get("displ"), get("vol") * 1.025);
     let cb = get("vol") / (get("lwl") * get("bwl") * get("draft"));
     assert!((get("cb") - cb).abs() < 1e-12, "{} vs {cb}", get("cb"));
+    // TPC: AW x 1 cm x 1.025 t/m³; MCT: Displ BMl / (100 Lpp); the metacentres above KB.
+    assert!((get("tpc") - get("aw") * 0.01 * 1.025).abs() < 1e-12 * get("tpc"), "TPC {}", get("tpc"));
+    assert!((get("mct") - get("displ") * get("bml") / (100.0 * LPP)).abs() < 1e-12 * get("mct"));
+    assert!((get("kmt") - get("vcb") - get("bmt")).abs() < 1e-12 * get("kmt"));
+    assert!((get("kml") - get("vcb") - get("bml")).abs() < 1e-12 * get("kml"));
 
     // The same figures, the same bits, as CSV on standard output.
     let csv = run_ok(dir.path(), &["hydrostatics", "--draft", "6.5", "--format", "csv"]);
@@ -75,18 +123,34 @@ fn sample_at_its_draft_has_todds_block_coefficient_in_json_and_csv() {
 fn a_surface_json_from_fit_gives_the_same_figures_as_fitting_on_the_fly() {
     let dir = tempfile::tempdir().expect("temp dir");
     run_ok(dir.path(), &["fit", "-o", "out"]);
-    let from_json = run_ok(
-        dir.path(),
-        &["hydrostatics", "out/surface.json", "--draft", "2", "--to", "6", "--step", "2", "--format", "csv"],
-    );
-    let on_the_fly =
-        run_ok(dir.path(), &["hydrostatics", "--draft", "2", "--to", "6", "--step", "2", "--format", "csv"]);
-    // surface.json is lossless: the same surface, so the same bits.
+    let range = ["--draft", "2", "--to", "6", "--step", "2", "--format", "csv"];
+    let json_args = |extra: &[&'static str]| [&["hydrostatics", "out/surface.json"][..], &range, extra].concat();
+    let from_json = run_ok(dir.path(), &json_args(&["--lpp", "121.92"]));
+    let on_the_fly = run_ok(dir.path(), &[&["hydrostatics"][..], &range].concat());
+    // surface.json is lossless: the same surface, so the same bits (its perpendiculars, which
+    // the sample's offsets carry, given by --lpp).
     assert_eq!(from_json, on_the_fly);
+    // Without them the figures on Lpp are left out, the rest unchanged but MCT, then taken on
+    // Lwl (121.92000000000002 here, 1 ulp off Lpp).
+    let plain = run_ok(dir.path(), &json_args(&[]));
+    let header: Vec<&str> = plain.lines().next().expect("a header").split(',').collect();
+    let want: Vec<&str> = KEYS.iter().copied().filter(|k| !LPP_KEYS.contains(k)).collect();
+    assert_eq!(header, want);
+    for (a, b) in csv_rows_of(&plain, &want).iter().zip(csv_rows(&from_json)) {
+        for (k, v) in want.iter().zip(a) {
+            let with_lpp = b[col(k)];
+            if *k == "mct" {
+                let on_lwl = b[col("displ")] * b[col("bml")] / (100.0 * b[col("lwl")]);
+                assert!((v - on_lwl).abs() <= 1e-12 * v, "MCT {v} vs {on_lwl}");
+            } else {
+                assert_eq!(*v, with_lpp, "{k}");
+            }
+        }
+    }
     let rows = csv_rows(&from_json);
     assert_eq!(rows.iter().map(|r| r[0]).collect::<Vec<_>>(), vec![2.0, 4.0, 6.0]);
     // Volume, waterplane area and wetted surface grow with the draft.
-    for c in [3, 10, 14] {
+    for c in [col("vol"), col("aw"), col("s")] {
         assert!(rows.windows(2).all(|w| w[1][c] > w[0][c]), "column {}", KEYS[c]);
     }
 }
@@ -97,24 +161,31 @@ fn text_table_is_aligned_with_units_and_one_line_per_draft() {
     let out = run_ok(dir.path(), &["hydrostatics", "--draft", "1", "--to", "9", "--step", "1", "--method", "interp"]);
     let lines: Vec<&str> = out.lines().collect();
     assert!(lines[0].contains("Series 60") && lines[0].contains("interp"), "{out}");
-    assert_eq!(lines.len(), 3 + 9, "{out}");
+    // The conventions: Lpp and amidships, the sign of the percentages.
+    assert!(lines[1].contains("Lpp 121.9 m") && lines[1].contains("amidships x = 60.96"), "{out}");
+    assert!(lines[1].contains("+ forward"), "{out}");
+    assert_eq!(lines.len(), 4 + 9, "{out}");
     assert!(
-        lines[1].split_whitespace().eq([
-            "Draft", "Lwl", "Bwl", "Vol", "Displ", "LCB", "VCB", "CB", "AM", "CM", "AW", "CW", "CP", "LCF", "S",
-            "KMtrv", "KMlong"
+        lines[2].split_whitespace().eq([
+            "Draft", "Lwl", "Bwl", "Vol", "Displ", "LCB", "LCB", "VCB", "CB", "CB(Lpp)", "AM", "CM", "CM(Lpp)", "AW",
+            "CW", "CP", "CP(Lpp)", "LCF", "LCF", "S", "TPC", "MCT", "BMt", "BMl", "KMt", "KMl"
         ]),
         "{}",
-        lines[1]
+        lines[2]
     );
-    assert!(
-        lines[2].contains("[m]") && lines[2].contains("[m²]") && lines[2].contains("[m³]") && lines[2].contains("[t]")
-    );
-    let width = lines[1].chars().count();
-    assert!(lines[1..].iter().all(|l| l.chars().count() == width), "{out}");
-    // The last line is the 9 m draft, and its block coefficient a fraction.
-    let last: Vec<f64> = lines[11].split_whitespace().map(|v| v.parse().expect("a number")).collect();
-    assert_eq!(last[0], 9.0);
-    assert!((0.5..0.8).contains(&last[7]), "CB {}", last[7]);
+    for unit in ["[m]", "[m²]", "[m³]", "[t]", "[% Lpp]", "[t/cm]", "[t·m/cm]"] {
+        assert!(lines[3].contains(unit), "{unit}: {}", lines[3]);
+    }
+    let width = lines[2].chars().count();
+    assert!(lines[2..].iter().all(|l| l.chars().count() == width), "{out}");
+    // The last line is the 9 m draft, and its block coefficient a fraction; five significant
+    // digits.
+    let cells: Vec<&str> = lines[12].split_whitespace().collect();
+    let last: Vec<f64> = cells.iter().map(|v| v.parse().expect("a number")).collect();
+    assert_eq!((cells[0], last[0]), ("9.0000", 9.0));
+    assert!((0.5..0.8).contains(&last[col("cb")]), "CB {}", last[col("cb")]);
+    let digits = |s: &str| s.trim_start_matches(['-', '0', '.']).chars().filter(char::is_ascii_digit).count();
+    assert!(cells.iter().all(|c| *c == "0" || digits(c) >= 5), "{}", lines[12]);
 }
 
 #[test]
@@ -135,6 +206,11 @@ fn wigley_offsets_in_feet_give_four_ninths_and_tonnes() {
     // The volume is in ft³; the displacement in tonnes: 1.025 t/m³ x 0.3048³ m³/ft³.
     let ratio = get("displ") / get("vol");
     assert!((ratio - 1.025 * 0.3048f64.powi(3)).abs() < 1e-15, "{ratio}");
+    // TPC in t/cm whatever the unit: AW in m² x 0.01 m x 1.025 t/m³.
+    let tpc = get("aw") * 0.3048f64.powi(2) * 0.01 * 1.025;
+    assert!((get("tpc") - tpc).abs() < 1e-12 * tpc, "TPC {} vs {tpc}", get("tpc"));
+    // No perpendiculars in a sections CSV: no figures on Lpp.
+    assert!(row.get("cb_lpp").is_none() && doc.get("perpendiculars").is_none(), "{out}");
 }
 
 #[test]
@@ -156,6 +232,8 @@ fn bad_input_is_refused_with_a_message_and_no_panic() {
         (&["hydrostatics", "--draft", "12"], "above the top"),
         (&["hydrostatics", "--draft", "2", "--method", "ga"], "surface.json"),
         (&["hydrostatics"], "--draft"),
+        (&["hydrostatics", "--draft", "2", "--lpp", "-5"], "positive Lpp"),
+        (&["hydrostatics", "--draft", "2", "--ap", "3"], "--lpp"),
     ];
     for (args, message) in cases {
         let o = hullskin(dir.path(), args);

@@ -213,7 +213,7 @@ fn the_hydrostatics_table_is_the_one_in_the_json_and_csv() {
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().expect("header").split(',').collect();
     let csv_rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    for key in ["draft", "vol", "cb", "lcb", "kmtrv"] {
+    for key in ["draft", "vol", "cb", "lcb", "kmt", "cb_lpp"] {
         let col = hull::HYDROSTATICS_COLUMNS.iter().position(|c| c.0 == key).expect("a column");
         let page: Vec<f64> = column(table, col).iter().map(|s| s.parse().expect("number")).collect();
         let from_json: Vec<f64> = rows.iter().map(|r| r[key].as_f64().expect("number")).collect();

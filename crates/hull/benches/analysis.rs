@@ -29,7 +29,7 @@ fn table_21x11() -> Offsets {
             Section::new(format!("{s}"), pts)
         })
         .collect();
-    Offsets { source: "bench 21x11".into(), units: Units::Metre, sections }
+    Offsets::new("bench 21x11", Units::Metre, sections)
 }
 
 /// 21 stations from end to end, 10 waterlines and 5 buttocks strictly inside.

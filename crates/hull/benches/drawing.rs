@@ -27,7 +27,7 @@ fn hull_table(k: usize, n: usize) -> Offsets {
             Section::new(format!("{s}"), pts)
         })
         .collect();
-    Offsets { source: "bench hull 21 x 11".into(), units: Units::Metre, sections }
+    Offsets::new("bench hull 21 x 11", Units::Metre, sections)
 }
 
 /// The Wigley hull as a degree (2, 2) Bezier patch (see tests/lines_plan.rs).

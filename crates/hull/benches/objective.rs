@@ -29,7 +29,7 @@ fn hull_table(k: usize, n: usize) -> Offsets {
             Section::new(format!("{s}"), pts)
         })
         .collect();
-    Offsets { source: "bench hull".into(), units: Units::Metre, sections }
+    Offsets::new("bench hull", Units::Metre, sections)
 }
 
 fn problem(offsets: &Offsets, ctrl: (usize, usize), mode: WeightMode, layout: WeightLayout) -> WeightProblem {

@@ -637,6 +637,7 @@ pub fn compare_offsets_with(
             sections: offsets.sections.len(),
             points: offsets.num_points(),
             units: offsets.units.symbol(),
+            warnings: Vec::new(),
         },
         degree,
         control_points: [ctrl.0, ctrl.1],

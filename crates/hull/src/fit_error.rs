@@ -190,6 +190,7 @@ mod tests {
         let offsets = Offsets {
             source: "test".into(),
             units: crate::Units::Metre,
+            perpendiculars: None,
             sections: vec![
                 Section::new("a", vec![Vec3::new(0.5, 0.5, 0.1), Vec3::new(1.0, 1.0, -0.3)]),
                 Section::new("b", vec![Vec3::new(1.5, 2.0, 0.0), Vec3::new(1.0, 2.5, 0.2)]),
@@ -217,6 +218,7 @@ mod tests {
         // while the other three are measured as usual.
         let offsets = Offsets {
             source: "test".into(),
+            perpendiculars: None,
             units: crate::Units::Metre,
             sections: vec![
                 Section::new("a", vec![Vec3::new(0.5, 0.5, 0.1), Vec3::new(f64::NAN, 1.0, 0.0)]),

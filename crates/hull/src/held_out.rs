@@ -408,7 +408,7 @@ mod tests {
                 Section { lines: (0..n).map(|i| 100 * s + i).collect(), ..Section::new(format!("{s}"), pts) }
             })
             .collect();
-        Offsets { source: "test".into(), units: crate::Units::Metre, sections }
+        Offsets::new("test", crate::Units::Metre, sections)
     }
 
     #[test]

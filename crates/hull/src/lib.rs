@@ -17,6 +17,7 @@ pub mod hydrostatics;
 pub mod limits;
 mod markup;
 pub mod mesh;
+mod numfmt;
 mod offsets;
 pub mod optimize;
 mod output;
@@ -48,7 +49,8 @@ pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
     HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
 };
-pub use offsets::{Offsets, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
+pub use numfmt::format_short;
+pub use offsets::{Offsets, Perpendiculars, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
 pub use pipeline::{
     default_ctrl, fit_offsets, fit_offsets_with, EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles, HOLD_SHARE,

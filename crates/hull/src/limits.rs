@@ -348,6 +348,7 @@ mod tests {
         let offsets = Offsets {
             source: "scan.csv".into(),
             units: Units::Metre,
+            perpendiculars: None,
             sections: vec![Section::new("7", row.clone()), Section::new("8", row)],
         };
         let e = check_offsets(&offsets).expect_err("100,001 points in a section");

@@ -91,9 +91,56 @@ pub struct Offsets {
     pub units: Units,
     /// The sections, in order along the length.
     pub sections: Vec<Section>,
+    /// The perpendiculars, where the data gives them (a Series 60 table scaled by its Lpp, a
+    /// table with its Lpp, the built-in sample); `None` when unknown.
+    pub perpendiculars: Option<Perpendiculars>,
+}
+
+/// The aft and forward perpendiculars: their x in the surface's axes.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Perpendiculars {
+    /// x of the aft perpendicular (AP).
+    pub aft: f64,
+    /// x of the forward perpendicular (FP).
+    pub fore: f64,
+}
+
+impl Perpendiculars {
+    /// The perpendiculars `Lpp` apart, the AP at `aft`.
+    ///
+    /// # Errors
+    /// [`HullError::Config`] unless `aft` is finite and `lpp` a positive finite length.
+    pub fn try_new(aft: f64, lpp: f64) -> Result<Self, HullError> {
+        if !(aft.is_finite() && lpp.is_finite() && lpp > 0.0 && (aft + lpp).is_finite()) {
+            return Err(HullError::Config(format!(
+                "perpendiculars: AP at x = {aft}, Lpp {lpp}: expected a finite AP and a positive Lpp"
+            )));
+        }
+        Ok(Perpendiculars { aft, fore: aft + lpp })
+    }
+
+    /// Length between perpendiculars.
+    pub fn lpp(&self) -> f64 {
+        self.fore - self.aft
+    }
+
+    /// x of amidships, half way between the perpendiculars.
+    pub fn midship(&self) -> f64 {
+        0.5 * (self.aft + self.fore)
+    }
+
+    /// `x` as a percentage of Lpp from amidships, positive forward.
+    pub fn percent_from_midship(&self, x: f64) -> f64 {
+        100.0 * (x - self.midship()) / self.lpp()
+    }
 }
 
 impl Offsets {
+    /// Offsets from `source` in `units`, without known perpendiculars.
+    pub fn new(source: impl Into<String>, units: Units, sections: Vec<Section>) -> Self {
+        Offsets { source: source.into(), units, sections, perpendiculars: None }
+    }
+
     /// Total number of points over all sections.
     pub fn num_points(&self) -> usize {
         self.sections.iter().map(|s| s.points.len()).sum()
@@ -350,7 +397,7 @@ mod tests {
                 s
             })
             .collect();
-        Offsets { source: "box.csv".into(), units: Units::Metre, sections }
+        Offsets::new("box.csv", Units::Metre, sections)
     }
 
     fn err(o: &Offsets, min: usize) -> String {
@@ -364,7 +411,7 @@ mod tests {
         assert_eq!(o.bounds(), Some((Vec3::new(0.0, 0.0, 0.0), Vec3::new(2.0, 1.0, 2.0))));
         // Diagonal of a 2 x 1 x 2 box is 3 exactly; sqrt(9) is exact in f64.
         assert_eq!(o.size(), 3.0);
-        let empty = Offsets { source: "e".into(), units: Units::Foot, sections: vec![] };
+        let empty = Offsets::new("e", Units::Foot, vec![]);
         assert_eq!(empty.bounds(), None);
         assert_eq!(empty.size(), 0.0);
     }

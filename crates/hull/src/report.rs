@@ -67,6 +67,9 @@ pub struct InputSummary {
     pub sections: usize,
     pub points: usize,
     pub units: &'static str,
+    /// The sense checks' warnings on the input (the suspect cells, units, size; empty when
+    /// none), set by the caller that read the offsets.
+    pub warnings: Vec<crate::read::SenseWarning>,
 }
 
 /// The `surface` block of `report.json`.
@@ -134,6 +137,7 @@ impl Report {
                 sections: offsets.sections.len(),
                 points: offsets.num_points(),
                 units: offsets.units.symbol(),
+                warnings: Vec::new(),
             },
             surface: SurfaceSummary {
                 degree: [s.degree_u(), s.degree_v()],

@@ -12,7 +12,7 @@
 //! (baseline to 1.5 T), every cell present. The source's typo at the FP, WL 0.25 T (`10`) is
 //! set to 0. See `testdata/README.md` and `testdata/gen_series60.py`.
 
-use crate::offsets::Offsets;
+use crate::offsets::{Offsets, Perpendiculars};
 use crate::read::parse_offset_table;
 use crate::units::Units;
 
@@ -49,8 +49,11 @@ pub const SAMPLE_PARTICULARS: Particulars =
 
 /// The built-in sample as [`Offsets`]: 25 stations of 8 points each, in metres, x from the AP.
 pub fn series60_sample() -> Offsets {
-    parse_offset_table(SERIES60_CB060_CSV, SERIES60_SOURCE, Units::Metre)
-        .expect("the committed sample table parses (tested in sample::tests)")
+    let mut offsets = parse_offset_table(SERIES60_CB060_CSV, SERIES60_SOURCE, Units::Metre)
+        .expect("the committed sample table parses (tested in sample::tests)");
+    // The table's x runs from the AP to the FP, Lpp apart.
+    offsets.perpendiculars = Perpendiculars::try_new(0.0, SAMPLE_PARTICULARS.lpp).ok();
+    offsets
 }
 
 #[cfg(test)]

@@ -360,7 +360,7 @@ mod tests {
                 Section::new(format!("{s}"), pts)
             })
             .collect();
-        Offsets { source: "small hull".into(), units: Units::Metre, sections }
+        Offsets::new("small hull", Units::Metre, sections)
     }
 
     /// The search's own guarantees, read from its record: the surface is within T, the record
@@ -515,7 +515,7 @@ mod tests {
             Section::new("a", vec![Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 1.0)]),
             Section::new("b", vec![Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0)]),
         ];
-        let offsets = Offsets { source: "two points each".into(), units: Units::Metre, sections };
+        let offsets = Offsets::new("two points each", Units::Metre, sections);
         // Degree 3 needs 4 points per section: an input error, not "no count reached".
         let e = search(&offsets, &FitConfig::default(), 0.1).expect_err("invalid");
         assert!(matches!(e, HullError::Input { .. }), "{e}");

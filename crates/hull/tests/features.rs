@@ -50,7 +50,7 @@ fn planing_offsets() -> Offsets {
             Section::new(format!("st{k}"), ts.iter().map(|&t| planing_point(x, t)).collect())
         })
         .collect();
-    Offsets { source: "planing hull (made in the test)".into(), units: Units::Metre, sections }
+    Offsets::new("planing hull (made in the test)", Units::Metre, sections)
 }
 
 /// The largest distance from the exact hull to the surface near the chine: points of the two

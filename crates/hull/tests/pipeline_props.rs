@@ -33,7 +33,7 @@ fn hull_sections() -> impl Strategy<Value = Offsets> {
                     Section::new(format!("{k}"), points)
                 })
                 .collect();
-            Offsets { source: "proptest".into(), units: Units::Metre, sections }
+            Offsets::new("proptest", Units::Metre, sections)
         },
     )
 }

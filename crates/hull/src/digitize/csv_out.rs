@@ -51,6 +51,7 @@ mod tests {
         let o = Offsets {
             source: "t".into(),
             units: Units::Metre,
+            perpendiculars: None,
             sections: vec![
                 Section::new(
                     "ST, \"0\"",

@@ -601,7 +601,7 @@ pub fn digitize(sketch: &Sketch, o: &DigitizeOptions) -> Result<Digitized, HullE
         out_sections.push(Section { label: label.clone(), points: pts, lines, column: None });
         out_infos.push(info);
     }
-    let offsets = Offsets { source: sketch.source.clone(), units: o.units, sections: out_sections };
+    let offsets = Offsets::new(sketch.source.clone(), o.units, out_sections);
     offsets.validate(2)?;
     Ok(Digitized { offsets, stations: out_infos, notes })
 }

@@ -83,16 +83,26 @@
 //! # Conventions and units
 //!
 //! * `Draft` is `T`, the waterplane's z (above the baseline z = 0).
-//! * Coefficients as FREE!ship: `CB = Vol/(Lwl Bwl T)`, `CM = AM/(Bwl T)`,
-//!   `CP = Vol/(AM Lwl)`, `CW = AW/(Lwl Bwl)`. Published block coefficients often use Lpp and
-//!   the moulded beam instead (`V/(Lpp B T)`, e.g. Series 60): compute them from `vol`.
-//! * `KMtrv = KB + I_T/Vol`, `KMlong = KB + I_L/Vol`, `KB = VCB`; `LCB` and `LCF` are x
-//!   coordinates in the surface's axes (not percentages).
-//! * Lengths in the surface's length unit `L`; areas `L²`, volumes `L³`. `Displ = Vol x
-//!   density`, the density given per cubic length unit of the surface: the default 1.025 is
-//!   sea water in t/m³ for a surface in metres. For other units pass
-//!   [`density_per_cubic_unit`]`(1.025, units)` (for feet: 0.029025 t/ft³) and `Displ` stays
-//!   in tonnes.
+//! * Coefficients on the waterline as FREE!ship: `CB = Vol/(Lwl Bwl T)`, `CM = AM/(Bwl T)`,
+//!   `CP = Vol/(AM Lwl)`, `CW = AW/(Lwl Bwl)`.
+//! * With the perpendiculars known ([`HydrostaticsOptions::perpendiculars`]: the AP and FP
+//!   x, `Lpp = FP - AP`, amidships at their middle), also the trade's coefficients on Lpp:
+//!   `CB_Lpp = Vol/(Lpp Bwl T)`, `CM_Lpp = AM_pp/(Bwl T)`, `CP_Lpp = Vol/(AM_pp Lpp)`, with
+//!   `AM_pp` the section area at amidships; and `LCB`, `LCF` as a percentage of Lpp from
+//!   amidships, **positive forward** (`100 (LCB - x_mid) / Lpp`), as Todd's Series 60 tables
+//!   give them. Without them these are absent (`None`, left out of the tables).
+//! * `LCB` and `LCF` are also x coordinates in the surface's axes.
+//! * Stability: `KB = VCB`, `BMt = I_T/Vol`, `BMl = I_L/Vol` (I_L about the LCF),
+//!   `KMt = KB + BMt`, `KMl = KB + BMl`.
+//! * `TPC` (tonnes per centimetre immersion) `= AW x 1 cm x density`.
+//! * `MCT` (moment to change trim by 1 cm, t·m/cm) `= Displ BMl / (100 L)` with `L = Lpp`
+//!   when the perpendiculars are known, else `Lwl`. The centre of gravity is unknown here,
+//!   so `GMl` is taken as `BMl` (the usual approximation: `KB - KG` is small against `BMl`,
+//!   about 1 % of it for ordinary ships).
+//! * Lengths in the surface's length unit `L` ([`HydrostaticsOptions::units`]); areas `L²`,
+//!   volumes `L³`. `Displ = Vol x density` in tonnes, the density given in t/m³ (the default
+//!   1.025 is sea water) and converted to tonnes per cubic `L`. `TPC` is in t/cm and `MCT` in
+//!   t·m/cm whatever `L`.
 //! * A draft at or below the lowest point of the surface gives a row of zeros (no volume, no
 //!   waterplane: every figure 0, never NaN). A draft above the highest point of the surface
 //!   is an error ([`HullError::Draft`]): the hull would be submerged. A draft at a level top
@@ -141,10 +151,11 @@ use serde::{Deserialize, Serialize};
 use nurbs::NurbsSurface;
 
 use crate::error::HullError;
+use crate::offsets::Perpendiculars;
 use crate::units::Units;
 
 use integrate::{Integrator, Sums};
-pub use table::{HydrostaticsTable, HYDROSTATICS_COLUMNS};
+pub use table::{HydrostaticsTable, HYDROSTATICS_COLUMNS, NUM_COLUMNS, TEXT_DIGITS};
 
 /// Density of sea water, t/m³ (ITTC standard 1.025 as in FREE!ship's default).
 pub const SEA_WATER_DENSITY: f64 = 1.025;
@@ -153,7 +164,7 @@ pub const SEA_WATER_DENSITY: f64 = 1.025;
 pub const MAX_DRAFTS: usize = 10_000;
 
 /// The hydrostatic figures of the whole ship (both sides) at one draft. JSON keys are the
-/// column names in lower case. Lengths in the surface's unit `L`.
+/// column names in lower case ([`HYDROSTATICS_COLUMNS`]). Lengths in the surface's unit `L`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct HydrostaticsRow {
     /// Draft `T`: the waterplane's z above the baseline, `L`.
@@ -164,41 +175,73 @@ pub struct HydrostaticsRow {
     pub bwl: f64,
     /// Displaced volume, `L³`.
     pub vol: f64,
-    /// Displacement `vol x density` (tonnes for a density in t per cubic `L`).
+    /// Displacement `vol x density`, tonnes.
     pub displ: f64,
     /// Longitudinal centre of buoyancy, x, `L`.
     pub lcb: f64,
+    /// LCB as a percentage of Lpp from amidships, positive forward (with the perpendiculars).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lcb_pct_lpp: Option<f64>,
     /// Vertical centre of buoyancy (KB) above the baseline, `L`.
     pub vcb: f64,
     /// Block coefficient `vol / (lwl bwl draft)`.
     pub cb: f64,
+    /// Block coefficient on Lpp, `vol / (lpp bwl draft)` (with the perpendiculars).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cb_lpp: Option<f64>,
     /// Midship section area at the middle of the waterline length, `L²`.
     pub am: f64,
     /// Midship section coefficient `am / (bwl draft)`.
     pub cm: f64,
+    /// Midship section coefficient at amidships of Lpp, `am_pp / (bwl draft)` (with the
+    /// perpendiculars).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cm_lpp: Option<f64>,
     /// Waterplane area, `L²`.
     pub aw: f64,
     /// Waterplane coefficient `aw / (lwl bwl)`.
     pub cw: f64,
     /// Prismatic coefficient `vol / (am lwl)`.
     pub cp: f64,
+    /// Prismatic coefficient on Lpp, `vol / (am_pp lpp)` (with the perpendiculars).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cp_lpp: Option<f64>,
     /// Longitudinal centre of flotation, x, `L`.
     pub lcf: f64,
+    /// LCF as a percentage of Lpp from amidships, positive forward (with the perpendiculars).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lcf_pct_lpp: Option<f64>,
     /// Wetted surface of the hull surface below the waterline, both sides, centre-plane webs
     /// left out ([`Hydrostatics::web_area`]), `L²`.
     pub s: f64,
-    /// Transverse metacentre above the baseline, `KB + I_T / vol`, `L`.
-    pub kmtrv: f64,
-    /// Longitudinal metacentre above the baseline, `KB + I_L / vol` (I_L about the LCF), `L`.
-    pub kmlong: f64,
+    /// Tonnes per centimetre immersion, `aw x 1 cm x density`, t/cm.
+    pub tpc: f64,
+    /// Moment to change trim by 1 cm, `displ bml / (100 L)` (`L` = Lpp, or Lwl without the
+    /// perpendiculars; GMl taken as BMl), t·m/cm.
+    pub mct: f64,
+    /// Transverse metacentric radius `I_T / vol`, `L`.
+    pub bmt: f64,
+    /// Longitudinal metacentric radius `I_L / vol` (I_L about the LCF), `L`.
+    pub bml: f64,
+    /// Transverse metacentre above the baseline, `KB + BMt`, `L` (FREE!ship's `KMtrv`).
+    #[serde(alias = "kmtrv")]
+    pub kmt: f64,
+    /// Longitudinal metacentre above the baseline, `KB + BMl`, `L` (FREE!ship's `KMlong`).
+    #[serde(alias = "kmlong")]
+    pub kml: f64,
 }
 
 /// How the hydrostatics are integrated.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HydrostaticsOptions {
-    /// Mass per cubic length unit of the surface: `displ = vol x density`. Default
-    /// [`SEA_WATER_DENSITY`] (t/m³, for a surface in metres); see [`density_per_cubic_unit`].
+    /// Water density in t/m³: `displ = vol x density` in tonnes whatever the length unit.
+    /// Default [`SEA_WATER_DENSITY`].
     pub density: f64,
+    /// The surface's length unit (for the density per cubic unit, TPC and MCT). Default metres.
+    pub units: Units,
+    /// The perpendiculars, for the coefficients on Lpp and the percentages from amidships;
+    /// `None` (the default) leaves those out.
+    pub perpendiculars: Option<Perpendiculars>,
     /// Gauss-Legendre points per direction and cell, 1 to 64 (default 8).
     pub order: usize,
     /// Cells per knot span and direction, 1 to 64 (default 2).
@@ -207,7 +250,30 @@ pub struct HydrostaticsOptions {
 
 impl Default for HydrostaticsOptions {
     fn default() -> Self {
-        HydrostaticsOptions { density: SEA_WATER_DENSITY, order: 8, split: 2 }
+        HydrostaticsOptions {
+            density: SEA_WATER_DENSITY,
+            units: Units::Metre,
+            perpendiculars: None,
+            order: 8,
+            split: 2,
+        }
+    }
+}
+
+impl HydrostaticsRow {
+    /// The row of a draft at or below the bottom: every figure 0 (the Lpp figures too, when
+    /// the perpendiculars are known).
+    pub fn zero(draft: f64, with_lpp: bool) -> Self {
+        let z = with_lpp.then_some(0.0);
+        HydrostaticsRow {
+            draft,
+            lcb_pct_lpp: z,
+            cb_lpp: z,
+            cm_lpp: z,
+            cp_lpp: z,
+            lcf_pct_lpp: z,
+            ..HydrostaticsRow::default()
+        }
     }
 }
 
@@ -265,14 +331,14 @@ impl<'a> Hydrostatics<'a> {
     /// Prepare `surface` (the starboard half hull, axes of the module docs).
     ///
     /// # Errors
-    /// [`HullError::Config`] if the density is not a positive finite number or the order or
-    /// split is outside 1..=64.
+    /// [`HullError::Config`] if the density is not a positive finite number, the order or
+    /// split is outside 1..=64, or the perpendiculars are not a positive length apart.
     pub fn new(surface: &'a NurbsSurface, options: &HydrostaticsOptions) -> Result<Self, HullError> {
         if !(options.density.is_finite() && options.density > 0.0) {
-            return Err(HullError::Config(format!(
-                "density {}: expected a positive number (mass per cubic length unit)",
-                options.density
-            )));
+            return Err(HullError::Config(format!("density {}: expected a positive number (t/m³)", options.density)));
+        }
+        if let Some(p) = options.perpendiculars {
+            Perpendiculars::try_new(p.aft, p.lpp())?;
         }
         for (name, n) in [("order", options.order), ("split", options.split)] {
             if !(1..=64).contains(&n) {
@@ -361,7 +427,7 @@ impl<'a> Hydrostatics<'a> {
 
     /// The figures at a checked draft.
     fn row(&self, t: f64) -> HydrostaticsRow {
-        let zero = HydrostaticsRow { draft: t, ..HydrostaticsRow::default() };
+        let zero = HydrostaticsRow::zero(t, self.options.perpendiculars.is_some());
         if t <= self.integ.bottom {
             return zero;
         }
@@ -399,24 +465,40 @@ impl<'a> Hydrostatics<'a> {
             _ => (0.0, 0.0, 0.0),
         };
         let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { 0.0 };
+        let displ = vol * density_per_cubic_unit(self.options.density, self.options.units);
+        let (bmt, bml) = (i_t / vol, i_l / vol);
+        // One centimetre in the surface's unit.
+        let cm = 0.01 / self.options.units.metres_per_unit();
+        let pp = self.options.perpendiculars;
+        let am_pp = pp.map(|p| 2.0 * self.integ.half_section_area(p.midship(), level));
+        let length = pp.map_or(lwl, |p| p.lpp());
         HydrostaticsRow {
             draft: t,
             lwl,
             bwl,
             vol,
-            displ: vol * self.options.density,
+            displ,
             lcb,
+            lcb_pct_lpp: pp.map(|p| p.percent_from_midship(lcb)),
             vcb,
             cb: ratio(vol, lwl * bwl * t),
+            cb_lpp: pp.map(|p| ratio(vol, p.lpp() * bwl * t)),
             am,
             cm: ratio(am, bwl * t),
+            cm_lpp: am_pp.map(|a| ratio(a, bwl * t)),
             aw,
             cw: ratio(aw, lwl * bwl),
             cp: ratio(vol, am * lwl),
+            cp_lpp: pp.zip(am_pp).map(|(p, a)| ratio(vol, a * p.lpp())),
             lcf,
+            lcf_pct_lpp: pp.map(|p| if aw > 0.0 { p.percent_from_midship(lcf) } else { 0.0 }),
             s: 2.0 * s.area,
-            kmtrv: vcb + i_t / vol,
-            kmlong: vcb + i_l / vol,
+            tpc: aw * cm * density_per_cubic_unit(self.options.density, self.options.units),
+            mct: ratio(displ * bml, 100.0 * length),
+            bmt,
+            bml,
+            kmt: vcb + bmt,
+            kml: vcb + bml,
         }
     }
 }
@@ -494,6 +576,7 @@ mod tests {
 
     fn barge_truth(t: f64) -> HydrostaticsRow {
         let (b, vol) = (2.0 * HB, 2.0 * HB * LB * t);
+        let (bmt, bml) = (LB * b.powi(3) / 12.0 / vol, b * LB.powi(3) / 12.0 / vol);
         HydrostaticsRow {
             draft: t,
             lwl: LB,
@@ -510,14 +593,24 @@ mod tests {
             cp: 1.0,
             lcf: LB / 2.0,
             s: LB * (b + 2.0 * t),
-            kmtrv: t / 2.0 + LB * b.powi(3) / 12.0 / vol,
-            kmlong: t / 2.0 + b * LB.powi(3) / 12.0 / vol,
+            // 1 cm of the waterplane's prism, in tonnes.
+            tpc: b * LB * 0.01 * SEA_WATER_DENSITY,
+            // On Lwl = LB (no perpendiculars given).
+            mct: vol * SEA_WATER_DENSITY * bml / (100.0 * LB),
+            bmt,
+            bml,
+            kmt: t / 2.0 + bmt,
+            kml: t / 2.0 + bml,
+            ..HydrostaticsRow::default()
         }
     }
 
     fn assert_rows_near(got: &HydrostaticsRow, want: &HydrostaticsRow, rel: f64) {
         for ((g, w), (name, _)) in got.values().iter().zip(want.values()).zip(HYDROSTATICS_COLUMNS) {
-            assert_near!(*g, w, rel * w.abs().max(1.0), "{name} at draft {}", want.draft);
+            match (*g, w) {
+                (Some(g), Some(w)) => assert_near!(g, w, rel * w.abs().max(1.0), "{name} at draft {}", want.draft),
+                (g, w) => assert_eq!(g, w, "{name} at draft {}", want.draft),
+            }
         }
     }
 
@@ -536,6 +629,41 @@ mod tests {
             }
             assert_eq!(h.at(0.0).expect("the bottom"), HydrostaticsRow { draft: 0.0, ..Default::default() }, "{k}");
         }
+    }
+
+    #[test]
+    fn figures_on_lpp_and_per_centimetre_follow_the_trade_in_any_unit() {
+        // The barge read as feet, its perpendiculars 28 ft apart from x = 0 (amidships at 14,
+        // 1 ft aft of the barge's middle): closed forms of a box.
+        let s = barge();
+        let pp = Perpendiculars::try_new(0.0, 28.0).expect("valid");
+        let opts = HydrostaticsOptions { units: Units::Foot, perpendiculars: Some(pp), ..Default::default() };
+        let h = Hydrostatics::new(&s, &opts).expect("valid options");
+        let t = 2.5;
+        let r = h.at(t).expect("a draft on the hull");
+        let want = barge_truth(t);
+        let (ft, b) = (0.3048_f64, 2.0 * HB);
+        // The box's volume in m³ times the density: tonnes.
+        assert_near!(r.displ, want.vol * ft.powi(3) * SEA_WATER_DENSITY, 1e-12 * r.displ);
+        assert_near!(r.cb_lpp.expect("with Lpp"), want.vol / (28.0 * b * t), 1e-12);
+        // A box's section is the same everywhere: CM 1 at amidships too; CP = LB / Lpp.
+        assert_near!(r.cm_lpp.expect("with Lpp"), 1.0, 1e-12);
+        assert_near!(r.cp_lpp.expect("with Lpp"), LB / 28.0, 1e-12);
+        // LCB and LCF at 15 ft, amidships at 14: 1/28 of Lpp forward, positive.
+        assert_near!(r.lcb_pct_lpp.expect("with Lpp"), 100.0 / 28.0, 1e-10);
+        assert_near!(r.lcf_pct_lpp.expect("with Lpp"), 100.0 / 28.0, 1e-10);
+        // 1 cm of immersion: AW in m² x 0.01 m x 1.025 t/m³, whatever the surface's unit.
+        assert_near!(r.tpc, b * LB * ft * ft * 0.01 * SEA_WATER_DENSITY, 1e-12 * r.tpc);
+        // MCT on Lpp: Displ BMl / (100 Lpp), BMl / Lpp being a ratio of lengths.
+        assert_near!(r.mct, r.displ * want.bml / (100.0 * 28.0), 1e-12 * r.mct);
+        for (got, w, name) in [(r.bmt, want.bmt, "BMt"), (r.bml, want.bml, "BMl"), (r.kmt, want.kmt, "KMt")] {
+            assert_near!(got, w, 1e-12 * w, "{name}");
+        }
+        // Below the bottom the figures on Lpp are zeros, not absent.
+        assert_eq!(h.at(0.0).expect("the bottom"), HydrostaticsRow::zero(0.0, true));
+        assert!(Perpendiculars::try_new(0.0, 0.0).is_err() && Perpendiculars::try_new(f64::NAN, 1.0).is_err());
+        let bad = HydrostaticsOptions { perpendiculars: Some(Perpendiculars { aft: 3.0, fore: 1.0 }), ..opts };
+        assert!(Hydrostatics::new(&s, &bad).is_err());
     }
 
     /// Lengths of the wedge and the web, height of the bulb of [`barge_with_web`].
@@ -619,7 +747,7 @@ mod tests {
         let h = Hydrostatics::new(&s, &HydrostaticsOptions::default()).expect("valid options");
         let below = h.at(-1.0).expect("below the bottom is no error");
         assert_eq!(below, HydrostaticsRow { draft: -1.0, ..Default::default() });
-        assert!(below.values().iter().all(|v| v.is_finite()));
+        assert!(below.values().iter().flatten().all(|v| v.is_finite()));
         let err = h.at(D + 0.01).expect_err("above the top");
         assert!(matches!(err, HullError::Draft { .. }) && err.to_string().contains("above the top"), "{err}");
         assert!(matches!(h.at(f64::NAN), Err(HullError::Draft { .. })));

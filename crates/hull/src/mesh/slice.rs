@@ -361,7 +361,7 @@ pub fn slice_mesh(mesh: &TriMesh, options: &SliceOptions) -> Result<SliceOutcome
             why.join("; ")
         )));
     }
-    let offsets = Offsets { source: mesh.source.clone(), units: options.units, sections };
+    let offsets = Offsets::new(mesh.source.clone(), options.units, sections);
     Ok(SliceOutcome { offsets, stations, dropped })
 }
 

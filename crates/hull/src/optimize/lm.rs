@@ -580,7 +580,7 @@ mod tests {
                 Section::new(format!("{k}"), pts)
             })
             .collect();
-        Offsets { source: "free-form test".into(), units: Units::Metre, sections }
+        Offsets::new("free-form test", Units::Metre, sections)
     }
 
     /// The history is the accepted value after each iteration: starts at the start's value,
@@ -785,7 +785,7 @@ mod tests {
                 Section::new(format!("{k}"), pts)
             })
             .collect();
-        Offsets { source: "cone test".into(), units: Units::Metre, sections }
+        Offsets::new("cone test", Units::Metre, sections)
     }
 
     /// Issue 11 item 7: sections that are exact quarter circles of radius 2 + 0.1 x sampled at
@@ -814,7 +814,7 @@ mod tests {
                 Section::new(format!("{k}"), pts)
             })
             .collect();
-        let o = Offsets { source: "uneven cone".into(), units: Units::Metre, sections };
+        let o = Offsets::new("uneven cone", Units::Metre, sections);
         let size = o.size();
         for fair in [crate::Fairing::Off, crate::Fairing::Auto { tolerance: None }] {
             let mut cfg = FitConfig {

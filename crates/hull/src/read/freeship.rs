@@ -401,8 +401,7 @@ pub fn parse_freeship_curves(text: &str, source: &str, units: Units) -> Result<R
         if file_units != units { format!(", converted to {}", units.symbol()) } else { String::new() },
         super::point_cloud::ranges_note(&sections)
     );
-    let mut out =
-        ReadOutcome::plain(Offsets { source: source.to_string(), units, sections }, InputFormat::FreeshipCurves, axes);
+    let mut out = ReadOutcome::plain(Offsets::new(source, units, sections), InputFormat::FreeshipCurves, axes);
     out.notes = notes;
     Ok(out)
 }

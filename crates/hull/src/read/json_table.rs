@@ -50,7 +50,7 @@ use serde_json::{Map, Value};
 use super::views::{MergeOptions, Station, ThreeViews, ViewLine};
 use super::{InputFormat, ReadOptions, ReadOutcome};
 use crate::error::{HullError, InputErrorKind, Location};
-use crate::offsets::{Offsets, Section};
+use crate::offsets::{Offsets, Perpendiculars, Section};
 use crate::units::Units;
 
 /// The number of station intervals of an OpenHull table (stations 0 .. 20 over Lpp).
@@ -265,7 +265,7 @@ fn vessel_js(hull: &Value, text: &str, source: &str, units: Units) -> Result<Rea
         "vessel.js gives one table: its waterlines and stations are the same cells, nothing to cross-check".into(),
     );
     let mut out = ReadOutcome::plain(
-        Offsets { source: source.to_string(), units, sections },
+        Offsets::new(source, units, sections),
         InputFormat::JsonTable,
         format!(
             "vessel.js: x = station x LOA ({loa} m) from the aft end, forward; y = cell x BOA/2 ({boa} m); z \
@@ -421,7 +421,10 @@ fn openhull(
             keys.join(", ")
         ));
     }
-    let merged = views.merge(&MergeOptions { tolerance: options.tolerance });
+    let mut merged = views.merge(&MergeOptions { tolerance: options.tolerance });
+    // Station 0 is the AP and the stations are twentieths of Lpp.
+    let lpp = OPENHULL_STATIONS * spacing_m / units.metres_per_unit();
+    merged.offsets.perpendiculars = Perpendiculars::try_new(0.0, lpp).ok();
     Ok(ReadOutcome::merged(
         merged,
         InputFormat::JsonTable,

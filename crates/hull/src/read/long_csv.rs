@@ -242,7 +242,7 @@ pub fn parse_long_csv(text: &str, source: &str, options: &ReadOptions) -> Result
         if sorted {
             notes.push("sections put in order of x (aft to fore)".into());
         }
-        let offsets = Offsets { source: source.to_string(), units: options.units, sections };
+        let offsets = Offsets::new(source.to_string(), options.units, sections);
         let mut out = ReadOutcome::plain(offsets, InputFormat::LongCsv, super::AS_WRITTEN);
         out.notes = notes;
         return Ok(out);

@@ -46,6 +46,7 @@ pub mod long_csv;
 pub mod offset_table;
 pub mod point_cloud;
 pub mod sections_csv;
+pub mod sense;
 pub mod series60_table;
 pub mod views;
 
@@ -58,6 +59,7 @@ use crate::units::Units;
 
 pub use offset_table::parse_offset_table;
 pub use sections_csv::parse_sections_csv;
+pub use sense::{find_outliers, Outlier, OutlierPolicy, SenseKind, SenseWarning};
 pub use series60_table::{parse_series60_table, MainDimensions, Series60Table};
 pub use views::{Disagreement, MergeOptions, Merged, Station, ThreeViews, View, ViewLine};
 
@@ -217,6 +219,8 @@ pub struct ReadOptions {
     pub dimensions: Option<MainDimensions>,
     /// What to do with suspicious values.
     pub suspicious: SuspiciousPolicy,
+    /// What to do with outlier cells ([`sense::find_outliers`]).
+    pub outliers: OutlierPolicy,
     /// The disagreement tolerance of the three-view merge ([`MergeOptions::tolerance`]).
     pub tolerance: Option<f64>,
     /// Sections with fewer points are left out, with a note (0: keep all). Applies to the
@@ -242,6 +246,9 @@ pub struct ReadOutcome {
     pub suspicious: Vec<SuspiciousValue>,
     /// Places where the views of a lines plan disagree (left out of the sections).
     pub disagreements: Vec<Disagreement>,
+    /// Plausible mistakes found by the sense checks ([`sense`]): units, size, transposition,
+    /// outlier cells. The offsets are as read.
+    pub warnings: Vec<SenseWarning>,
 }
 
 impl ReadOutcome {
@@ -254,6 +261,7 @@ impl ReadOutcome {
             notes: Vec::new(),
             suspicious: Vec::new(),
             disagreements: Vec::new(),
+            warnings: Vec::new(),
         }
     }
 
@@ -267,6 +275,7 @@ impl ReadOutcome {
             notes,
             suspicious: Vec::new(),
             disagreements: m.disagreements,
+            warnings: Vec::new(),
         }
     }
 
@@ -331,6 +340,7 @@ pub fn parse_offsets_with(text: &str, source: &str, options: &ReadOptions) -> Re
 fn parse_with(text: &str, source: &str, options: &ReadOptions, dir: Option<&Path>) -> Result<ReadOutcome, HullError> {
     let mut out = parse_format(text, source, options, dir)?;
     crate::limits::check_offsets(&out.offsets)?;
+    out.warnings = sense::sense_check(text, &out.offsets, out.format, options.outliers)?;
     if options.min_points > 0 && !matches!(out.format, InputFormat::SectionsCsv | InputFormat::OffsetTable) {
         let short: Vec<String> = out
             .offsets
@@ -388,6 +398,7 @@ fn parse_format(text: &str, source: &str, options: &ReadOptions, dir: Option<&Pa
                 notes,
                 suspicious: t.suspicious,
                 disagreements: Vec::new(),
+                warnings: Vec::new(),
             })
         }
         InputFormat::LongCsv => long_csv::parse_long_csv(text, source, options),

@@ -147,7 +147,7 @@ pub fn parse_offset_table(text: &str, source: &str, units: Units) -> Result<Offs
             section.lines.reverse();
         }
     }
-    Ok(Offsets { source: source.to_string(), units, sections })
+    Ok(Offsets::new(source, units, sections))
 }
 
 /// Whether `next` continues the strictly monotone run `seen`, whose direction the first two

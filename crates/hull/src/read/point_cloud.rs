@@ -260,8 +260,7 @@ pub fn parse_point_cloud(text: &str, source: &str, units: Units) -> Result<ReadO
         notes.insert(0, "no blank lines or headers: stations cut where x changes".into());
     }
     let axes = format!("assumed x forward, y half-breadth, z up; {}", ranges_note(&sections));
-    let mut out =
-        ReadOutcome::plain(Offsets { source: source.to_string(), units, sections }, InputFormat::PointCloud, axes);
+    let mut out = ReadOutcome::plain(Offsets::new(source, units, sections), InputFormat::PointCloud, axes);
     out.notes = notes;
     Ok(out)
 }

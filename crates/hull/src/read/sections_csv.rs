@@ -106,7 +106,7 @@ pub fn parse_sections_csv(text: &str, source: &str, units: Units) -> Result<Offs
             }
         }
     }
-    Ok(Offsets { source: source.to_string(), units, sections })
+    Ok(Offsets::new(source, units, sections))
 }
 
 /// The header must read `section,x,y,z`.

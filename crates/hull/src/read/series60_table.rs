@@ -44,7 +44,7 @@ use nurbs::Vec3;
 
 use super::{parse_number, records, Record, SuspiciousPolicy, SuspiciousValue};
 use crate::error::{HullError, InputErrorKind, Location};
-use crate::offsets::{Offsets, Section};
+use crate::offsets::{Offsets, Perpendiculars, Section};
 use crate::units::Units;
 
 /// The number of station intervals between the FP (station 0) and the AP (station 20).
@@ -338,7 +338,10 @@ pub fn parse_series60_table(
             Section { label: s.label.clone(), points, lines, column: None }
         })
         .collect();
-    Ok(Series60Table { offsets: Offsets { source: source.to_string(), units, sections }, suspicious })
+    let mut offsets = Offsets::new(source, units, sections);
+    // x runs from the AP (station 20) to the FP (station 0).
+    offsets.perpendiculars = Perpendiculars::try_new(0.0, dims.lpp).ok();
+    Ok(Series60Table { offsets, suspicious })
 }
 
 #[cfg(test)]

@@ -447,7 +447,7 @@ impl ThreeViews {
             });
         }
         Merged {
-            offsets: Offsets { source: self.source.clone(), units: self.units, sections },
+            offsets: Offsets::new(self.source.clone(), self.units, sections),
             disagreements,
             notes,
             tolerance: tol,

@@ -36,7 +36,8 @@ use crate::drawing::{Anchor, Item, Rgb, Stroke};
 use crate::{HullError, COINCIDENT_REL};
 
 use super::raster::{canvas, draw_items, pixels_per_metre, text_width_mm, Image, Mapping};
-use super::{format_sig, format_tick, nice_ticks};
+use super::{format_tick, nice_ticks};
+use crate::numfmt::format_sig;
 
 /// Colour of points where the curvature is undefined.
 const UNDEFINED: Rgb = Rgb(150, 150, 150);

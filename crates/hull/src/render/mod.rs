@@ -54,26 +54,6 @@ pub(crate) fn format_tick(v: f64, step: f64) -> String {
     }
 }
 
-/// `v` to `sig` significant digits: decimal for `1e-3 <= |v| < 1e5`, else scientific
-/// (`1.23e-5`); `0` as `0`.
-pub(crate) fn format_sig(v: f64, sig: usize) -> String {
-    let sig = sig.max(1);
-    if v == 0.0 || !v.is_finite() {
-        return if v == 0.0 { "0".into() } else { format!("{v}") };
-    }
-    let a = v.abs();
-    if (1e-3..1e5).contains(&a) {
-        // The exponent after rounding to `sig` digits (0.99996 rounds to 1.000, not 0.99996).
-        let e = a.log10().floor() as i32;
-        let unit = 10f64.powi(e + 1 - sig as i32);
-        let e = if (a / unit).round() * unit >= 10f64.powi(e + 1) { e + 1 } else { e };
-        let decimals = (sig as i32 - 1 - e).max(0) as usize;
-        format!("{v:.decimals$}")
-    } else {
-        format!("{v:.*e}", sig - 1)
-    }
-}
-
 /// `10` with `e` as a superscript exponent: `10⁻³`, `10⁰`, `10²`.
 pub(crate) fn power_of_ten(e: i32) -> String {
     const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
@@ -105,16 +85,10 @@ mod tests {
     }
 
     #[test]
-    fn tick_and_significant_formats() {
+    fn tick_formats() {
         assert_eq!(format_tick(0.25, 0.05), "0.25");
         assert_eq!(format_tick(120.0, 20.0), "120");
         assert_eq!(format_tick(-1e-17, 0.1), "0");
-        assert_eq!(format_sig(0.012345, 3), "0.0123");
-        assert_eq!(format_sig(1234.5, 3), "1234"); // integer part kept whole, no decimals
-        assert_eq!(format_sig(1.2345e-5, 3), "1.23e-5");
-        assert_eq!(format_sig(0.0, 3), "0");
-        assert_eq!(format_sig(0.99996, 3), "1.00");
-        assert_eq!(format_sig(-0.0999, 2), "-0.10");
     }
 
     #[test]

@@ -11,7 +11,7 @@ pub(crate) use crate::markup::{base64, escape as esc, escape_document as esc_src
 /// `v` with 4 significant digits (`n/a` if not finite): the report's one number format.
 pub(crate) fn num(v: f64) -> String {
     if v.is_finite() {
-        crate::render::format_sig(v, 4)
+        crate::numfmt::format_sig(v, 4)
     } else {
         "n/a".into()
     }

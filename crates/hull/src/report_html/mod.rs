@@ -34,12 +34,15 @@ use self::html::{
 };
 use crate::analysis::{self, CurvatureMap, CurvatureSummary, FairnessOptions, FairnessReport, FieldStats, Finding};
 use crate::drawing::{lines_3d, lines_plan, write_dxf, write_dxf_3d_lines, write_svg, LinesPlanOptions};
+use crate::hydrostatics::TEXT_DIGITS;
+use crate::numfmt::format_sig_plain;
+use crate::offsets::Perpendiculars;
 use crate::optimize::OptimReport;
 use crate::render::{self, RasterOptions};
 use crate::viewer::{write_viewer_html, ViewerOptions};
 use crate::{
-    density_per_cubic_unit, measure_fit_error, Comparison, FitError, FitOutcome, HullError, Hydrostatics,
-    HydrostaticsOptions, HydrostaticsTable, Offsets, RowStatus, Units, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
+    measure_fit_error, Comparison, FitError, FitOutcome, HullError, Hydrostatics, HydrostaticsOptions,
+    HydrostaticsTable, Offsets, RowStatus, Units, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
 };
 
 const TEMPLATE: &str = include_str!("report.html");
@@ -83,6 +86,9 @@ pub struct ReportInputs<'a> {
     pub optimization: Option<&'a OptimReport>,
     /// The design draft (z of the waterplane); `None` tabulates a range of drafts.
     pub draft: Option<f64>,
+    /// The perpendiculars, for the hydrostatics on Lpp; `None` takes the offsets' own
+    /// ([`Offsets::perpendiculars`]), if any.
+    pub perpendiculars: Option<Perpendiculars>,
     /// Sentences shown under the title (e.g. how the inputs were read).
     pub notes: Vec<String>,
 }
@@ -101,6 +107,7 @@ impl<'a> ReportInputs<'a> {
             comparison: None,
             optimization: None,
             draft: None,
+            perpendiculars: None,
             notes: Vec::new(),
         }
     }
@@ -382,8 +389,12 @@ fn hydrostatics_table(
     inputs: &ReportInputs<'_>,
     options: &ReportOptions,
 ) -> Result<(HydrostaticsTable, DraftChoice), HullError> {
+    // Given, or the offsets' own.
+    let perpendiculars = inputs.perpendiculars.or(inputs.offsets.and_then(|o| o.perpendiculars));
     let hopts = HydrostaticsOptions {
-        density: density_per_cubic_unit(options.density, inputs.units),
+        density: options.density,
+        units: inputs.units,
+        perpendiculars,
         ..HydrostaticsOptions::default()
     };
     let hydro = Hydrostatics::new(inputs.surface, &hopts)?;
@@ -423,7 +434,7 @@ fn hydrostatics_table(
         Some(f) => format!("{}, fitted by {}", inputs.source, f.config.method.name()),
         None => inputs.source.clone(),
     };
-    Ok((HydrostaticsTable { source, units: inputs.units, density: options.density, rows }, choice))
+    Ok((HydrostaticsTable { source, units: inputs.units, density: options.density, perpendiculars, rows }, choice))
 }
 
 /// +1 if the surface's normal `S_u x S_v` points toward the inside of the hull at most regular
@@ -767,32 +778,23 @@ impl Page<'_, '_> {
     fn hydrostatics(&self) -> String {
         let t = self.hydrostatics;
         let mut s = format!(
-            "<p>{} Both sides, from the surface (not the offsets); density {} t/m³. CB = Vol/(Lwl Bwl T), CM = \
-             AM/(Bwl T) with AM at the middle of Lwl, CP = Vol/(AM Lwl), CW = AW/(Lwl Bwl); LCB and LCF are x \
-             coordinates; KMtrv and KMlong above the baseline.</p>\n",
+            "<p>{} From the surface (not the offsets): {}. CM = AM/(Bwl T), CP = Vol/(AM Lwl), CW = AW/(Lwl \
+             Bwl); LCB and LCF also as x coordinates; KB = VCB, KMt = KB + BMt and KMl = KB + BMl above the \
+             baseline.</p>\n",
             esc(&self.drafts.describe(self.inputs.units)),
-            t.density
+            esc(&t.conventions())
         );
         let units = t.unit_labels();
-        let head: Vec<String> =
-            HYDROSTATICS_COLUMNS.iter().zip(&units).map(|((_, name), unit)| th(name, Some(unit))).collect();
+        let cols = t.shown_columns();
+        let head: Vec<String> = cols.iter().map(|&c| th(HYDROSTATICS_COLUMNS[c].1, Some(&units[c]))).collect();
         let rows: Vec<(bool, Vec<String>)> = t
             .rows
             .iter()
             .map(|r| {
-                let cells = r
-                    .values()
-                    .iter()
-                    .zip(&units)
-                    .map(|(&v, unit)| {
-                        let decimals = match unit.as_str() {
-                            "-" => 4,
-                            x if x.ends_with('²') || x.ends_with('³') || x == "t" => 2,
-                            _ => 3,
-                        };
-                        td_num(v, &fixed(v, decimals))
-                    })
-                    .collect();
+                let v = r.values();
+                // Every shown column has a value in every row (`shown_columns`).
+                let cells =
+                    cols.iter().filter_map(|&c| v[c]).map(|x| td_num(x, &format_sig_plain(x, TEXT_DIGITS))).collect();
                 (false, cells)
             })
             .collect();
@@ -1227,7 +1229,8 @@ mod tests {
         // of the exact patch are within 2e-13 relative of them, so 1e-12 is round-off).
         let table = by_id(&doc, "hydrostatics-table").expect("hydrostatics table");
         let col = |key: &str| {
-            let k = HYDROSTATICS_COLUMNS.iter().position(|c| c.0 == key).expect("a column");
+            let shown = r.hydrostatics.shown_columns();
+            let k = shown.iter().position(|&c| HYDROSTATICS_COLUMNS[c].0 == key).expect("a column");
             column(table, k)
         };
         assert_eq!(col("draft"), vec![T]);

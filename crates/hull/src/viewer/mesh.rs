@@ -330,6 +330,7 @@ mod tests {
         let offsets = Offsets {
             source: "test".into(),
             units: crate::Units::Metre,
+            perpendiculars: None,
             sections: vec![crate::Section::new("a", vec![on, off])],
         };
         let e = offset_errors(&s, &offsets);
