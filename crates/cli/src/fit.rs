@@ -27,6 +27,10 @@ pub struct FitArgs {
     /// left out); report.json gets "error.held_out". 0 turns it off.
     #[arg(long = "held-out", value_name = "K", default_value_t = hull::HeldOutOptions::DEFAULT_FOLDS, value_parser = parse_folds)]
     pub held_out: usize,
+    /// Print the summary as JSON on standard output (report.json's content) instead of the
+    /// table, for scripts; warnings and notes stay on standard error.
+    #[arg(long)]
+    pub json: bool,
 }
 
 impl Default for FitArgs {
@@ -36,6 +40,7 @@ impl Default for FitArgs {
             out: PathBuf::from("hullskin-out"),
             fit: MethodArgs::default(),
             held_out: hull::HeldOutOptions::DEFAULT_FOLDS,
+            json: false,
         }
     }
 }
@@ -116,17 +121,29 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     let overfit = overfitting(&offsets, &outcome);
     report.overfitting = overfit.as_ref().map(|l| l.trim_start_matches("warning: ").to_string());
     write_outputs(&args.out, &offsets, &outcome, &report)?;
-    out!("{}", hull::summary_table(&offsets, &outcome));
-    if let Some(line) = overfit {
-        outln!("{line}");
+    if args.json {
+        outln!("{}", serde_json::to_string_pretty(&report).context("the summary as JSON")?);
+    } else {
+        out!("{}", hull::summary_table(&offsets, &outcome));
     }
-    if let Some(s) = &report.tolerance_search {
+    for w in hull::summary_warnings(&offsets, &outcome) {
+        eprintln!("hullskin: warning: {w}");
+    }
+    if let Some(line) = overfit {
+        eprintln!("hullskin: {line}");
+    }
+    if let Some(s) = report.tolerance_search.as_ref().filter(|_| !args.json) {
         outln!("{}", s.summary(offsets.units.symbol()));
     }
-    if let Some(mesh) = &mesh {
+    if let Some(mesh) = mesh.as_ref().filter(|_| !args.json) {
         print_mesh_distance(mesh, &offsets, &outcome.surface);
     }
-    outln!("wrote {}", args.out.join("{surface.igs,surface.json,report.json}").display());
+    let wrote = format!("wrote {}", args.out.join("{surface.igs,surface.json,report.json}").display());
+    if args.json {
+        eprintln!("hullskin: {wrote}");
+    } else {
+        outln!("{wrote}");
+    }
     if let Some(status) = progress::stop_status() {
         eprintln!("hullskin: interrupted: wrote the best surface found before the stop (exit status {status})");
         return Ok(ExitCode::from(status));

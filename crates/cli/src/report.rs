@@ -223,6 +223,10 @@ fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, writt
         }
         _ => {}
     }
+    // The page's warnings under its title, on standard error too.
+    for f in &report.validity {
+        eprintln!("hullskin: warning: {}", f.message(u));
+    }
     let size = |p: &Path| std::fs::metadata(p).map(|m| m.len()).unwrap_or(0);
     let total: u64 = written.iter().map(|p| size(p)).sum();
     if let Some(html) = written.first() {

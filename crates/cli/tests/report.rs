@@ -359,7 +359,11 @@ fn a_folded_surface_is_flagged_on_the_page() {
     let dir = scratch("folded");
     let input = testdata("gunnerus_offsets.csv");
     // The plain skin (`--fair 0`): the default `--fair auto` smooths the fold away.
-    report_ok(&dir, &[input.to_str().expect("utf-8 path"), "--fair", "0", "-o", "R"]);
+    let o = hullskin(&dir, &["report", input.to_str().expect("utf-8 path"), "--fair", "0", "-o", "R"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    // The terminal says it too, on standard error.
+    assert!(err.lines().any(|l| l.starts_with("hullskin: warning: ") && l.contains("folds back")), "{err}");
     let html = read_text(&dir.join("R"), "report.html");
     let doc = parse(&html);
     let warning = doc

@@ -283,29 +283,35 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
     for r in &outcome.rejected {
         let _ = writeln!(t, "rejected: {r}");
     }
-    if e.unconverged_projections > 0 {
-        let _ = writeln!(
-            t,
-            "warning: {} of {} projections stopped at the iteration limit (their distances are upper bounds)",
-            e.unconverged_projections, e.overall.points
-        );
-    }
-    if let Some(o) = outcome.optimization.as_ref().filter(|o| o.weights_at_bounds > 0) {
-        let _ = writeln!(
-            t,
-            "warning: {} weights ended on their bounds [{}, {}], a sign of over-fitting (expected fewer control \
-             points, or wider bounds)",
-            o.weights_at_bounds, o.weight_bounds[0], o.weight_bounds[1]
-        );
-    }
-    for f in &outcome.validity {
-        let _ = writeln!(t, "warning: {}", f.message(u));
-    }
     if let Some(w) = &e.worst {
         let line = w.line.map(|l| format!(", line {l}")).unwrap_or_default();
         let _ = writeln!(t, "worst offset: section {} point {}{line}: {:.3e} {u}", w.section, w.index + 1, w.distance);
     }
     t
+}
+
+/// The warnings of a fit, one sentence each, for standard error (the summary table has the
+/// figures): projections that stopped at their iteration limit, weights on their bounds,
+/// every validity finding.
+pub fn summary_warnings(offsets: &Offsets, outcome: &FitOutcome) -> Vec<String> {
+    let u = offsets.units.symbol();
+    let e = &outcome.error;
+    let mut out = Vec::new();
+    if e.unconverged_projections > 0 {
+        out.push(format!(
+            "{} of {} projections stopped at the iteration limit (their distances are upper bounds)",
+            e.unconverged_projections, e.overall.points
+        ));
+    }
+    if let Some(o) = outcome.optimization.as_ref().filter(|o| o.weights_at_bounds > 0) {
+        out.push(format!(
+            "{} weights ended on their bounds [{}, {}], a sign of over-fitting (expected fewer control points, or \
+             wider bounds)",
+            o.weights_at_bounds, o.weight_bounds[0], o.weight_bounds[1]
+        ));
+    }
+    out.extend(outcome.validity.iter().map(|f| f.message(u)));
+    out
 }
 
 /// The summary's line of the held-out error, e.g. `held out (4 folds): RMS 3.1e-2 m, max
@@ -396,13 +402,14 @@ mod tests {
         let mut out = fit_offsets(&offsets, &FitConfig::default()).expect("fits");
         // The default fit of the sample warns of its validity findings only (it crosses the
         // centre plane at the transom and bulges past its flat side), one line each.
-        let warnings = |t: &str| t.lines().filter(|l| l.starts_with("warning: ")).count();
-        assert_eq!(warnings(&summary_table(&offsets, &out)), out.validity.len());
+        assert_eq!(summary_warnings(&offsets, &out).len(), out.validity.len());
+        // The table holds the figures, the warnings go apart (to standard error).
+        assert!(!summary_table(&offsets, &out).contains("warning"));
         out.validity.clear();
-        assert!(!summary_table(&offsets, &out).contains("warning"), "a clean fit warns of nothing");
+        assert!(summary_warnings(&offsets, &out).is_empty(), "a clean fit warns of nothing");
         out.error.unconverged_projections = 3;
-        let table = summary_table(&offsets, &out);
-        assert!(table.contains("warning: 3 of 200 projections stopped at the iteration limit"), "{table}");
+        let w = summary_warnings(&offsets, &out);
+        assert!(w[0].starts_with("3 of 200 projections stopped at the iteration limit"), "{w:?}");
     }
 
     #[test]
@@ -421,9 +428,9 @@ mod tests {
         let count = out.surface.weights().into_iter().filter(|&w| on_bound(w)).count();
         assert_eq!(o.weights_at_bounds, count);
         assert!(count > 0, "no weight reached the 1 % bounds: {:?}", o.weight_range);
-        let table = summary_table(&offsets, &out);
-        let line = format!("warning: {count} weights ended on their bounds [0.99, 1.01]");
-        assert!(table.contains(&line), "{table}");
+        let w = summary_warnings(&offsets, &out);
+        let line = format!("{count} weights ended on their bounds [0.99, 1.01]");
+        assert!(w.iter().any(|l| l.starts_with(&line)), "{w:?}");
     }
 
     #[test]

@@ -269,12 +269,22 @@ fn vessel_js(hull: &Value, text: &str, source: &str, units: Units) -> Result<Rea
         InputFormat::JsonTable,
         format!(
             "vessel.js: x = station x LOA ({loa} m) from the aft end, forward; y = cell x BOA/2 ({boa} m); z \
-                = waterline x Depth ({depth} m) from the baseline; metres converted to {}",
-            units.plural_name()
+                = waterline x Depth ({depth} m) from the baseline{}",
+            converted("metres", units)
         ),
     );
     out.notes = notes;
     Ok(out)
+}
+
+/// `"; metres converted to feet"` when the file's unit (`from`, plural) is not `units`, else
+/// nothing.
+fn converted(from: &str, units: Units) -> String {
+    if units.plural_name() == from {
+        String::new()
+    } else {
+        format!("; {from} converted to {}", units.plural_name())
+    }
 }
 
 /// The station spacing of an OpenHull table, in metres, and where it came from.
