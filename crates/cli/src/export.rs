@@ -75,6 +75,30 @@ impl ExportFormat {
         }
     }
 
+    /// The file family: formats that share an extension (the IGES variants, the STLs).
+    fn family(self) -> &'static str {
+        match self {
+            ExportFormat::Step => "STEP",
+            ExportFormat::Iges | ExportFormat::IgesCurves | ExportFormat::IgesPolynomial => "IGES",
+            ExportFormat::Dxf => "DXF",
+            ExportFormat::Stl | ExportFormat::StlAscii => "STL",
+            ExportFormat::Obj => "OBJ",
+            ExportFormat::Glb => "glTF",
+        }
+    }
+
+    /// The usual extension of the format's files.
+    fn extension(self) -> &'static str {
+        match self {
+            ExportFormat::Step => "stp",
+            ExportFormat::Iges | ExportFormat::IgesCurves | ExportFormat::IgesPolynomial => "igs",
+            ExportFormat::Dxf => "dxf",
+            ExportFormat::Stl | ExportFormat::StlAscii => "stl",
+            ExportFormat::Obj => "obj",
+            ExportFormat::Glb => "glb",
+        }
+    }
+
     fn is_mesh(self) -> bool {
         matches!(self, ExportFormat::Stl | ExportFormat::StlAscii | ExportFormat::Obj | ExportFormat::Glb)
     }
@@ -102,7 +126,9 @@ pub struct ExportArgs {
     /// diagonal.
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
-    /// Meshes and DXF: add the port half (y -> -y), the full hull.
+    /// The full hull: add the port half (y -> -y). Meshes and DXF hold both halves; STEP and
+    /// IGES one surface joined along the keel line (a flat strip across the centre plane
+    /// where the half hull stops short of it, a flat of keel).
     #[arg(long)]
     pub mirror: bool,
     /// Date written into STEP and IGES headers, as Unix seconds (default: SOURCE_DATE_EPOCH,
@@ -135,6 +161,17 @@ fn format_of(args: &ExportArgs) -> anyhow::Result<ExportFormat> {
             args.out.display()
         );
     };
+    if let Some(named) = ExportFormat::from_path(&args.out).filter(|n| n.family() != format.family()) {
+        bail!(
+            "--format {} writes a {} file, but {} names a {} file: name it {} or pass --format {}",
+            format.name(),
+            format.family(),
+            args.out.display(),
+            named.family(),
+            args.out.with_extension(format.extension()).display(),
+            named.name()
+        );
+    }
     if let Some(t) = args.tolerance {
         if !(format.is_mesh() || format == ExportFormat::IgesPolynomial) {
             bail!("--tolerance applies to stl, stl-ascii, obj, glb and iges-polynomial, not {}", format.name());
@@ -142,9 +179,6 @@ fn format_of(args: &ExportArgs) -> anyhow::Result<ExportFormat> {
         if !(t.is_finite() && t > 0.0) {
             bail!("--tolerance {t}: expected a positive length");
         }
-    }
-    if args.mirror && !(format.is_mesh() || format == ExportFormat::Dxf) {
-        bail!("--mirror applies to stl, stl-ascii, obj, glb and dxf, not {}", format.name());
     }
     Ok(format)
 }
@@ -158,6 +192,12 @@ fn unix_time(args: &ExportArgs) -> i64 {
                 .duration_since(std::time::UNIX_EPOCH)
                 .map_or(0, |d| i64::try_from(d.as_secs()).unwrap_or(i64::MAX))
         })
+}
+
+/// `s` scaled by `k` about the origin (a change of length unit).
+fn scaled(s: &NurbsSurface, k: f64) -> anyhow::Result<NurbsSurface> {
+    let pts: Vec<Vec3> = s.control_points().into_iter().map(|p| p * k).collect();
+    Ok(NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &pts, Some(&s.weights()))?)
 }
 
 /// Diagonal of the control net's box.
@@ -179,6 +219,17 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
             let vs = section_parameters(&outcome.params);
             (outcome.surface, offsets.units, source, Some((offsets, vs)))
         }
+    };
+    // --units converts a surface.json (offsets are read in --units, the surface is in them).
+    let (surface, units) = match args.skin.units.filter(|u| *u != units && fitted.is_none()) {
+        Some(to) => (scaled(&surface, units.metres_per_unit() / to.metres_per_unit())?, to),
+        None => (surface, units),
+    };
+    // --mirror: meshes and DXF mirror their own output; the exchange formats one surface.
+    let surface = if args.mirror && matches!(format.family(), "STEP" | "IGES") {
+        hull::export::mirrored_full_hull(&surface).with_context(|| format!("cannot mirror {source}"))?
+    } else {
+        surface
     };
     // Nothing is created for a surface no file may hold (non-finite, bad weights or knots).
     hull::check_finite(&surface).with_context(|| format!("cannot export {source}"))?;
@@ -311,7 +362,12 @@ mod tests {
     fn flags_that_do_not_apply_are_refused() {
         let err = |argv: &[&str]| format_of(&parse(argv).expect("parses")).expect_err("refused").to_string();
         assert!(err(&["-o", "a.stp", "--tolerance", "0.01"]).contains("--tolerance"));
-        assert!(err(&["-o", "a.igs", "--mirror"]).contains("--mirror"));
+        // An extension that contradicts --format names the fix.
+        let e = err(&["-o", "x.stp", "--format", "stl"]);
+        assert!(e.contains("name it x.stl or pass --format step"), "{e}");
+        assert!(format_of(&parse(&["-o", "a.igs", "--format", "iges-curves"]).expect("ok")).is_ok());
+        assert!(format_of(&parse(&["-o", "a.stl", "--format", "stl-ascii"]).expect("ok")).is_ok());
+        assert!(format_of(&parse(&["-o", "a.igs", "--mirror"]).expect("ok")).is_ok());
         assert!(err(&["-o", "a.stl", "--tolerance", "0"]).contains("positive"));
         assert!(err(&["-o", "a.stl", "--tolerance", "-1"]).contains("positive"));
         assert!(format_of(&parse(&["-o", "a.stl", "--tolerance", "0.01", "--mirror"]).expect("ok")).is_ok());

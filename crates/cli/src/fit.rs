@@ -103,7 +103,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     // A mesh input is kept to measure the fitted surface against it.
     let (offsets, mesh, warnings) = match &args.skin.input {
         Some(path) if crate::slice::is_mesh_path(path) => {
-            let (mesh, sliced) = args.skin.mesh.read_and_slice(path, args.skin.units)?;
+            let (mesh, sliced) = args.skin.mesh.read_and_slice(path, args.skin.units())?;
             (sliced.offsets, Some(mesh), Vec::new())
         }
         _ => {

@@ -93,7 +93,10 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
         bail!("--density {}: expected a positive density in t/m³", args.density);
     }
     let (surface, units, source, data_pp) = match read_input(&args.skin)? {
-        Input::Surface { surface, units, source } => (surface, units, source, None),
+        Input::Surface { surface, units, source } => {
+            crate::surface_arg::note_units_not_applied(&args.skin, units, &source);
+            (surface, units, source, None)
+        }
         Input::Offsets(offsets) => {
             let config = args.skin.fit_config(args.method, OptimSettings::default());
             let (outcome, _) =

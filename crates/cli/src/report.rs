@@ -121,7 +121,10 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
 /// the fit flags.
 fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
     let offsets = match read_input(&args.skin)? {
-        Input::Surface { surface, units, source } => return surface_as_is(args, surface, units, source),
+        Input::Surface { surface, units, source } => {
+            crate::surface_arg::note_units_not_applied(&args.skin, units, &source);
+            return surface_as_is(args, surface, units, source);
+        }
         Input::Offsets(offsets) => offsets,
     };
     if let Some(path) = &args.offsets {

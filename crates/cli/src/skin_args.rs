@@ -34,8 +34,10 @@ pub struct SkinArgs {
     pub param: SkinParameterization,
     /// Units of the input coordinates, carried to the exports and the reported errors: m, mm,
     /// ft or in.
-    #[arg(long, default_value = "m", value_parser = parse_units)]
-    pub units: Units,
+    /// Default m. A surface.json carries its own units: `export --units` converts it to these,
+    /// the other commands say the flag does not apply.
+    #[arg(long, value_parser = parse_units)]
+    pub units: Option<Units>,
     /// Length between perpendiculars, breadth and design draft (in `--units`) that scale a
     /// dimensionless Series 60 table (default: the Cb 0.60 parent's 121.92, 16.26, 6.50 m);
     /// `--lpp` alone also gives the station spacing (Lpp / 20) of an OpenHull JSON table.
@@ -128,7 +130,7 @@ impl Default for SkinArgs {
             ctrl: None,
             degree: (3, 3),
             param: SkinParameterization::default(),
-            units: Units::Metre,
+            units: None,
             lpp: None,
             ap: None,
             outliers: hull::read::OutlierPolicy::Warn,
@@ -153,11 +155,16 @@ impl SkinArgs {
     pub fn offsets_with_warnings(&self) -> anyhow::Result<(Offsets, Vec<hull::read::SenseWarning>)> {
         Ok(match &self.input {
             Some(path) if crate::slice::is_mesh_path(path) => {
-                (crate::slice::mesh_offsets(path, &self.mesh, self.units)?, Vec::new())
+                (crate::slice::mesh_offsets(path, &self.mesh, self.units())?, Vec::new())
             }
             Some(path) => read_with_warnings(hull::read_offsets_with(path, &self.read_options())?),
             None => (hull::series60_sample(), Vec::new()),
         })
+    }
+
+    /// The units of offsets read: `--units`, metres by default.
+    pub fn units(&self) -> Units {
+        self.units.unwrap_or_default()
     }
 
     /// The perpendiculars: `--lpp` from `--ap` (default 0) when given, else the data's own
@@ -186,7 +193,7 @@ impl SkinArgs {
         // the formats where they are a property of the source (end stations beyond a stem).
         let min_points = self.degree.0 + 1;
         hull::ReadOptions {
-            units: self.units,
+            units: self.units(),
             dimensions,
             min_points,
             outliers: self.outliers,

@@ -35,7 +35,7 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
         return Ok(Input::Offsets(hull::series60_sample()));
     };
     if crate::slice::is_mesh_path(path) {
-        return Ok(Input::Offsets(crate::slice::mesh_offsets(path, &skin.mesh, skin.units)?));
+        return Ok(Input::Offsets(crate::slice::mesh_offsets(path, &skin.mesh, skin.units())?));
     }
     let source = path.display().to_string();
     hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface.json or offsets file")?;
@@ -52,6 +52,20 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
         return Ok(Input::Surface { surface, units, source });
     }
     Ok(Input::Offsets(crate::skin_args::report_reading(hull::read_offsets_with(path, &skin.read_options())?)))
+}
+
+/// A note on standard error when `--units` was given for a surface.json input in other units
+/// (a command that does not convert: the surface keeps its own).
+pub(crate) fn note_units_not_applied(skin: &SkinArgs, units: Units, source: &str) {
+    if let Some(given) = skin.units.filter(|u| *u != units) {
+        eprintln!(
+            "hullskin: note: --units {} does not apply to {source}: a surface.json carries its units ({}), kept here \
+             (hullskin export --units {} converts it)",
+            given.symbol(),
+            units.symbol(),
+            given.symbol()
+        );
+    }
 }
 
 /// A surface JSON error naming the file, and for a syntax error its line and column as
@@ -113,7 +127,7 @@ mod tests {
         let dir = tempfile::tempdir().expect("temp dir");
         let path = dir.path().join("s60.csv");
         std::fs::write(&path, hull::SERIES60_CB060_CSV).expect("write");
-        let args = SkinArgs { units: Units::Foot, ..skin(Some(path.clone())) };
+        let args = SkinArgs { units: Some(Units::Foot), ..skin(Some(path.clone())) };
         let read = offsets(read_input(&args).expect("reads"));
         let sample = hull::series60_sample();
         assert_eq!((read.units, read.source), (Units::Foot, path.display().to_string()));

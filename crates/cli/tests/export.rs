@@ -217,6 +217,44 @@ fn step_and_iges_exports_are_read_by_occt() {
     assert!(said.contains("exact"), "{said}");
 }
 
+/// Issue 12: `--mirror` writes the full hull as one surface in STEP and IGES (each half the
+/// fitted half or its mirror image, the flat of keel bridged), and `--units` converts a
+/// surface.json, written in the file's unit field; both read by OCCT, point for point.
+#[test]
+fn mirrored_and_converted_exports_are_read_by_occt() {
+    let Some(python) = tools_python("HULLSKIN_SKIP_OCCT") else { return };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    let (plain, _) = inputs();
+    let (s, _) = surface(plain);
+    let plain = plain.to_str().expect("utf-8 path");
+    let full = hull::export::mirrored_full_hull(&s).expect("mirrors");
+    // Both halves: the full hull spans -B/2 to B/2.
+    let (lo, hi) = (full.control_bounds().0, full.control_bounds().1);
+    assert!((lo.y + hi.y).abs() <= 1e-12 * hi.y && hi.y > 8.0, "{lo:?} {hi:?}");
+    for out in ["full.stp", "full.igs"] {
+        let said = run_ok(d, &["export", plain, "-o", out, "--mirror", "--timestamp", "0"]);
+        assert!(
+            said.contains(&format!("wrote {out}")) && said.contains(&format!("{}x{}", full.n_u(), full.n_v())),
+            "{said}"
+        );
+        let exp = expected(d, out, &full, "m", json!({}));
+        let (code, summary) = run_tool(&python, "occt_check.py", &[&d.join(out), &exp]);
+        assert_read_ok(out, code, &summary);
+    }
+    // A surface.json in metres written in millimetres: every pole times 1000, the unit MM.
+    let mm = {
+        let pts: Vec<Vec3> = s.control_points().into_iter().map(|p| p * 1000.0).collect();
+        NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &pts, Some(&s.weights())).expect("valid")
+    };
+    for out in ["mm.stp", "mm.igs"] {
+        run_ok(d, &["export", plain, "-o", out, "--units", "mm", "--timestamp", "0"]);
+        let exp = expected(d, out, &mm, "mm", json!({}));
+        let (code, summary) = run_tool(&python, "occt_check.py", &[&d.join(out), &exp]);
+        assert_read_ok(out, code, &summary);
+    }
+}
+
 /// The mesh read back by `tools/mesh_check.py`: vertices, faces, and the JSON summary.
 fn read_mesh(python: &str, path: &Path) -> (Vec<Vec3>, usize, Value) {
     let (code, summary) = run_tool(python, "mesh_check.py", &[path]);
@@ -354,7 +392,7 @@ fn bad_requests_fail_with_a_message_and_write_nothing() {
     for (args, says) in [
         (vec!["export", input, "-o", "x.txt"], "--format"),
         (vec!["export", input, "--tolerance", "0.1", "-o", "x.stp"], "--tolerance applies"),
-        (vec!["export", input, "--mirror", "-o", "x.igs"], "--mirror applies"),
+        (vec!["export", input, "--format", "stl", "-o", "x.stp"], "name it x.stl or pass --format step"),
         (vec!["export", input, "--tolerance", "-1", "-o", "x.stl"], "positive"),
         (vec!["export", input, "--tolerance", "1e-30", "-o", "x.obj"], "tolerance"),
         (vec!["export", "missing.json", "-o", "x.stp"], "missing.json"),

@@ -149,6 +149,12 @@ fn viewer_loads_without_errors_and_draws_the_mirrored_hull() {
     for (axis, shown, data) in [("x", b[3] - b[0], size.x), ("y", b[4], bounds.1.y), ("z", b[5] - b[2], size.z)] {
         assert!((shown - data).abs() <= 0.03 * data, "{axis}: shown {shown}, offsets {data}");
     }
+    // The first view: from the bow quarter (forward of the bow, to starboard) and above the
+    // hull's top (not up from below the keel), looking down.
+    let c: Vec<f64> = attr(&a, "data-camera").split(' ').map(|s| s.parse().expect("number")).collect();
+    assert_eq!(c.len(), 6);
+    let (eye, target) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]]);
+    assert!(eye[0] > b[3] && eye[1] > b[4] && eye[2] > b[5] && eye[2] > target[2], "camera at {eye:?}, box {b:?}");
 }
 
 /// The default view (panels hidden): the hull fills a sensible part of the picture, in the
@@ -177,7 +183,9 @@ fn screenshot_shows_the_hull_coloured_by_curvature() {
     let blue = hull.iter().filter(|p| p[2] as i32 > p[0] as i32 + 40).count() as f64 / hull.len() as f64;
     let red = hull.iter().filter(|p| p[0] as i32 > p[2] as i32 + 40).count() as f64 / hull.len() as f64;
     eprintln!("gaussian: blue {:.1} %, red {:.1} %", 100.0 * blue, 100.0 * red);
-    assert!(blue > 0.01 && red > 0.01, "blue {blue}, red {red}");
+    // From above the bow quarter the hull's hollows (K < 0: the forefoot, the run) show less
+    // than its bilges: measured 0.9 % and 2.1 %.
+    assert!(blue > 0.005 && red > 0.01, "blue {blue}, red {red}");
     let mut distinct: Vec<[u8; 3]> = hull.iter().map(|p| [p[0] >> 3, p[1] >> 3, p[2] >> 3]).collect();
     distinct.sort_unstable();
     distinct.dedup();
@@ -242,7 +250,9 @@ fn transposed_surface_gives_the_same_picture() {
     let (share, _) = coverage(w, h, &a);
     eprintln!("transposed: {differ} of {} pixels differ, hull {:.1} %", a.len(), 100.0 * share);
     // Same vertices and the same cell diagonals: only rounding differs (f32 sums in another
-    // order, antialiasing), a few edge pixels at most; a flipped side would change most of the hull.
-    assert!((differ as f64) < 0.002 * a.len() as f64, "{differ} pixels differ");
+    // order, antialiasing) and, seen from above, the depth ties where the two halves meet at
+    // the stem and along the flat of keel seen through the open deck (measured 0.46 % of the
+    // picture); a flipped side would change most of the hull (18 % of the picture).
+    assert!((differ as f64) < 0.008 * a.len() as f64, "{differ} pixels differ");
     assert!(share > 0.12, "hull covers {share}");
 }

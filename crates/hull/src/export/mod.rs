@@ -7,6 +7,7 @@
 pub mod float;
 pub mod iges;
 pub mod mesh_out;
+pub mod mirror;
 pub mod polynomial;
 pub mod step;
 pub mod surface_json;
@@ -16,6 +17,7 @@ pub use iges::{
     greville_v, iges_timestamp, section_curves, section_parameters, write_iges, write_iges_model, IgesMeta, IgesUnits,
 };
 pub use mesh_out::{write_glb, write_obj, write_stl_ascii, write_stl_binary};
+pub use mirror::mirrored_full_hull;
 pub use polynomial::{polynomial_approximation, PolynomialApproximation};
 pub use step::{step_timestamp, write_step, StepMeta};
 pub use surface_json::{read_surface_json, write_surface_json, SurfaceFile, SurfaceJsonError};

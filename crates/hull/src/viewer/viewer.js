@@ -306,9 +306,10 @@
     return pts;
   }
 
-  // A three-quarter view from forward, starboard and below, centred on the hull's picture and
-  // at the distance where the hull fills `FILL` of the picture's width or height.
-  var VIEW_DIR = new THREE.Vector3(0.9, 1.0, -0.65).normalize(), FILL = 0.86;
+  // A three-quarter view of the bow from forward, starboard and above the waterline (as a
+  // naval architect looks at a model), centred on the hull's picture and at the distance where
+  // the hull fills `FILL` of the picture's width or height.
+  var VIEW_DIR = new THREE.Vector3(1.2, 1.0, 0.3).normalize(), FILL = 0.86;
   function frame() {
     var pts = hullPoints(2), centre = hullBox().getCenter(new THREE.Vector3());
     var dir = VIEW_DIR, fwd = dir.clone().negate();
@@ -397,6 +398,8 @@
   var corners = [box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z];
   status.setAttribute("data-box", corners.map(function (x) { return x.toFixed(3); }).join(" "));
   status.setAttribute("data-field", state.field);
+  var eye = [camera.position.x, camera.position.y, camera.position.z, controls.target.x, controls.target.y, controls.target.z];
+  status.setAttribute("data-camera", eye.map(function (x) { return x.toFixed(3); }).join(" "));
   status.setAttribute("data-resources", String(performance.getEntriesByType("resource").length));
   if (!log.errors.length) status.setAttribute("data-state", "ok");
   status.textContent = log.errors.length ? "errors" : "ok " + renderer.info.render.triangles + " triangles";
