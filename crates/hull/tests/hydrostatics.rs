@@ -458,8 +458,31 @@ fn dtmb5415_main_and_bow_patches_match_the_published_figures() {
         let vol = main.vol + bow.vol;
         let lcb = (main.vol * main.lcb + bow.vol * bow.lcb) / vol;
         let lcb_pct = (lcb - midship) / lpp * 100.0;
+        // The two patches integrated together by the library, on the perpendiculars: the same
+        // sums in another order (round-off), and the trade's figures on Lpp from them.
+        let pp = Perpendiculars::try_new(0.004, lpp).expect("valid");
+        let both = [main_s.clone(), bow_s.clone()];
+        let hull = Hydrostatics::patches(&both, &HydrostaticsOptions { perpendiculars: Some(pp), ..opts })
+            .and_then(|h| h.at(t))
+            .expect("both at T");
+        assert_near!(hull.vol, vol, 1e-12 * vol);
+        assert_near!(hull.lcb, lcb, 1e-12 * lpp);
+        assert_near!(hull.lcb_pct_lpp.expect("with Lpp"), lcb_pct, 1e-9);
+        assert_near!(hull.s, main.s + bow.s, 1e-12 * hull.s);
+        assert_near!(hull.aw, main.aw + bow.aw, 1e-12 * hull.aw);
+        // The waterline runs over both patches: from the main patch's aft end to the bow's
+        // forward end.
+        assert!(hull.lwl > main.lwl && hull.bwl >= main.bwl.max(bow.bwl) - 1e-12, "{hull:?}");
         let vol_pub = 8424.0 / lambda.powi(3);
         let cb = vol / (lpp * 19.06 / lambda * t);
+        // The library's CB on Lpp takes the fitted Bwl for B (within 1 % of 19.06 m, below).
+        assert_near!(hull.cb_lpp.expect("with Lpp"), vol / (lpp * hull.bwl * t), 1e-12);
+        assert!(
+            (hull.cb_lpp.expect("with Lpp") / 0.506 - 1.0).abs() < 0.01,
+            "{}: CB(Lpp) {:?}",
+            method.name(),
+            hull.cb_lpp
+        );
         let s = main.s + bow.s;
         let s_pub = 2972.6 / (lambda * lambda);
         println!(

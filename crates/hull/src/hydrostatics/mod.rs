@@ -148,7 +148,7 @@ mod table;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use nurbs::NurbsSurface;
+use nurbs::{NurbsSurface, Vec3};
 
 use crate::error::HullError;
 use crate::offsets::Perpendiculars;
@@ -323,7 +323,8 @@ pub fn draft_range(from: f64, to: f64, step: f64) -> Result<Vec<f64>, HullError>
 /// A surface prepared for hydrostatics at any number of drafts.
 #[derive(Clone, Debug)]
 pub struct Hydrostatics<'a> {
-    integ: Integrator<'a>,
+    /// One integrator per patch of the hull (one for a single surface).
+    patches: Vec<Integrator<'a>>,
     options: HydrostaticsOptions,
 }
 
@@ -334,6 +335,19 @@ impl<'a> Hydrostatics<'a> {
     /// [`HullError::Config`] if the density is not a positive finite number, the order or
     /// split is outside 1..=64, or the perpendiculars are not a positive length apart.
     pub fn new(surface: &'a NurbsSurface, options: &HydrostaticsOptions) -> Result<Self, HullError> {
+        Hydrostatics::patches(std::slice::from_ref(surface), options)
+    }
+
+    /// Prepare a hull made of several patches (each a piece of the starboard half hull, as a
+    /// CAD model or the DTMB 5415's main and bow grids give it), integrated together: volumes,
+    /// moments, areas and the waterplane's integrals add up over the patches (each a surface
+    /// integral over its own part of the hull, the sign of its orientation divided out on its
+    /// own), the waterline's ends and breadth are the extremes over them, the midship section
+    /// the sum of their sections. The patches should not overlap (an overlap counts twice).
+    ///
+    /// # Errors
+    /// As [`Hydrostatics::new`], and [`HullError::Config`] for no patch at all.
+    pub fn patches(surfaces: &'a [NurbsSurface], options: &HydrostaticsOptions) -> Result<Self, HullError> {
         if !(options.density.is_finite() && options.density > 0.0) {
             return Err(HullError::Config(format!("density {}: expected a positive number (t/m³)", options.density)));
         }
@@ -345,18 +359,27 @@ impl<'a> Hydrostatics<'a> {
                 return Err(HullError::Config(format!("hydrostatics {name} {n}: expected 1 to 64")));
             }
         }
-        Ok(Hydrostatics { integ: Integrator::new(surface, options.order, options.split), options: *options })
+        if surfaces.is_empty() {
+            return Err(HullError::Config("hydrostatics of no surface: expected at least one patch".into()));
+        }
+        let patches = surfaces.iter().map(|s| Integrator::new(s, options.order, options.split)).collect();
+        Ok(Hydrostatics { patches, options: *options })
     }
 
     /// The highest z of the surface (sampled on 8 points per knot span and direction): the
     /// largest draft accepted.
     pub fn top(&self) -> f64 {
-        self.integ.top
+        self.patches.iter().map(|p| p.top).fold(f64::NEG_INFINITY, f64::max)
     }
 
     /// The lowest z of the surface (sampled as [`Hydrostatics::top`]).
     pub fn bottom(&self) -> f64 {
-        self.integ.bottom
+        self.patches.iter().map(|p| p.bottom).fold(f64::INFINITY, f64::min)
+    }
+
+    /// The model size: the largest patch's.
+    fn size(&self) -> f64 {
+        self.patches.iter().map(|p| p.size).fold(0.0, f64::max)
     }
 
     /// Check a draft: finite and not above the top.
@@ -364,9 +387,9 @@ impl<'a> Hydrostatics<'a> {
         if !draft.is_finite() {
             return Err(HullError::Draft { draft, reason: "expected a finite number".into() });
         }
-        let top = self.integ.top;
+        let top = self.top();
         // 1e-9 of the model: the sampled top is a hair below the true one.
-        if draft > top + 1e-9 * self.integ.size {
+        if draft > top + 1e-9 * self.size() {
             return Err(HullError::Draft {
                 draft,
                 reason: format!(
@@ -418,50 +441,69 @@ impl<'a> Hydrostatics<'a> {
     /// [`HullError::Draft`] as [`Hydrostatics::at`].
     pub fn web_area(&self, draft: f64) -> Result<f64, HullError> {
         self.check(draft)?;
-        if !self.integ.has_web || draft <= self.integ.bottom {
-            return Ok(0.0);
-        }
-        let eps = self.integ.eps;
-        Ok(2.0 * self.integ.wet(draft + eps, 2.0 * eps).sums.web)
+        Ok(self
+            .patches
+            .iter()
+            .filter(|p| p.has_web && draft > p.bottom)
+            .map(|p| 2.0 * p.wet(draft + p.eps, 2.0 * p.eps).sums.web)
+            .sum())
     }
 
     /// The figures at a checked draft.
     fn row(&self, t: f64) -> HydrostaticsRow {
         let zero = HydrostaticsRow::zero(t, self.options.perpendiculars.is_some());
-        if t <= self.integ.bottom {
-            return zero;
+        // Each patch's part: its wet sums with the sign of its orientation divided out, moments
+        // taken about the first patch's x0 (for a single patch the same arithmetic as ever).
+        let x0 = self.patches[0].x0;
+        let mut sum = Sums::default();
+        let mut wets = Vec::with_capacity(self.patches.len());
+        for p in &self.patches {
+            if t <= p.bottom {
+                continue;
+            }
+            // The waterline a hair above the draft: points on it within round-off count as
+            // wet, so a waterline along a knot line or a level top edge is found whatever the
+            // rounding.
+            let level = t + p.eps;
+            let wet = p.wet(level, 2.0 * p.eps);
+            let s: Sums = wet.sums;
+            let sigma = if s.vol >= 0.0 { 1.0 } else { -1.0 };
+            let d = p.x0 - x0;
+            sum.vol += sigma * s.vol;
+            sum.mx += sigma * (s.mx + d * s.vol);
+            sum.mz += sigma * s.mz;
+            sum.area += s.area;
+            sum.wa += sigma * s.wa;
+            sum.wx += sigma * (s.wx + d * s.wa);
+            sum.wxx += sigma * (s.wxx + d * (2.0 * s.wx + d * s.wa));
+            sum.wt += sigma * s.wt;
+            wets.push((p, wet, level));
         }
-        let eps = self.integ.eps;
-        // The waterline a hair above the draft: points on it within round-off count as wet, so
-        // a waterline along a knot line or a level top edge is found whatever the rounding.
-        let level = t + eps;
-        let wet = self.integ.wet(level, 2.0 * eps);
-        let s: Sums = wet.sums;
-        let sigma = if s.vol >= 0.0 { 1.0 } else { -1.0 };
-        let half_vol = sigma * s.vol;
+        let half_vol = sum.vol;
         if !(half_vol > 0.0) {
             return zero;
         }
-        let x0 = self.integ.x0;
         let vol = 2.0 * half_vol;
-        let lcb = x0 + s.mx / s.vol;
-        let vcb = s.mz / s.vol;
-        let half_aw = sigma * s.wa;
+        let lcb = x0 + sum.mx / sum.vol;
+        let vcb = sum.mz / sum.vol;
+        let half_aw = sum.wa;
         let (aw, lcf, i_t, i_l) = if half_aw > 0.0 {
-            let lcf_rel = s.wx / s.wa;
-            let i_l = 2.0 * sigma * (s.wxx - lcf_rel * s.wx);
-            (2.0 * half_aw, x0 + lcf_rel, 2.0 * sigma * s.wt, i_l)
+            let lcf_rel = sum.wx / sum.wa;
+            let i_l = 2.0 * (sum.wxx - lcf_rel * sum.wx);
+            (2.0 * half_aw, x0 + lcf_rel, 2.0 * sum.wt, i_l)
         } else {
             (0.0, 0.0, 0.0, 0.0)
         };
-        let aft = self.integ.waterline_max(&wet, level, |p| -p.x).map(|(v, _)| -v);
-        let fore = self.integ.waterline_max(&wet, level, |p| p.x).map(|(v, _)| v);
-        let half_b = self.integ.waterline_max(&wet, level, |p| p.y).map(|(v, _)| v);
+        // The waterline's extremes over the patches.
+        let extreme = |g: &dyn Fn(Vec3) -> f64| {
+            wets.iter().filter_map(|(p, wet, level)| p.waterline_max(wet, *level, g).map(|(v, _)| v)).reduce(f64::max)
+        };
+        let aft = extreme(&|p: Vec3| -p.x).map(|v| -v);
+        let fore = extreme(&|p: Vec3| p.x);
+        let half_b = extreme(&|p: Vec3| p.y);
+        let section = |x: f64| -> f64 { wets.iter().map(|(p, _, level)| 2.0 * p.half_section_area(x, *level)).sum() };
         let (lwl, bwl, am) = match (aft, fore, half_b) {
-            (Some(a), Some(f), Some(b)) => {
-                let am = 2.0 * self.integ.half_section_area(0.5 * (a + f), level);
-                (f - a, 2.0 * b.max(0.0), am)
-            }
+            (Some(a), Some(f), Some(b)) => (f - a, 2.0 * b.max(0.0), section(0.5 * (a + f))),
             _ => (0.0, 0.0, 0.0),
         };
         let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { 0.0 };
@@ -470,7 +512,7 @@ impl<'a> Hydrostatics<'a> {
         // One centimetre in the surface's unit.
         let cm = 0.01 / self.options.units.metres_per_unit();
         let pp = self.options.perpendiculars;
-        let am_pp = pp.map(|p| 2.0 * self.integ.half_section_area(p.midship(), level));
+        let am_pp = pp.map(|p| section(p.midship()));
         let length = pp.map_or(lwl, |p| p.lpp());
         HydrostaticsRow {
             draft: t,
@@ -492,7 +534,7 @@ impl<'a> Hydrostatics<'a> {
             cp_lpp: pp.zip(am_pp).map(|(p, a)| ratio(vol, a * p.lpp())),
             lcf,
             lcf_pct_lpp: pp.map(|p| if aw > 0.0 { p.percent_from_midship(lcf) } else { 0.0 }),
-            s: 2.0 * s.area,
+            s: 2.0 * sum.area,
             tpc: aw * cm * density_per_cubic_unit(self.options.density, self.options.units),
             mct: ratio(displ * bml, 100.0 * length),
             bmt,
