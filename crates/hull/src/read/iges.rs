@@ -136,6 +136,15 @@ fn split_sections<'a>(bytes: &'a [u8], source: &str) -> Result<Sections<'a>, Hul
         }
         let err = |found: String| cad_error(source, Some(line), "record", found, RECORD);
         if rec.len() < 73 {
+            if lines.peek().is_none_or(|(_, r)| r.trim_ascii().is_empty()) {
+                return Err(cad_error(
+                    source,
+                    Some(line),
+                    "record",
+                    format!("the last record has {} columns", rec.len()),
+                    "80-column records up to the terminate (T) record: is the file truncated?",
+                ));
+            }
             return Err(err(format!("a record of {} columns", rec.len())));
         }
         let letter = rec[72];
