@@ -84,7 +84,7 @@ impl ExportFormat {
 #[derive(Debug, Args)]
 #[command(mut_arg("input", |a| a
     .value_name("SURFACE_OR_INPUT")
-    .help("A surface.json written by `hullskin fit`, or an offsets file fitted first with --method and \
+    .help("A surface.json written by `hullskin fit`, an IGES or STEP file holding one B-spline surface, or an offsets file fitted first with --method and \
            the skinning flags. Without it the built-in Series 60 Cb 0.60 sample is fitted")))]
 pub struct ExportArgs {
     #[command(flatten)]

@@ -27,7 +27,7 @@ use crate::surface_arg::{read_input, Input};
 #[derive(Debug, Args)]
 #[command(mut_arg("input", |a| a
     .value_name("SURFACE_OR_INPUT")
-    .help("A surface.json written by `hullskin fit` (used as it is), or an offsets file (sections CSV \
+    .help("A surface.json written by `hullskin fit` or an IGES or STEP file of one B-spline surface (used as it is), or an offsets file (sections CSV \
            or offset table) fitted first with --method and the skinning flags. Without it the built-in \
            Series 60 Cb 0.60 sample is fitted")),
     mut_arg("method", |a| a.help("Fit of an offsets input, as `hullskin fit --method`: interp, approx, or approx \

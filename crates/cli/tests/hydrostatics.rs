@@ -91,6 +91,45 @@ fn a_surface_json_from_fit_gives_the_same_figures_as_fitting_on_the_fly() {
     }
 }
 
+/// `hullskin hydrostatics x.igs` and `x.stp`: the surface exported by `hullskin export` and
+/// read back gives the very figures of its surface.json (both formats carry it bit for bit);
+/// a file of two surfaces is refused with their names.
+#[test]
+fn iges_and_step_surfaces_give_the_figures_of_their_surface_json() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    run_ok(d, &["fit", "-o", "out"]);
+    let args =
+        |input: &'static str| ["hydrostatics", input, "--draft", "2", "--to", "6", "--step", "2", "--format", "csv"];
+    let from_json = run_ok(d, &args("out/surface.json"));
+    for file in ["x.igs", "x.stp"] {
+        run_ok(d, &["export", "out/surface.json", "-o", file, "--timestamp", "0"]);
+        let o = hullskin(d, &args(file));
+        let (out, err) = text(&o);
+        assert!(o.status.success(), "{file}: {err}");
+        assert_eq!(out, from_json, "{file}");
+        if file.ends_with(".stp") {
+            assert!(err.contains("hullskin: note: x.stp: the bounds of 1 face (ADVANCED_FACE) ignored"), "{err}");
+        }
+    }
+    // A second copy of the surface instance: two surfaces, refused with their names.
+    let stp = fs::read_to_string(d.join("x.stp")).expect("read");
+    let start = stp.find("B_SPLINE_SURFACE_WITH_KNOTS('hull'").expect("the surface");
+    let id_start = stp[..start].rfind('#').expect("its name");
+    let end = id_start + stp[id_start..].find(";\n").expect("its end") + 2;
+    let copy = format!("#999999{}", &stp[stp[id_start..].find('=').expect("=") + id_start..end]);
+    let two = stp.replacen("ENDSEC;\nEND-ISO-10303-21;", &format!("{copy}ENDSEC;\nEND-ISO-10303-21;"), 1);
+    fs::write(d.join("two.stp"), two).expect("write");
+    let o = hullskin(d, &["hydrostatics", "two.stp", "--draft", "2"]);
+    let (_, err) = text(&o);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("two.stp: 2 B-spline surfaces (#")
+            && err.contains(", #999999 'hull'); this command takes one surface"),
+        "{err}"
+    );
+}
+
 #[test]
 fn text_table_is_aligned_with_units_and_one_line_per_draft() {
     let dir = tempfile::tempdir().expect("temp dir");

@@ -138,7 +138,13 @@ pub fn parse_cad_surfaces(bytes: &[u8], source: &str, target: Option<Units>) -> 
     parse_as(bytes, source, CadFormat::sniff(bytes), target)
 }
 
-fn parse_as(
+/// [`parse_cad_surfaces`] in the given format (`None`: neither, an error), for a caller that
+/// has the bytes and told the format itself (e.g. [`CadFormat::sniff`], else
+/// [`CadFormat::from_path`]).
+///
+/// # Errors
+/// As [`parse_cad_surfaces`].
+pub fn parse_as(
     bytes: &[u8],
     source: &str,
     format: Option<CadFormat>,
