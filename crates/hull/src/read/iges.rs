@@ -679,7 +679,7 @@ impl<'a> IgesFile<'a> {
         let m1 = count(&mut f, "M1, the degree along u (1 to 15)")?;
         let m2 = count(&mut f, "M2, the degree along v (1 to 15)")?;
         let (nu, nv) = (k1.saturating_add(1), k2.saturating_add(1));
-        limits::control_points(self.source, nu, nv).map_err(|l| HullError::from(l))?;
+        limits::control_points(self.source, nu, nv).map_err(HullError::from)?;
         for (m, k, dir) in [(m1, k1, "u"), (m2, k2, "v")] {
             if !(1..=nurbs::MAX_DEGREE).contains(&m) || m > k {
                 return Err(cad_error(
