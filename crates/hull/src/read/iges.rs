@@ -18,7 +18,8 @@
 //!   `M`, `KM`, `MIL`, `UM`, `CM`, `UIN`).
 //! * **Directory** (2.2.4.4): two records of ten 8-column fields per entity. Read are the
 //!   entity type (field 1), the parameter data pointer (2), the transformation matrix pointer
-//!   (7), the parameter line count (14), the form (15), the label (18) and its subscript (19).
+//!   (7), the parameter line count (14) and the label (18). The form of a 128 (field 15) only
+//!   names the shape its parameters give (section 4.24), so it is not read.
 //! * **Parameter data** (2.2.4.5): columns 1-64 of the P records, from the entry's first record
 //!   for its line count, each pointing back to its directory entry in columns 65-72. Free
 //!   format (2.2.2): integers, reals (with `E` or `D` exponents), Hollerith strings `nHc..c`
@@ -94,8 +95,8 @@ pub fn parse_iges(bytes: &[u8], source: &str, target: Option<Units>) -> Result<C
                 let surface = raw.build(scale, source, e.line, &e.name())?;
                 surfaces.push(CadSurface { surface, name });
             }
-            // Applied to the surfaces that point to it; a free-standing one is counted.
-            124 if entries.iter().any(|o| o.kind == 128 && o.transform == 2 * k + 1) => {}
+            // Applied to the surfaces (and matrices) that point to it; a free-standing one is counted.
+            124 if entries.iter().any(|o| o.transform == 2 * k + 1) => {}
             143 | 144 => {
                 let base = file.base_of(e)?;
                 match file.entry(base, &entries, e, "the base surface pointer")? {
@@ -524,7 +525,6 @@ struct Entry {
     first_p: usize,
     transform: usize,
     p_count: usize,
-    form: i64,
     label: String,
 }
 
@@ -590,7 +590,6 @@ impl<'a> IgesFile<'a> {
                 first_p: pointer(field(0, 2, "the parameter data pointer")?),
                 transform: pointer(field(0, 7, "the transformation matrix pointer")?),
                 p_count: pointer(field(1, 4, "the parameter line count")?),
-                form: field(1, 5, "the form number")?,
                 label: String::from_utf8_lossy(&pair[1].1[56..64]).trim().to_string(),
             };
             if field(1, 1, "the entity type number")? != kind {
@@ -679,7 +678,7 @@ impl<'a> IgesFile<'a> {
         let m1 = count(&mut f, "M1, the degree along u (1 to 15)")?;
         let m2 = count(&mut f, "M2, the degree along v (1 to 15)")?;
         let (nu, nv) = (k1.saturating_add(1), k2.saturating_add(1));
-        limits::control_points(self.source, nu, nv).map_err(HullError::from)?;
+        limits::control_points(&format!("{}:{}: {name}", self.source, e.line), nu, nv).map_err(HullError::from)?;
         for (m, k, dir) in [(m1, k1, "u"), (m2, k2, "v")] {
             if !(1..=nurbs::MAX_DEGREE).contains(&m) || m > k {
                 return Err(cad_error(
@@ -744,7 +743,6 @@ impl<'a> IgesFile<'a> {
         if props[2] == 1 && weights.iter().any(|&w| w != weights[0]) {
             notes.push(format!("{name}: PROP3 says polynomial but the weights differ: the weights are used"));
         }
-        let _ = e.form; // forms 0-9 only name the shape the parameters give (section 4.24).
         Ok(RawSurface { degree: (m1, m2), knots: (ku, kv), points, weights })
     }
 
@@ -932,8 +930,11 @@ mod tests {
             e.to_string(),
             "t.igs:6: entity 128 at D 1, parameter 26: \"x\" is not a number (expected the coordinate Y(1,0))"
         );
-        let e = parse_iges(b"short\n", "t.igs", None).expect_err("short");
+        let e = parse_iges(b"short\nrecords\n", "t.igs", None).expect_err("short");
         assert!(e.to_string().starts_with("t.igs:1: record: a record of 5 columns"), "{e}");
+        let e = parse_iges(b"cut\n", "t.igs", None).expect_err("cut");
+        assert!(e.to_string().starts_with("t.igs:1: record: the last record has 3 columns"), "{e}");
+        assert!(e.to_string().ends_with("is the file truncated?)"), "{e}");
     }
 
     #[test]

@@ -443,7 +443,8 @@ impl<'a> StepFile<'a> {
             Param::List(r) => r.len(),
             _ => 0,
         };
-        limits::control_points(self.source, nu, nv).map_err(HullError::from)?;
+        let at = format!("{}:{}: #{} {what}", self.source, inst.line, inst.id);
+        limits::control_points(&at, nu, nv).map_err(HullError::from)?;
         let mut points = Vec::with_capacity(nu * nv);
         for (i, row) in rows.iter().enumerate() {
             let row = match row {
@@ -938,6 +939,16 @@ mod tests {
         );
         let e = parse_step(file(&cyclic).as_bytes(), "t.stp", None).expect_err("cycle");
         assert!(e.to_string().contains("a cycle of unit references #6 -> #7 -> #8 -> #7"), "{e}");
+    }
+
+    #[test]
+    fn several_surfaces_in_file_order() {
+        let second = "#6=B_SPLINE_SURFACE_WITH_KNOTS('',1,1,((#4,#3),(#2,#1)),.UNSPECIFIED.,.F.,.F.,.F.,(2,2),(2,2),\
+                      (0.,1.),(0.,1.),.UNSPECIFIED.);";
+        let got = parse_step(file(&format!("{second}\n{BILINEAR}")).as_bytes(), "t.stp", None).expect("reads");
+        let names: Vec<&str> = got.surfaces.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names, ["#5 'patch'", "#6"], "by instance name");
+        assert_eq!(got.surfaces[1].surface.control_point(0, 0), Vec3::new(2.0, 1.0, 1.0));
     }
 
     #[test]
