@@ -67,12 +67,15 @@ impl CadFormat {
         }
     }
 
-    /// The format the content shows: an IGES start record (`S` in column 73 of the first line,
-    /// IGES 5.3 section 2.2.4.1) or the STEP exchange-structure keyword `ISO-10303-21;` first
+    /// The format the content shows: an IGES start record (`S` in column 73 of the first line
+    /// and sequence number 1 in columns 74-80, IGES 5.3 section 2.2.4.1) or the STEP exchange-structure keyword `ISO-10303-21;` first
     /// (ISO 10303-21 section 5.2), after blanks and comments.
     pub fn sniff(bytes: &[u8]) -> Option<Self> {
         let first = bytes.split(|&b| b == b'\n').next().unwrap_or(&[]);
-        if first.get(72) == Some(&b'S') {
+        let first = first.strip_suffix(b"\r").unwrap_or(first);
+        // Also the sequence number 1 in columns 74-80, so a long CSV line with an S there is not taken.
+        let seq = first.get(73..80).and_then(|s| std::str::from_utf8(s).ok()).map(str::trim);
+        if first.get(72) == Some(&b'S') && seq.is_some_and(|s| s.parse() == Ok(1u32)) {
             return Some(CadFormat::Iges);
         }
         let mut rest = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
@@ -266,6 +269,8 @@ mod tests {
         assert_eq!(CadFormat::sniff(b"\xEF\xBB\xBFISO-10303-21;"), Some(CadFormat::Step));
         assert_eq!(CadFormat::sniff(b"/* never closed ISO-10303-21;"), None);
         assert_eq!(CadFormat::sniff(b"section,x,y,z\n"), None);
+        let csv = format!("{}S,1,2\n", "x".repeat(72));
+        assert_eq!(CadFormat::sniff(csv.as_bytes()), None, "an S in column 73 alone is not IGES");
         assert_eq!(CadFormat::from_path(Path::new("a/HULL.IGS")), Some(CadFormat::Iges));
         assert_eq!(CadFormat::from_path(Path::new("hull.Step")), Some(CadFormat::Step));
         assert_eq!(CadFormat::from_path(Path::new("hull.csv")), None);
