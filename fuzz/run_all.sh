@@ -16,6 +16,8 @@ dict_of() {
   case $1 in
     read_json_table) echo json ;;
     surface_json) echo surface ;;
+    read_iges) echo iges ;;
+    read_step) echo step ;;
     mesh_stl | mesh_parse_slice) echo stl ;;
     mesh_obj) echo obj ;;
     drawing_dxf | drawing_digitize) echo dxf ;;

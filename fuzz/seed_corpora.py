@@ -5,7 +5,10 @@ Seeds: the small inputs of testdata/ each target reads (at most 16 KiB, so that 
 default input length stays small and the runs fast), the regression inputs of
 testdata/fuzz/<target>/, and a few generated inputs written to fuzz/seeds/ (committed; this
 script rewrites them byte for byte): a small closed Wigley hull as ASCII STL, binary STL, OBJ
-and gzipped STL, and surface JSONs (bilinear and bicubic, polynomial and rational).
+and gzipped STL, and surface JSONs (bilinear and bicubic, polynomial and rational). The IGES
+and STEP seeds of fuzz/seeds/cad/ are committed as written, not generated here:
+hullskin_*.igs/.stp by `hullskin export fuzz/seeds/surface_json/<name>.json --timestamp 0`,
+occt_*.igs/.stp by tools/occt_write.py (Open CASCADE).
 
 Usage, from the repository root: python3 fuzz/seed_corpora.py
 Standard library only.
@@ -250,6 +253,8 @@ def main():
         "drawing_svg": [p for p in drawings if p.suffix == ".svg"],
         "drawing_digitize": drawings,
         "surface_json": sorted((seeds / "surface_json").iterdir()),
+        "read_iges": sorted((seeds / "cad").glob("*.igs")),
+        "read_step": sorted((seeds / "cad").glob("*.stp")),
     }
     for target, files in per_target.items():
         corpus = FUZZ / "corpus" / target

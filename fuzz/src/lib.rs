@@ -41,6 +41,8 @@ pub const TARGETS: &[(&str, Target)] = &[
     ("drawing_svg", drawing_svg),
     ("drawing_digitize", drawing_digitize),
     ("surface_json", surface_json),
+    ("read_iges", read_iges),
+    ("read_step", read_step),
 ];
 
 /// The target of that name.
@@ -256,12 +258,42 @@ fn use_sketch(sketch: &digitize::Sketch) {
 }
 
 /// `hull::export::read_surface_json`, then the surface used as `hullskin hydrostatics` and
-/// `report` use it: points, derivatives, normals and curvatures over the domain, an iso-curve,
-/// a closest point, and hydrostatics at mid draft.
+/// `report` use it ([`use_surface`]).
 pub fn surface_json(data: &[u8], _source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
     let (s, units) = hull::export::read_surface_json(text).map_err(|e| e.to_string())?;
     let _ = units.parse::<Units>();
+    use_surface(&s);
+    Ok(())
+}
+
+/// `hull::read::iges::parse_iges` in the file's unit and in metres, then each surface used as
+/// [`surface_json`] uses it.
+pub fn read_iges(data: &[u8], source: &str) -> Result<(), String> {
+    let _ = read::cad::CadFormat::sniff(data);
+    cad(read::iges::parse_iges, data, source)
+}
+
+/// `hull::read::step::parse_step`, as [`read_iges`].
+pub fn read_step(data: &[u8], source: &str) -> Result<(), String> {
+    let _ = read::cad::CadFormat::sniff(data);
+    cad(read::step::parse_step, data, source)
+}
+
+type CadParser = fn(&[u8], &str, Option<Units>) -> Result<read::cad::CadSurfaces, HullError>;
+
+fn cad(parse: CadParser, data: &[u8], source: &str) -> Result<(), String> {
+    let _ = parse(data, source, Some(Units::Metre));
+    let read = parse(data, source, None).map_err(|e| message(&e))?;
+    for s in &read.surfaces {
+        use_surface(&s.surface);
+    }
+    Ok(())
+}
+
+/// A surface read: points, derivatives, normals and curvatures over the domain, an iso-curve,
+/// a closest point, and hydrostatics at mid draft.
+fn use_surface(s: &nurbs::NurbsSurface) {
     let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
     for a in [-0.5, 0.0, 0.3, 0.5, 1.0, 1.5] {
         for b in [0.0, 0.7, 1.0] {
@@ -278,10 +310,9 @@ pub fn surface_json(data: &[u8], _source: &str) -> Result<(), String> {
     let (lo, hi) = s.control_bounds();
     let _ = s.transposed();
     let q = Vec3::new(0.5 * (lo.x + hi.x), hi.y + 1.0, 0.5 * (lo.z + hi.z));
-    let _ = SurfaceProjector::new(&s, ProjectionOptions::default()).project(q);
+    let _ = SurfaceProjector::new(s, ProjectionOptions::default()).project(q);
     let options = hull::HydrostaticsOptions { order: 2, split: 1, ..hull::HydrostaticsOptions::default() };
-    if let Ok(h) = hull::Hydrostatics::new(&s, &options) {
+    if let Ok(h) = hull::Hydrostatics::new(s, &options) {
         let _ = h.at(0.5 * (lo.z + hi.z));
     }
-    Ok(())
 }

@@ -108,7 +108,7 @@ impl ExportFormat {
 #[derive(Debug, Args)]
 #[command(mut_arg("input", |a| a
     .value_name("SURFACE_OR_INPUT")
-    .help("A surface.json written by `hullskin fit`, or an offsets file fitted first with --method and \
+    .help("A surface.json written by `hullskin fit`, an IGES or STEP file holding one B-spline surface, or an offsets file fitted first with --method and \
            the skinning flags. Without it the built-in Series 60 Cb 0.60 sample is fitted")))]
 pub struct ExportArgs {
     #[command(flatten)]
@@ -209,7 +209,7 @@ fn size(s: &NurbsSurface) -> f64 {
 pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
     let format = format_of(args)?;
     // The surface, and the offsets with the sections' v when it was fitted here.
-    let (surface, units, source, fitted) = match read_input(&args.skin)? {
+    let (surface, units, source, fitted) = match read_input(&args.skin)?.single()? {
         Input::Surface { surface, units, source } => (surface, units, source, None),
         Input::Offsets(offsets) => {
             let config = args.skin.fit_config(args.method, OptimSettings::default());
@@ -219,6 +219,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
             let vs = section_parameters(&outcome.params);
             (outcome.surface, offsets.units, source, Some((offsets, vs)))
         }
+        Input::Patches { .. } => unreachable!("single() refuses patches"),
     };
     // --units converts a surface.json (offsets are read in --units, the surface is in them).
     let (surface, units) = match args.skin.units.filter(|u| *u != units && fitted.is_none()) {

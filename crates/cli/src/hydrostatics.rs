@@ -29,7 +29,7 @@ pub enum Format {
 #[derive(Debug, Args)]
 #[command(mut_arg("input", |a| a
     .value_name("SURFACE")
-    .help("A surface.json written by `hullskin fit`, or an offsets file (sections CSV or offset table) \
+    .help("A surface.json written by `hullskin fit`, an IGES or STEP file holding one B-spline surface, or an offsets file (sections CSV or offset table) \
            fitted first with --method and the skinning flags. Without it the built-in Series 60 \
            Cb 0.60 sample is fitted")))]
 pub struct HydrostaticsArgs {
@@ -92,17 +92,25 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
     if !(args.density.is_finite() && args.density > 0.0) {
         bail!("--density {}: expected a positive density in t/m³", args.density);
     }
-    let (surface, units, source, data_pp) = match read_input(&args.skin)? {
+    let (surfaces, units, source, data_pp) = match read_input(&args.skin)? {
         Input::Surface { surface, units, source } => {
             crate::surface_arg::note_units_not_applied(&args.skin, units, &source);
-            (surface, units, source, None)
+            (vec![surface], units, source, None)
+        }
+        Input::Patches { surfaces, names, units, source } => {
+            eprintln!(
+                "hullskin: note: {source}: {} surfaces ({}) integrated together as the patches of one hull",
+                surfaces.len(),
+                names.join(", ")
+            );
+            (surfaces, units, source, None)
         }
         Input::Offsets(offsets) => {
             let config = args.skin.fit_config(args.method, OptimSettings::default());
             let (outcome, _) =
                 fit_with_progress(&offsets, &config, None).with_context(|| format!("cannot fit {}", offsets.source))?;
             (
-                outcome.surface,
+                vec![outcome.surface],
                 offsets.units,
                 format!("{}, fitted by {}", offsets.source, args.method.name()),
                 offsets.perpendiculars,
@@ -112,7 +120,7 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
     let perpendiculars = args.skin.perpendiculars(data_pp)?;
     let options =
         HydrostaticsOptions { density: args.density, units, perpendiculars, ..HydrostaticsOptions::default() };
-    let hydro = Hydrostatics::new(&surface, &options)?;
+    let hydro = Hydrostatics::patches(&surfaces, &options)?;
     let rows = hydro.rows(&drafts).with_context(|| format!("hydrostatics of {source}"))?;
     // Centre-plane webs (a station sliced from a mesh as two pieces joined on y = 0): their
     // area is left out of S; say how much (the largest over the drafts), on standard error so

@@ -27,7 +27,7 @@ use crate::surface_arg::{read_input, Input};
 #[derive(Debug, Args)]
 #[command(mut_arg("input", |a| a
     .value_name("SURFACE_OR_INPUT")
-    .help("A surface.json written by `hullskin fit` (used as it is), or an offsets file (sections CSV \
+    .help("A surface.json written by `hullskin fit` or an IGES or STEP file of one B-spline surface (used as it is), or an offsets file (sections CSV \
            or offset table) fitted first with --method and the skinning flags. Without it the built-in \
            Series 60 Cb 0.60 sample is fitted")),
     mut_arg("method", |a| a.help("Fit of an offsets input, as `hullskin fit --method`: interp, approx, or approx \
@@ -120,12 +120,13 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
 /// Read the input: a surface.json as it is (with `--offsets` if given), or offsets fitted with
 /// the fit flags.
 fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
-    let offsets = match read_input(&args.skin)? {
+    let offsets = match read_input(&args.skin)?.single()? {
         Input::Surface { surface, units, source } => {
             crate::surface_arg::note_units_not_applied(&args.skin, units, &source);
             return surface_as_is(args, surface, units, source);
         }
         Input::Offsets(offsets) => offsets,
+        Input::Patches { .. } => unreachable!("single() refuses patches"),
     };
     if let Some(path) = &args.offsets {
         bail!(

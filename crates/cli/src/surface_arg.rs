@@ -1,8 +1,9 @@
-//! The input of the commands that work on a fitted surface (`hydrostatics`, `report`): a
-//! `surface.json` written by `hullskin fit`, or offsets to be fitted first with the skinning
-//! flags of [`SkinArgs`] (the built-in Series 60 sample when no input is given).
+//! The input of the commands that work on a fitted surface (`hydrostatics`, `report`,
+//! `export`): a `surface.json` written by `hullskin fit`, an IGES or STEP file holding one
+//! B-spline surface, or offsets to be fitted first with the skinning flags of [`SkinArgs`] (the
+//! built-in Series 60 sample when no input is given).
 
-use anyhow::Context;
+use anyhow::{bail, Context};
 use hull::{Offsets, Units};
 use nurbs::NurbsSurface;
 
@@ -10,26 +11,60 @@ use crate::skin_args::SkinArgs;
 
 /// What the input holds.
 pub(crate) enum Input {
-    /// A surface read from a JSON as it is (`--units` and the skinning flags play no part).
+    /// A surface read from a JSON, IGES or STEP file as it is (`--units` and the skinning
+    /// flags play no part).
     Surface {
         /// The starboard half-hull surface.
         surface: NurbsSurface,
-        /// Its length unit: the JSON's `units`.
+        /// Its length unit: the JSON's `units`, the IGES or STEP file's length unit.
         units: Units,
         /// The input's path, for titles and messages.
         source: String,
     },
     /// Offsets (a file read in `--units`, or the built-in sample), to be fitted.
     Offsets(Offsets),
+    /// Several surfaces of one IGES or STEP file: the patches of one hull (hydrostatics
+    /// integrates them together; the other commands take one surface).
+    Patches {
+        /// The patches, in the file's order.
+        surfaces: Vec<NurbsSurface>,
+        /// Their names (the entity's label, or its place).
+        names: Vec<String>,
+        /// Their length unit: the file's.
+        units: Units,
+        /// The input's path.
+        source: String,
+    },
+}
+
+impl Input {
+    /// The one surface of a surface input or the offsets; several patches refused for the
+    /// commands that take one surface, naming them.
+    ///
+    /// # Errors
+    /// An input of several patches.
+    pub(crate) fn single(self) -> anyhow::Result<Input> {
+        match self {
+            Input::Patches { names, source, .. } => bail!(
+                "{source}: {} B-spline surfaces ({}); this command takes one surface (expected a file holding one: \
+                 export the patches one by one, or join them into one surface; hydrostatics integrates them together)",
+                names.len(),
+                names.join(", ")
+            ),
+            other => Ok(other),
+        }
+    }
 }
 
 /// Read `skin.input`: a surface JSON (recognised by its first non-blank character, `{`, unless
-/// it holds a JSON offset table, see `hull::read::json_table`), or
-/// anything else as offsets in `skin.units`; without an input, the built-in sample's offsets.
+/// it holds a JSON offset table, see `hull::read::json_table`), an IGES or STEP file (by its
+/// content, else its extension, see `hull::CadFormat`) holding exactly one B-spline surface,
+/// or anything else as offsets in `skin.units`; without an input, the built-in sample's offsets.
 ///
 /// # Errors
 /// A file that cannot be read or is not text, a JSON that is not a surface (or has unknown
-/// units), and every parse error of the offsets; each names the file.
+/// units), an IGES or STEP file that breaks its format or holds no or several surfaces, and
+/// every parse error of the offsets; each names the file.
 pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
     let Some(path) = &skin.input else {
         return Ok(Input::Offsets(hull::series60_sample()));
@@ -40,6 +75,9 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
     let source = path.display().to_string();
     hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface.json or offsets file")?;
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
+    if let Some(format) = hull::CadFormat::sniff(&bytes).or_else(|| hull::CadFormat::from_path(path)) {
+        return cad_surface(&bytes, &source, format);
+    }
     let text = hull::decode(&bytes, &source)?;
     // A UTF-8 byte-order mark (a Windows editor's) is no part of the JSON.
     let text = text.strip_prefix('\u{FEFF}').unwrap_or(text);
@@ -66,6 +104,35 @@ pub(crate) fn note_units_not_applied(skin: &SkinArgs, units: Units, source: &str
             given.symbol()
         );
     }
+}
+
+/// The B-spline surfaces of an IGES or STEP file, in the file's length unit: one surface, or
+/// the patches of one hull; the reader's notes go to stderr.
+fn cad_surface(bytes: &[u8], source: &str, format: hull::CadFormat) -> anyhow::Result<Input> {
+    let read = hull::read::cad::parse_as(bytes, source, Some(format), None)?;
+    for note in &read.notes {
+        eprintln!("hullskin: note: {source}: {note}");
+    }
+    let mut surfaces = read.surfaces;
+    let surface = match surfaces.len() {
+        1 => surfaces.remove(0).surface,
+        0 => bail!(
+            "{source}: no B-spline surface in the {} file (expected one rational B-spline surface: IGES entity 128, \
+             STEP B_SPLINE_SURFACE_WITH_KNOTS)",
+            format.name()
+        ),
+        _ => {
+            for s in &surfaces {
+                hull::check_finite(&s.surface)
+                    .with_context(|| format!("cannot use the surface {} of {source}", s.name))?;
+            }
+            let names = surfaces.iter().map(|s| s.name.clone()).collect();
+            let surfaces = surfaces.into_iter().map(|s| s.surface).collect();
+            return Ok(Input::Patches { surfaces, names, units: read.units, source: source.to_string() });
+        }
+    };
+    hull::check_finite(&surface).with_context(|| format!("cannot use the surface {source}"))?;
+    Ok(Input::Surface { surface, units: read.units, source: source.to_string() })
 }
 
 /// A surface JSON error naming the file, and for a syntax error its line and column as

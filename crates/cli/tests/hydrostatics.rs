@@ -155,6 +155,62 @@ fn a_surface_json_from_fit_gives_the_same_figures_as_fitting_on_the_fly() {
     }
 }
 
+/// `hullskin hydrostatics x.igs` and `x.stp`: the surface exported by `hullskin export` and
+/// read back gives the very figures of its surface.json (both formats carry it bit for bit);
+/// a file of two surfaces is integrated as two patches by `hydrostatics` and refused, with
+/// their names, by `export` (one surface).
+#[test]
+fn iges_and_step_surfaces_give_the_figures_of_their_surface_json() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    run_ok(d, &["fit", "-o", "out"]);
+    let args =
+        |input: &'static str| ["hydrostatics", input, "--draft", "2", "--to", "6", "--step", "2", "--format", "csv"];
+    let from_json = run_ok(d, &args("out/surface.json"));
+    for file in ["x.igs", "x.stp"] {
+        run_ok(d, &["export", "out/surface.json", "-o", file, "--timestamp", "0"]);
+        let o = hullskin(d, &args(file));
+        let (out, err) = text(&o);
+        assert!(o.status.success(), "{file}: {err}");
+        assert_eq!(out, from_json, "{file}");
+        if file.ends_with(".stp") {
+            assert!(err.contains("hullskin: note: x.stp: the bounds of 1 face (ADVANCED_FACE) ignored"), "{err}");
+        }
+    }
+    // A second copy of the surface instance: two surfaces, refused with their names.
+    let stp = fs::read_to_string(d.join("x.stp")).expect("read");
+    let start = stp.find("B_SPLINE_SURFACE_WITH_KNOTS('hull'").expect("the surface");
+    let id_start = stp[..start].rfind('#').expect("its name");
+    let end = id_start + stp[id_start..].find(";\n").expect("its end") + 2;
+    let copy = format!("#999999{}", &stp[stp[id_start..].find('=').expect("=") + id_start..end]);
+    let two = stp.replacen("ENDSEC;\nEND-ISO-10303-21;", &format!("{copy}ENDSEC;\nEND-ISO-10303-21;"), 1);
+    fs::write(d.join("two.stp"), two).expect("write");
+    // The same patch twice: every extensive figure twice the one patch's (the patches are
+    // summed; an overlap counts twice), the coefficients on Lwl unchanged up to round-off.
+    let o = hullskin(d, &["hydrostatics", "two.stp", "--draft", "4", "--format", "json"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("2 surfaces (#") && err.contains("integrated together"), "{err}");
+    let two: Value = serde_json::from_str(&out).expect("JSON");
+    let one: Value =
+        serde_json::from_str(&run_ok(d, &["hydrostatics", "x.stp", "--draft", "4", "--format", "json"])).expect("JSON");
+    let get = |v: &Value, k: &str| v["rows"][0][k].as_f64().expect("a number");
+    for k in ["vol", "aw", "s", "displ", "tpc"] {
+        assert!((get(&two, k) - 2.0 * get(&one, k)).abs() <= 1e-12 * get(&two, k), "{k}");
+    }
+    for k in ["lcb", "vcb", "lwl", "kmt"] {
+        assert!((get(&two, k) - get(&one, k)).abs() <= 1e-12 * get(&one, k).abs().max(1.0), "{k}");
+    }
+    let o = hullskin(d, &["export", "two.stp", "-o", "two.igs"]);
+    let (_, err) = text(&o);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("two.stp: 2 B-spline surfaces (#")
+            && err.contains(", #999999 'hull'); this command takes one surface"),
+        "{err}"
+    );
+}
+
 #[test]
 fn text_table_is_aligned_with_units_and_one_line_per_draft() {
     let dir = tempfile::tempdir().expect("temp dir");

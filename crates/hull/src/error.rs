@@ -433,6 +433,20 @@ pub enum InputErrorKind {
         expected: String,
     },
 
+    // ----- CAD surfaces read by `read::iges` and `read::step` -----
+    /// An IGES or STEP file that breaks its format, or an entity that cannot be a B-spline
+    /// surface: which entity (and parameter), what was found and what was expected.
+    #[error("{entity}: {found} (expected {expected})")]
+    Cad {
+        /// The entity and parameter, e.g. `entity 128 at D 3, parameter 12 (S(0))` or
+        /// `#42 CARTESIAN_POINT`; `file` for the file as a whole.
+        entity: String,
+        /// What was found, e.g. `"1.0.0" is not a number`.
+        found: String,
+        /// What the format asks for there.
+        expected: String,
+    },
+
     // ----- drawings read by `digitize` (DXF and SVG body plans) -----
     /// A drawing that breaks its format, or a drawn curve that cannot be a station: what was
     /// found and what was expected.

@@ -58,6 +58,7 @@ pub use pipeline::{
 pub use read::{
     decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
 };
+pub use read::{parse_cad_surfaces, read_cad_surfaces, CadFormat, CadSurface, CadSurfaces};
 pub use read::{
     parse_offsets_with, read_offsets_with, Disagreement, MainDimensions, ReadOptions, ReadOutcome, SuspiciousPolicy,
     SuspiciousValue, ThreeViews,

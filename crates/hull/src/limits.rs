@@ -20,6 +20,8 @@
 //! | [`MAX_MESH_FILE_BYTES`] | 1 GiB | a binary STL of [`MAX_MESH_TRIANGLES`] is 1 GB |
 //! | [`MAX_DRAWING_FILE_BYTES`] | 256 MiB | a body-plan drawing is a few MB |
 //! | [`MAX_SURFACE_JSON_BYTES`] | 1 GiB | [`MAX_CONTROL_POINTS`] poles at ~80 bytes a line, plus weights |
+//! | [`MAX_CAD_FILE_BYTES`] | 1 GiB | [`MAX_CONTROL_POINTS`] poles as IGES or STEP text: ~110 bytes each |
+//! | [`MAX_STEP_INSTANCES`] | 10,000,000 | one `CARTESIAN_POINT` per pole of the largest surface, and more |
 //! | [`MAX_SECTIONS`] | 10,000 | a section every 1 cm over a 100 m hull |
 //! | [`MAX_POINTS_PER_SECTION`] | 100,000 | 0.1 mm spacing over a 10 m girth |
 //! | [`MAX_POINTS`] | 2,000,000 | one projection each for the fit error: ~1 min on 2 cores |
@@ -51,6 +53,14 @@ pub const MAX_DRAWING_FILE_BYTES: u64 = 256 << 20;
 /// Bytes of a `surface.json`. [`MAX_CONTROL_POINTS`] poles at about 80 bytes a line, plus their
 /// weights, is under 400 MB.
 pub const MAX_SURFACE_JSON_BYTES: u64 = 1 << 30;
+/// Bytes of an IGES or STEP file read for its B-spline surfaces ([`crate::read::cad`]). A pole
+/// is four reals of at most 24 characters: in IGES about 110 bytes with the delimiters and the
+/// 16 columns of sequence numbers per 64 of data, in STEP a `CARTESIAN_POINT` line of about
+/// 90 bytes plus its reference and weight; [`MAX_CONTROL_POINTS`] poles stay under 500 MB.
+pub const MAX_CAD_FILE_BYTES: u64 = 1 << 30;
+/// Entity instances of one STEP file: the reader keeps 24 bytes of index per instance (240 MB
+/// at the cap), and the largest surface needs one `CARTESIAN_POINT` per pole.
+pub const MAX_STEP_INSTANCES: usize = 10_000_000;
 /// Sections (stations) of one offsets set: one every centimetre along a 100 m hull.
 pub const MAX_SECTIONS: usize = 10_000;
 /// Points of one section: 0.1 mm spacing along a 10 m girth.
@@ -91,6 +101,9 @@ const _: () = {
     // An interpolating skin of the largest offsets set (one pole per offset) is allowed.
     assert!(MAX_POINTS <= MAX_CONTROL_POINTS);
     assert!(MAX_POINTS_PER_SECTION <= MAX_CONTROL_POINTS_PER_DIRECTION);
+    // The largest surface's poles fit the STEP instance cap and the CAD file cap (~110 bytes each).
+    assert!(MAX_CONTROL_POINTS < MAX_STEP_INSTANCES);
+    assert!(MAX_CONTROL_POINTS as u64 * 110 < MAX_CAD_FILE_BYTES);
     // Population x iterations of the largest run is within the evaluation cap's type.
     assert!((MAX_OPTIM_ITERATIONS as u64).checked_mul(MAX_OPTIM_POPULATION as u64).is_some());
 };

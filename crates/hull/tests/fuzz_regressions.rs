@@ -132,6 +132,10 @@ fn seeds(name: &str) -> Vec<Vec<u8>> {
                 .collect()
         }
         "surface_json" => seed_dir("surface_json"),
+        "read_iges" | "read_step" => {
+            let ext = if name == "read_iges" { "igs" } else { "stp" };
+            seed_dir("cad").into_iter().filter(|p| p.extension().is_some_and(|e| e == ext)).collect()
+        }
         "read_detect" => [offsets, seed_dir("json_table")].concat(),
         _ => offsets,
     };
@@ -141,15 +145,20 @@ fn seeds(name: &str) -> Vec<Vec<u8>> {
 
 #[test]
 fn the_committed_seeds_parse() {
-    for (name, dir) in [
-        ("mesh_parse_slice", "mesh"),
-        ("read_json_table", "json_table"),
-        ("drawing_digitize", "drawing"),
-        ("surface_json", "surface_json"),
+    for (name, dir, ext) in [
+        ("mesh_parse_slice", "mesh", ""),
+        ("read_json_table", "json_table", ""),
+        ("drawing_digitize", "drawing", ""),
+        ("surface_json", "surface_json", ""),
+        ("read_iges", "cad", "igs"),
+        ("read_step", "cad", "stp"),
     ] {
         let t = target(name).expect("a target of the list");
-        let files = files_in(&root().join("fuzz/seeds").join(dir));
-        assert!(!files.is_empty(), "fuzz/seeds/{dir} is empty");
+        let files: Vec<PathBuf> = files_in(&root().join("fuzz/seeds").join(dir))
+            .into_iter()
+            .filter(|p| ext.is_empty() || p.extension().is_some_and(|e| e == ext))
+            .collect();
+        assert!(!files.is_empty(), "fuzz/seeds/{dir} has no {name} seed");
         for f in files {
             let source = f.display().to_string();
             let result = run(t, &read(&f), &source).unwrap_or_else(|p| panic!("{source}: panicked: {p}"));
@@ -216,6 +225,8 @@ fn dictionary_of(name: &str) -> &'static str {
     match name {
         "read_json_table" => "json.dict",
         "surface_json" => "surface.dict",
+        "read_iges" => "iges.dict",
+        "read_step" => "step.dict",
         "mesh_stl" | "mesh_parse_slice" => "stl.dict",
         "mesh_obj" => "obj.dict",
         "drawing_dxf" | "drawing_digitize" => "dxf.dict",

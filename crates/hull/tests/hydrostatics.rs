@@ -4,11 +4,13 @@
 
 use std::path::Path;
 
+mod common;
+
 use hull::{
     fit_offsets, read_offsets, FitConfig, FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsRow,
     Perpendiculars, Units, HYDROSTATICS_COLUMNS,
 };
-use nurbs::{assert_near, KnotVector, NurbsSurface, Vec3};
+use nurbs::{assert_near, NurbsSurface, Vec3};
 
 /// The Wigley hull of `testdata/wigley_offsets.csv`: L/B = 10, L/T = 16.
 const L: f64 = 100.0;
@@ -19,20 +21,9 @@ fn testdata(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
 }
 
-/// The Wigley hull `y = (B/2)(1 - (2 xi/L)^2)(1 - ((T - z)/T)^2)`, `xi = x - L/2`, `z` up from
-/// the keel, as a degree (2,2) Bezier patch: `y` is quadratic in `x` and in `z`, so with
-/// `z = T u` and `x = L v` the patch reproduces it exactly. Bernstein coefficients:
-/// `4 v (1 - v) = 2 B_1(v)` -> `[0, 2, 0]`; `2u - u^2` -> `[0, 1, 1]`.
+/// The Wigley hull as an exact degree (2, 2) Bezier patch ([`common::surfaces::wigley_patch`]).
 fn wigley_patch() -> NurbsSurface {
-    let k = || KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("Bezier knots");
-    let (fv, gu) = ([0.0, 2.0, 0.0], [0.0, 1.0, 1.0]);
-    let mut pts = Vec::new();
-    for (i, g) in gu.iter().enumerate() {
-        for (j, f) in fv.iter().enumerate() {
-            pts.push(Vec3::new(L * j as f64 / 2.0, 0.5 * B * f * g, T * i as f64 / 2.0));
-        }
-    }
-    NurbsSurface::try_new(k(), k(), &pts, None).expect("valid patch")
+    common::surfaces::wigley_patch(L, B, T)
 }
 
 /// The Wigley hull's figures at draft `t <= T`, closed forms (derived in the comments). With

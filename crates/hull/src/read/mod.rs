@@ -10,6 +10,9 @@
 //! | station point clouds (`x y z` or `y z` blocks) | [`point_cloud`] | whitespace-separated numbers |
 //! | FREE!ship offsets export and curve import text | [`freeship`] | a `Station 1.000` line, or a first line `0`/`1` |
 //!
+//! B-spline *surfaces* (not offsets) are read from IGES and STEP files by [`cad`] ([`iges`],
+//! [`step`]), through [`read_cad_surfaces`].
+//!
 //! The CSV formats are delimited text, UTF-8 (a byte-order mark is skipped; UTF-16 is refused
 //! with a message saying so), with `\n`, `\r\n` or `\r` line ends, mixed as they come.
 //! Fields are trimmed of spaces and tabs; a field may be quoted with `"` (a doubled `""` inside
@@ -40,7 +43,9 @@
 //! The readers parse; they do not check the data can be skinned: call
 //! [`Offsets::validate`] with the fit's degree + 1 for that.
 
+pub mod cad;
 pub mod freeship;
+pub mod iges;
 pub mod json_table;
 pub mod long_csv;
 pub mod offset_table;
@@ -48,6 +53,7 @@ pub mod point_cloud;
 pub mod sections_csv;
 pub mod sense;
 pub mod series60_table;
+pub mod step;
 pub mod views;
 
 use std::borrow::Cow;
@@ -57,6 +63,7 @@ use crate::error::{HullError, InputErrorKind, Location};
 use crate::offsets::Offsets;
 use crate::units::Units;
 
+pub use cad::{parse_cad_surfaces, read_cad_surfaces, CadFormat, CadSurface, CadSurfaces};
 pub use offset_table::parse_offset_table;
 pub use sections_csv::parse_sections_csv;
 pub use sense::{find_outliers, Outlier, OutlierPolicy, SenseKind, SenseWarning};

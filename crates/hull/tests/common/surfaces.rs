@@ -1,6 +1,6 @@
-//! Surfaces and sample points shared by the export checks (IGES, STEP).
+//! Surfaces and sample points shared by the export checks (IGES, STEP) and the CAD readers.
 
-use nurbs::{NurbsSurface, Vec3};
+use nurbs::{KnotVector, NurbsSurface, Vec3};
 
 /// The same surface with every control point multiplied by `k` (a change of length unit).
 pub fn scaled(s: &NurbsSurface, k: f64) -> NurbsSurface {
@@ -27,4 +27,71 @@ pub fn samples(s: &NurbsSurface) -> Vec<[f64; 5]> {
             [u, v, p.x, p.y, p.z]
         })
         .collect()
+}
+
+/// (a) Rational bicubic, non-uniform knots with a double knot in v, v domain not [0, 1],
+/// weights from 0.55 to 1.85: a hull-like half section swept along x.
+pub fn rational_bicubic() -> NurbsSurface {
+    let ku = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.15, 0.4, 0.42, 1.0, 1.0, 1.0, 1.0]).expect("valid");
+    let kv = KnotVector::try_new(3, vec![-1.0, -1.0, -1.0, -1.0, 0.3, 0.3, 2.0, 4.5, 4.5, 4.5, 4.5]).expect("valid");
+    let (nu, nv) = (ku.num_basis(), kv.num_basis());
+    let mut pts = Vec::new();
+    let mut w = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            let (a, b) = (i as f64 / (nu - 1) as f64, j as f64 / (nv - 1) as f64);
+            let beam = 8.0 * (1.0 - (2.0 * a - 1.0).powi(4));
+            pts.push(Vec3::new(120.0 * a, beam * (b * 1.3).sin().min(1.0) + 0.01 * i as f64, 6.5 * b - 0.2 * a));
+            w.push(0.55 + 1.3 * ((i * 7 + j * 3) % 11) as f64 / 10.0);
+        }
+    }
+    NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+}
+
+/// (b) Polynomial, degree 2 in u and 3 in v, uniform knots, weights all 1.
+pub fn polynomial() -> NurbsSurface {
+    let ku = KnotVector::uniform(2, 6).expect("valid");
+    let kv = KnotVector::uniform(3, 5).expect("valid");
+    let (nu, nv) = (ku.num_basis(), kv.num_basis());
+    let mut pts = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            let (x, y) = (i as f64 * 2.5, j as f64 * 1.25);
+            pts.push(Vec3::new(x, y, 0.1 * x * x - 0.3 * x * y + 0.05 * y * y * y));
+        }
+    }
+    NurbsSurface::try_new(ku, kv, &pts, None).expect("valid")
+}
+
+/// (c) The exact quarter cylinder of radius `r` and length `h`: rational quadratic in u
+/// (middle weight 1/sqrt 2), linear in v.
+pub fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
+    let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
+    let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let mut pts = Vec::new();
+    let mut w = Vec::new();
+    for (x, y, wi) in [(r, 0.0, 1.0), (r, r, s), (0.0, r, 1.0)] {
+        for z in [0.0, h] {
+            pts.push(Vec3::new(x, y, z));
+            w.push(wi);
+        }
+    }
+    NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+}
+
+/// The Wigley hull of length `l`, beam `b` and draft `t`, `y = (B/2)(1 - (2 xi/L)^2)(1 - ((T - z)/T)^2)`, `xi = x - L/2`, `z` up from
+/// the keel, as a degree (2,2) Bezier patch: `y` is quadratic in `x` and in `z`, so with
+/// `z = T u` and `x = L v` the patch reproduces it exactly. Bernstein coefficients:
+/// `4 v (1 - v) = 2 B_1(v)` -> `[0, 2, 0]`; `2u - u^2` -> `[0, 1, 1]`.
+pub fn wigley_patch(l: f64, b: f64, t: f64) -> NurbsSurface {
+    let k = || KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("Bezier knots");
+    let (fv, gu) = ([0.0, 2.0, 0.0], [0.0, 1.0, 1.0]);
+    let mut pts = Vec::new();
+    for (i, g) in gu.iter().enumerate() {
+        for (j, f) in fv.iter().enumerate() {
+            pts.push(Vec3::new(l * j as f64 / 2.0, 0.5 * b * f * g, t * i as f64 / 2.0));
+        }
+    }
+    NurbsSurface::try_new(k(), k(), &pts, None).expect("valid patch")
 }
