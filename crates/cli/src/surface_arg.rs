@@ -163,7 +163,9 @@ mod tests {
     fn offsets(input: Input) -> Offsets {
         match input {
             Input::Offsets(o) => o,
-            Input::Surface { source, .. } => panic!("{source} read as a surface, expected offsets"),
+            Input::Surface { source, .. } | Input::Patches { source, .. } => {
+                panic!("{source} read as a surface, expected offsets")
+            }
         }
     }
 
@@ -185,7 +187,7 @@ mod tests {
                 assert_eq!(units, Units::Foot);
                 assert_eq!(source, path.display().to_string());
             }
-            Input::Offsets(_) => panic!("a surface.json read as offsets"),
+            Input::Offsets(_) | Input::Patches { .. } => panic!("a surface.json read as offsets or patches"),
         }
     }
 

@@ -260,7 +260,11 @@ fn wigley_hydrostatics_from_iges_and_step_equal_those_from_surface_json() {
             for (a, b) in g.values().iter().zip(w.values()) {
                 // The poles differ by the rounding of x 1000 / 1000 (1e-16); the integrals
                 // amplify it by the conditioning of the waterline search, well under 1e-12.
-                assert!(near(*a, b, b.abs()), "{name}: {a} against {b}");
+                // (Without perpendiculars both rows lack the figures on Lpp.)
+                match (*a, b) {
+                    (Some(a), Some(b)) => assert!(near(a, b, b.abs()), "{name}: {a} against {b}"),
+                    (a, b) => assert_eq!(a, b, "{name}"),
+                }
             }
         }
     }
