@@ -8,7 +8,9 @@
 //! 1,5,0,0
 //! ```
 //!
-//! - Header `section,x,y,z` (case-insensitive, fields trimmed).
+//! - Header `section,x,y,z` (case-insensitive, fields trimmed): `section` first, then `x`, `y`
+//!   and `z` in any order, each name possibly with its unit (`x_m`, `y [mm]`, `z (ft)`: the
+//!   sense checks warn when that unit is not the one read in).
 //! - Each row is a point `(x, y, z)` of the section named in the first field (any text or
 //!   number). The rows of a section are consecutive and in order along it (keel to deck);
 //!   sections follow each other along the length. A label that comes back after another
@@ -43,7 +45,7 @@ pub fn parse_sections_csv(text: &str, source: &str, units: Units) -> Result<Offs
     let Some((header, rows)) = recs.split_first() else {
         return Err(HullError::input(Location::file(source), InputErrorKind::Empty));
     };
-    check_header(header, source)?;
+    let columns = check_header(header, source)?;
     if rows.is_empty() {
         return Err(HullError::input(
             Location::line(source, header.line),
@@ -70,7 +72,7 @@ pub fn parse_sections_csv(text: &str, source: &str, units: Units) -> Result<Offs
         }
         let mut coord = [0.0; 3];
         for (k, c) in coord.iter_mut().enumerate() {
-            let col = k + 2;
+            let col = columns[k] + 1;
             let expected = || format!("the {} coordinate in {}", HEADER[k + 1], units.plural_name());
             match row.fields.get(col - 1) {
                 Some(f) => *c = parse_number(&f.text, || row.at(source, col), expected)?,
@@ -109,24 +111,45 @@ pub fn parse_sections_csv(text: &str, source: &str, units: Units) -> Result<Offs
     Ok(Offsets::new(source, units, sections))
 }
 
-/// The header must read `section,x,y,z`.
-fn check_header(header: &super::Record<'_>, source: &str) -> Result<(), HullError> {
+/// The base of a column name: lower case, without a unit after `_`, a blank, `[` or `(`.
+pub(super) fn base_name(name: &str) -> String {
+    let n = name.trim().to_ascii_lowercase();
+    n.split(['_', ' ', '[', '(']).next().unwrap_or_default().to_string()
+}
+
+/// The header must read `section` then `x`, `y`, `z` in any order; returns the 0-based field
+/// of x, y and z.
+fn check_header(header: &super::Record<'_>, source: &str) -> Result<[usize; 3], HullError> {
     let got = header.significant_len();
-    for (k, want) in HEADER.iter().enumerate() {
-        match header.fields.get(k) {
-            Some(f) if f.text.eq_ignore_ascii_case(want) => {}
-            Some(f) if !f.text.is_empty() || k < got => {
-                return Err(HullError::input(
-                    header.at(source, k + 1),
-                    InputErrorKind::BadHeader { got: f.text.to_string(), expected: (*want).into() },
-                ))
-            }
-            _ => {
-                return Err(HullError::input(
-                    header.at(source, k + 1),
-                    InputErrorKind::FieldCount { got, expected: HEADER.len(), layout: LAYOUT.into() },
-                ))
-            }
+    let mut columns = [usize::MAX; 3];
+    for k in 0..HEADER.len() {
+        let Some(f) = header.fields.get(k).filter(|f| !f.text.is_empty() || k < got) else {
+            return Err(HullError::input(
+                header.at(source, k + 1),
+                InputErrorKind::FieldCount { got, expected: HEADER.len(), layout: LAYOUT.into() },
+            ));
+        };
+        let name = base_name(&f.text);
+        let slot = HEADER[1..].iter().position(|h| *h == name);
+        let ok = match (k, slot) {
+            (0, _) => name == HEADER[0],
+            (_, Some(c)) => columns[c] == usize::MAX,
+            (_, None) => false,
+        };
+        if !ok {
+            // What this field should be: the canonical name, or the one still missing.
+            let missing = (0..3).find(|&c| {
+                columns[c] == usize::MAX
+                    && !header.fields[k..got.min(HEADER.len())].iter().any(|g| base_name(&g.text) == HEADER[c + 1])
+            });
+            let expected = if k == 0 { HEADER[0] } else { missing.map_or(HEADER[k], |c| HEADER[c + 1]) };
+            return Err(HullError::input(
+                header.at(source, k + 1),
+                InputErrorKind::BadHeader { got: f.text.to_string(), expected: expected.into() },
+            ));
+        }
+        if let Some(c) = slot.filter(|_| k > 0) {
+            columns[c] = k;
         }
     }
     if got > HEADER.len() {
@@ -135,7 +158,7 @@ fn check_header(header: &super::Record<'_>, source: &str) -> Result<(), HullErro
             InputErrorKind::FieldCount { got, expected: HEADER.len(), layout: LAYOUT.into() },
         ));
     }
-    Ok(())
+    Ok(columns)
 }
 
 #[cfg(test)]
@@ -151,6 +174,19 @@ mod tests {
     }
 
     const GOOD: &str = "section,x,y,z\nA,0,0,0\nA,0,1,0.5\n\n# next\nB,2.5,0,0\nB,2.5,1.5,1\n";
+
+    #[test]
+    fn columns_are_found_by_name_in_any_order_with_their_units() {
+        let reordered = "Section,z,Y_m,x [m]\nA,0,0,0\nA,0.5,1,0\n\n# next\nB,0,0,2.5\nB,1,1.5,2.5\n";
+        let (a, b) = (parse(GOOD).expect("valid"), parse(reordered).expect("valid"));
+        assert_eq!(a.sections, b.sections);
+        assert!(
+            err("section,x,x,z\nA,0,0,0\n").contains("\"x\" (expected \"y\""),
+            "{}",
+            err("section,x,x,z\nA,0,0,0\n")
+        );
+        assert!(err("label,x,y,z\nA,0,0,0\n").contains("expected \"section\""));
+    }
 
     #[test]
     fn groups_consecutive_rows_into_sections_with_their_lines() {

@@ -405,8 +405,12 @@ pub fn sense_check(
     if policy == OutlierPolicy::Keep {
         return Ok(out);
     }
-    // The y field of a sections CSV row (`section,x,y,z`); the other formats place their cells.
-    let y_column = (format == InputFormat::SectionsCsv).then_some(3);
+    // The y field of a sections CSV row (its header names it); the other formats place their
+    // cells.
+    let y_column = (format == InputFormat::SectionsCsv).then(|| records(text, source).ok()).flatten().and_then(|r| {
+        r.first()
+            .and_then(|h| h.fields.iter().find(|f| super::sections_csv::base_name(&f.text) == "y").map(|f| f.column))
+    });
     for o in outliers {
         let s = &offsets.sections[o.section];
         let at = place(s, source, o.point, y_column);
