@@ -157,9 +157,34 @@ impl SkinArgs {
             Some(path) if crate::slice::is_mesh_path(path) => {
                 (crate::slice::mesh_offsets(path, &self.mesh, self.units())?, Vec::new())
             }
-            Some(path) => read_with_warnings(hull::read_offsets_with(path, &self.read_options())?),
+            Some(path) => {
+                let outcome = hull::read_offsets_with(path, &self.read_options())?;
+                self.note_flags_not_applied(outcome.format, false);
+                read_with_warnings(outcome)
+            }
             None => (hull::series60_sample(), Vec::new()),
         })
+    }
+
+    /// A note on standard error for each reading flag that does nothing to an input of
+    /// `format`: `--beam` and `--design-draft` (a Series 60 table's), `--lpp` (a Series 60 or
+    /// OpenHull table's, and the perpendiculars where `lpp_used`).
+    pub fn note_flags_not_applied(&self, format: hull::InputFormat, lpp_used: bool) {
+        let name = format.name();
+        if format != hull::InputFormat::Series60Table {
+            for (flag, given) in [("--beam", self.beam.is_some()), ("--design-draft", self.design_draft.is_some())] {
+                if given {
+                    eprintln!("hullskin: note: {flag} scales a Series 60 table only; it does nothing to this {name}");
+                }
+            }
+        }
+        let scales = matches!(format, hull::InputFormat::Series60Table | hull::InputFormat::JsonTable);
+        if self.lpp.is_some() && !scales && !lpp_used {
+            eprintln!(
+                "hullskin: note: --lpp scales a Series 60 table or spaces an OpenHull table's stations (and places \
+                 the perpendiculars of hydrostatics and report); it does nothing to this {name}"
+            );
+        }
     }
 
     /// The units of offsets read: `--units`, metres by default.

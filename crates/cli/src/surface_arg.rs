@@ -89,7 +89,10 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
         let units: Units = units.parse().with_context(|| format!("{source}: \"units\""))?;
         return Ok(Input::Surface { surface, units, source });
     }
-    Ok(Input::Offsets(crate::skin_args::report_reading(hull::read_offsets_with(path, &skin.read_options())?)))
+    let outcome = hull::read_offsets_with(path, &skin.read_options())?;
+    // hydrostatics and report take --lpp as the perpendiculars too.
+    skin.note_flags_not_applied(outcome.format, true);
+    Ok(Input::Offsets(crate::skin_args::report_reading(outcome)))
 }
 
 /// A note on standard error when `--units` was given for a surface.json input in other units

@@ -327,3 +327,24 @@ fn fit_json_prints_the_report_on_standard_output() {
     assert_eq!(printed, read_json(&dir.path().join("j/report.json")));
     assert!(err.contains("wrote j"), "{err}");
 }
+
+/// Issue 12: a flag that does nothing to the input says so (on standard error), and the fit
+/// is the one without it.
+#[test]
+fn flags_that_do_not_apply_to_the_input_say_so() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let input = testdata("sections_example.csv");
+    let input = input.to_str().expect("utf-8 path");
+    let o = hullskin(dir.path(), &["fit", input, "--lpp", "100", "--held-out", "0", "-o", "a"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    assert!(err.contains("hullskin: note: --lpp") && err.contains("does nothing to this sections CSV"), "{err}");
+    let o = hullskin(dir.path(), &["fit", input, "--held-out", "0", "-o", "b"]);
+    assert!(o.status.success());
+    let surface = |d: &str| std::fs::read(dir.path().join(d).join("surface.json")).expect("surface.json");
+    assert_eq!(surface("a"), surface("b"));
+    // hydrostatics places the perpendiculars with --lpp: no note there.
+    let o = hullskin(dir.path(), &["hydrostatics", input, "--lpp", "100", "--draft", "0.5"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success() && !err.contains("--lpp"), "{out}\n{err}");
+}
