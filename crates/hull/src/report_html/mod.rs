@@ -1106,7 +1106,7 @@ fn comparison(c: &Comparison) -> String {
     if !c.complete {
         s.push_str(&format!("<p class=\"note\">Interrupted: not run: {}.</p>\n", esc(&c.not_run.join(", "))));
     }
-    s.push_str("<h3>Floors (true RMS error)</h3>\n<ul>\n");
+    s.push_str("<h3>Each optimiser against the plain approximation (true RMS error)</h3>\n<ul>\n");
     for f in &c.floors.checks {
         let (class, verdict) = match f.holds {
             Some(true) => ("holds", "holds"),
