@@ -152,6 +152,25 @@ fn the_issues_typos_are_caught_and_refused_on_request() {
 }
 
 #[test]
+fn a_typo_in_an_end_station_or_waterline_is_named_at_its_place() {
+    let text = read_text("series60_cb060_offsets.csv");
+    // The last waterline (line 9, 9.75 m) typed 97.5, and the FP's x (field 26, 121.92) typed
+    // 1219.2: still in order, so the readers take them; the spacing gives them away.
+    let n_fields = text.lines().next().expect("a header").split(',').count();
+    let (z_typo, _) = with_cell(&text, 9, 1, "97.5");
+    let w = warnings(&z_typo, "s60.csv", &ReadOptions::default());
+    let spacing: Vec<String> = w.iter().filter(|w| w.kind == SenseKind::Spacing).map(|w| w.at.to_string()).collect();
+    assert_eq!(spacing, ["s60.csv:9:1"], "{w:#?}");
+    let (x_typo, _) = with_cell(&text, 1, n_fields, "1219.2");
+    let w = warnings(&x_typo, "s60.csv", &ReadOptions::default());
+    let spacing: Vec<&SenseWarning> = w.iter().filter(|w| w.kind == SenseKind::Spacing).collect();
+    assert_eq!(spacing.len(), 1, "{w:#?}");
+    // Its place: the header's field, where the x is written.
+    assert_eq!(spacing[0].at.to_string(), format!("s60.csv:1:{n_fields}"), "{}", spacing[0]);
+    assert!(spacing[0].message.contains("station 1219.2 at x = 1219"), "{}", spacing[0]);
+}
+
+#[test]
 fn millimetres_and_transposed_tables_are_named() {
     // The sample table in millimetres, read as metres: a 121,920 m ship.
     let text = read_text("series60_cb060_offsets.csv");

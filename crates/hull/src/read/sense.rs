@@ -6,6 +6,8 @@
 //! * **Size**: a hull longer than any ship afloat (more than [`LONGEST_SHIP_M`] in metres: the
 //!   offsets are likely millimetres or inches read as metres), a beam larger than the length,
 //!   a depth larger than the length (a transposed table: waterlines read as stations).
+//! * **End spacing**: an end station (or an offset table's end waterline) lying more than
+//!   [`END_GAP`] median spacings beyond its neighbour: a typo in its x or z.
 //! * **Outlier cells**: a half-breadth that stands out from its neighbours both along its
 //!   station and along its waterline ([`find_outliers`]): a typo, a shifted decimal point, a
 //!   missing digit. What is done with them is [`OutlierPolicy`].
@@ -63,6 +65,8 @@ pub enum SenseKind {
     Transposed,
     /// A cell out of line with its neighbours.
     Outlier,
+    /// An end station or waterline far beyond the others' spacing (a typo in its x or z).
+    Spacing,
 }
 
 /// One sense warning: where, what kind, and the message (value, expectation, flag).
@@ -225,6 +229,77 @@ fn size(offsets: &Offsets, format: InputFormat, outliers: &[Outlier]) -> Vec<Sen
                 format_short(length)
             ),
         });
+    }
+    out
+}
+
+/// How many times the median spacing an end station or an end waterline of a table may lie
+/// beyond its neighbour. Real tables space their end stations closer (half stations) or alike;
+/// a decimal point shifted in the last x or z puts it 9 spacings or more away.
+pub const END_GAP: f64 = 5.0;
+
+/// Warnings for an end station (any format) or an end waterline (an offset table) lying more
+/// than [`END_GAP`] median spacings beyond its neighbour.
+///
+/// `header_line` is an offset table's header line, where its stations' x are written.
+fn spacing(offsets: &Offsets, format: InputFormat, header_line: Option<usize>) -> Vec<SenseWarning> {
+    let source = &offsets.source;
+    let u = offsets.units.symbol();
+    let mut out = Vec::new();
+    // (value, its place, what it is) in order, for the stations and the table's waterlines.
+    let stations: Vec<(f64, Location, String)> = offsets
+        .sections
+        .iter()
+        .filter_map(|s| {
+            let mut at = s.location(source, 0);
+            if format == InputFormat::OffsetTable {
+                at.line = header_line;
+            }
+            s.mean_x().map(|x| (x, at, format!("station {}", s.label)))
+        })
+        .collect();
+    let mut lines = vec![(stations, "x", "stations")];
+    if format == InputFormat::OffsetTable {
+        let mut zs: Vec<(f64, Location, String)> = Vec::new();
+        for s in &offsets.sections {
+            for (k, p) in s.points.iter().enumerate() {
+                if !zs.iter().any(|(z, _, _)| *z == p.z) {
+                    let mut at = s.location(source, k);
+                    at.column = Some(1);
+                    zs.push((p.z, at, format!("waterline z = {}", format_short(p.z))));
+                }
+            }
+        }
+        zs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        lines.push((zs, "z", "waterlines"));
+    }
+    for (values, axis, what) in lines {
+        if values.len() < 4 {
+            continue;
+        }
+        let mut gaps: Vec<f64> = values.windows(2).map(|w| (w[1].0 - w[0].0).abs()).collect();
+        let (first, last) = (gaps[0], gaps[gaps.len() - 1]);
+        gaps.sort_by(f64::total_cmp);
+        let median = gaps[gaps.len() / 2];
+        if !(median > 0.0) {
+            continue;
+        }
+        for (gap, (value, at, name)) in [(first, &values[0]), (last, &values[values.len() - 1])] {
+            if gap > END_GAP * median {
+                out.push(SenseWarning {
+                    at: at.clone(),
+                    kind: SenseKind::Spacing,
+                    value: *value,
+                    message: format!(
+                        "{name} at {axis} = {} {u} lies {} {u} beyond its neighbour, where the {what} are {} {u} \
+                         apart (a typo in its {axis}, a shifted decimal point?)",
+                        format_short(*value),
+                        format_short(gap),
+                        format_short(median)
+                    ),
+                });
+            }
+        }
     }
     out
 }
@@ -402,6 +477,8 @@ pub fn sense_check(
     // finding, not a transposed table.
     let outliers = find_outliers(offsets);
     out.extend(size(offsets, format, &outliers));
+    let header_line = records(text, source).ok().and_then(|r| r.first().map(|h| h.line));
+    out.extend(spacing(offsets, format, header_line));
     if policy == OutlierPolicy::Keep {
         return Ok(out);
     }
