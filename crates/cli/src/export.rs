@@ -209,7 +209,7 @@ fn size(s: &NurbsSurface) -> f64 {
 pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
     let format = format_of(args)?;
     // The surface, and the offsets with the sections' v when it was fitted here.
-    let (surface, units, source, fitted) = match read_input(&args.skin)?.single()? {
+    let (surface, units, source, fitted) = match read_input(&args.skin)? {
         Input::Surface { surface, units, source } => (surface, units, source, None),
         Input::Offsets(offsets) => {
             let config = args.skin.fit_config(args.method, OptimSettings::default());
@@ -219,7 +219,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
             let vs = section_parameters(&outcome.params);
             (outcome.surface, offsets.units, source, Some((offsets, vs)))
         }
-        Input::Patches { .. } => unreachable!("single() refuses patches"),
+        Input::Patches { names, source, .. } => return Err(crate::surface_arg::patches_refused(&names, &source)),
     };
     // --units converts a surface.json (offsets are read in --units, the surface is in them).
     let (surface, units) = match args.skin.units.filter(|u| *u != units && fitted.is_none()) {

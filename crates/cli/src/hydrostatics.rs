@@ -29,7 +29,7 @@ pub enum Format {
 #[derive(Debug, Args)]
 #[command(mut_arg("input", |a| a
     .value_name("SURFACE")
-    .help("A surface.json written by `hullskin fit`, an IGES or STEP file holding one B-spline surface, or an offsets file (sections CSV or offset table) \
+    .help("A surface.json written by `hullskin fit`, an IGES or STEP file (one B-spline surface, or the patches of one hull, integrated together), or an offsets file (sections CSV or offset table) \
            fitted first with --method and the skinning flags. Without it the built-in Series 60 \
            Cb 0.60 sample is fitted")))]
 pub struct HydrostaticsArgs {

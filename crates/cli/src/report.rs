@@ -120,13 +120,13 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
 /// Read the input: a surface.json as it is (with `--offsets` if given), or offsets fitted with
 /// the fit flags.
 fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
-    let offsets = match read_input(&args.skin)?.single()? {
+    let offsets = match read_input(&args.skin)? {
         Input::Surface { surface, units, source } => {
             crate::surface_arg::note_units_not_applied(&args.skin, units, &source);
             return surface_as_is(args, surface, units, source);
         }
         Input::Offsets(offsets) => offsets,
-        Input::Patches { .. } => unreachable!("single() refuses patches"),
+        Input::Patches { names, source, .. } => return Err(crate::surface_arg::patches_refused(&names, &source)),
     };
     if let Some(path) = &args.offsets {
         bail!(

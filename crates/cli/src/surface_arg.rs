@@ -37,23 +37,14 @@ pub(crate) enum Input {
     },
 }
 
-impl Input {
-    /// The one surface of a surface input or the offsets; several patches refused for the
-    /// commands that take one surface, naming them.
-    ///
-    /// # Errors
-    /// An input of several patches.
-    pub(crate) fn single(self) -> anyhow::Result<Input> {
-        match self {
-            Input::Patches { names, source, .. } => bail!(
-                "{source}: {} B-spline surfaces ({}); this command takes one surface (expected a file holding one: \
-                 export the patches one by one, or join them into one surface; hydrostatics integrates them together)",
-                names.len(),
-                names.join(", ")
-            ),
-            other => Ok(other),
-        }
-    }
+/// The error of a command that takes one surface given the patches `names` of `source`.
+pub(crate) fn patches_refused(names: &[String], source: &str) -> anyhow::Error {
+    anyhow::anyhow!(
+        "{source}: {} B-spline surfaces ({}); this command takes one surface (expected a file holding one: export \
+         the patches one by one, or join them into one surface; hydrostatics integrates them together)",
+        names.len(),
+        names.join(", ")
+    )
 }
 
 /// Read `skin.input`: a surface JSON (recognised by its first non-blank character, `{`, unless
