@@ -63,10 +63,12 @@ pub struct LinesPlanOptions {
     /// one x plane (labelled with the sections' labels), else 21 stations evenly spaced over
     /// the surface's x range, ends included (labelled 0 to 20).
     pub stations: Option<Vec<f64>>,
-    /// Waterline z values. Default: 9, evenly spaced strictly between the bottom and the top of
-    /// the surface (tenths of its height).
+    /// Waterline z values. Default: the offsets' own waterlines (heights shared by at least
+    /// half the sections, as a table's rows) strictly between the bottom and the top of the
+    /// surface, else about 9 round values between them.
     pub waterlines: Option<Vec<f64>>,
-    /// Buttock y values. Default: 4, at fifths of the largest half-breadth.
+    /// Buttock y values. Default: about 4 round values between the centre plane and the
+    /// largest half-breadth.
     pub buttocks: Option<Vec<f64>>,
     /// Draw curvature combs on every station, waterline and buttock.
     pub combs: bool,
@@ -325,14 +327,50 @@ impl Lines {
         };
         let waterlines = match &o.waterlines {
             Some(v) => finite(v),
-            None => (1..=9).map(|i| bx.lo.z + (bx.hi.z - bx.lo.z) * f64::from(i) / 10.0).collect(),
+            None => offsets.and_then(|o| table_waterlines(o, bx)).unwrap_or_else(|| round_inside(bx.lo.z, bx.hi.z, 9)),
         };
         let buttocks = match &o.buttocks {
             Some(v) => finite(v),
-            None => (1..=4).map(|i| bx.half_breadth() * f64::from(i) / 5.0).collect(),
+            None => round_inside(0.0, bx.half_breadth(), 4),
         };
         Lines { stations, waterlines, buttocks }
     }
+}
+
+/// Round values (`{1, 2, 5} x 10^k` steps, about `target` of them) strictly between `lo` and
+/// `hi`, as a draughtsman spaces waterlines and buttocks.
+fn round_inside(lo: f64, hi: f64, target: usize) -> Vec<f64> {
+    let (ticks, step) = crate::render::nice_ticks(lo, hi, target + 1);
+    // Half a step clear of the ends: a line on the keel or the deck edge is no line.
+    ticks.into_iter().filter(|&t| t > lo + 0.25 * step && t < hi - 0.25 * step).collect()
+}
+
+/// The offsets' own waterlines: the heights shared by at least half the sections (a table's
+/// rows), strictly between the bottom and the top of the drawing's box; `None` when fewer
+/// than 3 (offsets given as sections at their own heights).
+fn table_waterlines(o: &Offsets, bx: Box3) -> Option<Vec<f64>> {
+    let tol = 1e-9 * o.size();
+    let mut levels: Vec<(f64, usize)> = Vec::new();
+    for s in &o.sections {
+        let mut seen: Vec<f64> = Vec::new();
+        for p in &s.points {
+            if seen.iter().any(|z| (z - p.z).abs() <= tol) {
+                continue;
+            }
+            seen.push(p.z);
+            match levels.iter_mut().find(|(z, _)| (z - p.z).abs() <= tol) {
+                Some((_, n)) => *n += 1,
+                None => levels.push((p.z, 1)),
+            }
+        }
+    }
+    let mut zs: Vec<f64> = levels
+        .into_iter()
+        .filter(|&(z, n)| 2 * n >= o.sections.len() && z > bx.lo.z + tol && z < bx.hi.z - tol)
+        .map(|(z, _)| z)
+        .collect();
+    zs.sort_by(f64::total_cmp);
+    (zs.len() >= 3).then_some(zs)
 }
 
 /// The sections' x and labels when every section lies in one x plane (within
@@ -978,6 +1016,33 @@ mod tests {
         }
     }
 
+    /// Default lines: a table's own waterlines (the sample's rows strictly between its keel
+    /// and its top, 0.325 m .. 8.125 m of 9.75) and round buttocks (2, 4, 6 m: within a
+    /// quarter step of the 8.13 m half-breadth is no buttock); offsets at their own heights
+    /// (no shared rows) get round waterlines.
+    #[test]
+    fn default_lines_are_the_tables_waterlines_and_round_buttocks() {
+        let o = crate::series60_sample();
+        let fit = crate::fit_offsets(&o, &crate::FitConfig::default()).expect("fits");
+        let bx = surface_box(&fit.surface);
+        let lines = Lines::new(bx, Some(&o), &LinesPlanOptions::default());
+        let mut rows: Vec<f64> =
+            o.sections[12].points.iter().map(|p| p.z).filter(|&z| z > bx.lo.z + 1e-9 && z < bx.hi.z - 1e-9).collect();
+        rows.dedup();
+        assert_eq!(lines.waterlines, rows);
+        assert!(lines.waterlines.len() >= 5, "{:?}", lines.waterlines);
+        assert_eq!(lines.buttocks, vec![2.0, 4.0, 6.0]);
+        // Without offsets: round heights, every one a multiple of its step.
+        let round = Lines::new(bx, None, &LinesPlanOptions::default());
+        let step = round.waterlines[1] - round.waterlines[0];
+        assert!(round.waterlines.len() >= 5, "{:?}", round.waterlines);
+        assert!(
+            round.waterlines.iter().all(|z| (z / step - (z / step).round()).abs() < 1e-9),
+            "{:?}",
+            round.waterlines
+        );
+    }
+
     /// On the fitted sample hull the curvature ranges over orders of magnitude (the stem foot
     /// and the bilge): about 5 % of the teeth reach the comb length (those at or above the 95th
     /// percentile of |curvature|), none is longer than 1.5 comb lengths, and the median tooth
@@ -985,7 +1050,16 @@ mod tests {
     #[test]
     fn comb_teeth_scale_by_the_95th_percentile_and_are_clipped() {
         let fit = crate::fit_offsets(&crate::series60_sample(), &crate::FitConfig::default()).expect("fits");
-        let opts = LinesPlanOptions { combs: true, comb_length_mm: 8.0, ..LinesPlanOptions::default() };
+        // The lines at tenths of the depth and fifths of the half-breadth (the comb scaling is
+        // what is tested, on a fixed set of lines).
+        let (lo, hi) = fit.surface.control_bounds();
+        let opts = LinesPlanOptions {
+            combs: true,
+            comb_length_mm: 8.0,
+            waterlines: Some((1..=9).map(|i| lo.z + (hi.z - lo.z) * f64::from(i) / 10.0).collect()),
+            buttocks: Some((1..=4).map(|i| hi.y * f64::from(i) / 5.0).collect()),
+            ..LinesPlanOptions::default()
+        };
         let d = lines_plan(&fit.surface, None, Units::Metre, &opts);
         let mut lens: Vec<f64> = d
             .layer("combs")
