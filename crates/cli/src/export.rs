@@ -194,12 +194,6 @@ fn unix_time(args: &ExportArgs) -> i64 {
         })
 }
 
-/// `s` scaled by `k` about the origin (a change of length unit).
-fn scaled(s: &NurbsSurface, k: f64) -> anyhow::Result<NurbsSurface> {
-    let pts: Vec<Vec3> = s.control_points().into_iter().map(|p| p * k).collect();
-    Ok(NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &pts, Some(&s.weights()))?)
-}
-
 /// Diagonal of the control net's box.
 fn size(s: &NurbsSurface) -> f64 {
     let (lo, hi) = s.control_bounds();
@@ -223,7 +217,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
     };
     // --units converts a surface.json (offsets are read in --units, the surface is in them).
     let (surface, units) = match args.skin.units.filter(|u| *u != units && fitted.is_none()) {
-        Some(to) => (scaled(&surface, units.metres_per_unit() / to.metres_per_unit())?, to),
+        Some(to) => (surface.scaled(units.metres_per_unit() / to.metres_per_unit()), to),
         None => (surface, units),
     };
     // --mirror: meshes and DXF mirror their own output; the exchange formats one surface.

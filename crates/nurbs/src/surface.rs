@@ -5,7 +5,7 @@
 //! u (`0..n_u`), `j` along v (`0..n_v`), homogeneous `(w x, w y, w z, w)`.
 
 use crate::basis::{basis_funs, ders_basis_funs, BasisRow};
-use crate::curve::{from_homogeneous, pack, Homogeneous};
+use crate::curve::{from_homogeneous, pack, to_homogeneous, Homogeneous};
 use crate::knots::MAX_DEGREE;
 use crate::{KnotVector, NurbsError, Vec3};
 
@@ -286,12 +286,59 @@ impl NurbsSurface {
         }
         NurbsSurface { ku: self.kv.clone(), kv: self.ku.clone(), cw }
     }
+
+    /// Reverse the direction of u (the same geometry, the net's rows in reverse order, the u
+    /// knots reflected in their domain; the normal `S_u x S_v` turns round).
+    pub fn reversed_u(&self) -> Self {
+        let (a, b) = self.domain_u();
+        let mut k: Vec<f64> = self.ku.as_slice().iter().map(|&u| a + b - u).collect();
+        k.reverse();
+        let nv = self.n_v();
+        let cw = self.cw.chunks(nv).rev().flatten().copied().collect();
+        NurbsSurface { ku: KnotVector::new_unchecked(self.degree_u(), k), kv: self.kv.clone(), cw }
+    }
+
+    /// The surface scaled by `k` about the origin (a change of length unit): every control
+    /// point times `k`, the weights kept (the same numbers as [`NurbsSurface::try_new`] of the
+    /// scaled points and the weights). A scale that overflows gives non-finite points: check
+    /// them where that can happen.
+    pub fn scaled(&self, k: f64) -> Self {
+        let cw = self.cw.iter().map(|&h| to_homogeneous(from_homogeneous(h) * k, h[3])).collect();
+        NurbsSurface { ku: self.ku.clone(), kv: self.kv.clone(), cw }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::assert_near;
+
+    #[test]
+    fn reversing_u_and_scaling_keep_the_geometry() {
+        let s = quarter_cylinder(2.0, 3.0).refine_knots_u(&[0.3]).expect("refined");
+        let r = s.reversed_u();
+        // Twice: the same net, the knots reflected twice (0.3 comes back within an ulp).
+        let twice = r.reversed_u();
+        assert_eq!(twice.homogeneous(), s.homogeneous());
+        for (a, b) in twice.knots_u().as_slice().iter().zip(s.knots_u().as_slice()) {
+            assert!((a - b).abs() <= 1e-15, "{a} {b}");
+        }
+        // Scaling is try_new of the scaled points, to the bit.
+        let pts: Vec<Vec3> = s.control_points().iter().map(|&p| p * 1000.0).collect();
+        let by_hand = NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &pts, Some(&s.weights()));
+        assert_eq!(Some(s.scaled(1000.0)), by_hand.ok());
+        let big = s.scaled(1000.0);
+        let (a, b) = s.domain_u();
+        for i in 0..=8 {
+            for j in 0..=4 {
+                let (u, v) = (a + (b - a) * f64::from(i) / 8.0, f64::from(j) / 4.0);
+                // Reflected knots and reversed rows evaluate the same basis: round-off.
+                assert!((r.point(a + b - u, v) - s.point(u, v)).norm() < 1e-14, "{u} {v}");
+                assert!((big.point(u, v) - s.point(u, v) * 1000.0).norm() < 1e-11, "{u} {v}");
+            }
+        }
+        assert_eq!(big.weights(), s.weights());
+    }
 
     /// A quarter cylinder of radius r and length h: rational quadratic in u, linear in v.
     pub(crate) fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {

@@ -69,23 +69,10 @@ pub fn mirrored_full_hull(surface: &NurbsSurface) -> Result<NurbsSurface, HullEr
     // Work across u with the edge at the start; transpose or reverse to get there and back.
     let mut s = if across_u { surface.clone() } else { surface.transposed() };
     if !at_start {
-        s = reversed_u(&s)?;
+        s = s.reversed_u();
     }
     let joined = join_mirror_u(&s, off > tol)?;
     Ok(if across_u { joined } else { joined.transposed() })
-}
-
-/// `s` with u reversed: the same surface, its u parameter running the other way.
-fn reversed_u(s: &NurbsSurface) -> Result<NurbsSurface, HullError> {
-    let k = s.knots_u().as_slice();
-    let (a, b) = (k[0], k[k.len() - 1]);
-    let knots: Vec<f64> = k.iter().rev().map(|&t| a + b - t).collect();
-    let ku = KnotVector::try_new(s.degree_u(), knots).map_err(|e| HullError::Config(format!("--mirror: {e}")))?;
-    let (nu, nv) = (s.n_u(), s.n_v());
-    let rows = (0..nu).rev().flat_map(|i| (0..nv).map(move |j| (i, j)));
-    let (pts, w): (Vec<Vec3>, Vec<f64>) = rows.map(|(i, j)| (s.control_point(i, j), s.weight(i, j))).unzip();
-    NurbsSurface::try_new(ku, s.knots_v().clone(), &pts, Some(&w))
-        .map_err(|e| HullError::Config(format!("--mirror: {e}")))
 }
 
 /// The mirror image of `s` in `y = 0` joined to `s` along its `u = a` edge, across a flat

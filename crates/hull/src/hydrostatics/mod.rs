@@ -507,7 +507,8 @@ impl<'a> Hydrostatics<'a> {
             _ => (0.0, 0.0, 0.0),
         };
         let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { 0.0 };
-        let displ = vol * density_per_cubic_unit(self.options.density, self.options.units);
+        let rho = density_per_cubic_unit(self.options.density, self.options.units);
+        let displ = vol * rho;
         let (bmt, bml) = (i_t / vol, i_l / vol);
         // One centimetre in the surface's unit.
         let cm = 0.01 / self.options.units.metres_per_unit();
@@ -535,7 +536,7 @@ impl<'a> Hydrostatics<'a> {
             lcf,
             lcf_pct_lpp: pp.map(|p| if aw > 0.0 { p.percent_from_midship(lcf) } else { 0.0 }),
             s: 2.0 * sum.area,
-            tpc: aw * cm * density_per_cubic_unit(self.options.density, self.options.units),
+            tpc: aw * cm * rho,
             mct: ratio(displ * bml, 100.0 * length),
             bmt,
             bml,
@@ -598,24 +599,6 @@ mod tests {
         NurbsSurface::try_new(ku, kv, &pts, None).expect("valid barge")
     }
 
-    /// The same surface with u reversed (the opposite orientation of its normal).
-    fn reversed_u(s: &NurbsSurface) -> NurbsSurface {
-        let k = s.knots_u().as_slice();
-        let (a, b) = (k[0], k[k.len() - 1]);
-        let knots: Vec<f64> = k.iter().rev().map(|&t| a + b - t).collect();
-        let ku = KnotVector::try_new(s.degree_u(), knots).expect("reversed knots are valid");
-        let (nu, nv) = (s.n_u(), s.n_v());
-        let mut pts = Vec::new();
-        let mut w = Vec::new();
-        for i in (0..nu).rev() {
-            for j in 0..nv {
-                pts.push(s.control_point(i, j));
-                w.push(s.weight(i, j));
-            }
-        }
-        NurbsSurface::try_new(ku, s.knots_v().clone(), &pts, Some(&w)).expect("valid")
-    }
-
     fn barge_truth(t: f64) -> HydrostaticsRow {
         let (b, vol) = (2.0 * HB, 2.0 * HB * LB * t);
         let (bmt, bml) = (LB * b.powi(3) / 12.0 / vol, b * LB.powi(3) / 12.0 / vol);
@@ -659,7 +642,7 @@ mod tests {
     #[test]
     fn box_barge_has_the_box_figures_in_any_parameter_orientation() {
         let s = barge();
-        let surfaces = [s.clone(), s.transposed(), reversed_u(&s), reversed_u(&s.transposed())];
+        let surfaces = [s.clone(), s.transposed(), s.reversed_u(), s.transposed().reversed_u()];
         for (k, surface) in surfaces.iter().enumerate() {
             let h = Hydrostatics::new(surface, &HydrostaticsOptions::default()).expect("valid options");
             assert_eq!((h.bottom(), h.top()), (0.0, D));

@@ -4,8 +4,7 @@ use nurbs::{KnotVector, NurbsSurface, Vec3};
 
 /// The same surface with every control point multiplied by `k` (a change of length unit).
 pub fn scaled(s: &NurbsSurface, k: f64) -> NurbsSurface {
-    let pts: Vec<Vec3> = s.control_points().iter().map(|&p| p * k).collect();
-    NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &pts, Some(&s.weights())).expect("valid")
+    s.scaled(k)
 }
 
 /// A 9 x 9 grid over the domain, boundaries included, plus 7 irregular interior points: 88.
