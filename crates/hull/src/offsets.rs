@@ -135,6 +135,16 @@ impl Perpendiculars {
     }
 }
 
+/// The axis-aligned bounding box `(min, max)` of the finite points of `points`, `None` when
+/// there are none.
+pub(crate) fn bounds_of(points: impl Iterator<Item = Vec3>) -> Option<(Vec3, Vec3)> {
+    let mut pts = points.filter(|p| p.is_finite());
+    let first = pts.next()?;
+    Some(pts.fold((first, first), |(lo, hi), p| {
+        (Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)), Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)))
+    }))
+}
+
 impl Offsets {
     /// Offsets from `source` in `units`, without known perpendiculars.
     pub fn new(source: impl Into<String>, units: Units, sections: Vec<Section>) -> Self {
@@ -149,14 +159,7 @@ impl Offsets {
     /// The axis-aligned bounding box `(min, max)` of all points, `None` when there are none.
     /// Non-finite coordinates are skipped.
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
-        let mut pts = self.sections.iter().flat_map(|s| s.points.iter()).filter(|p| p.is_finite());
-        let first = *pts.next()?;
-        Some(pts.fold((first, first), |(lo, hi), p| {
-            (
-                Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
-                Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
-            )
-        }))
+        bounds_of(self.sections.iter().flat_map(|s| s.points.iter().copied()))
     }
 
     /// The model size: the diagonal of [`Offsets::bounds`], 0 without points.

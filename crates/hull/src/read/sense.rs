@@ -22,7 +22,7 @@ use serde::Serialize;
 use super::{records, InputFormat};
 use crate::error::{HullError, InputErrorKind, Location};
 use crate::numfmt::format_short;
-use crate::offsets::{Offsets, Section};
+use crate::offsets::{bounds_of, Offsets, Section};
 use crate::units::Units;
 
 /// The longest ship afloat is about 458 m (Seawise Giant); a hull past 500 m is taken for a
@@ -157,11 +157,10 @@ fn place(s: &Section, source: &str, k: usize, y_column: Option<usize>) -> Locati
 /// than the length.
 fn size(offsets: &Offsets, format: InputFormat, outliers: &[Outlier]) -> Vec<SenseWarning> {
     // The bounds without the outlier cells (one cell typed 81.3 for 8.13 is no beam of 163 m).
-    let mut kept = offsets.clone();
-    for o in outliers {
-        kept.sections[o.section].points[o.point] = kept.sections[o.section].points[o.point - 1];
-    }
-    let Some((lo, hi)) = kept.bounds() else { return Vec::new() };
+    let kept = offsets.sections.iter().enumerate().flat_map(|(s, sec)| {
+        sec.points.iter().enumerate().filter(move |&(k, _)| !outliers.iter().any(|o| (o.section, o.point) == (s, k)))
+    });
+    let Some((lo, hi)) = bounds_of(kept.map(|(_, p)| *p)) else { return Vec::new() };
     let source = &offsets.source;
     let units = offsets.units;
     let u = units.symbol();
@@ -334,8 +333,8 @@ pub const OUTLIER_SHARE: f64 = 0.15;
 fn y_at(s: &Section, z: f64, tol: f64) -> Option<f64> {
     let mut on = s.points.iter().enumerate().filter(|(_, p)| (p.z - z).abs() <= tol);
     if let Some((k, p)) = on.next() {
-        let steep = |j: usize| s.points.get(j).is_some_and(|q| steep(*p, *q));
-        return (on.next().is_none() && (steep(k.wrapping_sub(1)) || steep(k + 1))).then_some(p.y);
+        let steep_to = |j: usize| s.points.get(j).is_some_and(|q| steep(*p, *q));
+        return (on.next().is_none() && (steep_to(k.wrapping_sub(1)) || steep_to(k + 1))).then_some(p.y);
     }
     let mut crossing = s.points.windows(2).filter_map(|w| {
         let (a, b) = (w[0], w[1]);
