@@ -6,6 +6,8 @@ use hull::analysis::{
     bending_energy, curvature_map, cut_surface, cut_surface_many, default_quadrature, fairness_report, gauss_legendre,
     CurvatureField, CurvatureMapOptions, CutCurve, CutOptions, CutPlane, FairnessOptions, PlaneSelection,
 };
+mod common;
+
 use hull::{fit_offsets, series60_sample, FitConfig};
 use nurbs::{KnotVector, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 
@@ -26,15 +28,7 @@ const T: f64 = 6.25;
 /// `x = L v`, `z = T u` (equally spaced control points of a linear function), and `y` the
 /// tensor product of the Bernstein coefficients of `g`, `(0, 2, 0)`, and of `h`, `(0, 1, 1)`.
 fn wigley() -> NurbsSurface {
-    let k = || KnotVector::try_new(2, vec![0., 0., 0., 1., 1., 1.]).expect("valid");
-    let (gc, hc) = ([0.0, 2.0, 0.0], [0.0, 1.0, 1.0]);
-    let mut pts = Vec::new();
-    for (i, h) in hc.iter().enumerate() {
-        for (j, g) in gc.iter().enumerate() {
-            pts.push(Vec3::new(L * j as f64 / 2.0, 0.5 * B * g * h, T * i as f64 / 2.0));
-        }
-    }
-    NurbsSurface::try_new(k(), k(), &pts, None).expect("valid")
+    common::surfaces::wigley_patch(L, B, T)
 }
 
 /// Wigley half-breadth `F(x, z)` and its partial derivatives
