@@ -13,6 +13,7 @@ use std::time::Instant;
 
 use anyhow::{bail, Context};
 use clap::Args;
+use hull::drawing::Sheet;
 use hull::report_html::{build_report, write_report, DraftChoice, ReportInputs, ReportOptions};
 use hull::{CompareConfig, Comparison, FitOutcome, Offsets, ToleranceSearch, Units, SEA_WATER_DENSITY};
 use nurbs::NurbsSurface;
@@ -58,6 +59,26 @@ pub struct ReportArgs {
     /// surface's units.
     #[arg(long, value_name = "FILE")]
     pub offsets: Option<PathBuf>,
+    /// The lines plan's sheet: `auto` (the A or ISO 5457 elongated size on which the three
+    /// views fill the most of the frame, for a long hull A4x7 rather than a third-empty A3),
+    /// or a size: A4, A3, A2, A1, A0, or an elongated A3x3 ... A3x7, A4x3 ... A4x9, A2x3 ...
+    /// A2x5, A1x3, A1x4, A0x2, A0x3.
+    #[arg(long, value_name = "SHEET", default_value = "auto", value_parser = parse_sheet)]
+    pub sheet: SheetChoice,
+}
+
+/// `--sheet`: chosen for the hull, or the one named.
+#[derive(Clone, Copy, Debug)]
+pub struct SheetChoice(pub Option<Sheet>);
+
+fn parse_sheet(s: &str) -> Result<SheetChoice, String> {
+    if s.eq_ignore_ascii_case("auto") {
+        return Ok(SheetChoice(None));
+    }
+    Sheet::named(s).map(|sheet| SheetChoice(Some(sheet))).ok_or_else(|| {
+        let names: Vec<&str> = Sheet::standard().iter().map(|s| s.name).collect();
+        format!("unknown sheet {s:?} (expected auto or one of {})", names.join(", "))
+    })
 }
 
 /// The surface to report on, with what came with it.
@@ -100,7 +121,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
         notes: loaded.notes.clone(),
         ..ReportInputs::new(&loaded.surface, loaded.units, loaded.source.clone())
     };
-    let options = ReportOptions { density: args.density, ..ReportOptions::default() };
+    let options = ReportOptions { density: args.density, sheet: args.sheet.0, ..ReportOptions::default() };
     let report = build_report(&inputs, &options).with_context(|| format!("cannot report on {}", loaded.source))?;
     let dir = &args.out;
     // All files or none: staged beside DIR and moved in together.

@@ -187,9 +187,14 @@ fn the_sample_report_is_one_self_contained_page() {
     let worst = maxima.iter().copied().fold(0.0, f64::max);
     assert!((worst - 0.1439).abs() < 5e-5, "worst section max {worst}");
 
-    // The separate drawings: an A3 sheet at 150 dpi, DXF files with entities.
+    // The separate drawings: the sheet chosen for the sample's long low views (an elongated
+    // A4x7, 1471 x 297 mm; on A3 a third of the frame would be drawn) at 150 dpi, DXF files
+    // with entities.
+    let svg = read_text(dir, "lines.svg");
+    assert!(svg.contains(r#"width="1471mm" height="297mm""#) && svg.contains(">Sheet A4x7<"), "sheet A4x7");
     let png = Image::from_png(&read(dir, "lines.png")).expect("lines.png decodes");
-    assert_eq!((png.width(), png.height()), (2480, 1754));
+    let px = |mm: f64| (mm * 150.0 / 25.4).round() as u32;
+    assert_eq!((png.width(), png.height()), (px(1471.0), px(297.0)));
     for f in ["lines.dxf", "lines3d.dxf"] {
         let dxf = read_text(dir, f);
         assert!(dxf.contains("ENTITIES") && dxf.trim_end().ends_with("EOF"), "{f}");
@@ -266,8 +271,14 @@ fn a_surface_json_is_reported_as_is() {
     assert!(o.status.success(), "{:?}", text(&o));
     let fit_report = read_json(&dir.join("F/report.json"));
 
-    report_ok(&dir, &["F/surface.json", "-o", "R"]);
+    // On a sheet given by name (any case): the lines plan is drawn on it.
+    report_ok(&dir, &["F/surface.json", "--sheet", "a3", "-o", "R"]);
     let html = read_text(&dir.join("R"), "report.html");
+    let svg = read_text(&dir.join("R"), "lines.svg");
+    assert!(svg.contains(r#"width="420mm" height="297mm""#) && svg.contains(">Sheet A3<"), "sheet A3");
+    let o = hullskin(&dir, &["report", "F/surface.json", "--sheet", "A7", "-o", "R4"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).1.contains(r#"unknown sheet "A7" (expected auto or one of A4, A3,"#), "{:?}", text(&o));
     let doc = parse(&html);
     assert!(html.contains("read from F/surface.json as it is"), "the page says how the input was read");
     assert!(html.contains("No offsets were given"));

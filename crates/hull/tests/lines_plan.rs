@@ -246,7 +246,7 @@ fn ezdxf_reads_3d_lines() {
 // The lines plan
 
 use hull::analysis::cuts::{cut_surface_many, CutOptions, CutPlane};
-use hull::drawing::{lines_3d, lines_plan, write_svg, LinesPlanOptions};
+use hull::drawing::{lines_3d, lines_plan, write_svg, LinesPlanOptions, Sheet};
 use hull::{fit_offsets, measure_fit_error, series60_sample, FitConfig, Offsets};
 use nurbs::{KnotVector, NurbsSurface};
 
@@ -396,7 +396,8 @@ fn body_centreline(svg: &Svg) -> f64 {
 #[test]
 fn sample_lines_plan_svg() {
     let (offsets, surface) = sample_fit();
-    let opts = LinesPlanOptions { combs: true, ..LinesPlanOptions::default() };
+    // On A3 (the scale checks below assume its 390 mm frame).
+    let opts = LinesPlanOptions { combs: true, sheet: Some(Sheet::A3), ..LinesPlanOptions::default() };
     let d = lines_plan(surface, Some(offsets), Units::Metre, &opts);
     let bytes = svg_bytes(&d);
     keep("sample_lines_plan.svg", &bytes);
@@ -639,7 +640,7 @@ fn given_lines_and_paper() {
         waterlines: Some(vec![2.0, 4.0]),
         buttocks: Some(vec![1.0, 2.0, 3.0, 20.0]),
         // A5 landscape: 180 mm inside the frame, too short for the 200 mm of the hull at 1:500.
-        paper_mm: (210.0, 148.0),
+        sheet: Some(Sheet::of_size(210.0, 148.0)),
         ..LinesPlanOptions::default()
     };
     let d = lines_plan(&s, None, Units::Metre, &opts);
@@ -648,9 +649,176 @@ fn given_lines_and_paper() {
     assert_eq!(svg.in_layer("waterlines", "polyline").count(), 2);
     assert_eq!(svg.in_layer("buttocks", "polyline").count(), 3, "y = 20 misses");
     let a5 = title_scale(&svg);
-    let a3 = title_scale(&Svg::parse(&svg_bytes(&lines_plan(&s, None, Units::Metre, &LinesPlanOptions::default()))));
+    let on_a3 = LinesPlanOptions { sheet: Some(Sheet::A3), ..LinesPlanOptions::default() };
+    let a3 = title_scale(&Svg::parse(&svg_bytes(&lines_plan(&s, None, Units::Metre, &on_a3))));
     assert_eq!((a5, a3), (1000.0, 500.0));
     for p in svg.all_points() {
         assert!((0.0..=210.0).contains(&p[0]) && (0.0..=148.0).contains(&p[1]), "{p:?} off the sheet");
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Layout on the real tables
+
+/// The frame's inner rectangle `[x0, y0, x1, y1]` in SVG coordinates (y down).
+fn frame_rect(svg: &Svg) -> [f64; 4] {
+    let frames: Vec<Vec<[f64; 2]>> = svg.in_layer("frame", "polygon").map(points).collect();
+    assert_eq!(frames.len(), 1, "one frame");
+    bbox(&frames[0])
+}
+
+fn bbox(points: &[[f64; 2]]) -> [f64; 4] {
+    points.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, p| {
+        [b[0].min(p[0]), b[1].min(p[1]), b[2].max(p[0]), b[3].max(p[1])]
+    })
+}
+
+fn area(b: [f64; 4]) -> f64 {
+    (b[2] - b[0]).max(0.0) * (b[3] - b[1]).max(0.0)
+}
+
+/// The box a text element covers, estimated as the writer sizes it: cap height
+/// `font-size x 0.72`, an average advance of 0.85 cap heights per character (a sans-serif face
+/// such as Helvetica or DejaVu Sans runs 0.55-0.6 em per character on digits and capitals), and
+/// descenders of 0.25 cap height below the baseline.
+fn text_box(e: &Element) -> [f64; 4] {
+    let a = &e.attrs;
+    let (x, y) = (attr_f(a, "x"), attr_f(a, "y"));
+    let cap = attr_f(a, "font-size") * hull::drawing::svg::CAP_HEIGHT_PER_EM;
+    let w = e.text.chars().count() as f64 * 0.85 * cap;
+    let x0 = match attr(a, "text-anchor").unwrap_or("start") {
+        "middle" => x - 0.5 * w,
+        "end" => x - w,
+        _ => x,
+    };
+    [x0, y - cap, x0 + w, y + 0.25 * cap]
+}
+
+/// What the sheet shows, measured on the SVG: the share of the frame's inner area covered by
+/// the three views (the box of each view's cuts: stations in the body plan, waterlines in the
+/// half-breadth plan, buttocks in the profile), the title block and the legend; and the texts
+/// outside the frame or overlapping another text of the grid.
+struct SheetCheck {
+    share: f64,
+    body_height_mm: f64,
+    outside: Vec<String>,
+    collisions: Vec<String>,
+}
+
+fn check_sheet(svg: &Svg) -> SheetCheck {
+    let frame = frame_rect(svg);
+    let layer_box = |layer: &str| {
+        let pts: Vec<[f64; 2]> = svg
+            .elements
+            .iter()
+            .filter(|e| e.layer == layer)
+            .flat_map(|e| match e.tag.as_str() {
+                "polyline" | "polygon" => points(&e.attrs),
+                "text" => {
+                    let b = text_box(e);
+                    vec![[b[0], b[1]], [b[2], b[3]]]
+                }
+                _ => Vec::new(),
+            })
+            .collect();
+        if pts.is_empty() {
+            [0.0; 4]
+        } else {
+            bbox(&pts)
+        }
+    };
+    let body = layer_box("stations");
+    let drawn: f64 = ["stations", "waterlines", "buttocks", "title", "legend"].iter().map(|l| area(layer_box(l))).sum();
+    let inside = |b: [f64; 4]| b[0] >= frame[0] && b[1] >= frame[1] && b[2] <= frame[2] && b[3] <= frame[3];
+    let mut outside = Vec::new();
+    for e in svg.elements.iter().filter(|e| e.layer != "frame") {
+        let boxes: Vec<[f64; 4]> = match e.tag.as_str() {
+            "text" => vec![text_box(e)],
+            "polyline" | "polygon" => vec![bbox(&points(&e.attrs))],
+            "circle" => {
+                let (x, y, r) = (attr_f(&e.attrs, "cx"), attr_f(&e.attrs, "cy"), attr_f(&e.attrs, "r"));
+                vec![[x - r, y - r, x + r, y + r]]
+            }
+            _ => Vec::new(),
+        };
+        if boxes.iter().any(|&b| !inside(b)) {
+            outside.push(format!("{} {} {:?} {:?}", e.layer, e.tag, e.text, boxes[0]));
+        }
+    }
+    let texts: Vec<(&str, [f64; 4])> = svg
+        .elements
+        .iter()
+        .filter(|e| e.tag == "text" && e.layer != "title")
+        .map(|e| (e.text.as_str(), text_box(e)))
+        .collect();
+    let mut collisions = Vec::new();
+    for (i, (a, ba)) in texts.iter().enumerate() {
+        for (b, bb) in &texts[i + 1..] {
+            let overlap = ba[0] < bb[2] && bb[0] < ba[2] && ba[1] < bb[3] && bb[1] < ba[3];
+            if overlap {
+                collisions.push(format!("{a:?} {ba:?} and {b:?} {bb:?}"));
+            }
+        }
+    }
+    SheetCheck { share: drawn / area(frame), body_height_mm: body[3] - body[1], outside, collisions }
+}
+
+/// The lines plan of every offsets table in `testdata/` (the files at its top level; `raw/`
+/// holds the published sources they were made from), each fitted with the default
+/// configuration: on the sheet chosen for it, the views, legend and title block cover at least
+/// half of the frame, every element (text boxes included) lies inside the frame and no two
+/// labels overlap. The rendered PNG has no ink outside the frame either.
+#[test]
+fn every_table_fills_half_the_frame_with_every_label_inside() {
+    use common::tables::TABLES;
+    let mut report = Vec::new();
+    let mut failures = Vec::new();
+    for name in TABLES.iter().filter(|n| !n.starts_with("raw/")) {
+        let path = workspace_root().join("testdata").join(name);
+        let offsets = hull::read_offsets(&path, Units::Metre).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let surface = fit_offsets(&offsets, &FitConfig::default()).unwrap_or_else(|e| panic!("{name}: {e}")).surface;
+        let d = lines_plan(&surface, Some(&offsets), Units::Metre, &LinesPlanOptions::default());
+        let bytes = svg_bytes(&d);
+        keep(&format!("{}.svg", name.replace('/', "_")), &bytes);
+        let svg = Svg::parse(&bytes);
+        let c = check_sheet(&svg);
+        let sheet = svg.texts("title").find(|t| t.0.starts_with("Sheet ")).map(|t| t.0.to_string()).unwrap_or_default();
+        report.push(format!(
+            "{name}: {sheet} 1:{} drawn {:.1} % body plan {:.0} mm high",
+            title_scale(&svg),
+            100.0 * c.share,
+            c.body_height_mm
+        ));
+        if c.share < 0.5 || !c.outside.is_empty() || !c.collisions.is_empty() {
+            failures
+                .push(format!("{name}: share {:.3}, outside {:?}, collisions {:?}", c.share, c.outside, c.collisions));
+        }
+        // The pixels: at 60 dpi nothing but white outside the frame line (1 px of anti-aliasing
+        // either side of it allowed).
+        let image = hull::render::render_rgba(&d, &hull::render::RasterOptions { dpi: 60.0, ..Default::default() })
+            .expect("renders");
+        keep(&format!("{}.png", name.replace('/', "_")), &image.to_png().expect("encodes"));
+        let px_per_mm = f64::from(image.width()) / svg.width;
+        let frame = frame_rect(&svg);
+        let (fx0, fy0, fx1, fy1) = (
+            (frame[0] * px_per_mm).floor() as u32 - 1,
+            (frame[1] * px_per_mm).floor() as u32 - 1,
+            (frame[2] * px_per_mm).ceil() as u32 + 1,
+            (frame[3] * px_per_mm).ceil() as u32 + 1,
+        );
+        let mut ink_outside = 0;
+        for y in 0..image.height() {
+            for x in 0..image.width() {
+                let out = x < fx0 || x > fx1 || y < fy0 || y > fy1;
+                if out && image.pixel(x, y) != Some(Rgb::WHITE) {
+                    ink_outside += 1;
+                }
+            }
+        }
+        if ink_outside > 0 {
+            failures.push(format!("{name}: {ink_outside} pixels of ink outside the frame"));
+        }
+    }
+    eprintln!("{}", report.join("\n"));
+    assert!(failures.is_empty(), "{failures:#?}");
 }

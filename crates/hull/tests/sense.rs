@@ -2,7 +2,11 @@
 //! same offsets as before, and plausible mistakes made in them (units, transposition, one
 //! cell typed wrong) are each caught at the right file, line and field.
 
+mod common;
+
 use std::path::{Path, PathBuf};
+
+use common::tables::TABLES;
 
 use hull::read::{parse_offsets_with, OutlierPolicy, ReadOptions, SenseKind, SenseWarning};
 use hull::Units;
@@ -10,40 +14,6 @@ use hull::Units;
 fn testdata(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
 }
-
-/// Every offsets table in `testdata/` (all formats).
-const CLEAN: [&str; 30] = [
-    "cargo116_offsets.csv",
-    "gunnerus_offsets.csv",
-    "matlab_dtmb5415_bow.csv",
-    "matlab_dtmb5415_main.csv",
-    "matlab_frigate.csv",
-    "matlab_series60.csv",
-    "matlab_trawler.csv",
-    "matlab_wpb.csv",
-    "matlab_yacht.csv",
-    "offsets_example.csv",
-    "sections_example.csv",
-    "series60_cb060_offsets.csv",
-    "series60_cb065_offsets.csv",
-    "series60_cb070_offsets.csv",
-    "series60_cb075_offsets.csv",
-    "series60_cb080_offsets.csv",
-    "wigley_offsets.csv",
-    "freeship_curves_example.txt",
-    "freeship_wigley_offsets.txt",
-    "raw/gunnerus/gunnerus_offsets_long.csv",
-    "raw/gunnerus/gunnerus.json",
-    "raw/bspline3d/frigate_1Surface.dat",
-    "raw/bspline3d/yatch_offset3.dat",
-    "raw/series60/cb0p6.csv",
-    "raw/series60/cb0p65.csv",
-    "raw/series60/cb0p7.csv",
-    "raw/series60/cb0p75.csv",
-    "raw/series60/cb0p8.csv",
-    "raw/cargo116/offsets_table.json",
-    "raw/cargo116/offsets_long.csv",
-];
 
 fn read_text(name: &str) -> String {
     std::fs::read_to_string(testdata(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
@@ -55,7 +25,7 @@ fn warnings(text: &str, source: &str, options: &ReadOptions) -> Vec<SenseWarning
 
 #[test]
 fn clean_tables_give_no_warning() {
-    for name in CLEAN {
+    for name in TABLES {
         let path = testdata(name);
         if !path.is_file() {
             panic!("{name} missing from testdata");

@@ -18,13 +18,28 @@
 //! Every view also shows the surface's four boundary curves (keel or flat-of-bottom edge,
 //! deck edge, stern and stem profiles) projected onto its plane (layer `outline`).
 //!
-//! # Scale and layout
+//! # Sheet, scale and layout
 //!
-//! The scale is the largest of the standard scales 10:1, 5:1, 2:1, 1:1, 1:2, 1:5, 1:10, 1:20,
-//! 1:25, 1:50, 1:100, 1:200, 1:250, 1:500, 1:1000, ... (`{1, 2, 2.5, 5} x 10^n`, ISO 5455 with
-//! the 1:25 family of ship drawings) at which the views, their labels and the title block fit
-//! inside the frame (margins of ISO 5457: 20 mm left, 10 mm elsewhere). Two arrangements are
-//! tried at each scale: the title block beside the half-breadth plan, else below it.
+//! The scale is one of the standard scales 10:1, 5:1, 2:1, 1:1, 1:2, 1:5, 1:10, 1:20, 1:25,
+//! 1:50, 1:100, 1:200, 1:250, 1:500, 1:1000, ... (`{1, 2, 2.5, 5} x 10^n`, ISO 5455 with the
+//! 1:25 family of ship drawings). Three arrangements are tried, each at the largest scale at
+//! which the views, their labels, the legend and the title block fit inside the frame
+//! (margins of ISO 5457: 20 mm left, 10 mm elsewhere):
+//!
+//! - the body plan right of the profile, the title block (legend above it) right of the
+//!   half-breadth plan;
+//! - the same with the title block below the half-breadth plan;
+//! - the body plan below the half-breadth plan, the title block right of it (long slender
+//!   hulls).
+//!
+//! Of these the one drawing the largest share of the frame is taken. The drawn area counts
+//! the three views' boxes (profile `L x H`, half-breadth plan `L x B/2`, body plan `B x H`, with
+//! `H` from the baseline or keel to the top), the title block and the legend.
+//!
+//! The sheet is the one given ([`LinesPlanOptions::sheet`]), else chosen among the A sizes and
+//! the elongated sizes of ISO 5457 ([`Sheet::standard`]): a ship's views are 5 to 10 times
+//! longer than high, so on an A sheet most of the frame would stay empty at any scale. Of the
+//! sheets, the smallest whose drawn share is within 90 % of the best sheet's is taken.
 //!
 //! # Curvature combs
 //!
@@ -48,12 +63,10 @@ use rayon::prelude::*;
 
 use super::colormap;
 use super::model::{Anchor, Drawing, Item, Rgb, Stroke};
+use super::sheet::Sheet;
 use crate::analysis::cuts::{cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
 use crate::offsets::{Offsets, PLANAR_REL};
 use crate::units::Units;
-
-/// A3 landscape, 420 x 297 mm.
-pub const A3_LANDSCAPE: (f64, f64) = (420.0, 297.0);
 
 /// Settings of [`lines_plan`]. `None` lists take the defaults described on each field;
 /// non-finite values in a given list are ignored.
@@ -75,8 +88,10 @@ pub struct LinesPlanOptions {
     /// Length on paper of a comb tooth at the 95th percentile of |curvature| (longer teeth
     /// are clipped at 1.5 times this), mm.
     pub comb_length_mm: f64,
-    /// Sheet width and height, mm.
-    pub paper_mm: (f64, f64),
+    /// The sheet. Default (`None`): chosen from [`Sheet::standard`], the A sizes and the
+    /// elongated sizes of ISO 5457, for the largest share of the frame drawn (see the module
+    /// documentation).
+    pub sheet: Option<Sheet>,
     /// Title of the drawing and the title block's first line.
     pub title: String,
     /// The source named in the title block; default: the offsets' source, else `surface`.
@@ -93,7 +108,7 @@ impl Default for LinesPlanOptions {
             buttocks: None,
             combs: false,
             comb_length_mm: 8.0,
-            paper_mm: A3_LANDSCAPE,
+            sheet: None,
             title: "Lines plan".into(),
             source: None,
             cut: CutOptions::default(),
@@ -157,13 +172,20 @@ pub fn lines_plan(
     units: Units,
     options: &LinesPlanOptions,
 ) -> Drawing {
-    let (w, h) = options.paper_mm;
-    let mut d = Drawing::new(w, h, options.title.clone());
     let bx = surface_box(surface);
     let lines = Lines::new(bx, offsets, options);
     let combs_mm = if options.combs { options.comb_length_mm.max(0.0) } else { 0.0 };
     let errors = offsets.map(|o| offset_errors(surface, o));
-    let layout = Layout::choose(bx, units, (w, h), combs_mm, errors.is_some());
+    let needs = LayoutNeeds {
+        units,
+        comb: combs_mm,
+        legend: errors.is_some(),
+        label_chars: lines.label_chars(),
+        station_chars: lines.stations.iter().map(|s| s.1.chars().count()).max().unwrap_or(0),
+    };
+    let layout = Layout::choose(bx, options.sheet, needs);
+    let (w, h) = (layout.sheet.width_mm, layout.sheet.height_mm);
+    let mut d = Drawing::new(w, h, options.title.clone());
 
     draw_frame(&mut d, (w, h));
     draw_grid(&mut d, &layout, bx, &lines);
@@ -240,15 +262,6 @@ fn label_num(x: f64) -> String {
     } else {
         s
     }
-}
-
-/// `x` with 3 significant digits (plain notation).
-fn sig3(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return "0".into();
-    }
-    let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 12) as usize;
-    format!("{x:.digits$}")
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -335,6 +348,12 @@ impl Lines {
         };
         Lines { stations, waterlines, buttocks }
     }
+
+    /// The widest label beside a view, in characters: a waterline or buttock value, `BL`,
+    /// `CL`.
+    fn label_chars(&self) -> usize {
+        self.waterlines.iter().chain(&self.buttocks).map(|&v| label_num(v).chars().count()).fold(2, usize::max)
+    }
 }
 
 /// Round values (`{1, 2, 5} x 10^k` steps, about `target` of them) strictly between `lo` and
@@ -419,20 +438,118 @@ fn offset_errors(surface: &NurbsSurface, o: &Offsets) -> Vec<f64> {
 /// Margins of the frame (ISO 5457: 20 mm on the binding edge, 10 mm elsewhere).
 const MARGIN_LEFT: f64 = 20.0;
 const MARGIN: f64 = 10.0;
-/// Room beside a view for its labels, and above the profile for the station labels.
-const LABEL_W: f64 = 12.0;
-const LABEL_H: f64 = 6.0;
+/// Room above the profile for two rows of station labels (and above the body plan for `CL`).
+const LABEL_H: f64 = 7.0;
+/// Space between a view and its labels.
+const LABEL_PAD: f64 = 1.5;
+/// Room beside a view for its labels, at least: labels of up to 5 characters fit in it, so
+/// the layout does not move with the unit of their numbers (`0.625` m, `625` mm).
+const LABEL_W_MIN: f64 = 12.0;
 /// Space between views.
 const GAP: f64 = 10.0;
 const TITLE_W: f64 = 150.0;
 const TITLE_H: f64 = 32.0;
 const LEGEND_W: f64 = 70.0;
 const LEGEND_H: f64 = 16.0;
+/// The legend's distance from the frame.
+const LEGEND_PAD: f64 = 3.0;
+/// With the sheet chosen automatically, the smallest sheet whose drawn share is at least this
+/// share of the best sheet's is taken (a plot on A3x4 rather than on A0 for a few per cent).
+const SMALLER_SHEET_SHARE: f64 = 0.9;
+
+/// Where the body plan goes (and with it the title block and the legend).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Arrangement {
+    /// Body plan right of the profile; title block (legend above it) right of the
+    /// half-breadth plan.
+    Beside,
+    /// Body plan right of the profile; title block below the half-breadth plan, legend left
+    /// of it.
+    BesideTitleBelow,
+    /// Body plan below the half-breadth plan, title block (legend above it) right of it: long
+    /// slender hulls, whose body plan is narrow.
+    Below,
+}
+
+const ARRANGEMENTS: [Arrangement; 3] = [Arrangement::Beside, Arrangement::BesideTitleBelow, Arrangement::Below];
+
+/// The sizes of the parts on paper at one scale, mm.
+#[derive(Clone, Copy, Debug)]
+struct Parts {
+    /// Length, height (keel or baseline to top) and half-breadth of the hull.
+    lp: f64,
+    zp: f64,
+    yp: f64,
+    /// Comb teeth beyond the views.
+    e: f64,
+    /// Width of the widest waterline or buttock label beside a view.
+    label_w: f64,
+    /// Half the widest station label (the end stations' labels reach past the profile).
+    station_half: f64,
+    title_w: f64,
+    legend: bool,
+}
+
+impl Parts {
+    fn profile(&self) -> (f64, f64) {
+        (
+            self.label_w.max(self.station_half) + self.e + self.lp + self.e + self.station_half,
+            LABEL_H + self.zp + 2.0 * self.e,
+        )
+    }
+    fn plan(&self) -> (f64, f64) {
+        (self.label_w + 2.0 * self.e + self.lp, self.yp + 2.0 * self.e)
+    }
+    /// The body plan with its waterline labels on the right.
+    fn body(&self) -> (f64, f64) {
+        (2.0 * self.e + 2.0 * self.yp + self.label_w, LABEL_H + self.zp + 2.0 * self.e)
+    }
+    /// The legend (if any) above the title block.
+    fn stack(&self) -> (f64, f64) {
+        let (lw, lh) = self.legend_size();
+        (self.title_w.max(lw), TITLE_H + if self.legend { lh + 4.0 } else { 0.0 })
+    }
+    fn legend_size(&self) -> (f64, f64) {
+        if self.legend {
+            (LEGEND_W + LEGEND_PAD, LEGEND_H + LEGEND_PAD)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+
+    /// Width and height of everything in `arrangement`.
+    fn extent(&self, arrangement: Arrangement) -> (f64, f64) {
+        let ((pw, ph), (qw, qh), (bw, bh), (sw, sh)) = (self.profile(), self.plan(), self.body(), self.stack());
+        match arrangement {
+            Arrangement::Beside => ((pw + GAP + bw).max(qw + GAP + sw), ph + GAP + qh.max(sh)),
+            Arrangement::BesideTitleBelow => {
+                let (lw, lh) = self.legend_size();
+                ((pw + GAP + bw).max(qw).max(self.title_w + GAP + lw), ph + GAP + qh + GAP + TITLE_H.max(lh))
+            }
+            Arrangement::Below => {
+                (pw.max(self.label_w.max(self.station_half) + bw + GAP + sw), ph + GAP + qh + GAP + bh.max(sh))
+            }
+        }
+    }
+
+    /// The area drawn: the three views' boxes (profile `L x H`, plan `L x B/2`, body plan
+    /// `B x H`), the title block and the legend, mm².
+    fn drawn_area(&self) -> f64 {
+        let legend = if self.legend { LEGEND_W * LEGEND_H } else { 0.0 };
+        self.lp * self.zp + self.lp * self.yp + 2.0 * self.yp * self.zp + self.title_w * TITLE_H + legend
+    }
+}
+
+/// Width and height inside the frame of `sheet`, mm.
+fn inner(sheet: Sheet) -> (f64, f64) {
+    (sheet.width_mm - MARGIN_LEFT - MARGIN, sheet.height_mm - 2.0 * MARGIN)
+}
 
 /// Where the views go: paper positions of the model origins of each view, the scale, and the
 /// title block and legend rectangles `[x, y, w, h]`.
 #[derive(Clone, Debug)]
 struct Layout {
+    sheet: Sheet,
     scale: Scale,
     /// Paper mm per model unit.
     k: f64,
@@ -444,92 +561,123 @@ struct Layout {
     body: [f64; 2],
     title: [f64; 4],
     legend: Option<[f64; 4]>,
+    /// The drawn area ([`Parts::drawn_area`]) as a share of the frame's.
+    drawn_share: f64,
+}
+
+/// What the layout needs to know of the drawing besides the hull's box.
+#[derive(Clone, Copy, Debug)]
+struct LayoutNeeds {
+    units: Units,
+    comb: f64,
+    legend: bool,
+    /// Widest waterline or buttock label and widest station label, in characters.
+    label_chars: usize,
+    station_chars: usize,
 }
 
 impl Layout {
-    fn choose(bx: Box3, units: Units, paper: (f64, f64), comb: f64, legend: bool) -> Layout {
-        let scales = Scale::standard();
-        let mm_per_unit = units.metres_per_unit() * 1000.0;
-        for &scale in &scales {
-            let k = scale.ratio() * mm_per_unit;
-            if let Some(l) = Layout::fit(bx, paper, comb, legend, scale, k) {
-                return l;
+    /// The layout on `sheet`, or on the sheet chosen from [`Sheet::standard`] when `None`:
+    /// the smallest whose drawn share is at least [`SMALLER_SHEET_SHARE`] of the best one's.
+    fn choose(bx: Box3, sheet: Option<Sheet>, needs: LayoutNeeds) -> Layout {
+        match sheet {
+            Some(s) => Layout::on_sheet(bx, s, needs).unwrap_or_else(|| Layout::fallback(bx, s, needs)),
+            None => {
+                let all: Vec<Layout> =
+                    Sheet::standard().iter().filter_map(|&s| Layout::on_sheet(bx, s, needs)).collect();
+                let best = all.iter().map(|l| l.drawn_share).fold(0.0, f64::max);
+                all.into_iter()
+                    .find(|l| l.drawn_share >= SMALLER_SHEET_SHARE * best)
+                    .unwrap_or_else(|| Layout::fallback(bx, Sheet::A3, needs))
             }
         }
-        // Nothing fits (a sheet smaller than the title block): the smallest scale, placed as
-        // well as it goes.
-        let scale = *scales.last().expect("the list of scales is not empty");
-        let k = scale.ratio() * mm_per_unit;
-        Layout::place(bx, paper, comb, legend, scale, k, false, 0.0, 0.0)
     }
 
-    /// The layout at scale `k` if it fits the frame: the title block beside the half-breadth
-    /// plan if that fits, else below it.
-    fn fit(bx: Box3, paper: (f64, f64), comb: f64, legend: bool, scale: Scale, k: f64) -> Option<Layout> {
-        let (inner_w, inner_h) = (paper.0 - MARGIN_LEFT - MARGIN, paper.1 - 2.0 * MARGIN);
-        let (lp, zp, yp) = ((bx.hi.x - bx.lo.x) * k, (bx.hi.z - bx.z0()) * k, bx.half_breadth() * k);
-        let e = comb;
-        let tb_w = TITLE_W.min(inner_w);
-        let (lg_w, lg_h) = if legend { (LEGEND_W, LEGEND_H + 4.0) } else { (0.0, 0.0) };
-        let row1 = LABEL_W + e + lp + e + GAP + e + 2.0 * yp + e + LABEL_W;
-        let top = LABEL_H + e + zp + e + GAP;
-        // A: title block (and legend above it) beside the half-breadth plan.
-        let row2 = LABEL_W + e + lp + e + GAP + tb_w.max(lg_w);
-        let height_a = top + (yp + e).max(TITLE_H + lg_h);
-        if row1.max(row2) <= inner_w && height_a <= inner_h {
-            let slack_x = (inner_w - row1).min(inner_w - row2);
-            return Some(Layout::place(bx, paper, comb, legend, scale, k, true, slack_x, inner_h - height_a));
+    /// The best layout on `sheet`: for each arrangement the largest standard scale at which it
+    /// fits the frame; of those, the one that draws the largest share of the frame.
+    fn on_sheet(bx: Box3, sheet: Sheet, needs: LayoutNeeds) -> Option<Layout> {
+        let (inner_w, inner_h) = inner(sheet);
+        let mm_per_unit = needs.units.metres_per_unit() * 1000.0;
+        let mut best: Option<Layout> = None;
+        for arrangement in ARRANGEMENTS {
+            for scale in Scale::standard() {
+                let k = scale.ratio() * mm_per_unit;
+                let parts = Layout::parts(bx, k, needs, inner_w);
+                let (w, h) = parts.extent(arrangement);
+                if w <= inner_w && h <= inner_h {
+                    let l = Layout::place(sheet, scale, k, parts, arrangement, (inner_w - w, inner_h - h));
+                    if best.as_ref().is_none_or(|b| l.drawn_share > b.drawn_share) {
+                        best = Some(l);
+                    }
+                    break;
+                }
+            }
         }
-        // B: title block below the half-breadth plan, legend to its left.
-        let width_b = row1.max(LABEL_W + e + lp + e + LABEL_W).max(tb_w + lg_w + GAP);
-        let height_b = top + yp + e + GAP + TITLE_H;
-        if width_b <= inner_w && height_b <= inner_h {
-            return Some(Layout::place(
-                bx,
-                paper,
-                comb,
-                legend,
-                scale,
-                k,
-                false,
-                inner_w - width_b,
-                inner_h - height_b,
-            ));
-        }
-        None
+        best
     }
 
-    /// Place the views, shifted right and down by half the slack so the drawing sits in the
-    /// middle of the free space; the title block is in the frame's bottom-right corner.
-    #[allow(clippy::too_many_arguments)]
+    /// Nothing fits (a sheet smaller than the title block): the smallest scale, placed as well
+    /// as it goes.
+    fn fallback(bx: Box3, sheet: Sheet, needs: LayoutNeeds) -> Layout {
+        let scale = *Scale::standard().last().expect("the list of scales is not empty");
+        let k = scale.ratio() * needs.units.metres_per_unit() * 1000.0;
+        let parts = Layout::parts(bx, k, needs, inner(sheet).0);
+        Layout::place(sheet, scale, k, parts, Arrangement::BesideTitleBelow, (0.0, 0.0))
+    }
+
+    fn parts(bx: Box3, k: f64, needs: LayoutNeeds, inner_w: f64) -> Parts {
+        let text_w = |chars: usize| chars as f64 * CHAR_WIDTH_PER_CAP * LABEL_MM;
+        Parts {
+            lp: (bx.hi.x - bx.lo.x) * k,
+            zp: (bx.hi.z - bx.z0()) * k,
+            yp: bx.half_breadth() * k,
+            e: needs.comb,
+            label_w: (text_w(needs.label_chars) + 2.0 * LABEL_PAD).max(LABEL_W_MIN),
+            station_half: 0.5 * text_w(needs.station_chars),
+            title_w: TITLE_W.min(inner_w),
+            legend: needs.legend,
+        }
+    }
+
+    /// Place the parts of `arrangement`, shifted right and down by half the slack so the
+    /// drawing sits in the middle of the free space; the title block is in the frame's
+    /// bottom-right corner.
     fn place(
-        bx: Box3,
-        paper: (f64, f64),
-        comb: f64,
-        legend: bool,
+        sheet: Sheet,
         scale: Scale,
         k: f64,
-        beside: bool,
-        slack_x: f64,
-        slack_y: f64,
+        p: Parts,
+        arrangement: Arrangement,
+        (slack_x, slack_y): (f64, f64),
     ) -> Layout {
-        let (x0, y0, x1, y1) = (MARGIN_LEFT, MARGIN, paper.0 - MARGIN, paper.1 - MARGIN);
-        let e = comb;
-        let (lp, zp, yp) = ((bx.hi.x - bx.lo.x) * k, (bx.hi.z - bx.z0()) * k, bx.half_breadth() * k);
-        let left = x0 + LABEL_W + e + 0.5 * slack_x.max(0.0);
-        let top = y1 - LABEL_H - e - 0.5 * slack_y.max(0.0);
-        let profile = [left, top - zp];
-        let body = [left + lp + e + GAP + e + yp, top - zp];
-        let plan = [left, profile[1] - e - GAP - e - yp];
-        let tb_w = TITLE_W.min(x1 - x0);
-        let title = [x1 - tb_w, y0, tb_w, TITLE_H];
-        let legend_at = if beside {
-            [x1 - LEGEND_W, y0 + TITLE_H + 4.0, LEGEND_W, LEGEND_H]
-        } else {
-            [x1 - tb_w - GAP - LEGEND_W, y0, LEGEND_W, LEGEND_H]
+        let (x0, y0, x1, y1) = (MARGIN_LEFT, MARGIN, sheet.width_mm - MARGIN, sheet.height_mm - MARGIN);
+        let left = x0 + 0.5 * slack_x.max(0.0);
+        let top = y1 - 0.5 * slack_y.max(0.0);
+        // The profile's and the plan's x origin: after the labels on their left.
+        let x_start = left + p.label_w.max(p.station_half) + p.e;
+        let profile = [x_start, top - LABEL_H - p.e - p.zp];
+        let plan = [x_start, profile[1] - p.e - GAP - p.e - p.yp];
+        let body = match arrangement {
+            Arrangement::Beside | Arrangement::BesideTitleBelow => {
+                [left + p.profile().0 + GAP + p.e + p.yp, profile[1]]
+            }
+            // Below midship, unless that runs into the legend and title block: then as far
+            // right as they leave room for.
+            Arrangement::Below => {
+                // The body plan reaches e + B/2 + its labels right of its centreline.
+                let clear = x1 - p.stack().0 - GAP - (p.body().0 - p.e - p.yp);
+                let mid = x_start + 0.5 * p.lp;
+                [mid.min(clear).max(x_start + p.yp), plan[1] - p.e - GAP - LABEL_H - p.e - p.zp]
+            }
         };
-        let legend = legend.then_some(legend_at);
-        Layout { scale, k, profile, plan, body, title, legend }
+        let title = [x1 - p.title_w, y0, p.title_w, TITLE_H];
+        let legend_at = match arrangement {
+            Arrangement::BesideTitleBelow => [x1 - p.title_w - GAP - LEGEND_W, y0 + LEGEND_PAD, LEGEND_W, LEGEND_H],
+            _ => [x1 - LEGEND_W - LEGEND_PAD, y0 + TITLE_H + 4.0, LEGEND_W, LEGEND_H],
+        };
+        let legend = p.legend.then_some(legend_at);
+        let (iw, ih) = inner(sheet);
+        Layout { sheet, scale, k, profile, plan, body, title, legend, drawn_share: p.drawn_area() / (iw * ih) }
     }
 
     fn profile_pt(&self, bx: Box3, x: f64, z: f64) -> [f64; 2] {
@@ -577,6 +725,24 @@ fn spaced(labels: Vec<(f64, String)>, size: f64, vertical: bool) -> Vec<(f64, St
     out
 }
 
+/// The station labels above the profile, `(row, x, text)`: one row when they all fit in one
+/// without overlapping, else alternately in two rows (the second above the first), each row
+/// dropping any label that would still overlap its neighbour ([`spaced`]).
+fn station_rows(labels: Vec<(f64, String)>) -> Vec<(usize, f64, String)> {
+    let one = spaced(labels.clone(), LABEL_MM, false);
+    if one.len() == labels.len() {
+        return one.into_iter().map(|(x, s)| (0, x, s)).collect();
+    }
+    let mut sorted = labels;
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut out = Vec::new();
+    for row in 0..2 {
+        let mine = sorted.iter().skip(row).step_by(2).cloned().collect();
+        out.extend(spaced(mine, LABEL_MM, false).into_iter().map(|(x, s)| (row, x, s)));
+    }
+    out
+}
+
 fn draw_grid(d: &mut Drawing, l: &Layout, bx: Box3, lines: &Lines) {
     let g = "grid";
     let (x0, x1, z0, z1, yb) = (bx.lo.x, bx.hi.x, bx.z0(), bx.hi.z, bx.half_breadth());
@@ -592,10 +758,12 @@ fn draw_grid(d: &mut Drawing, l: &Layout, bx: Box3, lines: &Lines) {
         d.push(line(vec![l.profile_pt(bx, x, z0), l.profile_pt(bx, x, z1)], GRID, thin, g));
         d.push(line(vec![l.plan_pt(bx, x, 0.0), l.plan_pt(bx, x, yb)], GRID, thin, g));
     }
-    let labels = lines.stations.iter().map(|(x, s)| (l.profile_pt(bx, *x, z0)[0], s.clone())).collect();
-    let label_y = l.profile_pt(bx, x0, z1)[1] + 1.5;
-    for (px, s) in spaced(labels, LABEL_MM, false) {
-        d.push(text([px, label_y], s, LABEL_MM, Anchor::Middle, g));
+    let labels: Vec<(f64, String)> =
+        lines.stations.iter().map(|(x, s)| (l.profile_pt(bx, *x, z0)[0], s.clone())).collect();
+    let label_y = l.profile_pt(bx, x0, z1)[1] + LABEL_PAD;
+    for (row, px, s) in station_rows(labels) {
+        let y = label_y + row as f64 * (LABEL_MM + 1.2);
+        d.push(text([px, y], s, LABEL_MM, Anchor::Middle, g));
     }
     for &z in &lines.waterlines {
         d.push(line(vec![l.profile_pt(bx, x0, z), l.profile_pt(bx, x1, z)], GRID, thin, g));
@@ -608,10 +776,12 @@ fn draw_grid(d: &mut Drawing, l: &Layout, bx: Box3, lines: &Lines) {
     // Waterline values left of the profile and right of the body plan, the baseline's BL first.
     let mut labels = vec![(base[0][1], "BL".to_string())];
     labels.extend(lines.waterlines.iter().map(|&z| (l.profile_pt(bx, x0, z)[1], label_num(z))));
+    // The body plan shares the profile's scale: its heights are the profile's shifted.
+    let body_shift = l.body[1] - l.profile[1];
     for (py, s) in spaced(labels, LABEL_MM, true) {
         let y = py - 0.5 * LABEL_MM;
-        d.push(text([base[0][0] - 1.5, y], s.clone(), LABEL_MM, Anchor::End, g));
-        d.push(text([b1[0] + 1.5, y], s, LABEL_MM, Anchor::Start, g));
+        d.push(text([base[0][0] - LABEL_PAD, y], s.clone(), LABEL_MM, Anchor::End, g));
+        d.push(text([b1[0] + LABEL_PAD, y + body_shift], s, LABEL_MM, Anchor::Start, g));
     }
     // Half-breadth plan: buttocks (also in the body plan), centreline.
     for &y in &lines.buttocks {
@@ -625,12 +795,12 @@ fn draw_grid(d: &mut Drawing, l: &Layout, bx: Box3, lines: &Lines) {
     let mut labels = vec![(cl[0][1], "CL".to_string())];
     labels.extend(lines.buttocks.iter().map(|&y| (l.plan_pt(bx, x0, y)[1], label_num(y))));
     for (py, s) in spaced(labels, LABEL_MM, true) {
-        d.push(text([cl[0][0] - 1.5, py - 0.5 * LABEL_MM], s, LABEL_MM, Anchor::End, g));
+        d.push(text([cl[0][0] - LABEL_PAD, py - 0.5 * LABEL_MM], s, LABEL_MM, Anchor::End, g));
     }
     // Body plan: centreline, labelled CL at its top (anchored on it).
     let (top, bottom) = (l.body_pt(bx, 0.0, z1, 1.0), l.body_pt(bx, 0.0, z0, 1.0));
     d.push(centreline(vec![bottom, top]));
-    d.push(text([top[0], top[1] + 1.5], "CL", LABEL_MM, Anchor::Middle, g));
+    d.push(text([top[0], top[1] + LABEL_PAD], "CL", LABEL_MM, Anchor::Middle, g));
 }
 
 /// A cut branch as paper points: its 2-D coordinates mapped into its view. A closed loop
@@ -748,11 +918,16 @@ fn draw_offsets(d: &mut Drawing, l: &Layout, bx: Box3, o: &Offsets, errors: &[f6
     }
 }
 
+/// The colour bar from the smallest to the largest offset error: the two ends labelled (the
+/// largest to 4 significant digits, the smallest to one decimal more than the ticks, so a
+/// round-off error of 1e-13 mm reads `0`), round ticks between them (about 4, `{1, 2, 5} x
+/// 10^n` mm) marked on the bar and labelled where they leave room beside the end labels.
 fn draw_legend(d: &mut Drawing, l: &Layout, errors: &[f64], units: Units) {
     let Some([x, y, w, _]) = l.legend else { return };
     let g = "legend";
     let (lo, hi) = error_range(errors);
     let mm = units.metres_per_unit() * 1000.0;
+    let (lo_mm, hi_mm) = (lo * mm, hi * mm);
     const STEPS: usize = 32;
     let (bar_y, bar_h) = (y + 5.0, 4.0);
     for i in 0..STEPS {
@@ -771,9 +946,30 @@ fn draw_legend(d: &mut Drawing, l: &Layout, errors: &[f64], units: Units) {
         layer: g.into(),
     });
     d.push(text([x, bar_y + bar_h + 2.0], "Offset fit error (mm)", 2.2, Anchor::Start, g));
-    d.push(text([x, y + 1.0], sig3(lo * mm), LABEL_MM, Anchor::Start, g));
-    d.push(text([x + 0.5 * w, y + 1.0], sig3(0.5 * (lo + hi) * mm), LABEL_MM, Anchor::Middle, g));
-    d.push(text([x + w, y + 1.0], sig3(hi * mm), LABEL_MM, Anchor::End, g));
+    let (ticks, step) = crate::render::nice_ticks(lo_mm, hi_mm, 4);
+    let low = crate::render::format_tick(lo_mm, step / 10.0);
+    let high = crate::numfmt::format_short(hi_mm);
+    let label_w = |s: &str| s.chars().count() as f64 * CHAR_WIDTH_PER_CAP * LABEL_MM;
+    d.push(text([x, y + 1.0], low.clone(), LABEL_MM, Anchor::Start, g));
+    if hi_mm > lo_mm {
+        d.push(text([x + w, y + 1.0], high.clone(), LABEL_MM, Anchor::End, g));
+        // Ticks clear of the end labels by a character.
+        let (free_lo, free_hi) = (x + label_w(&low) + LABEL_MM, x + w - label_w(&high) - LABEL_MM);
+        let mut edge = free_lo;
+        for t in ticks {
+            let px = x + w * (t - lo_mm) / (hi_mm - lo_mm);
+            if px <= x || px >= x + w {
+                continue;
+            }
+            d.push(line(vec![[px, bar_y], [px, bar_y + 0.35 * bar_h]], Rgb::BLACK, 0.13, g));
+            let s = crate::render::format_tick(t, step);
+            let half = 0.5 * label_w(&s);
+            if px - half >= edge && px + half <= free_hi {
+                d.push(text([px, y + 1.0], s, LABEL_MM, Anchor::Middle, g));
+                edge = px + half + LABEL_MM;
+            }
+        }
+    }
 }
 
 /// Left normal (the unit tangent turned counter-clockwise) of a cut at each point, in the
@@ -899,6 +1095,7 @@ fn draw_title_block(d: &mut Drawing, l: &Layout, title: &str, source: &str, unit
     ));
     d.push(text([x + pad, r3 + 2.25], format!("Units: {}", units.plural_name()), 2.5, Anchor::Start, t));
     d.push(text([x + 0.5 * w + pad, r3 + 2.25], format!("Scale {}", l.scale), 2.5, Anchor::Start, t));
+    d.push(text([x + w - pad, r3 + 2.25], format!("Sheet {}", l.sheet.name), 2.5, Anchor::End, t));
     let counts = format!(
         "Stations {}, waterlines {}, buttocks {}",
         lines.stations.len(),
@@ -935,9 +1132,6 @@ mod tests {
         assert_eq!(label_num(3.25), "3.25");
         assert_eq!(label_num(2.0), "2");
         assert_eq!(label_num(-0.0001), "0");
-        assert_eq!(sig3(0.012345), "0.0123");
-        assert_eq!(sig3(123.4), "123");
-        assert_eq!(sig3(1.5), "1.50");
     }
 
     #[test]

@@ -33,7 +33,7 @@ use self::html::{
     esc, esc_srcdoc, fixed, kv_table, num, png_img, point, table, td, td_html, td_key, td_num, th, th_key,
 };
 use crate::analysis::{self, CurvatureMap, CurvatureSummary, FairnessOptions, FairnessReport, FieldStats, Finding};
-use crate::drawing::{lines_3d, lines_plan, write_dxf, write_dxf_3d_lines, write_svg, LinesPlanOptions};
+use crate::drawing::{lines_3d, lines_plan, write_dxf, write_dxf_3d_lines, write_svg, LinesPlanOptions, Sheet};
 use crate::hydrostatics::TEXT_DIGITS;
 use crate::numfmt::format_sig_plain;
 use crate::offsets::Perpendiculars;
@@ -55,6 +55,20 @@ pub const LINES_SVG_FILE: &str = "lines.svg";
 pub const LINES_DXF_FILE: &str = "lines.dxf";
 pub const LINES_3D_DXF_FILE: &str = "lines3d.dxf";
 pub const LINES_PNG_FILE: &str = "lines.png";
+/// Most pixels of `lines.png` (a lines plan on A4x7 at 150 dpi has 1.5 x 10^7; on A0x3 it
+/// would have 10^8).
+pub const LINES_PNG_MAX_PIXELS: f64 = 2.5e7;
+
+/// `raster` with its resolution lowered, if need be, so that `sheet` has at most
+/// [`LINES_PNG_MAX_PIXELS`] pixels.
+fn lines_png_raster(sheet: &crate::drawing::Drawing, raster: &RasterOptions) -> RasterOptions {
+    let inches2 = sheet.width_mm * sheet.height_mm / (25.4 * 25.4);
+    let cap = (LINES_PNG_MAX_PIXELS / inches2).sqrt();
+    match raster.width_px {
+        Some(_) => raster.clone(),
+        None => RasterOptions { dpi: raster.dpi.min(cap), ..raster.clone() },
+    }
+}
 pub const GAUSSIAN_PNG_FILE: &str = "curvature_gaussian.png";
 pub const MEAN_PNG_FILE: &str = "curvature_mean.png";
 pub const HYDROSTATICS_CSV_FILE: &str = "hydrostatics.csv";
@@ -128,15 +142,19 @@ pub struct ReportOptions {
     pub curvature_width_px: u32,
     /// Parameter lines per direction of the curvature pictures.
     pub curvature_samples: usize,
-    /// Resolution of `lines.png` and `convergence.png`.
+    /// Resolution of `lines.png` and `convergence.png`; `lines.png` is rendered at less when
+    /// its sheet would exceed [`LINES_PNG_MAX_PIXELS`] at this resolution.
     pub raster: RasterOptions,
+    /// The lines plan's sheet; `None` chooses it ([`LinesPlanOptions::sheet`]).
+    pub sheet: Option<Sheet>,
     /// The 3-D viewer (its title is the report's source).
     pub viewer: ViewerOptions,
 }
 
 impl Default for ReportOptions {
     /// Sea water, 10 drafts, the analysis defaults, pictures 1200 px wide (curvature) and at
-    /// 150 dpi (lines plan on A3: 2480 x 1754 px), the viewer's default tessellation.
+    /// 150 dpi (a lines plan on A3: 2480 x 1754 px), the lines plan's sheet chosen for the
+    /// hull, the viewer's default tessellation.
     fn default() -> Self {
         ReportOptions {
             density: SEA_WATER_DENSITY,
@@ -146,6 +164,7 @@ impl Default for ReportOptions {
             curvature_width_px: 1200,
             curvature_samples: 160,
             raster: RasterOptions::default(),
+            sheet: None,
             viewer: ViewerOptions::default(),
         }
     }
@@ -189,8 +208,8 @@ pub struct ReportFiles {
     pub html: String,
     /// `viewer.html`: the page shown in the report's frame.
     pub viewer_html: String,
-    /// `lines.svg`: the lines plan, A3; the report holds it inline (without the XML
-    /// declaration).
+    /// `lines.svg`: the lines plan, on its sheet at its scale; the report holds it inline
+    /// (without the XML declaration).
     pub lines_svg: String,
     /// `lines.dxf` (the sheet) and `lines3d.dxf` (the cuts in model space).
     pub lines_dxf: Vec<u8>,
@@ -293,6 +312,7 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
     let lines_options = LinesPlanOptions {
         title: "Lines plan".into(),
         source: Some(inputs.source.clone()),
+        sheet: options.sheet,
         ..LinesPlanOptions::default()
     };
     let sheet = lines_plan(surface, inputs.offsets, units, &lines_options);
@@ -300,7 +320,7 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
     let lines_dxf = to_bytes(|w| write_dxf(w, &sheet), "the lines plan DXF")?;
     let curves = lines_3d(surface, inputs.offsets, &lines_options);
     let lines3d_dxf = to_bytes(|w| write_dxf_3d_lines(w, &curves, units), "the 3-D lines DXF")?;
-    let lines_png = render::render_png(&sheet, &options.raster)?;
+    let lines_png = render::render_png(&sheet, &lines_png_raster(&sheet, &options.raster))?;
     let picture = |field| {
         let o = render::CurvatureMapOptions {
             width_px: options.curvature_width_px,
@@ -343,6 +363,7 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
         validity: &validity,
         optimization,
         lines_svg: &lines_svg,
+        lines_sheet: Sheet::of_size(sheet.width_mm, sheet.height_mm),
         maps: [
             (&gaussian, curvature_gaussian_png.as_slice(), GAUSSIAN_PNG_FILE),
             (&mean, curvature_mean_png.as_slice(), MEAN_PNG_FILE),
@@ -496,6 +517,8 @@ struct Page<'p, 'a> {
     validity: &'p [Finding],
     optimization: Option<&'p OptimReport>,
     lines_svg: &'p str,
+    /// The lines plan's sheet.
+    lines_sheet: Sheet,
     maps: [(&'p render::CurvatureMap, &'p [u8], &'static str); 2],
     convergence: Option<(&'p [u8], u32, u32)>,
     viewer_html: &'p str,
@@ -933,10 +956,16 @@ impl Page<'_, '_> {
         } else {
             ""
         };
+        // A long sheet is shown at least 36 rem high (the labels readable) and scrolls sideways.
+        let sheet = self.lines_sheet;
+        let min_width_rem = 36.0 * sheet.width_mm / sheet.height_mm;
         format!(
-            "<figure id=\"lines-figure\">\n{svg}<figcaption>Body plan, profile and half-breadth plan at one standard \
-             scale on A3 (<code>{LINES_SVG_FILE}</code>, <code>{LINES_DXF_FILE}</code>, <code>{LINES_PNG_FILE}</code>; \
-             the cuts in 3-D in <code>{LINES_3D_DXF_FILE}</code>).{offsets}</figcaption>\n</figure>\n"
+            "<figure id=\"lines-figure\">\n<div class=\"sheet-scroll\"><div style=\"width: max(100%, \
+             {min_width_rem:.0}rem)\">\n{svg}</div></div><figcaption>Body plan, profile and half-breadth plan at one \
+             standard scale on {} (<code>{LINES_SVG_FILE}</code>, <code>{LINES_DXF_FILE}</code>, \
+             <code>{LINES_PNG_FILE}</code>; the cuts in 3-D in <code>{LINES_3D_DXF_FILE}</code>).{offsets}</figcaption>\n\
+             </figure>\n",
+            esc(&sheet.to_string())
         )
     }
 

@@ -4,3 +4,4 @@
 pub mod browser;
 pub mod python;
 pub mod surfaces;
+pub mod tables;
