@@ -36,6 +36,10 @@ pub struct CompareArgs {
     /// with the column saying which rows over-fit; 0 turns it off.
     #[arg(long = "held-out", value_name = "K", default_value_t = hull::HeldOutOptions::DEFAULT_FOLDS, value_parser = crate::fit::parse_folds)]
     pub held_out: usize,
+    /// Print compare.json on standard output instead of the table, for scripts; notes and the
+    /// files written go to standard error.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Run `hullskin compare`.
@@ -59,13 +63,20 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     let dir = &args.out;
     let markdown = hull::comparison_markdown(&comparison);
     // Both files or neither: staged beside DIR and moved in together.
+    let json = hull::comparison_json(&comparison);
     let mut out = hull::OutputDir::stage(dir).with_context(|| format!("cannot write into {}", dir.display()))?;
-    for (name, text) in [("compare.json", hull::comparison_json(&comparison)), ("compare.md", markdown.clone())] {
+    for (name, text) in [("compare.json", &json), ("compare.md", &markdown)] {
         out.write_bytes(name, text.as_bytes()).with_context(|| format!("cannot write {name}"))?;
     }
     out.commit().with_context(|| format!("cannot write into {}", dir.display()))?;
-    out!("{markdown}");
-    outln!("\nwrote {}", dir.join("{compare.json,compare.md}").display());
+    let wrote = format!("wrote {}", dir.join("{compare.json,compare.md}").display());
+    if args.json {
+        out!("{json}");
+        eprintln!("hullskin: {wrote}");
+    } else {
+        out!("{markdown}");
+        outln!("\n{wrote}");
+    }
     if !comparison.complete || progress::stopped() {
         let status = progress::stop_status().unwrap_or(130);
         eprintln!("hullskin: interrupted: wrote the methods done before the stop (exit status {status})");

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::Context;
+use anyhow::{bail, Context};
 use clap::Args;
 use hull::{FitConfig, FitMethod, FitOutcome, HeldOutError, HullError, Offsets, ToleranceSearch};
 
@@ -14,6 +14,13 @@ use crate::stdout::{out, outln};
 
 /// Arguments of `hullskin fit`.
 #[derive(Debug, Args)]
+#[command(mut_arg("input", |a| a
+    .help("Offsets file: a sections CSV (header `section,x,y,z`) or an offset table CSV (first row station \
+           positions, first column waterline heights, cells half-breadths), or any format of `hull::read` (Series 60 \
+           table, long CSV, JSON table, point cloud, FREE!ship text), recognised by its content; or a hull mesh \
+           (`.stl`, `.stl.gz`, `.obj`), sliced at stations first (`--stations`, `--spacing`, `--at`, ...); or, with \
+           --offsets FILE, a surface (surface.json, IGES, STEP) to measure against them. Without it the built-in \
+           Series 60 Cb 0.60 parent hull is used")))]
 pub struct FitArgs {
     #[command(flatten)]
     pub skin: SkinArgs,
@@ -31,6 +38,11 @@ pub struct FitArgs {
     /// table, for scripts; warnings and notes stay on standard error.
     #[arg(long)]
     pub json: bool,
+    /// Measure a given surface instead of fitting one: the input is a surface.json, IGES or
+    /// STEP file, and FILE the offsets (read in the surface's units) whose distances to it are
+    /// measured, with the validity checks; writes report.json only (method `given`).
+    #[arg(long, value_name = "FILE")]
+    pub offsets: Option<PathBuf>,
 }
 
 impl Default for FitArgs {
@@ -41,6 +53,7 @@ impl Default for FitArgs {
             fit: MethodArgs::default(),
             held_out: hull::HeldOutOptions::DEFAULT_FOLDS,
             json: false,
+            offsets: None,
         }
     }
 }
@@ -100,6 +113,16 @@ fn parse_method(s: &str) -> Result<FitMethod, String> {
 /// Run `hullskin fit`.
 pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     progress::install_stop_handler();
+    if let Some(offsets) = &args.offsets {
+        return measure(args, offsets);
+    }
+    if let Some(path) = args.skin.input.as_ref().filter(|p| crate::surface_arg::holds_surface(p)) {
+        bail!(
+            "{}: a surface, not offsets (expected offsets to fit; to measure this surface against offsets pass \
+             --offsets FILE)",
+            path.display()
+        );
+    }
     // A mesh input is kept to measure the fitted surface against it.
     let (offsets, mesh, warnings) = match &args.skin.input {
         Some(path) if crate::slice::is_mesh_path(path) => {
@@ -121,11 +144,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     let overfit = overfitting(&offsets, &outcome);
     report.overfitting = overfit.as_ref().map(|l| l.trim_start_matches("warning: ").to_string());
     write_outputs(&args.out, &offsets, &outcome, &report)?;
-    if args.json {
-        outln!("{}", serde_json::to_string_pretty(&report).context("the summary as JSON")?);
-    } else {
-        out!("{}", hull::summary_table(&offsets, &outcome));
-    }
+    print_summary(args.json, &report, || hull::summary_table(&offsets, &outcome))?;
     for w in hull::summary_warnings(&offsets, &outcome) {
         eprintln!("hullskin: warning: {w}");
     }
@@ -149,6 +168,56 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(status));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `fit SURFACE --offsets FILE`: the surface measured as it is against the offsets, the summary
+/// printed and report.json written (the surface's own files are left alone).
+fn measure(args: &FitArgs, offsets_path: &Path) -> anyhow::Result<ExitCode> {
+    let (surface, units, source) = match crate::surface_arg::read_input(&args.skin)? {
+        crate::surface_arg::Input::Surface { surface, units, source } => (surface, units, source),
+        crate::surface_arg::Input::Patches { names, source, .. } => {
+            return Err(crate::surface_arg::patches_refused(&names, &source));
+        }
+        crate::surface_arg::Input::Offsets(o) => bail!(
+            "--offsets {} measures a given surface (expected a surface.json, IGES or STEP input); {} is offsets, \
+             which fit fits: drop --offsets",
+            offsets_path.display(),
+            o.source
+        ),
+    };
+    crate::surface_arg::note_units_not_applied(&args.skin, units, &source);
+    eprintln!(
+        "hullskin: note: {source} is measured as it is against {}, not fitted: the fit flags (--method, --ctrl, \
+         --held-out ...) play no part",
+        offsets_path.display()
+    );
+    let options = hull::ReadOptions { units, ..args.skin.read_options() };
+    let (offsets, warnings) = crate::skin_args::read_with_warnings(hull::read_offsets_with(offsets_path, &options)?);
+    let measured = hull::Measured::new(&surface, &source, &offsets)?;
+    let mut report = hull::Report::measured(&offsets, &measured);
+    report.input.warnings = warnings;
+    hull::write_report_json(&args.out, &report)?;
+    print_summary(args.json, &report, || hull::measured_summary_table(&offsets, &measured))?;
+    for w in hull::measured_warnings(&offsets, &measured) {
+        eprintln!("hullskin: warning: {w}");
+    }
+    let wrote = format!("wrote {}", args.out.join("report.json").display());
+    if args.json {
+        eprintln!("hullskin: {wrote}");
+    } else {
+        outln!("{wrote}");
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The summary on standard output: report.json's content with `--json`, else the table.
+fn print_summary(json: bool, report: &hull::Report, table: impl FnOnce() -> String) -> anyhow::Result<()> {
+    if json {
+        outln!("{}", serde_json::to_string_pretty(report).context("the summary as JSON")?);
+    } else {
+        out!("{}", table());
+    }
+    Ok(())
 }
 
 /// The distance of the mesh's starboard vertices to the fitted surface, over the sections'

@@ -65,6 +65,11 @@ pub struct ReportArgs {
     /// A2x5, A1x3, A1x4, A0x2, A0x3.
     #[arg(long, value_name = "SHEET", default_value = "auto", value_parser = parse_sheet)]
     pub sheet: SheetChoice,
+    /// Print the summary as JSON on standard output instead of the text, for scripts: the
+    /// input, the files written, the fit error (null without offsets), the validity findings
+    /// and the hydrostatics table (as hydrostatics.json); warnings stay on standard error.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// `--sheet`: chosen for the hull, or the one named.
@@ -127,7 +132,16 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
     // All files or none: staged beside DIR and moved in together.
     let written =
         write_report(dir, &report).with_context(|| format!("cannot write the report to {}", dir.display()))?;
-    print_summary(&loaded, &report, &written, start.elapsed().as_secs_f64());
+    let seconds = start.elapsed().as_secs_f64();
+    if args.json {
+        print_json_summary(&loaded, &report, &written, seconds)?;
+    } else {
+        print_summary(&loaded, &report, &written, seconds);
+    }
+    // The page's warnings under its title, on standard error too.
+    for f in &report.validity {
+        eprintln!("hullskin: warning: {}", f.message(loaded.units.symbol()));
+    }
     if let Some(status) = progress::stop_status() {
         eprintln!(
             "hullskin: interrupted: wrote the complete report of the best surface found before the stop (exit status \
@@ -151,7 +165,8 @@ fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
     };
     if let Some(path) = &args.offsets {
         bail!(
-            "--offsets {} is for a surface.json input; the input is offsets already (they are fitted and measured)",
+            "--offsets {} is for a surface input (surface.json, IGES, STEP); the input is offsets already (they are \
+             fitted and measured)",
             path.display()
         );
     }
@@ -241,16 +256,13 @@ fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, writt
     }
     match (&report.drafts, report.hydrostatics.rows.last()) {
         (DraftChoice::Design(t), Some(r)) => {
-            outln!("hydrostatics at T {t} {u}: Vol {:.2} {u}³, CB {:.4}, LCB {:.3} {u}", r.vol, r.cb, r.lcb)
+            let f = hull::format_short;
+            outln!("hydrostatics at T {t} {u}: Vol {} {u}³, CB {}, LCB {} {u}", f(r.vol), f(r.cb), f(r.lcb))
         }
         (DraftChoice::Range { count, top, limit, .. }, _) => {
             outln!("hydrostatics at {count} drafts up to {limit} ({top:.4} {u})")
         }
         _ => {}
-    }
-    // The page's warnings under its title, on standard error too.
-    for f in &report.validity {
-        eprintln!("hullskin: warning: {}", f.message(u));
     }
     let size = |p: &Path| std::fs::metadata(p).map(|m| m.len()).unwrap_or(0);
     let total: u64 = written.iter().map(|p| size(p)).sum();
@@ -260,6 +272,27 @@ fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, writt
     let names: Vec<String> =
         written.iter().skip(1).filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
     outln!("and {} ({:.2} MB in all)", names.join(", "), total as f64 / 1e6);
+}
+
+/// `--json`: the summary as one JSON object on standard output.
+fn print_json_summary(
+    loaded: &Loaded,
+    report: &hull::report_html::ReportFiles,
+    written: &[PathBuf],
+    seconds: f64,
+) -> anyhow::Result<()> {
+    let summary = serde_json::json!({
+        "source": loaded.source,
+        "units": loaded.units.symbol(),
+        "method": loaded.fit.as_ref().map(|f| f.config.method.name()),
+        "files": written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),
+        "seconds": seconds,
+        "error": report.error,
+        "validity": report.validity,
+        "hydrostatics": report.hydrostatics,
+    });
+    outln!("{}", serde_json::to_string_pretty(&summary).context("the summary as JSON")?);
+    Ok(())
 }
 
 #[cfg(test)]

@@ -348,3 +348,64 @@ fn flags_that_do_not_apply_to_the_input_say_so() {
     let (out, err) = text(&o);
     assert!(o.status.success() && !err.contains("--lpp"), "{out}\n{err}");
 }
+
+/// `fit SURFACE --offsets FILE` measures a surface given as a surface.json, IGES or STEP file
+/// against offsets, as the fit measured it, and writes report.json alone (the surface files are
+/// the user's); a surface without `--offsets`, and `--offsets` with offsets, are refused with
+/// the fix.
+#[test]
+fn fit_measures_a_given_surface_against_offsets() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    let o = hullskin(d, &["fit", "--held-out", "0", "-o", "F"]);
+    assert!(o.status.success(), "{:?}", text(&o));
+    let o = hullskin(d, &["export", "F/surface.json", "-o", "F/x.stp"]);
+    assert!(o.status.success(), "{:?}", text(&o));
+    let fitted = read_json(&d.join("F/report.json"));
+    let igs_before = fs::read(d.join("F/surface.igs")).expect("read");
+    // The sample's offsets, as a file.
+    let offsets = testdata("series60_cb060_offsets.csv");
+    let offsets = offsets.to_str().expect("utf-8 path");
+    for (i, input) in ["F/surface.json", "F/surface.igs", "F/x.stp"].into_iter().enumerate() {
+        let out_dir = format!("M{i}");
+        let o = hullskin(d, &["fit", input, "--offsets", offsets, "-o", &out_dir]);
+        let (out, err) = text(&o);
+        assert!(o.status.success(), "{input}: {out}\n{err}");
+        assert!(
+            out.contains(&format!("surface: {input} (measured as it is, not fitted)")) && out.contains("given"),
+            "{out}"
+        );
+        assert!(err.contains("is measured as it is against") && err.contains("play no part"), "{err}");
+        let r = read_json(&d.join(&out_dir).join("report.json"));
+        assert_eq!(r["method"], "given");
+        assert_eq!(r["surface_source"], input);
+        assert_eq!(r["surface"], fitted["surface"], "{input}");
+        assert_eq!(r["validity"], fitted["validity"], "{input}");
+        for k in ["max", "rms"] {
+            let (a, b) = (r["error"][k].as_f64().expect("number"), fitted["error"][k].as_f64().expect("number"));
+            // Both find the global closest points; Newton stops within 1e-9 m on this hull
+            // (the JSON and IGES hold the surface to the bit, STEP to 17 digits).
+            assert!((a - b).abs() < 1e-7, "{input}: {k} {a} against the fit's {b}");
+        }
+        let names: Vec<_> =
+            fs::read_dir(d.join(&out_dir)).expect("dir").map(|e| e.expect("entry").file_name()).collect();
+        assert_eq!(names, ["report.json"], "{input}: report.json alone");
+    }
+    assert_eq!(fs::read(d.join("F/surface.igs")).expect("read"), igs_before, "the input is untouched");
+    // --json prints report.json.
+    let o = hullskin(d, &["fit", "F/surface.igs", "--offsets", offsets, "--json", "-o", "J"]);
+    let printed: serde_json::Value = serde_json::from_str(&text(&o).0).expect("JSON on stdout");
+    assert_eq!(printed, read_json(&d.join("J/report.json")));
+    // A surface without --offsets, and --offsets with offsets: refused, saying what to do.
+    let o = hullskin(d, &["fit", "F/surface.igs", "-o", "X"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o).1.contains("F/surface.igs: a surface, not offsets") && text(&o).1.contains("--offsets FILE"),
+        "{:?}",
+        text(&o)
+    );
+    let o = hullskin(d, &["fit", offsets, "--offsets", offsets, "-o", "X"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).1.contains("measures a given surface") && text(&o).1.contains("drop --offsets"), "{:?}", text(&o));
+    assert!(!d.join("X").exists(), "nothing written for a refused run");
+}

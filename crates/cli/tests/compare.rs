@@ -118,6 +118,27 @@ fn compare_on_the_builtin_sample_has_every_method() {
     assert_eq!(json["control_points"], serde_json::json!([5, 10]));
     assert_eq!(json["methods"][0]["control_points"], serde_json::json!([8, 25]));
     check_comparison(&json, &md, &out);
+    // --json prints compare.json on standard output, the files written on standard error.
+    let o = hullskin(
+        dir.path(),
+        &[
+            "compare",
+            testdata("offsets_example.csv").to_str().expect("utf-8 path"),
+            "-o",
+            "j",
+            "--iterations",
+            "20",
+            "--population",
+            "10",
+            "--held-out",
+            "0",
+            "--json",
+        ],
+    );
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    assert_eq!(out, fs::read_to_string(dir.path().join("j/compare.json")).expect("compare.json"));
+    assert!(err.contains("hullskin: wrote j"), "{err}");
 }
 
 #[test]

@@ -308,6 +308,19 @@ fn a_surface_json_is_reported_as_is() {
     assert_eq!(rows.len(), 1);
     assert_eq!(rows[0]["draft"], 6.5);
     assert!(html.contains("At the design draft T = 6.500 m."));
+
+    // --json: the summary as JSON on standard output, with the figures of the files.
+    let o = hullskin(&dir, &["report", "F/surface.json", "--offsets", offsets, "--draft", "6.5", "--json", "-o", "R5"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    let summary: serde_json::Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("not JSON ({e}): {out}"));
+    assert_eq!(summary["source"], "F/surface.json");
+    assert_eq!(summary["method"], serde_json::Value::Null, "measured, not fitted");
+    let max = summary["error"]["max"].as_f64().expect("max");
+    assert!((max - fitted).abs() < 1e-7, "{max} against the fit's {fitted}");
+    assert_eq!(summary["hydrostatics"], read_json(&dir.join("R5/hydrostatics.json")));
+    let files: Vec<&str> = summary["files"].as_array().expect("files").iter().filter_map(|f| f.as_str()).collect();
+    assert!(files.iter().any(|f| f.ends_with("report.html")) && files.len() >= 9, "{files:?}");
 }
 
 #[test]

@@ -64,8 +64,8 @@ pub use read::{
     SuspiciousValue, ThreeViews,
 };
 pub use report::{
-    summary_table, summary_warnings, write_fit_outputs, write_fit_outputs_with_report, InputSummary, Report,
-    SurfaceSummary,
+    measured_summary_table, measured_warnings, summary_table, summary_warnings, write_fit_outputs,
+    write_fit_outputs_with_report, write_report_json, InputSummary, Measured, Report, SurfaceSummary,
 };
 pub use sample::{series60_sample, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
 pub use tolerance_search::{fit_to_tolerance, ToleranceFit, ToleranceSearch, ToleranceSettings, TriedCount};

@@ -34,6 +34,10 @@
 //! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
 //! `interp_control_points`, `ratio`, `fits`, `complete`, `valid`, `tried`).
 //!
+//! A surface measured as it is (`hullskin fit SURFACE --offsets FILE`, [`Report::measured`])
+//! has `"method": "given"`, `"parameterization": "closest points"`, `fit_seconds` 0 and
+//! `surface_source`, the surface's file (left out for a fit).
+//!
 //! `envelope_held` (left out when 0) counts the control-point coordinates held on the offsets'
 //! envelope by `--envelope hold`.
 //!
@@ -59,6 +63,7 @@ use serde::Serialize;
 use crate::export::{iges_timestamp, write_iges, write_surface_json, IgesMeta};
 use crate::optimize::OptimReport;
 use crate::{check_finite, FitError, FitOutcome, HullError, Offsets, OutputDir, ToleranceSearch};
+use nurbs::NurbsSurface;
 
 /// The `input` block of `report.json`.
 #[derive(Clone, Debug, Serialize)]
@@ -119,6 +124,38 @@ pub struct Report {
     /// ([`FitOutcome::envelope_held`]; left out when none was).
     #[serde(skip_serializing_if = "is_zero")]
     pub envelope_held: usize,
+    /// The file of a surface measured as it is ([`Report::measured`], method `given`); left
+    /// out for a fit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface_source: Option<String>,
+}
+
+/// A surface given as it is (read from a surface.json, IGES or STEP file, not fitted here),
+/// measured against offsets as a fit is: the error of every offset by closest-point projection
+/// and the validity checks.
+#[derive(Clone, Debug)]
+pub struct Measured<'a> {
+    pub surface: &'a NurbsSurface,
+    /// The surface's file.
+    pub source: &'a str,
+    pub error: FitError,
+    pub validity: Vec<crate::analysis::Finding>,
+    /// Seconds spent measuring.
+    pub seconds: f64,
+}
+
+impl<'a> Measured<'a> {
+    /// Measure `surface` (from the file `source`) against `offsets`, in the offsets' units
+    /// (which must be the surface's).
+    ///
+    /// # Errors
+    /// As [`crate::analysis::check_fit_validity`].
+    pub fn new(surface: &'a NurbsSurface, source: &'a str, offsets: &Offsets) -> Result<Self, HullError> {
+        let start = std::time::Instant::now();
+        let error = crate::measure_fit_error(surface, offsets, None);
+        let validity = crate::analysis::check_fit_validity(surface, offsets)?;
+        Ok(Measured { surface, source, error, validity, seconds: start.elapsed().as_secs_f64() })
+    }
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -132,18 +169,8 @@ impl Report {
         Report {
             hullskin: env!("CARGO_PKG_VERSION"),
             method: outcome.config.method.name(),
-            input: InputSummary {
-                source: offsets.source.clone(),
-                sections: offsets.sections.len(),
-                points: offsets.num_points(),
-                units: offsets.units.symbol(),
-                warnings: Vec::new(),
-            },
-            surface: SurfaceSummary {
-                degree: [s.degree_u(), s.degree_v()],
-                control_points: [s.n_u(), s.n_v()],
-                rational: s.is_rational(),
-            },
+            input: InputSummary::of(offsets),
+            surface: SurfaceSummary::of(s),
             parameterization: outcome.config.param.name(),
             error: outcome.error.clone(),
             seconds: outcome.fit_seconds + outcome.error_seconds,
@@ -157,6 +184,58 @@ impl Report {
             overfitting: None,
             validity: outcome.validity.clone(),
             envelope_held: outcome.envelope_held,
+            surface_source: None,
+        }
+    }
+
+    /// The report of a surface measured as it is: method `given`, parameterization
+    /// `closest points` (every offset's parameters found by projection), no fit time.
+    pub fn measured(offsets: &Offsets, m: &Measured<'_>) -> Self {
+        let s = m.surface;
+        Report {
+            hullskin: env!("CARGO_PKG_VERSION"),
+            method: GIVEN,
+            input: InputSummary::of(offsets),
+            surface: SurfaceSummary::of(s),
+            parameterization: "closest points",
+            error: m.error.clone(),
+            seconds: m.seconds,
+            fit_seconds: 0.0,
+            error_seconds: m.seconds,
+            optimization: None,
+            tolerance_search: None,
+            folds: Vec::new(),
+            fairing: None,
+            rejected: Vec::new(),
+            overfitting: None,
+            validity: m.validity.clone(),
+            envelope_held: 0,
+            surface_source: Some(m.source.to_string()),
+        }
+    }
+}
+
+/// The `method` of a surface measured as it is.
+pub const GIVEN: &str = "given";
+
+impl InputSummary {
+    fn of(offsets: &Offsets) -> Self {
+        InputSummary {
+            source: offsets.source.clone(),
+            sections: offsets.sections.len(),
+            points: offsets.num_points(),
+            units: offsets.units.symbol(),
+            warnings: Vec::new(),
+        }
+    }
+}
+
+impl SurfaceSummary {
+    fn of(s: &NurbsSurface) -> Self {
+        SurfaceSummary {
+            degree: [s.degree_u(), s.degree_v()],
+            control_points: [s.n_u(), s.n_v()],
+            rational: s.is_rational(),
         }
     }
 }
@@ -221,36 +300,28 @@ pub fn write_fit_outputs_with_report(
     Ok(())
 }
 
+/// Write `report.json` alone into `dir` (created if needed), staged and moved in like
+/// [`write_fit_outputs`]: the report of a surface measured as it is, whose surface files are
+/// the user's own.
+///
+/// # Errors
+/// [`HullError::Io`] naming the file or directory that could not be written.
+pub fn write_report_json(dir: &Path, report: &Report) -> Result<(), HullError> {
+    let mut bytes = serde_json::to_vec_pretty(report)
+        .map_err(|e| HullError::Io { path: dir.join("report.json"), error: io::Error::other(e) })?;
+    bytes.push(b'\n');
+    let mut out = OutputDir::stage(dir)?;
+    out.write_bytes("report.json", &bytes)?;
+    out.commit()?;
+    Ok(())
+}
+
 /// A short fixed-width table of the fit for the terminal.
 pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
     let u = offsets.units.symbol();
-    let s = &outcome.surface;
     let e = &outcome.error;
-    let mut t = String::new();
-    let _ = writeln!(
-        t,
-        "input: {} ({} sections, {} points, {})",
-        offsets.source,
-        offsets.sections.len(),
-        offsets.num_points(),
-        offsets.units.plural_name()
-    );
-    let _ = writeln!(
-        t,
-        "{:<8} {:>10} {:>7} {:>12} {:>12} {:>12} {:>10}",
-        "method", "ctrl pts", "degree", "max err", "mean err", "RMS err", "time"
-    );
-    let _ = writeln!(
-        t,
-        "{:<8} {:>10} {:>7} {:>12} {:>12} {:>12} {:>10}",
-        outcome.config.method.name(),
-        format!("{}x{}", s.n_u(), s.n_v()),
-        format!("{},{}", s.degree_u(), s.degree_v()),
-        format!("{:.3e} {u}", e.overall.max),
-        format!("{:.3e} {u}", e.overall.mean),
-        format!("{:.3e} {u}", e.overall.rms),
-        format!("{:.2} ms", 1e3 * (outcome.fit_seconds + outcome.error_seconds)),
-    );
+    let seconds = outcome.fit_seconds + outcome.error_seconds;
+    let mut t = summary_head(offsets, outcome.config.method.name(), &outcome.surface, e, seconds);
     if let Some(h) = &e.held_out {
         let _ = writeln!(t, "{}", held_out_line(h, u));
     }
@@ -283,11 +354,55 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
     for r in &outcome.rejected {
         let _ = writeln!(t, "rejected: {r}");
     }
+    worst_line(&mut t, e, u);
+    t
+}
+
+/// The summary table of a surface measured as it is: the surface's file, then the table of
+/// [`summary_table`] with the method `given`.
+pub fn measured_summary_table(offsets: &Offsets, m: &Measured<'_>) -> String {
+    let mut t = format!("surface: {} (measured as it is, not fitted)\n", m.source);
+    t.push_str(&summary_head(offsets, GIVEN, m.surface, &m.error, m.seconds));
+    worst_line(&mut t, &m.error, offsets.units.symbol());
+    t
+}
+
+/// The input line and the one-row table of method, control points, degree, errors and time.
+fn summary_head(offsets: &Offsets, method: &str, s: &NurbsSurface, e: &FitError, seconds: f64) -> String {
+    let u = offsets.units.symbol();
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "input: {} ({} sections, {} points, {})",
+        offsets.source,
+        offsets.sections.len(),
+        offsets.num_points(),
+        offsets.units.plural_name()
+    );
+    let _ = writeln!(
+        t,
+        "{:<8} {:>10} {:>7} {:>12} {:>12} {:>12} {:>10}",
+        "method", "ctrl pts", "degree", "max err", "mean err", "RMS err", "time"
+    );
+    let _ = writeln!(
+        t,
+        "{:<8} {:>10} {:>7} {:>12} {:>12} {:>12} {:>10}",
+        method,
+        format!("{}x{}", s.n_u(), s.n_v()),
+        format!("{},{}", s.degree_u(), s.degree_v()),
+        format!("{:.3e} {u}", e.overall.max),
+        format!("{:.3e} {u}", e.overall.mean),
+        format!("{:.3e} {u}", e.overall.rms),
+        format!("{:.2} ms", 1e3 * seconds),
+    );
+    t
+}
+
+fn worst_line(t: &mut String, e: &FitError, u: &str) {
     if let Some(w) = &e.worst {
         let line = w.line.map(|l| format!(", line {l}")).unwrap_or_default();
         let _ = writeln!(t, "worst offset: section {} point {}{line}: {:.3e} {u}", w.section, w.index + 1, w.distance);
     }
-    t
 }
 
 /// The warnings of a fit, one sentence each, for standard error (the summary table has the
@@ -295,14 +410,7 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
 /// every validity finding.
 pub fn summary_warnings(offsets: &Offsets, outcome: &FitOutcome) -> Vec<String> {
     let u = offsets.units.symbol();
-    let e = &outcome.error;
-    let mut out = Vec::new();
-    if e.unconverged_projections > 0 {
-        out.push(format!(
-            "{} of {} projections stopped at the iteration limit (their distances are upper bounds)",
-            e.unconverged_projections, e.overall.points
-        ));
-    }
+    let mut out = projection_warnings(&outcome.error);
     if let Some(o) = outcome.optimization.as_ref().filter(|o| o.weights_at_bounds > 0) {
         out.push(format!(
             "{} weights ended on their bounds [{}, {}], a sign of over-fitting (expected fewer control points, or \
@@ -311,6 +419,25 @@ pub fn summary_warnings(offsets: &Offsets, outcome: &FitOutcome) -> Vec<String> 
         ));
     }
     out.extend(outcome.validity.iter().map(|f| f.message(u)));
+    out
+}
+
+/// The warnings of a surface measured as it is: projections stopped at their limit, every
+/// validity finding.
+pub fn measured_warnings(offsets: &Offsets, m: &Measured<'_>) -> Vec<String> {
+    let mut out = projection_warnings(&m.error);
+    out.extend(m.validity.iter().map(|f| f.message(offsets.units.symbol())));
+    out
+}
+
+fn projection_warnings(e: &FitError) -> Vec<String> {
+    let mut out = Vec::new();
+    if e.unconverged_projections > 0 {
+        out.push(format!(
+            "{} of {} projections stopped at the iteration limit (their distances are upper bounds)",
+            e.unconverged_projections, e.overall.points
+        ));
+    }
     out
 }
 

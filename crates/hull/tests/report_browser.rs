@@ -122,7 +122,8 @@ window.addEventListener("load", function () {
         return Array.prototype.map.call(tr.cells, function (td) { return [td.getAttribute("data-value"), text(td)]; });
       })
     } : null,
-    svg: svg ? { groups: groups, polylines: svg.querySelectorAll("polyline").length } : null,
+    svg: svg ? { groups: groups, polylines: svg.querySelectorAll("polyline").length,
+                 sheet_mm: [svg.viewBox.baseVal.width, svg.viewBox.baseVal.height] } : null,
     images: all("img").map(function (i) {
       return { id: i.id, complete: i.complete, natural: [i.naturalWidth, i.naturalHeight], src: i.getAttribute("src").slice(0, 22) };
     }),
@@ -383,7 +384,7 @@ fn dom_after_load_has_every_section_with_the_library_figures() {
 }
 
 /// The whole page in one screenshot: the section rules where the layout put them; the lines
-/// plan's sheet frame at its place on A3 and each family of lines (stations blue, waterlines
+/// plan's sheet frame at its place on its sheet and each family of lines (stations blue, waterlines
 /// green, buttocks red) inside its own view; both curvature maps in both ends of the diverging
 /// scale; and the viewer's frame rendered by WebGL: its scene background, the hull in both
 /// colours of the Gaussian curvature, the legend in the side panel. No console message, no
@@ -424,12 +425,17 @@ fn screenshot_shows_the_lines_plan_maps_and_the_viewer_hull() {
     viewer_in(&shot, d);
 }
 
-/// The lines plan: the sheet's frame at 20..410 x 10..287 mm of the 420 x 297 mm sheet, each
-/// family of lines in its view.
+/// The lines plan: the sheet's frame 20 mm from its left edge and 10 mm from the others (on
+/// the sheet chosen for the sample: A4x7, 1471 x 297 mm), each family of lines in its view.
 fn lines_plan_in(shot: &Picture, d: &Value) {
     let boxes = &d["boxes"];
     let sheet = pixel_box(&boxes["#lines-figure svg"], 0.0);
     let (w, h) = ((sheet[2] - sheet[0]) as f64, (sheet[3] - sheet[1]) as f64);
+    let mm = |i: usize| d["svg"]["sheet_mm"][i].as_f64().expect("the sheet's size");
+    let (sw, sh) = (mm(0), mm(1));
+    assert_eq!((sw, sh), (1471.0, 297.0), "the sample's sheet");
+    // Shown whole, at its own aspect ratio, as wide as the page.
+    assert!((w / h - sw / sh).abs() < 0.02 * sw / sh, "sheet shown {w} x {h} px");
     let mut ink = [u32::MAX, u32::MAX, 0, 0];
     let mut counts = [[0usize; 2]; 3];
     // A view's lines may stick out of its box by a stroke width and antialiasing.
@@ -463,10 +469,12 @@ fn lines_plan_in(shot: &Picture, d: &Value) {
         (ink[3] - sheet[1]) as f64 / h,
     ];
     eprintln!("lines plan: sheet {sheet:?}, ink {frac:.3?}, [outside, inside] blue/green/red {counts:?}");
-    // The frame (y down in the picture: 10 mm from the top, 287 from it at the bottom), within
-    // 3 px of rounding and line width on a sheet ~1150 px wide.
-    for (got, want) in frac.iter().zip([20.0 / 420.0, 10.0 / 297.0, 410.0 / 420.0, 287.0 / 297.0]) {
-        assert!((got - want).abs() < 3.0 / w, "sheet frame at {frac:?}");
+    // The frame (y down in the picture: 10 mm from the top and the bottom), within 3 px of
+    // rounding and line width on a sheet ~1150 px wide (a vertical px is 1.3 mm of this sheet).
+    let want = [20.0 / sw, 10.0 / sh, (sw - 10.0) / sw, (sh - 10.0) / sh];
+    for (i, (got, want)) in frac.iter().zip(want).enumerate() {
+        let px = if i % 2 == 0 { w } else { h };
+        assert!((got - want).abs() < 3.0 / px, "sheet frame at {frac:?}, expected {want:?}");
     }
     for (k, name) in ["stations (blue)", "waterlines (green)", "buttocks (red)"].iter().enumerate() {
         let [outside, inside] = counts[k];

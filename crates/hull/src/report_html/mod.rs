@@ -956,16 +956,13 @@ impl Page<'_, '_> {
         } else {
             ""
         };
-        // A long sheet is shown at least 36 rem high (the labels readable) and scrolls sideways.
-        let sheet = self.lines_sheet;
-        let min_width_rem = 36.0 * sheet.width_mm / sheet.height_mm;
+        // The whole sheet, as wide as the page (a vector drawing: the browser's zoom reads it).
         format!(
-            "<figure id=\"lines-figure\">\n<div class=\"sheet-scroll\"><div style=\"width: max(100%, \
-             {min_width_rem:.0}rem)\">\n{svg}</div></div><figcaption>Body plan, profile and half-breadth plan at one \
-             standard scale on {} (<code>{LINES_SVG_FILE}</code>, <code>{LINES_DXF_FILE}</code>, \
-             <code>{LINES_PNG_FILE}</code>; the cuts in 3-D in <code>{LINES_3D_DXF_FILE}</code>).{offsets}</figcaption>\n\
-             </figure>\n",
-            esc(&sheet.to_string())
+            "<figure id=\"lines-figure\">\n{svg}<figcaption>Body plan, profile and half-breadth plan at one standard \
+             scale on {}, the sheet on which they fill the most of the frame (<code>{LINES_SVG_FILE}</code> and \
+             <code>{LINES_DXF_FILE}</code> print at scale, <code>{LINES_PNG_FILE}</code>; the cuts in 3-D in \
+             <code>{LINES_3D_DXF_FILE}</code>).{offsets}</figcaption>\n</figure>\n",
+            esc(&self.lines_sheet.to_string())
         )
     }
 
