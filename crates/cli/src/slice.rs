@@ -166,7 +166,8 @@ pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
         edges.non_manifold
     );
     if let Some((lo, hi)) = mesh.bounds() {
-        outln!("  x {} .. {}, y {} .. {}, z {} .. {}", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
+        let f = hull::format_short;
+        outln!("  x {} .. {}, y {} .. {}, z {} .. {}", f(lo.x), f(hi.x), f(lo.y), f(hi.y), f(lo.z), f(hi.z));
     }
     let points: usize = out.offsets.sections.iter().map(|s| s.points.len()).sum();
     outln!(

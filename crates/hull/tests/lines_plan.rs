@@ -789,6 +789,14 @@ fn every_table_fills_half_the_frame_with_every_label_inside() {
             100.0 * c.share,
             c.body_height_mm
         ));
+        // Every station labelled above the profile (in one row, or two when they crowd).
+        let labels = svg.texts("grid").filter(|t| t.2 == "middle" && t.0 != "CL").count();
+        let counts = svg.texts("title").find(|t| t.0.starts_with("Stations ")).expect("the counts").0;
+        let stations: usize =
+            counts["Stations ".len()..].split(',').next().and_then(|n| n.parse().ok()).expect("a count");
+        if labels != stations {
+            failures.push(format!("{name}: {labels} station labels for {stations} stations"));
+        }
         if c.share < 0.5 || !c.outside.is_empty() || !c.collisions.is_empty() {
             failures
                 .push(format!("{name}: share {:.3}, outside {:?}, collisions {:?}", c.share, c.outside, c.collisions));

@@ -840,9 +840,9 @@ fn station_points(
                     "the curve of station {:?} ({}) crosses the centreline X = {}: it reaches {} drawing units left of it and {} right",
                     f.label,
                     sketch.curves[first].describe(),
-                    datum[0],
-                    left,
-                    right
+                    crate::numfmt::format_short(datum[0]),
+                    crate::numfmt::format_short(left),
+                    crate::numfmt::format_short(right)
                 ),
                 "each station on one side of the centreline (aft stations left, fore stations right): check the datum X",
             ));

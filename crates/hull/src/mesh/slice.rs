@@ -229,19 +229,27 @@ impl SliceOutcome {
     /// One line per dropped station and per station whose pieces were joined or loops
     /// skipped, for the user.
     pub fn warnings(&self) -> Vec<String> {
-        let mut out: Vec<String> =
-            self.dropped.iter().map(|d| format!("station {} at x = {}: dropped: {}", d.label, d.x, d.reason)).collect();
+        let f = crate::numfmt::format_short;
+        let mut out: Vec<String> = self
+            .dropped
+            .iter()
+            .map(|d| format!("station {} at x = {}: dropped: {}", d.label, f(d.x), d.reason))
+            .collect();
         for s in &self.stations {
             if s.pieces > 1 {
                 out.push(format!(
                     "station {} at x = {}: {} pieces joined along the centre plane (bulb, skeg or aperture)",
-                    s.label, s.x, s.pieces
+                    s.label,
+                    f(s.x),
+                    s.pieces
                 ));
             }
             if s.skipped_loops > 0 {
                 out.push(format!(
                     "station {} at x = {}: {} closed loop(s) off the centre plane skipped",
-                    s.label, s.x, s.skipped_loops
+                    s.label,
+                    f(s.x),
+                    s.skipped_loops
                 ));
             }
         }
@@ -352,7 +360,8 @@ pub fn slice_mesh(mesh: &TriMesh, options: &SliceOptions) -> Result<SliceOutcome
         }
     }
     if sections.len() < 2 {
-        let why: Vec<String> = dropped.iter().map(|d| format!("x = {}: {}", d.x, d.reason)).collect();
+        let why: Vec<String> =
+            dropped.iter().map(|d| format!("x = {}: {}", crate::numfmt::format_short(d.x), d.reason)).collect();
         return Err(HullError::Config(format!(
             "{}: {} of {} stations give a section (expected at least 2); {}",
             mesh.source,
