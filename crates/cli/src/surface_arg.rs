@@ -102,9 +102,9 @@ fn is_surface_json(text: &str) -> bool {
     text.trim_start().starts_with('{') && !hull::read::json_table::is_offset_json(text)
 }
 
-/// Whether `path` holds a surface (IGES, STEP or surface.json), told apart as [`read_input`]
-/// does. A file that cannot be read, or is too large, is not: the offsets reader names its
-/// error.
+/// Whether `path` holds a surface: an IGES or STEP file (told apart as [`read_input`] does),
+/// or a JSON that reads as a surface.json. A file that cannot be read, is too large or is a
+/// broken JSON is not: the offsets reader names its error and place.
 pub(crate) fn holds_surface(path: &Path) -> bool {
     if crate::slice::is_mesh_path(path)
         || hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface file").is_err()
@@ -113,7 +113,10 @@ pub(crate) fn holds_surface(path: &Path) -> bool {
     }
     let Ok(bytes) = std::fs::read(path) else { return false };
     cad_format(path, &bytes).is_some()
-        || hull::decode(&bytes, &path.display().to_string()).is_ok_and(|t| is_surface_json(without_bom(t)))
+        || hull::decode(&bytes, &path.display().to_string()).is_ok_and(|t| {
+            let t = without_bom(t);
+            is_surface_json(t) && hull::export::read_surface_json(t).is_ok()
+        })
 }
 
 /// A note on standard error when `--units` was given for a surface.json input in other units
