@@ -5,19 +5,15 @@
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use hull::{fit_offsets, series60_sample, FitConfig, FitMethod, Hydrostatics, HydrostaticsOptions};
-use nurbs::{KnotVector, NurbsSurface, Vec3};
+use nurbs::NurbsSurface;
+
+/// The exact Wigley patch of the tests (L 100 m, B 10 m, T 6.25 m).
+#[allow(dead_code)]
+#[path = "../tests/common/surfaces.rs"]
+mod surfaces;
 
 fn wigley_patch() -> NurbsSurface {
-    let (l, b, t) = (100.0, 10.0, 6.25);
-    let k = || KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("Bezier knots");
-    let (fv, gu) = ([0.0, 2.0, 0.0], [0.0, 1.0, 1.0]);
-    let mut pts = Vec::new();
-    for (i, g) in gu.iter().enumerate() {
-        for (j, f) in fv.iter().enumerate() {
-            pts.push(Vec3::new(l * j as f64 / 2.0, 0.5 * b * f * g, t * i as f64 / 2.0));
-        }
-    }
-    NurbsSurface::try_new(k(), k(), &pts, None).expect("valid patch")
+    surfaces::wigley_patch(100.0, 10.0, 6.25)
 }
 
 fn bench(c: &mut Criterion) {

@@ -12,7 +12,7 @@ use std::process::Command;
 
 use common::browser::workspace_root;
 use common::python::tools_python;
-use common::surfaces::{polynomial, quarter_cylinder, rational_bicubic, scaled, wigley_patch};
+use common::surfaces::{polynomial, quarter_cylinder, rational_bicubic, wigley_patch};
 use hull::export::{write_iges, write_step, write_surface_json, IgesMeta, StepMeta};
 use hull::read::cad::{parse_cad_surfaces, CadFormat};
 use hull::{read_cad_surfaces, CadSurfaces, Hydrostatics, HydrostaticsOptions, HydrostaticsRow, Units};
@@ -85,7 +85,7 @@ fn hullskins_own_exports_read_back_in_every_unit() {
         [("rational", rational_bicubic()), ("polynomial", polynomial()), ("cylinder", quarter_cylinder(2.0, 3.0))];
     for (name, metres) in &cases {
         for file_units in Units::ALL {
-            let in_file = scaled(metres, 1.0 / file_units.metres_per_unit());
+            let in_file = metres.scaled(1.0 / file_units.metres_per_unit());
             for (format, bytes) in
                 [(CadFormat::Iges, iges(&in_file, file_units)), (CadFormat::Step, step(&in_file, file_units))]
             {
@@ -97,7 +97,7 @@ fn hullskins_own_exports_read_back_in_every_unit() {
                 for target in Units::ALL {
                     let read = parse_cad_surfaces(&bytes, "t", Some(target)).unwrap_or_else(|e| panic!("{case}: {e}"));
                     assert_eq!(read.units, target);
-                    let want = scaled(metres, 1.0 / target.metres_per_unit());
+                    let want = metres.scaled(1.0 / target.metres_per_unit());
                     compare(one(&read), &want).unwrap_or_else(|e| panic!("{case} read in {target}: {e}"));
                 }
             }
@@ -251,7 +251,7 @@ fn wigley_hydrostatics_from_iges_and_step_equal_those_from_surface_json() {
         assert_eq!(read.units, Units::Metre);
         assert_eq!(wigley_rows(one(&read), &drafts), want, "{name}");
     }
-    let mm = scaled(&wigley, 1000.0);
+    let mm = wigley.scaled(1000.0);
     for (name, bytes) in [("mm.igs", iges(&mm, Units::Millimetre)), ("mm.stp", step(&mm, Units::Millimetre))] {
         let path = dir.path().join(name);
         std::fs::write(&path, bytes).expect("write");

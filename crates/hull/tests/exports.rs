@@ -17,7 +17,7 @@ use std::sync::OnceLock;
 
 use common::browser::workspace_root;
 use common::python::tools_python;
-use common::surfaces::{samples, scaled};
+use common::surfaces::samples;
 
 use hull::export::mesh_out::{curvature_colors, srgb_to_linear};
 use hull::export::{
@@ -190,7 +190,7 @@ fn occt_reads_the_step_export_exactly() {
     for (name, s, units) in &cases {
         for &units in units {
             // The same physical size in every unit.
-            let s = scaled(s, 1.0 / units.metres_per_unit());
+            let s = s.scaled(1.0 / units.metres_per_unit());
             let case = format!("{name}_{}", units.symbol());
             let stp = dir.path().join(format!("{case}.stp"));
             std::fs::write(&stp, step_bytes(&s, units, &format!("{case}.stp"))).expect("write STEP");
@@ -552,7 +552,7 @@ fn meshes_read_back_by_trimesh_and_pygltflib() {
     let cases = [
         ("quarter_cylinder", quarter_cylinder(2.0, 3.0), Units::Metre, false, 1e-3),
         ("s60_rational", s60_rational.clone(), Units::Metre, true, 1e-4),
-        ("pointed_ft", scaled(&pointed(&rational_bicubic()), 1.0 / 0.3048), Units::Foot, false, 2e-4),
+        ("pointed_ft", pointed(&rational_bicubic()).scaled(1.0 / 0.3048), Units::Foot, false, 2e-4),
     ];
     for (name, s, units, mirror, rel) in &cases {
         let tol = rel * size(s);
@@ -656,7 +656,7 @@ fn khronos_validator_accepts_the_gltf() {
     let Some(prefix) = gltf_validator() else { return };
     let dir = tempfile::tempdir().expect("temp dir");
     let (_, s60_rational) = series60();
-    let s = scaled(s60_rational, 1.0 / 0.3048);
+    let s = s60_rational.scaled(1.0 / 0.3048);
     let mesh = tessellate(&s, &TessellationOptions { tolerance: 1e-4 * size(&s), mirror: true }).expect("tessellates");
     let mut bytes = Vec::new();
     write_glb(&mut bytes, &mesh, "hull", Units::Foot).expect("writes");

@@ -12,7 +12,7 @@ use std::process::Command;
 
 use common::browser::workspace_root;
 use common::python::tools_python;
-use common::surfaces::{polynomial, quarter_cylinder, rational_bicubic, samples, scaled};
+use common::surfaces::{polynomial, quarter_cylinder, rational_bicubic, samples};
 
 use hull::export::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
 use nurbs::NurbsSurface;
@@ -95,7 +95,7 @@ fn occt_reads_the_iges_export_exactly() {
             unit_cases.extend([(IgesUnits::FOOT, 1.0 / 0.3048), (IgesUnits::INCH, 1.0 / 0.0254)]);
         }
         for (units, k) in unit_cases {
-            let s = scaled(s, k);
+            let s = s.scaled(k);
             let case = format!("{name}_{}", units.name.to_lowercase());
             let (igs, exp) = write_case(dir.path(), &case, &s, units, &samples(&s));
             let (code, summary) = run_check(&python, &igs, &exp);

@@ -181,7 +181,7 @@ pub fn lines_plan(
         comb: combs_mm,
         legend: errors.is_some(),
         label_chars: lines.label_chars(),
-        station_chars: lines.stations.iter().map(|s| s.1.chars().count()).max().unwrap_or(0),
+        station_chars: lines.station_chars(),
     };
     let layout = Layout::choose(bx, options.sheet, needs);
     let (w, h) = (layout.sheet.width_mm, layout.sheet.height_mm);
@@ -347,6 +347,11 @@ impl Lines {
             None => round_inside(0.0, bx.half_breadth(), 4),
         };
         Lines { stations, waterlines, buttocks }
+    }
+
+    /// The widest station label, in characters.
+    fn station_chars(&self) -> usize {
+        self.stations.iter().map(|s| s.1.chars().count()).max().unwrap_or(0)
     }
 
     /// The widest label beside a view, in characters: a waterline or buttock value, `BL`,

@@ -1,11 +1,7 @@
-//! Surfaces and sample points shared by the export checks (IGES, STEP) and the CAD readers.
+//! Surfaces and sample points shared by the export checks (IGES, STEP), the CAD readers and
+//! the hydrostatics bench (which includes this file by path).
 
 use nurbs::{KnotVector, NurbsSurface, Vec3};
-
-/// The same surface with every control point multiplied by `k` (a change of length unit).
-pub fn scaled(s: &NurbsSurface, k: f64) -> NurbsSurface {
-    s.scaled(k)
-}
 
 /// A 9 x 9 grid over the domain, boundaries included, plus 7 irregular interior points: 88.
 pub fn samples(s: &NurbsSurface) -> Vec<[f64; 5]> {
