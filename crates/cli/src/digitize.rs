@@ -91,6 +91,10 @@ pub struct DigitizeArgs {
     /// The sections CSV to write.
     #[arg(short = 'o', long = "out", value_name = "FILE", default_value = "sections.csv")]
     pub out: PathBuf,
+    /// Print the stations found and the file written as one JSON object on standard output,
+    /// for scripts; notes stay on standard error.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Millimetres per drawing unit of a unit name.
@@ -185,21 +189,51 @@ pub fn run(args: &DigitizeArgs) -> anyhow::Result<ExitCode> {
     let sketch = read_drawing(&args.drawing)?;
     let d = digitize(&sketch, &o)?;
     for n in &d.notes {
-        eprintln!("note: {n}");
+        eprintln!("hullskin: note: {n}");
+    }
+    let side_name = |side: Side| match side {
+        Side::Aft => "aft",
+        Side::Fore => "fore",
+        Side::Centreline => "centreline",
+    };
+    write_atomic(&args.out, |w| write_sections_csv(w, &d.offsets))
+        .with_context(|| format!("cannot write {}", args.out.display()))?;
+    if args.json {
+        let stations: Vec<_> = d
+            .stations
+            .iter()
+            .map(|s| {
+                serde_json::json!({
+                    "label": s.label, "x": s.x, "side": side_name(s.side), "curves": s.curves, "points": s.points,
+                })
+            })
+            .collect();
+        let summary = serde_json::json!({
+            "source": sketch.source,
+            "curves": sketch.curves.len(),
+            "labels": sketch.labels.len(),
+            "units": o.units.symbol(),
+            "stations": stations,
+            "wrote": args.out.display().to_string(),
+            "sections": d.offsets.sections.len(),
+            "points": d.offsets.num_points(),
+        });
+        outln!("{}", serde_json::to_string_pretty(&summary).context("the summary as JSON")?);
+        return Ok(ExitCode::SUCCESS);
     }
     let units = o.units.symbol();
     outln!("{}: {} curves, {} labels", sketch.source, sketch.curves.len(), sketch.labels.len());
     outln!("{:<12} {:>14} {:<10} {:>6} {:>6}", "station", format!("x ({units})"), "side", "curves", "points");
     for s in &d.stations {
-        let side = match s.side {
-            Side::Aft => "aft",
-            Side::Fore => "fore",
-            Side::Centreline => "centreline",
-        };
-        outln!("{:<12} {:>14} {:<10} {:>6} {:>6}", s.label, format!("{}", s.x), side, s.curves, s.points);
+        outln!(
+            "{:<12} {:>14} {:<10} {:>6} {:>6}",
+            s.label,
+            hull::format_figure(s.x),
+            side_name(s.side),
+            s.curves,
+            s.points
+        );
     }
-    write_atomic(&args.out, |w| write_sections_csv(w, &d.offsets))
-        .with_context(|| format!("cannot write {}", args.out.display()))?;
     outln!(
         "wrote {}: {} sections, {} points ({})",
         args.out.display(),

@@ -16,6 +16,7 @@ use hull::export::{
 use hull::optimize::OptimSettings;
 use hull::{FitMethod, Offsets};
 use nurbs::{NurbsSurface, Vec3};
+use serde_json::json;
 
 use crate::fit::fit_with_progress;
 use crate::skin_args::SkinArgs;
@@ -138,6 +139,10 @@ pub struct ExportArgs {
     /// The file to write.
     #[arg(short = 'o', long = "out", value_name = "FILE")]
     pub out: PathBuf,
+    /// Print what was written as one JSON object on standard output (the file, format,
+    /// units, poles or triangles), for scripts; notes stay on standard error.
+    #[arg(long)]
+    pub json: bool,
 }
 
 fn parse_method(s: &str) -> Result<FitMethod, String> {
@@ -240,16 +245,18 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
         hull::write_atomic(out, |w| fill(w)).with_context(|| format!("cannot write {}", out.display()))
     };
     let unit = units.symbol();
-    let note = match format {
+    let (note, details) = match format {
         ExportFormat::Step => {
             let mut meta = StepMeta::new(units, &file_name, &hull::export::step_timestamp(time));
             meta.description = format!("hull surface ({source})");
             write(&|mut w| write_step(&mut w, &surface, &meta))?;
-            format!("one B-spline face, {}x{} poles", surface.n_u(), surface.n_v())
+            let poles = [surface.n_u(), surface.n_v()];
+            (format!("one B-spline face, {}x{} poles", poles[0], poles[1]), json!({ "poles": poles }))
         }
         ExportFormat::Iges => {
             write(&|mut w| write_iges(&mut w, &surface, &iges_meta()))?;
-            format!("one surface, {}x{} poles", surface.n_u(), surface.n_v())
+            let poles = [surface.n_u(), surface.n_v()];
+            (format!("one surface, {}x{} poles", poles[0], poles[1]), json!({ "poles": poles }))
         }
         ExportFormat::IgesCurves => {
             let (vs, at) = match &fitted {
@@ -258,14 +265,24 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
             };
             let curves = section_curves(&surface, &vs);
             write(&|mut w| write_iges_model(&mut w, Some(&surface), &curves, &iges_meta()))?;
-            format!("the surface and {} section curves at {at}", curves.len())
+            (
+                format!("the surface and {} section curves at {at}", curves.len()),
+                json!({ "poles": [surface.n_u(), surface.n_v()], "section_curves": curves.len() }),
+            )
         }
         ExportFormat::IgesPolynomial => {
             let tol = args.tolerance.unwrap_or(1e-5 * size(&surface));
             let approx = polynomial_approximation(&surface, tol)?;
             hull::check_finite(&approx.surface).context("cannot export the polynomial approximation")?;
             write(&|mut w| write_iges(&mut w, &approx.surface, &iges_meta()))?;
-            if approx.exact {
+            let details = json!({
+                "poles": [approx.surface.n_u(), approx.surface.n_v()],
+                "exact": approx.exact,
+                "max_deviation": approx.max_deviation,
+                "check_points": approx.check_points,
+                "tolerance": tol,
+            });
+            let note = if approx.exact {
                 "polynomial surface, exact (all weights equal)".to_string()
             } else {
                 format!(
@@ -276,7 +293,8 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
                     approx.max_deviation,
                     approx.check_points
                 )
-            }
+            };
+            (note, details)
         }
         ExportFormat::Dxf => {
             let offsets: Option<&Offsets> = fitted.as_ref().map(|(o, _)| o);
@@ -289,7 +307,10 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
                 curves.extend(port);
             }
             write(&|mut w| write_dxf_3d_lines(&mut w, &curves, units))?;
-            format!("{} polylines (stations, waterlines, buttocks)", curves.len())
+            (
+                format!("{} polylines (stations, waterlines, buttocks)", curves.len()),
+                json!({ "polylines": curves.len() }),
+            )
         }
         ExportFormat::Stl | ExportFormat::StlAscii | ExportFormat::Obj | ExportFormat::Glb => {
             let mut options = TessellationOptions::for_surface(&surface);
@@ -305,15 +326,33 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
                 ExportFormat::Obj => write(&|mut w| write_obj(&mut w, &mesh, name, units))?,
                 _ => write(&|mut w| write_glb(&mut w, &mesh, name, units))?,
             }
-            format!(
-                "{} triangles, chord tolerance {:.3e} {unit}{}",
-                mesh.triangles.len(),
-                options.tolerance,
-                if format == ExportFormat::Glb { ", in metres" } else { "" }
+            (
+                format!(
+                    "{} triangles, chord tolerance {:.3e} {unit}{}",
+                    mesh.triangles.len(),
+                    options.tolerance,
+                    if format == ExportFormat::Glb { ", in metres" } else { "" }
+                ),
+                json!({ "triangles": mesh.triangles.len(), "vertices": mesh.positions.len(), "tolerance": options.tolerance }),
             )
         }
     };
-    outln!("wrote {} ({}: {note})", out.display(), format.name());
+    if args.json {
+        let mut summary = json!({
+            "source": source,
+            "wrote": out.display().to_string(),
+            "format": format.name(),
+            "units": if format == ExportFormat::Glb { "m" } else { unit },
+            "mirror": args.mirror,
+            "note": note,
+        });
+        if let (Some(map), serde_json::Value::Object(more)) = (summary.as_object_mut(), details) {
+            map.extend(more);
+        }
+        outln!("{}", serde_json::to_string_pretty(&summary).context("the summary as JSON")?);
+    } else {
+        outln!("wrote {} ({}: {note})", out.display(), format.name());
+    }
     Ok(ExitCode::SUCCESS)
 }
 

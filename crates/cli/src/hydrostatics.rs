@@ -54,6 +54,10 @@ pub struct HydrostaticsArgs {
     /// Output format.
     #[arg(long, value_enum, default_value = "text")]
     pub format: Format,
+    /// The table as JSON on standard output, for scripts (the same as --format json, as
+    /// `fit`, `report` and the other commands spell it).
+    #[arg(long, conflicts_with = "format")]
+    pub json: bool,
     /// Write the table to FILE instead of standard output.
     #[arg(short = 'o', long = "out", value_name = "FILE")]
     pub out: Option<PathBuf>,
@@ -134,11 +138,16 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
     }
     if web.0 > 0.0 {
         let u = units.symbol();
-        let at = if drafts.len() > 1 { format!(" (largest, at draft {})", web.1) } else { String::new() };
-        eprintln!("hullskin: note: centre-plane web of {:.6} {u}² left out of S and Lwl{at}", web.0);
+        let at = if drafts.len() > 1 {
+            format!(" (largest, at draft {})", hull::format_short(web.1))
+        } else {
+            String::new()
+        };
+        eprintln!("hullskin: note: centre-plane web of {} {u}² left out of S and Lwl{at}", hull::format_short(web.0));
     }
     let table = HydrostaticsTable { source, units, density: args.density, perpendiculars, rows };
-    let text = match args.format {
+    let format = if args.json { Format::Json } else { args.format };
+    let text = match format {
         Format::Text => table.text(),
         Format::Csv => table.csv(),
         Format::Json => table.json(),

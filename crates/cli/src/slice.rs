@@ -17,7 +17,7 @@ use hull::{Hydrostatics, HydrostaticsOptions, Offsets, Units};
 use nurbs::Vec3;
 
 use crate::parse::parse_units;
-use crate::stdout::outln;
+use crate::stdout::{out, outln};
 
 /// How a mesh is read and sliced into sections.
 #[derive(Debug, Clone, Args)]
@@ -150,13 +150,38 @@ pub struct SliceArgs {
     /// starboard vertices to it.
     #[arg(long, value_name = "SURFACE.json", requires = "draft")]
     pub check: Option<PathBuf>,
+    /// Print the summary as one JSON object on standard output (full precision), for
+    /// scripts; warnings stay on standard error.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Run `hullskin slice`.
 pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
     let (mesh, out) = args.mesh.read_and_slice(&args.input, args.units)?;
     let edges = mesh.edge_counts();
-    outln!(
+    let points: usize = out.offsets.sections.iter().map(|s| s.points.len()).sum();
+    let mut summary = serde_json::json!({
+        "mesh": {
+            "source": mesh.source,
+            "triangles": mesh.triangles.len(),
+            "vertices": mesh.vertices.len(),
+            "degenerate_dropped": mesh.degenerate,
+            "open_edges": edges.open,
+            "non_manifold_edges": edges.non_manifold,
+            "bounds": mesh.bounds().map(|(lo, hi)| [[lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z]]),
+        },
+        "units": args.units.symbol(),
+        "sections": out.offsets.sections.len(),
+        "points": points,
+        "stations_dropped": out.dropped.len(),
+    });
+    let mut text = String::new();
+    let mut line = |l: String| {
+        text.push_str(&l);
+        text.push('\n');
+    };
+    line(format!(
         "{}: {} triangles, {} vertices ({} degenerate triangles dropped), {} open and {} non-manifold edges",
         mesh.source,
         mesh.triangles.len(),
@@ -164,58 +189,97 @@ pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
         mesh.degenerate,
         edges.open,
         edges.non_manifold
-    );
+    ));
     if let Some((lo, hi)) = mesh.bounds() {
         let f = hull::format_short;
-        outln!("  x {} .. {}, y {} .. {}, z {} .. {}", f(lo.x), f(hi.x), f(lo.y), f(hi.y), f(lo.z), f(hi.z));
+        line(format!("  x {} .. {}, y {} .. {}, z {} .. {}", f(lo.x), f(hi.x), f(lo.y), f(hi.y), f(lo.z), f(hi.z)));
     }
-    let points: usize = out.offsets.sections.iter().map(|s| s.points.len()).sum();
-    outln!(
+    line(format!(
         "{} sections of {} points ({} stations dropped), keel to deck edge (or the mesh's top) on the starboard side",
         out.offsets.sections.len(),
         points / out.offsets.sections.len().max(1),
         out.dropped.len()
-    );
+    ));
     if let Some(t) = args.draft {
         let m = mesh_hydrostatics(&mesh, t);
-        print_mesh_hydrostatics(&m, args.units);
+        mesh_hydrostatics_text(&m, args.units).lines().for_each(|l| line(l.to_string()));
+        summary["hydrostatics"] = mesh_hydrostatics_json(&m);
+        if m.open_edges_below > 0 {
+            eprintln!(
+                "hullskin: warning: the mesh has {} open edges below the waterline: its volume is not that of a \
+                 closed hull",
+                m.open_edges_below
+            );
+        }
         if let Some(path) = &args.check {
-            check_surface(path, &mesh, &out.offsets, &m)?;
+            let (check_text, check) = check_surface(path, &mesh, &out.offsets, &m)?;
+            check_text.lines().for_each(|l| line(l.to_string()));
+            summary["check"] = check;
         }
     }
     // Written last, atomically: a run that fails (e.g. an unreadable --check surface) leaves
     // an earlier file as it was.
     hull::write_atomic(&args.out, |w| write_sections_csv(w, &out.offsets))
         .with_context(|| format!("cannot write {}", args.out.display()))?;
-    outln!("wrote {}", args.out.display());
+    line(format!("wrote {}", args.out.display()));
+    summary["wrote"] = serde_json::json!(args.out.display().to_string());
+    if args.json {
+        outln!("{}", serde_json::to_string_pretty(&summary).context("the summary as JSON")?);
+    } else {
+        out!("{text}");
+    }
     Ok(ExitCode::SUCCESS)
 }
 
-fn print_mesh_hydrostatics(m: &MeshHydrostatics, units: Units) {
+/// The mesh's hydrostatics as summary lines, figures to 5 significant digits.
+fn mesh_hydrostatics_text(m: &MeshHydrostatics, units: Units) -> String {
     let u = units.symbol();
-    outln!("mesh at draft {} {u}{}:", m.draft, if m.half { " (starboard half, doubled)" } else { "" });
-    outln!("  volume {:.6} {u}3, LCB {:.6} {u}, KB {:.6} {u}", m.volume, m.lcb, m.vcb);
-    outln!("  wetted surface {:.6} {u}2", m.wetted_surface);
-    outln!(
-        "  waterplane {:.6} {u}2, LCF {:.6} {u}, Lwl {:.6} {u}, Bwl {:.6} {u}",
-        m.waterplane_area,
-        m.lcf,
-        m.lwl,
-        m.bwl
+    let f = hull::format_figure;
+    let mut s = format!(
+        "mesh at draft {} {u}{}:\n",
+        hull::format_short(m.draft),
+        if m.half { " (starboard half, doubled)" } else { "" }
+    );
+    s += &format!("  volume {} {u}3, LCB {} {u}, KB {} {u}\n", f(m.volume), f(m.lcb), f(m.vcb));
+    s += &format!("  wetted surface {} {u}2\n", f(m.wetted_surface));
+    s += &format!(
+        "  waterplane {} {u}2, LCF {} {u}, Lwl {} {u}, Bwl {} {u}\n",
+        f(m.waterplane_area),
+        f(m.lcf),
+        f(m.lwl),
+        f(m.bwl)
     );
     if m.inward {
-        outln!("  (the mesh's triangles face inward; measured as if turned outward)");
+        s += "  (the mesh's triangles face inward; measured as if turned outward)\n";
     }
-    if m.open_edges_below > 0 {
-        eprintln!(
-            "hullskin: warning: the mesh has {} open edges below the waterline: its volume is not that of a \
-             closed hull",
-            m.open_edges_below
-        );
-    }
+    s
 }
 
-fn check_surface(path: &Path, mesh: &TriMesh, offsets: &Offsets, m: &MeshHydrostatics) -> anyhow::Result<()> {
+/// The mesh's hydrostatics at full precision, for `--json`.
+fn mesh_hydrostatics_json(m: &MeshHydrostatics) -> serde_json::Value {
+    serde_json::json!({
+        "draft": m.draft,
+        "volume": m.volume,
+        "lcb": m.lcb,
+        "kb": m.vcb,
+        "wetted_surface": m.wetted_surface,
+        "waterplane_area": m.waterplane_area,
+        "lcf": m.lcf,
+        "lwl": m.lwl,
+        "bwl": m.bwl,
+        "half": m.half,
+        "inward": m.inward,
+        "open_edges_below": m.open_edges_below,
+    })
+}
+
+/// The surface at `path` against the mesh: summary lines and the same at full precision.
+fn check_surface(
+    path: &Path,
+    mesh: &TriMesh,
+    offsets: &Offsets,
+    m: &MeshHydrostatics,
+) -> anyhow::Result<(String, serde_json::Value)> {
     hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface.json")?;
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let (surface, _) = hull::export::read_surface_json(&text)
@@ -224,35 +288,62 @@ fn check_surface(path: &Path, mesh: &TriMesh, offsets: &Offsets, m: &MeshHydrost
         .and_then(|h| h.at(m.draft))
         .with_context(|| format!("hydrostatics of {}", path.display()))?;
     let pct = |a: f64, b: f64| if b != 0.0 { 100.0 * (a - b) / b } else { f64::NAN };
-    outln!("surface {} against the mesh at draft {}:", path.display(), m.draft);
-    outln!(
-        "  volume {:.6} ({:+.3} %), LCB {:.6} ({:+.6}), KB {:.6} ({:+.6})",
-        row.vol,
+    let f = hull::format_figure;
+    let mut s = format!("surface {} against the mesh at draft {}:\n", path.display(), hull::format_short(m.draft));
+    s += &format!(
+        "  volume {} ({:+.3} %), LCB {} ({}), KB {} ({})\n",
+        f(row.vol),
         pct(row.vol, m.volume),
-        row.lcb,
-        row.lcb - m.lcb,
-        row.vcb,
-        row.vcb - m.vcb
+        f(row.lcb),
+        signed(row.lcb - m.lcb),
+        f(row.vcb),
+        signed(row.vcb - m.vcb)
     );
-    outln!("  wetted surface {:.6} ({:+.3} %)", row.s, pct(row.s, m.wetted_surface));
-    outln!("  waterplane {:.6} ({:+.3} %)", row.aw, pct(row.aw, m.waterplane_area));
+    s += &format!("  wetted surface {} ({:+.3} %)\n", f(row.s), pct(row.s, m.wetted_surface));
+    s += &format!("  waterplane {} ({:+.3} %)\n", f(row.aw), pct(row.aw, m.waterplane_area));
+    let mut json = serde_json::json!({
+        "surface": path.display().to_string(),
+        "volume": row.vol,
+        "lcb": row.lcb,
+        "kb": row.vcb,
+        "wetted_surface": row.s,
+        "waterplane_area": row.aw,
+    });
     if let Some(filter) = VertexFilter::for_sections(offsets, m.draft) {
         let d = mesh_distance(mesh, &surface, &filter);
         let h = &d.over_hull;
-        outln!(
+        s += &format!(
             "  distance of {} wetted starboard mesh vertices to the surface: max {:.3e}, mean {:.3e}, RMS {:.3e} \
-             ({} more face another way: transom, centre-plane lid or sharp edges)",
-            h.points,
-            h.max,
-            h.mean,
-            h.rms,
-            d.left_out
+             ({} more face another way: transom, centre-plane lid or sharp edges)\n",
+            h.points, h.max, h.mean, h.rms, d.left_out
         );
+        json["distance"] = serde_json::json!({
+            "vertices": h.points, "max": h.max, "mean": h.mean, "rms": h.rms, "left_out": d.left_out,
+            "worst": d.worst.map(|(q, foot)| serde_json::json!({"vertex": [q.x, q.y, q.z], "foot": [foot.x, foot.y, foot.z]})),
+        });
         if let Some((q, foot)) = d.worst {
-            outln!("  farthest vertex ({}, {}, {}), foot ({:.6}, {:.6}, {:.6})", q.x, q.y, q.z, foot.x, foot.y, foot.z);
+            s += &format!(
+                "  farthest vertex ({}, {}, {}), foot ({}, {}, {})\n",
+                f(q.x),
+                f(q.y),
+                f(q.z),
+                f(foot.x),
+                f(foot.y),
+                f(foot.z)
+            );
         }
     }
-    Ok(())
+    Ok((s, json))
+}
+
+/// A difference with its sign, to 4 significant digits (`+0.0012`, `-3.4e-7`).
+fn signed(v: f64) -> String {
+    let s = hull::format_short(v);
+    if v > 0.0 {
+        format!("+{s}")
+    } else {
+        s
+    }
 }
 
 fn parse_spacing(s: &str) -> Result<Spacing, String> {

@@ -43,23 +43,19 @@ fn check_barge(o: &Offsets) {
 fn hand_made_dxf_by_layers_to_a_sections_csv() {
     let dir = tempfile::tempdir().expect("temp dir");
     let dxf = testdata("digitize/barge.dxf");
-    let (out, err) = run_ok(
-        dir.path(),
-        &[
-            "digitize",
-            dxf.to_str().expect("UTF-8 path"),
-            "--scale",
-            "1:50",
-            "--datum",
-            "100,50",
-            "--station-layer-pattern",
-            "ST*",
-            "--stations",
-            "ST0=0,ST5=10,ST10=20",
-            "-o",
-            "barge.csv",
-        ],
-    );
+    let args = [
+        "digitize",
+        dxf.to_str().expect("UTF-8 path"),
+        "--scale",
+        "1:50",
+        "--datum",
+        "100,50",
+        "--station-layer-pattern",
+        "ST*",
+        "--stations",
+        "ST0=0,ST5=10,ST10=20",
+    ];
+    let (out, err) = run_ok(dir.path(), &[&args[..], &["-o", "barge.csv"]].concat());
     let csv = dir.path().join("barge.csv");
     let text = std::fs::read_to_string(&csv).expect("written");
     assert!(text.starts_with("section,x,y,z\nST0,0,0,0\n"), "{text}");
@@ -68,6 +64,21 @@ fn hand_made_dxf_by_layers_to_a_sections_csv() {
     let st0 = out.lines().find(|l| l.starts_with("ST0 ")).expect("a row for ST0");
     assert!(st0.contains("aft"), "{st0}");
     assert!(err.is_empty(), "no notes with the layers picked: {err}");
+
+    // --json: the same stations and file, for scripts, on standard output.
+    let (out, _) = run_ok(dir.path(), &[&args[..], &["-o", "again.csv", "--json"]].concat());
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("stdout is one JSON object");
+    assert_eq!(
+        (doc["sections"].as_u64(), doc["wrote"].as_str(), doc["units"].as_str()),
+        (Some(3), Some("again.csv"), Some("m"))
+    );
+    let stations = doc["stations"].as_array().expect("stations");
+    let rows: Vec<(&str, f64, &str)> = stations
+        .iter()
+        .map(|s| (s["label"].as_str().expect("label"), s["x"].as_f64().expect("x"), s["side"].as_str().expect("side")))
+        .collect();
+    assert_eq!(rows, [("ST0", 0.0, "aft"), ("ST5", 10.0, "fore"), ("ST10", 20.0, "fore")]);
+    assert_eq!(std::fs::read(dir.path().join("again.csv")).expect("written"), text.as_bytes());
 }
 
 #[test]

@@ -383,6 +383,34 @@ fn same_command_same_bytes() {
     assert!(same, "SOURCE_DATE_EPOCH gave other bytes than --timestamp");
 }
 
+/// Issue 12, item 7: `export --json` says what was written, for scripts.
+#[test]
+fn json_summary_names_the_file_format_units_and_size() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    let (plain, rational) = inputs();
+    let (s, _) = surface(plain);
+    let out = run_ok(d, &["export", plain.to_str().expect("utf-8 path"), "-o", "a.igs", "--json"]);
+    let doc: Value = serde_json::from_str(&out).expect("stdout is one JSON object");
+    assert_eq!(
+        (doc["wrote"].as_str(), doc["format"].as_str(), doc["units"].as_str()),
+        (Some("a.igs"), Some("iges"), Some("m"))
+    );
+    assert_eq!(doc["poles"], serde_json::json!([s.n_u(), s.n_v()]));
+    assert!(d.join("a.igs").is_file());
+    // A mesh: its triangles and tolerance; the feet surface stays in feet.
+    let out =
+        run_ok(d, &["export", rational.to_str().expect("utf-8 path"), "-o", "r.stl", "--tolerance", "0.01", "--json"]);
+    let doc: Value = serde_json::from_str(&out).expect("stdout is one JSON object");
+    assert_eq!(
+        (doc["format"].as_str(), doc["units"].as_str(), doc["tolerance"].as_f64()),
+        (Some("stl"), Some("ft"), Some(0.01))
+    );
+    let triangles = doc["triangles"].as_u64().expect("a count");
+    // Binary STL: 84 header bytes and 50 per triangle.
+    assert_eq!(fs::metadata(d.join("r.stl")).expect("written").len(), 84 + 50 * triangles);
+}
+
 #[test]
 fn bad_requests_fail_with_a_message_and_write_nothing() {
     let dir = tempfile::tempdir().expect("temp dir");

@@ -110,6 +110,10 @@ fn sample_at_its_draft_has_todds_block_coefficient_in_json_and_csv() {
     assert!((get("kmt") - get("vcb") - get("bmt")).abs() < 1e-12 * get("kmt"));
     assert!((get("kml") - get("vcb") - get("bml")).abs() < 1e-12 * get("kml"));
 
+    // --json prints the same document on standard output.
+    let json = run_ok(dir.path(), &["hydrostatics", "--draft", "6.5", "--json"]);
+    assert_eq!(serde_json::from_str::<serde_json::Value>(&json).expect("JSON on stdout"), doc);
+
     // The same figures, the same bits, as CSV on standard output.
     let csv = run_ok(dir.path(), &["hydrostatics", "--draft", "6.5", "--format", "csv"]);
     let rows = csv_rows(&csv);

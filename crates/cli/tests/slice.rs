@@ -79,6 +79,21 @@ fn slice_writes_sections_that_fit_reads_and_the_fit_checks_against_the_mesh() {
     let max = number_after(check, "max");
     assert!(max > 0.0 && max < 2e-3, "{max}\n{out}");
     assert!(out.contains("wetted starboard mesh vertices"), "{out}");
+
+    // --json: the same figures at full precision; the text rounds them to 5 digits.
+    let text_out = out;
+    let o = hullskin(
+        dir.path(),
+        &[&args[..], &["-o", "json.csv", "--check", surface.to_str().expect("utf-8"), "--json"]].concat(),
+    );
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "stdout {out}\nstderr {err}");
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("stdout is one JSON object");
+    assert_eq!((doc["mesh"]["triangles"].as_u64(), doc["sections"].as_u64()), (Some(12896), Some(21)));
+    let volume = doc["hydrostatics"]["volume"].as_f64().expect("volume");
+    assert_eq!(number_after(&text_out, "volume"), hull::format_figure(volume).parse::<f64>().expect("a number"));
+    assert_eq!(doc["check"]["distance"]["max"].as_f64().map(|m| format!("{m:.3e}")), Some(format!("{max:.3e}")));
+    assert_eq!(fs::read(dir.path().join("json.csv")).expect("written"), csv.as_bytes());
 }
 
 #[test]

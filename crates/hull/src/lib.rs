@@ -49,7 +49,7 @@ pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
     HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
 };
-pub use numfmt::format_short;
+pub use numfmt::{format_figure, format_short};
 pub use offsets::{Offsets, Perpendiculars, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
 pub use pipeline::{

@@ -51,6 +51,16 @@ pub(crate) fn format_sig_plain(v: f64, sig: usize) -> String {
     }
 }
 
+/// Significant digits of the figures in text tables ([`format_figure`]; full precision stays
+/// in CSV and JSON).
+pub const TEXT_DIGITS: usize = 5;
+
+/// `v` as a figure in a text table or summary: [`TEXT_DIGITS`] significant digits in plain
+/// notation (`0.0027689`, `121.92`, `123457`).
+pub fn format_figure(v: f64) -> String {
+    format_sig_plain(v, TEXT_DIGITS)
+}
+
 /// Significant digits of a number in a message ([`format_short`]).
 pub const MESSAGE_DIGITS: usize = 4;
 

@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use serde::{Deserialize, Serialize};
 
 use super::{HydrostaticsRow, Perpendiculars};
-use crate::numfmt::{format_short, format_sig_plain};
+use crate::numfmt::{format_figure, format_short};
 use crate::units::Units;
 
 /// What a column measures, for its unit.
@@ -86,9 +86,6 @@ const KINDS: [Kind; NUM_COLUMNS] = [
     Kind::Length,
     Kind::Length,
 ];
-
-/// Significant digits of the numbers in the text table (full precision stays in CSV and JSON).
-pub const TEXT_DIGITS: usize = 5;
 
 impl HydrostaticsRow {
     /// The values in the order of [`HYDROSTATICS_COLUMNS`]; `None` for the figures on Lpp
@@ -188,7 +185,7 @@ impl HydrostaticsTable {
     }
 
     /// An aligned text table: a title line, the conventions, the column names, their units in
-    /// brackets, one line per draft; numbers to [`TEXT_DIGITS`] significant digits.
+    /// brackets, one line per draft; numbers to [`TEXT_DIGITS`](crate::numfmt::TEXT_DIGITS) significant digits.
     pub fn text(&self) -> String {
         let units = self.unit_labels();
         let cols = self.shown_columns();
@@ -197,7 +194,7 @@ impl HydrostaticsTable {
             .iter()
             .map(|r| {
                 let v = r.values();
-                cols.iter().map(|&c| v[c].map_or_else(String::new, |x| format_sig_plain(x, TEXT_DIGITS))).collect()
+                cols.iter().map(|&c| v[c].map_or_else(String::new, format_figure)).collect()
             })
             .collect();
         let widths: Vec<usize> = cols

@@ -53,6 +53,7 @@
 use nurbs::Vec3;
 
 use crate::error::Location;
+use crate::numfmt::format_short;
 use crate::offsets::{Offsets, Section};
 use crate::units::Units;
 
@@ -360,9 +361,10 @@ impl ThreeViews {
                 curve.retain(|(p, _)| p.z <= z_deck + tol);
                 if curve.len() < before {
                     notes.push(format!(
-                        "station {}: {} body-plan point(s) above the deck edge (z = {z_deck}) left out",
+                        "station {}: {} body-plan point(s) above the deck edge (z = {}) left out",
                         st.label,
-                        before - curve.len()
+                        before - curve.len(),
+                        format_short(z_deck)
                     ));
                 }
                 let top = curve.last().map_or(f64::NEG_INFINITY, |(p, _)| p.z);
@@ -379,9 +381,10 @@ impl ThreeViews {
                 frame.retain(|c| c.z <= z_deck);
                 if frame.len() < before {
                     notes.push(format!(
-                        "station {}: {} waterline point(s) above the deck edge (z = {z_deck}) left out",
+                        "station {}: {} waterline point(s) above the deck edge (z = {}) left out",
                         st.label,
-                        before - frame.len()
+                        before - frame.len(),
+                        format_short(z_deck)
                     ));
                 }
                 let key = |c: &Cand| (c.z, c.y);
@@ -390,8 +393,12 @@ impl ThreeViews {
                 for b in &buttocks {
                     if b.z > z_deck {
                         notes.push(format!(
-                            "station {}: {} point (y = {}, z = {}) above the deck edge (z = {z_deck}) left out",
-                            st.label, b.label, b.y, b.z
+                            "station {}: {} point (y = {}, z = {}) above the deck edge (z = {}) left out",
+                            st.label,
+                            b.label,
+                            format_short(b.y),
+                            format_short(b.z),
+                            format_short(z_deck)
                         ));
                         continue;
                     }
@@ -403,8 +410,8 @@ impl ThreeViews {
                                 out, not compared",
                             st.label,
                             b.label,
-                            b.y,
-                            b.z,
+                            format_short(b.y),
+                            format_short(b.z),
                             if below.is_none() { "below" } else { "above" }
                         ));
                         continue;
@@ -431,7 +438,11 @@ impl ThreeViews {
                 points.extend(kept.iter().map(|c| (Vec3::new(st.x, c.y, c.z), c.line)));
             }
             if points.is_empty() {
-                notes.push(format!("station {} (x = {}): no view gives a point there; left out", st.label, st.x));
+                notes.push(format!(
+                    "station {} (x = {}): no view gives a point there; left out",
+                    st.label,
+                    format_short(st.x)
+                ));
                 continue;
             }
             let lines = if points.iter().all(|(_, l)| l.is_some()) {

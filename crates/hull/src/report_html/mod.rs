@@ -34,8 +34,7 @@ use self::html::{
 };
 use crate::analysis::{self, CurvatureMap, CurvatureSummary, FairnessOptions, FairnessReport, FieldStats, Finding};
 use crate::drawing::{lines_3d, lines_plan, write_dxf, write_dxf_3d_lines, write_svg, LinesPlanOptions, Sheet};
-use crate::hydrostatics::TEXT_DIGITS;
-use crate::numfmt::format_sig_plain;
+use crate::numfmt::format_figure;
 use crate::offsets::Perpendiculars;
 use crate::optimize::OptimReport;
 use crate::render::{self, RasterOptions};
@@ -816,8 +815,7 @@ impl Page<'_, '_> {
             .map(|r| {
                 let v = r.values();
                 // Every shown column has a value in every row (`shown_columns`).
-                let cells =
-                    cols.iter().filter_map(|&c| v[c]).map(|x| td_num(x, &format_sig_plain(x, TEXT_DIGITS))).collect();
+                let cells = cols.iter().filter_map(|&c| v[c]).map(|x| td_num(x, &format_figure(x))).collect();
                 (false, cells)
             })
             .collect();
