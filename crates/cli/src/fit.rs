@@ -191,8 +191,7 @@ fn measure(args: &FitArgs, offsets_path: &Path) -> anyhow::Result<ExitCode> {
          --held-out ...) play no part",
         offsets_path.display()
     );
-    let options = hull::ReadOptions { units, ..args.skin.read_options() };
-    let (offsets, warnings) = crate::skin_args::read_with_warnings(hull::read_offsets_with(offsets_path, &options)?);
+    let (offsets, warnings) = crate::skin_args::read_offsets_for_surface(&args.skin, offsets_path, units)?;
     let measured = hull::Measured::new(&surface, &source, &offsets)?;
     let mut report = hull::Report::measured(&offsets, &measured);
     report.input.warnings = warnings;

@@ -194,9 +194,7 @@ fn surface_as_is(args: &ReportArgs, surface: NurbsSurface, units: Units, source:
         vec![format!("The surface was read from {source} as it is (not fitted here): the fit flags play no part.")];
     let offsets = match &args.offsets {
         Some(path) => {
-            // The surface's units, and the reading flags (--lpp, ...) as for any offsets input.
-            let options = hull::ReadOptions { units, ..args.skin.read_options() };
-            let o = crate::skin_args::report_reading(hull::read_offsets_with(path, &options)?);
+            let (o, _) = crate::skin_args::read_offsets_for_surface(&args.skin, path, units)?;
             notes.push(format!(
                 "Offsets from {}: their distances to the surface are measured here by closest-point projection.",
                 path.display()

@@ -257,6 +257,21 @@ fn parse_outliers(s: &str) -> Result<hull::read::OutlierPolicy, String> {
     s.parse()
 }
 
+/// Offsets measured against a surface (`--offsets` of `fit` and `report`): read in the
+/// surface's `units`, with the other reading flags (`--lpp`, ...) as for any offsets input;
+/// notes and warnings printed, the warnings kept (for `report.json`).
+///
+/// # Errors
+/// Those of [`hull::read_offsets_with`].
+pub fn read_offsets_for_surface(
+    skin: &SkinArgs,
+    path: &std::path::Path,
+    units: Units,
+) -> Result<(Offsets, Vec<hull::read::SenseWarning>), hull::HullError> {
+    let options = hull::ReadOptions { units, ..skin.read_options() };
+    Ok(read_with_warnings(hull::read_offsets_with(path, &options)?))
+}
+
 /// Prints what a reader assumed and found (axes, notes, suspicious values, disagreements
 /// between views) on stderr, one `hullskin: note:` line each, and every sense warning as a
 /// `hullskin: warning:` line; returns the offsets.
