@@ -55,7 +55,7 @@ pub struct DigitizeArgs {
     #[arg(long, value_name = "GLOB", conflicts_with = "labels")]
     pub station_layer_pattern: Option<String>,
     /// Stations are named by text labels next to their curves (the nearest curve to a
-    /// label), or by an SVG <title>.
+    /// label), or by an SVG `<title>`.
     #[arg(long)]
     pub labels: bool,
     /// Without --station-layer-pattern or --labels, the curves in this order are the

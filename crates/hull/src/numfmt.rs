@@ -55,7 +55,7 @@ pub(crate) fn format_sig_plain(v: f64, sig: usize) -> String {
 /// in CSV and JSON).
 pub const TEXT_DIGITS: usize = 5;
 
-/// `v` as a figure in a text table or summary: [`TEXT_DIGITS`] significant digits in plain
+/// `v` as a figure in a text table or summary: 5 (`TEXT_DIGITS`) significant digits in plain
 /// notation (`0.0027689`, `121.92`, `123457`).
 pub fn format_figure(v: f64) -> String {
     format_sig_plain(v, TEXT_DIGITS)
@@ -64,7 +64,7 @@ pub fn format_figure(v: f64) -> String {
 /// Significant digits of a number in a message ([`format_short`]).
 pub const MESSAGE_DIGITS: usize = 4;
 
-/// `v` for a message: [`format_sig`] to [`MESSAGE_DIGITS`] digits without trailing zeros
+/// `v` for a message: 4 (`MESSAGE_DIGITS`) significant digits without trailing zeros
 /// (`121.9`, `400`, `0.0125`, `1.235e-5`); from 1e5 to 1e15 the whole number (`121920`).
 pub fn format_short(v: f64) -> String {
     if (1e5..1e15).contains(&v.abs()) {

@@ -645,7 +645,7 @@ fn within_envelope(
     Ok(out)
 }
 
-/// Where [`within_envelope`] holds a face the surface crossed (but the end sections' planes,
+/// Where `within_envelope` holds a face the surface crossed (but the end sections' planes,
 /// held exactly): this share of the allowance the finding exceeded past the face (0.5 % of the
 /// half-beam, depth or length for the envelope, 0.05 % for a flat). Within the allowance, so
 /// the held surface has no finding there; past the face, because a surface touching a face

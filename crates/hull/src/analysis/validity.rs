@@ -2,10 +2,10 @@
 //! reject it, looked for everywhere on the surface, not only at the offsets.
 //!
 //! [`check_validity`] samples the surface on a parameter grid refined at every knot span
-//! (`param_grid` with 8 samples per span each way, as [`find_folds`]) and reports one
+//! (`param_grid` with 8 samples per span each way, as [`find_folds`](super::find_folds)) and reports one
 //! [`Finding`] per defect:
 //!
-//! - **fold** ([`find_folds`]): the surface runs backwards across its sections (`x_v` of the
+//! - **fold** ([`find_folds`](super::find_folds)): the surface runs backwards across its sections (`x_v` of the
 //!   minority's sign); its size is how far back it runs, `max_{v_a < v_b} s (x(u, v_a) - x(u, v_b))`
 //!   over the band (`s` the majority's direction);
 //! - **envelope**: the surface leaves the box of the offsets ([`Envelope`]): below the centre

@@ -185,7 +185,7 @@ impl HydrostaticsTable {
     }
 
     /// An aligned text table: a title line, the conventions, the column names, their units in
-    /// brackets, one line per draft; numbers to [`TEXT_DIGITS`](crate::numfmt::TEXT_DIGITS) significant digits.
+    /// brackets, one line per draft; numbers to 5 significant digits.
     pub fn text(&self) -> String {
         let units = self.unit_labels();
         let cols = self.shown_columns();

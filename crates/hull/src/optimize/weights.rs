@@ -128,7 +128,7 @@ pub struct WeightOptions {
     /// whole bounds left GSA (and GA, in true RMS) at the start on three of them. LM and the
     /// LM phase of `gsa+lm` search the whole bounds.
     pub search_scale: Option<f64>,
-    /// Fairness `λ` of the control net ([`NetEnergy`], re-solved mode only): the control points
+    /// Fairness `λ` of the control net (`NetEnergy`, re-solved mode only): the control points
     /// minimise `(1/m) sum_k |S_k - Q_k|^2 + λ (1/r) |D Y|^2` (`r` rows of the second-difference
     /// operator `D`, `Y = w P` the homogeneous control points), and the objective carries the
     /// same term, measured in a fixed scale gauge (the weights' geometric mean brought to 1,

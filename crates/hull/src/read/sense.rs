@@ -361,7 +361,7 @@ fn steep(a: nurbs::Vec3, b: nurbs::Vec3) -> bool {
 /// neighbours on both sides in both directions are judged (not the end sections, nor a
 /// section's first and last points), where the section and its neighbours run steeper than
 /// [`STEEP_SLOPE`] (the side, not a flat of bottom or a bilge's turn) and none of the three
-/// [`zigzags`]: a spike in one cell pushes it away from both lines, while a knuckle, a chine
+/// `zigzags`: a spike in one cell pushes it away from both lines, while a knuckle, a chine
 /// or a stem departs along one direction only.
 pub fn find_outliers(offsets: &Offsets) -> Vec<Outlier> {
     let Some((lo, hi)) = offsets.bounds() else { return Vec::new() };

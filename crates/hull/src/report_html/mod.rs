@@ -3,7 +3,7 @@
 //!
 //! The page holds, in order: the particulars (extent, surface, offsets, method, source); the
 //! fit error (max, mean, RMS, the worst offset, per section) with the surface's validity (every
-//! [`Finding`](crate::analysis::Finding), also flagged under the title); the comparison of the methods
+//! [`Finding`], also flagged under the title); the comparison of the methods
 //! when one was run; the hydrostatics (at the design draft, or at ten drafts from the keel to
 //! the top of the offsets); the curvature summary (smallest and largest Gaussian and mean
 //! curvature and where) with the fairness measures (thin-plate energy, inflections per station
