@@ -2,19 +2,22 @@
 //!
 //! A hull skinned over stations advances in x from one section to the next, so the derivative
 //! across the sections keeps one sign: `x_v = ∂x/∂v` of `S(u, v)`. Where it turns the other way
-//! the surface doubles back on itself: its normal `S_u × S_v` faces inwards there and a CAD
-//! system sees a self-intersecting skin. Uneven spacing of the sections' parameters causes it
+//! and the normal `S_u × S_v` turns over with it (faces inwards there), the surface doubles
+//! back on itself and a CAD system sees a self-intersecting skin. Where `x_v` turns but the
+//! normal keeps its side, the surface does not double back: along a steep stern or stem
+//! profile the sections' v lines run mostly up and down, and the keel line may run a little
+//! aft as it drops (the MATLAB trawler's data itself does, 9 mm between its 3rd and 4th
+//! sections); that is no fold. Uneven spacing of the sections' parameters causes it
 //! (a deck line jumping several metres between two close stations, R/V Gunnerus's forecastle
 //! step): the cure is a parameterization across the sections less driven by those jumps
 //! (centripetal) or fewer control points across.
 //!
-//! [`find_folds`] samples `x_v` on a grid refined at every knot span and reports the bands of x
-//! where it has the sign opposite to the surface's majority.
+//! [`find_folds`] samples `x_v` and the normal on a grid refined at every knot span and reports
+//! the bands of x where `x_v` has the sign opposite to the surface's majority and the normal
+//! faces the other way.
 
 use nurbs::NurbsSurface;
 use serde::Serialize;
-
-use super::param_grid;
 
 /// A band of x over which the surface folds back across its sections.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -36,16 +39,12 @@ pub(crate) const PER_SPAN: usize = 8;
 /// The folds of `surface` (u along the sections, v across them): contiguous runs of the grid's
 /// v lines on which some sample has `x_v` of the sign opposite to the majority's, larger than
 /// 1e-9 of the surface's x extent per unit parameter (where sections share an x, as at a
-/// transom, `x_v` is zero to round-off and is not a fold). Empty for a surface that advances
-/// in x everywhere, or one with no extent in x.
+/// transom, `x_v` is zero to round-off and is not a fold), and faces the other way there (its
+/// normal turned over with it: see the module docs). Empty for a surface that advances in x
+/// everywhere, or one with no extent in x. The folds that
+/// [`check_validity`](super::check_validity) reports, on the same grid.
 pub fn find_folds(surface: &NurbsSurface) -> Vec<Fold> {
-    let us = param_grid(surface.knots_u(), 16, true, PER_SPAN);
-    let vs = param_grid(surface.knots_v(), 16, true, PER_SPAN);
-    // x and x_v on the grid, v-major: one row per v line.
-    let grid = surface.first_derivatives_grid(&us, &vs);
-    let rows: Vec<Vec<(f64, f64)>> =
-        grid.chunks(us.len()).map(|row| row.iter().map(|d| (d.point.x, d.sv.x)).collect()).collect();
-    folds_on_grid(surface, &vs, &rows).0
+    super::validity::validity_and_folds(surface, &super::Envelope::unbounded(), &[]).1
 }
 
 /// The folds of `surface` from samples `(x, x_v)` on the v lines `vs` (`rows[j]` on `vs[j]`),
@@ -111,6 +110,26 @@ mod tests {
         assert!(find_folds(&strip(&[0.0, 0.0, 0.0, 0.0, 2.0, 4.0, 6.0])).is_empty());
         // Running aft (x decreasing throughout) is the majority's direction: no fold either.
         assert!(find_folds(&strip(&[7.0, 6.0, 5.0, 3.5, 2.0, 1.0, 0.0])).is_empty());
+    }
+
+    /// The trawler's stern (issue 11): the v lines run down a steep profile, `z` falling 10 per
+    /// pole while `x` runs back one pole (the poles' x: 0, 1, 2, 4, 3, 5, 6). `x_v` turns, but
+    /// `S_u x S_v = (0, 1, 0) x (x_v, 0, z_v) = (z_v, 0, -x_v)` keeps its side (`z_v < 0`
+    /// throughout): the skin does not double back, so no fold; the same x with the profile
+    /// level (the strip below) folds.
+    #[test]
+    fn a_steep_profile_running_back_a_little_is_no_fold() {
+        let xs = [0.0, 1.0, 2.0, 4.0, 3.0, 5.0, 6.0];
+        let ku = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
+        let kv = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0, 1.0]).expect("valid");
+        let pts: Vec<Vec3> = (0..2)
+            .flat_map(|i| xs.iter().enumerate().map(move |(j, &x)| Vec3::new(x, i as f64, -10.0 * j as f64)))
+            .collect();
+        let steep = NurbsSurface::try_new(ku, kv, &pts, None).expect("valid");
+        let turns = (0..=100).any(|k| steep.derivatives(0.5, k as f64 / 100.0).sv.x < 0.0);
+        assert!(turns, "the test needs x_v to turn");
+        assert!(find_folds(&steep).is_empty());
+        assert_eq!(find_folds(&strip(&xs)).len(), 1);
     }
 
     #[test]

@@ -6,7 +6,8 @@
 //! [`Finding`] per defect:
 //!
 //! - **fold** ([`find_folds`](super::find_folds)): the surface runs backwards across its sections (`x_v` of the
-//!   minority's sign); its size is how far back it runs, `max_{v_a < v_b} s (x(u, v_a) - x(u, v_b))`
+//!   minority's sign) and turns over there (some node running back faces the other way, as
+//!   the orientation below finds); its size is how far back it runs, `max_{v_a < v_b} s (x(u, v_a) - x(u, v_b))`
 //!   over the band (`s` the majority's direction);
 //! - **envelope**: the surface leaves the box of the offsets ([`Envelope`]): below the centre
 //!   plane `y = 0`, beyond the largest half-breadth, below the lowest or above the highest
@@ -432,6 +433,18 @@ pub(crate) fn validity_and_folds(
     let rows: Vec<Vec<(f64, f64)>> =
         grid.nodes.chunks(grid.nu()).map(|row| row.iter().map(|n| (n.p.x, n.sv.x)).collect()).collect();
     let (folds, sign) = folds_on_grid(surface, &grid.vs, &rows);
+    let orientation = oriented(surface, &grid);
+    // A band where x_v turns is a fold only where the surface turns over with it: some node
+    // running back there faces the other way. Along a steep profile (a stern or a stem whose
+    // sections' v lines run mostly up and down) x_v can change sign while S_u x S_v keeps its
+    // side; the skin does not double back there.
+    let turned = |f: &Fold| {
+        let Some(o) = &orientation else { return false };
+        let nu = grid.nu();
+        let rows = grid.vs.iter().enumerate().filter(|(_, &v)| v >= f.v.0 && v <= f.v.1).map(|(j, _)| j);
+        rows.flat_map(|j| j * nu..(j + 1) * nu).any(|k| o.minority[k] && sign * grid.nodes[k].sv.x < 0.0)
+    };
+    let folds: Vec<Fold> = folds.into_iter().filter(|f| turned(f)).collect();
     let mut out: Vec<Finding> = folds.iter().map(|f| fold_finding(surface, &grid, f, sign)).collect();
     let floor = model_size(surface).unwrap_or(1.0) * 1e-12;
     let allowance = |extent: f64, rel: f64| (rel * extent).max(floor);
@@ -456,7 +469,9 @@ pub(crate) fn validity_and_folds(
     out.extend(probes.iter().filter_map(|p| p.check(surface, &grid)));
     // A fold's own facets face inwards too: that region is the fold, reported once.
     let folded = |k: usize| !folds.is_empty() && sign * grid.nodes[k].sv.x < 0.0;
-    out.extend(inward_facing(surface, &grid, folded));
+    if let Some(o) = &orientation {
+        out.extend(inward_facing(surface, &grid, o, folded));
+    }
     (out, folds)
 }
 
@@ -701,7 +716,7 @@ impl Orientation {
 
     /// Join the trees of roots `ra` and `rb`, the parity between them `parity`: the smaller
     /// under the larger. Which root stays does not change the orientation of any node relative
-    /// to another, which is all [`inward_facing`] reads.
+    /// to another, which is all [`oriented`] reads.
     fn join(&mut self, ra: usize, rb: usize, parity: bool) {
         let (big, small) = if self.size[ra] >= self.size[rb] { (ra, rb) } else { (rb, ra) };
         self.parent[small] = big;
@@ -731,10 +746,20 @@ impl Orientation {
     }
 }
 
-/// The largest inward-facing region of the sampled surface (see the module docs) with the
-/// count of such regions, leaving out those of which most of the area is on nodes where
-/// `folded` (a fold's own facets).
-fn inward_facing(surface: &NurbsSurface, grid: &Grid, folded: impl Fn(usize) -> bool) -> Option<Finding> {
+/// The orientation of the sampled surface's normals `S_u x S_v`, propagated over the grid
+/// (see the module docs).
+struct Oriented {
+    /// Each node's area `|S_u x S_v| du dv` (0 where the normal is degenerate).
+    area: Vec<f64>,
+    /// The sum of `area`.
+    total: f64,
+    /// Nodes of the smaller orientation of their connected component: facing inwards.
+    minority: Vec<bool>,
+}
+
+/// The orientation of the grid's normals; `None` where no grid edge flips (one orientation
+/// everywhere) or the surface has no size.
+fn oriented(surface: &NurbsSurface, grid: &Grid) -> Option<Oriented> {
     let (nu, nv) = (grid.nu(), grid.vs.len());
     let size = model_size(surface)?;
     let ((u0, u1), (v0, v1)) = (surface.domain_u(), surface.domain_v());
@@ -783,13 +808,25 @@ fn inward_facing(surface: &NurbsSurface, grid: &Grid, folded: impl Fn(usize) -> 
     for k in (0..nu * nv).filter(|&k| valid[k]) {
         sums.entry(label[k].0).or_insert([0.0; 2])[usize::from(label[k].1)] += area[k];
     }
-    let minority = |k: usize| {
-        let s = sums.get(&label[k].0).copied().unwrap_or([0.0; 2]);
-        let inward = s[1] < s[0];
-        valid[k] && label[k].1 == inward && s[usize::from(inward)] < s[usize::from(!inward)]
-    };
+    let minority = (0..nu * nv)
+        .map(|k| {
+            let s = sums.get(&label[k].0).copied().unwrap_or([0.0; 2]);
+            let inward = s[1] < s[0];
+            valid[k] && label[k].1 == inward && s[usize::from(inward)] < s[usize::from(!inward)]
+        })
+        .collect();
+    Some(Oriented { area, total, minority })
+}
+
+/// The largest inward-facing region of the sampled surface (the minority orientation of `o`,
+/// larger than [`INWARD_SHARE`] of the area) with the count of such regions, leaving out those
+/// of which most of the area is on nodes where `folded` (a fold's own facets, reported as the
+/// fold). `None` when no region is past the limit.
+fn inward_facing(surface: &NurbsSurface, grid: &Grid, o: &Oriented, folded: impl Fn(usize) -> bool) -> Option<Finding> {
+    let Oriented { area, total, minority: flipped } = o;
+    let minority = |k: usize| flipped[k];
     let limit = INWARD_SHARE * total;
-    let mut out = Vec::new();
+    let mut out: Vec<Finding> = Vec::new();
     // Two neighbouring regular nodes share an edge, so are in one component: each region is.
     for part in regions(grid, minority) {
         let region_area: f64 = part.iter().map(|&k| area[k]).sum();
