@@ -29,7 +29,7 @@ use hull::Units;
 use nurbs::{KnotVector, NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
 
-fn occt_python() -> Option<String> {
+fn occt_python() -> String {
     tools_python("HULLSKIN_SKIP_OCCT", "Open CASCADE check of the STEP and IGES exports")
 }
 
@@ -175,8 +175,9 @@ fn step_bytes(s: &NurbsSurface, units: Units, name: &str) -> Vec<u8> {
 /// One B-spline face per file, equal to ours in degrees, knots, poles, weights and 88 points,
 /// in every unit (OCCT scales feet and inches by the file's conversion-based unit).
 #[test]
+#[cfg_attr(skip_occt, ignore = "HULLSKIN_SKIP_OCCT=1")]
 fn occt_reads_the_step_export_exactly() {
-    let Some(python) = occt_python() else { return };
+    let python = occt_python();
     let dir = tempfile::tempdir().expect("temp dir");
     let (s60, s60_rational) = series60();
     let cases: Vec<(&str, NurbsSurface, Vec<Units>)> = vec![
@@ -220,8 +221,9 @@ fn occt_reads_the_step_export_exactly() {
 /// The checker must fail on a wrong expectation: the STEP file of one surface against the
 /// samples of another (a changed weight), and a file in feet expected in metres.
 #[test]
+#[cfg_attr(skip_occt, ignore = "HULLSKIN_SKIP_OCCT=1")]
 fn occt_step_check_detects_a_mismatch() {
-    let Some(python) = occt_python() else { return };
+    let python = occt_python();
     let dir = tempfile::tempdir().expect("temp dir");
     let s = quarter_cylinder(2.0, 3.0);
     let mut w = s.weights();
@@ -258,8 +260,9 @@ fn iges_meta(units: Units, name: &str) -> IgesMeta {
 /// free B-spline edges as sections, each equal to ours at 21 points; the sections of an
 /// interpolated fit pass through the offsets.
 #[test]
+#[cfg_attr(skip_occt, ignore = "HULLSKIN_SKIP_OCCT=1")]
 fn occt_reads_iges_section_curves() {
-    let Some(python) = occt_python() else { return };
+    let python = occt_python();
     let dir = tempfile::tempdir().expect("temp dir");
     let offsets = hull::series60_sample();
     let fit = hull::fit_offsets(&offsets, &hull::FitConfig { method: hull::FitMethod::Interp, ..Default::default() })
@@ -312,8 +315,9 @@ fn occt_reads_iges_section_curves() {
 /// The polynomial approximation of rational surfaces, written as a polynomial entity 128:
 /// OCCT reads it exactly, and its points are within the tolerance of the rational original.
 #[test]
+#[cfg_attr(skip_occt, ignore = "HULLSKIN_SKIP_OCCT=1")]
 fn occt_reads_the_polynomial_approximation() {
-    let Some(python) = occt_python() else { return };
+    let python = occt_python();
     let dir = tempfile::tempdir().expect("temp dir");
     let (_, s60_rational) = series60();
     for (name, s, rel) in [
@@ -354,7 +358,7 @@ fn occt_reads_the_polynomial_approximation() {
 // ---------------------------------------------------------------------------------------------
 // Meshes
 
-fn mesh_python() -> Option<String> {
+fn mesh_python() -> String {
     tools_python("HULLSKIN_SKIP_MESH", "trimesh/pygltflib check of the mesh exports")
 }
 
@@ -545,8 +549,9 @@ fn check_orientation(name: &str, s: &NurbsSurface, mesh: &TriangleMesh, mirror: 
 /// within 1e-6 of its size, chords within the tolerance, normals outward, glTF colours those
 /// of the Gaussian curvature, glTF in metres whatever the units.
 #[test]
+#[cfg_attr(skip_mesh, ignore = "HULLSKIN_SKIP_MESH=1")]
 fn meshes_read_back_by_trimesh_and_pygltflib() {
-    let Some(python) = mesh_python() else { return };
+    let python = mesh_python();
     let dir = tempfile::tempdir().expect("temp dir");
     let (_, s60_rational) = series60();
     let cases = [
@@ -605,16 +610,12 @@ fn meshes_read_back_by_trimesh_and_pygltflib() {
     }
 }
 
-/// Where `npm install` put the Khronos glTF-Validator (npm `gltf-validator`, pinned), or
-/// `None` if `HULLSKIN_SKIP_GLTF_VALIDATOR=1`. Needs `node` and `npm` (the npm registry the
-/// first time); fails loudly without them.
-fn gltf_validator() -> Option<PathBuf> {
+/// Where `npm install` put the Khronos glTF-Validator (npm `gltf-validator`, pinned). Needs
+/// `node` and `npm` (the npm registry the first time); fails loudly without them (its test is
+/// ignored with `HULLSKIN_SKIP_GLTF_VALIDATOR=1`).
+fn gltf_validator() -> PathBuf {
     const PACKAGE: &str = "gltf-validator@2.0.0-dev.3.10";
     static DIR: OnceLock<Result<PathBuf, String>> = OnceLock::new();
-    if std::env::var("HULLSKIN_SKIP_GLTF_VALIDATOR").as_deref() == Ok("1") {
-        eprintln!("SKIPPED: Khronos glTF-Validator check (HULLSKIN_SKIP_GLTF_VALIDATOR=1)");
-        return None;
-    }
     let found = DIR.get_or_init(|| {
         let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gltf-validator");
         if dir.join("node_modules/gltf-validator/package.json").is_file() {
@@ -633,7 +634,7 @@ fn gltf_validator() -> Option<PathBuf> {
         }
     });
     match found {
-        Ok(d) => Some(d.clone()),
+        Ok(d) => d.clone(),
         Err(e) => panic!("{e}\nSet HULLSKIN_SKIP_GLTF_VALIDATOR=1 to skip the Khronos validator."),
     }
 }
@@ -648,38 +649,51 @@ fn run_validator(prefix: &Path, glb: &Path) -> (i32, Value) {
     (out.status.code().unwrap_or(-1), summary)
 }
 
-/// The Khronos glTF-Validator finds no error, warning, info or hint in our glTF (mirrored
-/// rational hull, feet converted to metres), and does find the error in a corrupted copy (an
-/// index past the last vertex), as does `tools/mesh_check.py`.
-#[test]
-fn khronos_validator_accepts_the_gltf() {
-    let Some(prefix) = gltf_validator() else { return };
-    let dir = tempfile::tempdir().expect("temp dir");
+/// Our glTF of the mirrored rational Series 60 hull (feet converted to metres) written to
+/// `dir/hull.glb`, and a copy corrupted by pointing its last index past the vertices (the
+/// file's last 4 bytes) to `dir/bad.glb`; with the triangle count.
+fn gltf_and_corrupted(dir: &Path) -> (PathBuf, PathBuf, usize) {
     let (_, s60_rational) = series60();
     let s = s60_rational.scaled(1.0 / 0.3048);
     let mesh = tessellate(&s, &TessellationOptions { tolerance: 1e-4 * size(&s), mirror: true }).expect("tessellates");
     let mut bytes = Vec::new();
     write_glb(&mut bytes, &mesh, "hull", Units::Foot).expect("writes");
-    let glb = dir.path().join("hull.glb");
+    let (glb, bad) = (dir.join("hull.glb"), dir.join("bad.glb"));
     std::fs::write(&glb, &bytes).expect("write");
+    let n = bytes.len();
+    bytes[n - 4..].copy_from_slice(&u32::MAX.wrapping_sub(7).to_le_bytes());
+    std::fs::write(&bad, &bytes).expect("write");
+    (glb, bad, mesh.triangles.len())
+}
+
+/// The Khronos glTF-Validator finds no error, warning, info or hint in our glTF (mirrored
+/// rational hull, feet converted to metres), and does find the error in a corrupted copy (an
+/// index past the last vertex).
+#[test]
+#[cfg_attr(skip_gltf_validator, ignore = "HULLSKIN_SKIP_GLTF_VALIDATOR=1")]
+fn khronos_validator_accepts_the_gltf() {
+    let prefix = gltf_validator();
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (glb, bad, triangles) = gltf_and_corrupted(dir.path());
     let (code, summary) = run_validator(&prefix, &glb);
     let issues = &summary["files"][0]["issues"];
     assert!(code == 0 && summary["ok"] == true, "{summary}");
     for k in ["numErrors", "numWarnings", "numInfos", "numHints"] {
         assert_eq!(issues[k], 0, "{k}: {issues}");
     }
-    eprintln!("glTF-Validator {}: no issue in {} triangles", summary["validator"], mesh.triangles.len());
-
-    // The last index is the file's last 4 bytes: point it past the vertices.
-    let n = bytes.len();
-    bytes[n - 4..].copy_from_slice(&u32::MAX.wrapping_sub(7).to_le_bytes());
-    let bad = dir.path().join("bad.glb");
-    std::fs::write(&bad, &bytes).expect("write");
+    eprintln!("glTF-Validator {}: no issue in {triangles} triangles", summary["validator"]);
     let (code, summary) = run_validator(&prefix, &bad);
     assert_eq!(code, 1, "{summary}");
     assert!(summary["files"][0]["issues"]["numErrors"].as_u64() > Some(0), "{summary}");
-    if let Some(python) = mesh_python() {
-        let (code, summary) = run_tool(&python, "mesh_check.py", &[&bad]);
-        assert_ne!(code, 0, "mesh_check.py accepted a corrupted file: {}", summary["failed"]);
-    }
+}
+
+/// `tools/mesh_check.py` (trimesh, pygltflib) finds the error in the corrupted glTF too.
+#[test]
+#[cfg_attr(skip_mesh, ignore = "HULLSKIN_SKIP_MESH=1")]
+fn mesh_check_refuses_the_corrupted_gltf() {
+    let python = mesh_python();
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (_, bad, _) = gltf_and_corrupted(dir.path());
+    let (code, summary) = run_tool(&python, "mesh_check.py", &[&bad]);
+    assert_ne!(code, 0, "mesh_check.py accepted a corrupted file: {}", summary["failed"]);
 }

@@ -23,7 +23,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::time::Instant;
 
-use common::browser::{chromium, console_messages, decode_png, keep, page_requests, run_chromium, screenshot, Picture};
+use common::browser::{console_messages, decode_png, keep, page_requests, run_chromium, screenshot, Picture};
 use hull::drawing::colormap::diverging_stops;
 use hull::report_html::{build_report, write_report, ReportFiles, ReportInputs, ReportOptions};
 use hull::{FitOutcome, Hydrostatics, HydrostaticsOptions, Offsets};
@@ -267,10 +267,8 @@ fn leading_number(s: &str) -> f64 {
 /// net log) and no resource loaded; the only URLs in the file are XML namespace names, and
 /// every `src`/`href` of the live page is a `data:` URI or a fragment.
 #[test]
+#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]
 fn report_loads_offline_without_errors() {
-    if chromium().is_none() {
-        return;
-    }
     let (b, p) = (built(), probe());
     assert!(p.console.is_empty(), "console messages: {:#?}", p.console);
     assert!(p.requests.is_empty(), "the page asked the network for {:?}", p.requests);
@@ -295,10 +293,8 @@ fn report_loads_offline_without_errors() {
 /// library's, the lines plan SVG with the library's lines, both curvature images decoded at
 /// their size, and the viewer's frame holding the viewer page.
 #[test]
+#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]
 fn dom_after_load_has_every_section_with_the_library_figures() {
-    if chromium().is_none() {
-        return;
-    }
     let (b, p) = (built(), probe());
     let d = &p.dom;
     let sections: Vec<(&str, &str)> = d["sections"]
@@ -390,10 +386,8 @@ fn dom_after_load_has_every_section_with_the_library_figures() {
 /// colours of the Gaussian curvature, the legend in the side panel. No console message, no
 /// request to the network.
 #[test]
+#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]
 fn screenshot_shows_the_lines_plan_maps_and_the_viewer_hull() {
-    if chromium().is_none() {
-        return;
-    }
     let (b, p) = (built(), probe());
     let d = &p.dom;
     let height = d["size"][1].as_f64().expect("page height").ceil() as u32;
@@ -564,10 +558,8 @@ fn viewer_in(shot: &Picture, d: &Value) {
 /// and an uncaught error and a request in a sandboxed `srcdoc` frame like the viewer's, is seen
 /// by the recorder, the resource list, the console log and the net log alike.
 #[test]
+#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]
 fn the_checks_see_errors_and_requests_in_every_frame() {
-    if chromium().is_none() {
-        return;
-    }
     let dir = tempfile::tempdir().expect("temp dir");
     let page = dir.path().join("faulty.html");
     // `.invalid` never resolves, and no host does here (`--host-resolver-rules`).

@@ -11,7 +11,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use common::browser::{chromium, keep, run_chromium};
+use common::browser::{keep, run_chromium};
 use hull::drawing::colormap::diverging_stops;
 use hull::viewer::{write_viewer_html, ViewerOptions};
 
@@ -115,10 +115,8 @@ fn hex(s: &str) -> [u8; 3] {
 /// The page loads with no error or warning, draws both halves of the grid, loads nothing, and
 /// the hull it shows spans the full beam (the mirror) and the hull's length and depth.
 #[test]
+#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]
 fn viewer_loads_without_errors_and_draws_the_mirrored_hull() {
-    if chromium().is_none() {
-        return;
-    }
     let page = sample_page();
     let dom = run_chromium(page, "", [WIDTH, HEIGHT], &["--dump-dom".into()]).stdout;
     let a = status_attributes(&dom);
@@ -160,10 +158,8 @@ fn viewer_loads_without_errors_and_draws_the_mirrored_hull() {
 /// The default view (panels hidden): the hull fills a sensible part of the picture, in the
 /// middle, in both ends of the diverging map (K < 0 and K > 0 both occur on the hull).
 #[test]
+#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]
 fn screenshot_shows_the_hull_coloured_by_curvature() {
-    if chromium().is_none() {
-        return;
-    }
     let (w, h, px) = screenshot("gaussian", "bare=1&offsets=0");
     assert_eq!((w, h), (WIDTH, HEIGHT));
     let (share, bb) = coverage(w, h, &px);
@@ -194,10 +190,8 @@ fn screenshot_shows_the_hull_coloured_by_curvature() {
 
 /// Zebra stripes: the hull is drawn in dark and light bands, both a large share of it.
 #[test]
+#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]
 fn screenshot_shows_zebra_stripes() {
-    if chromium().is_none() {
-        return;
-    }
     let (w, h, px) = screenshot("zebra", "bare=1&zebra=1&offsets=0");
     let (share, _) = coverage(w, h, &px);
     let hull: Vec<[u8; 3]> = px.iter().copied().filter(|&p| !is_background(p)).collect();
@@ -216,10 +210,8 @@ fn screenshot_shows_zebra_stripes() {
 /// The full page with its side panel: the legend's colour bar shows the diverging stops, its ends
 /// at the outer stops' colours.
 #[test]
+#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]
 fn screenshot_shows_the_legend() {
-    if chromium().is_none() {
-        return;
-    }
     let (w, _, px) = screenshot("page", "");
     let stops: Vec<[u8; 3]> = diverging_stops().iter().map(|s| hex(s)).collect();
     // The legend sits in the side panel, the right-most 290 px; look for the outer stops there.
@@ -235,10 +227,8 @@ fn screenshot_shows_the_legend() {
 /// other triangle winding) gives the same picture: the page shades the outward side whichever
 /// way the surface runs. A wrong winding would shade the near side as seen from inside (dark).
 #[test]
+#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]
 fn transposed_surface_gives_the_same_picture() {
-    if chromium().is_none() {
-        return;
-    }
     let dir = tempfile::tempdir().expect("temp dir");
     let plain = write_page(dir.path(), "plain", &sample_surface().0);
     let transposed = write_page(dir.path(), "transposed", &sample_surface().0.transposed());
