@@ -112,24 +112,52 @@ mod tests {
         assert!(find_folds(&strip(&[7.0, 6.0, 5.0, 3.5, 2.0, 1.0, 0.0])).is_empty());
     }
 
-    /// The trawler's stern (issue 11): the v lines run down a steep profile, `z` falling 10 per
-    /// pole while `x` runs back one pole (the poles' x: 0, 1, 2, 4, 3, 5, 6). `x_v` turns, but
-    /// `S_u x S_v = (0, 1, 0) x (x_v, 0, z_v) = (z_v, 0, -x_v)` keeps its side (`z_v < 0`
-    /// throughout): the skin does not double back, so no fold; the same x with the profile
-    /// level (the strip below) folds.
-    #[test]
-    fn a_steep_profile_running_back_a_little_is_no_fold() {
-        let xs = [0.0, 1.0, 2.0, 4.0, 3.0, 5.0, 6.0];
+    /// A ruled-in-u, cubic-in-v strip down a steep profile: the poles' x from `xs`, z falling
+    /// 10 per pole, y from the pole's index across. `S_u x S_v = (0, 1, 0) x (x_v, 0, z_v) =
+    /// (z_v, 0, -x_v)` keeps its side wherever `z_v < 0`, whatever `x_v` does.
+    fn steep(xs: &[f64]) -> NurbsSurface {
         let ku = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
-        let kv = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0, 1.0]).expect("valid");
+        let n = xs.len();
+        let mut kv = vec![0.0; 4];
+        kv.extend((1..n - 3).map(|i| i as f64 / (n - 3) as f64));
+        kv.extend([1.0; 4]);
+        let kv = KnotVector::try_new(3, kv).expect("valid");
         let pts: Vec<Vec3> = (0..2)
             .flat_map(|i| xs.iter().enumerate().map(move |(j, &x)| Vec3::new(x, i as f64, -10.0 * j as f64)))
             .collect();
-        let steep = NurbsSurface::try_new(ku, kv, &pts, None).expect("valid");
-        let turns = (0..=100).any(|k| steep.derivatives(0.5, k as f64 / 100.0).sv.x < 0.0);
-        assert!(turns, "the test needs x_v to turn");
-        assert!(find_folds(&steep).is_empty());
+        NurbsSurface::try_new(ku, kv, &pts, None).expect("valid")
+    }
+
+    /// True if `x_v` turns somewhere along the middle u line.
+    fn turns(s: &NurbsSurface) -> bool {
+        (0..=1000).any(|k| s.derivatives(0.5, k as f64 / 1000.0).sv.x < 0.0)
+    }
+
+    /// The trawler's stern (issue 11): down a steep profile the keel line runs back a little
+    /// (poles' x 200.3, 200.1, 200.4 over a 400 long strip). `x_v` turns, the normal keeps its
+    /// side and the run back is far within [`FOLD_RUN_REL`](super::super::FOLD_RUN_REL) of the
+    /// length: no fold. The same x on a level strip turns the normal over: a fold.
+    #[test]
+    fn a_steep_profile_running_back_a_little_is_no_fold() {
+        let xs = [0.0, 100.0, 200.0, 200.3, 200.1, 200.4, 300.0, 400.0];
+        let s = steep(&xs);
+        assert!(turns(&s), "the test needs x_v to turn");
+        assert!(find_folds(&s).is_empty());
+        assert!(turns(&strip(&xs)));
         assert_eq!(find_folds(&strip(&xs)).len(), 1);
+    }
+
+    /// A hook: down the same steep profile the surface runs back by 8 % of its length (poles
+    /// 4 then 3 over 6) without turning over. That is a fold, reported with the run-back
+    /// allowance as its limit.
+    #[test]
+    fn a_steep_profile_running_back_far_is_a_fold() {
+        let s = steep(&[0.0, 1.0, 2.0, 4.0, 3.0, 5.0, 6.0]);
+        assert_eq!(find_folds(&s).len(), 1);
+        let findings = super::super::check_validity(&s, &super::super::Envelope::unbounded(), &[]);
+        let fold = findings.iter().find(|f| f.kind == super::super::FindingKind::Fold).expect("a fold");
+        // The allowance: FOLD_RUN_REL of the control net's x extent, 6.
+        assert!((fold.limit - 6e-3).abs() < 1e-15 && fold.size > fold.limit, "{fold:?}");
     }
 
     #[test]

@@ -30,7 +30,7 @@ pub use fairness::{
 pub use fold::{find_folds, Fold};
 pub use validity::{
     check_fit_validity, check_validity, Envelope, Finding, FindingKind, Flat, Place, ENVELOPE_REL, FLAT_REL,
-    INWARD_SHARE,
+    FOLD_RUN_REL, INWARD_SHARE,
 };
 
 use nurbs::{KnotVector, NurbsSurface};
