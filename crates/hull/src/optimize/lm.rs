@@ -240,13 +240,7 @@ pub fn run_best_of(
     control: &Control<'_>,
 ) -> (usize, OptimResult) {
     let probe_opts = LmOptions { max_iterations: probe.min(opts.max_iterations), ..*opts };
-    let mut runs: Vec<(OptimResult, f64)> = Vec::with_capacity(problems.len());
-    for p in problems {
-        if control.stopped() && !runs.is_empty() {
-            break;
-        }
-        runs.push(polish_from(p, &p.start(), &probe_opts, control));
-    }
+    let mut runs = probes(problems, &probe_opts, control);
     // The lowest value; the first on ties.
     let best = (0..runs.len()).fold(0, |b, i| if runs[i].0.value < runs[b].0.value { i } else { b });
     let (mut history, mut iterations, mut evaluations) = (Vec::new(), 0, 0);
@@ -281,6 +275,28 @@ pub fn run_best_of(
     result.iterations = iterations;
     result.evaluations = evaluations;
     (best, result)
+}
+
+/// The probes of [`run_best_of`], one per problem, in order: run side by side (`rayon::join`,
+/// so on as many threads as the pool has), each the same sequential run whatever the thread
+/// count, so the results do not depend on it. Only the first reports progress (two runs'
+/// iterations interleaved would be meaningless); all stop on the stop flag.
+fn probes(problems: &[&WeightProblem], opts: &LmOptions, control: &Control<'_>) -> Vec<(OptimResult, f64)> {
+    match problems {
+        [] => Vec::new(),
+        [p] => vec![polish_from(p, &p.start(), opts, control)],
+        [first, rest @ ..] => {
+            let stop = control.stop;
+            let (head, tail) = rayon::join(
+                || polish_from(first, &first.start(), opts, control),
+                || probes(rest, opts, &Control { stop, progress: &|_| {} }),
+            );
+            let mut runs = Vec::with_capacity(problems.len());
+            runs.push(head);
+            runs.extend(tail);
+            runs
+        }
+    }
 }
 
 /// Levenberg-Marquardt on the log-weights (from `x0`, clamped) and the data parameters
