@@ -116,9 +116,9 @@ pub struct OptimReport {
     pub weight_range: [f64; 2],
     /// Weights at a bound (within 1e-9 relative): a sign of over-fitting.
     pub weights_at_bounds: usize,
-    /// The box GA, PSO and GSA searched, in log-weights: `κ` of
-    /// [`WeightOptions::search_scale`] (`None`: the whole bounds) and the smallest and largest
-    /// half-width over the variables.
+    /// The box the algorithm searched, in log-weights: `κ` of
+    /// [`WeightOptions::search_scale`] (`None`: the whole bounds, as for `lm`, which does not
+    /// use the sensitivity box) and the smallest and largest half-width over the variables.
     pub search_scale: Option<f64>,
     pub search_half_width: [f64; 2],
     pub iterations: usize,
@@ -174,8 +174,14 @@ pub fn optimize_weights(
     let mut start_parameters = if foot_start { "foot_points" } else { "fitted" };
     let x0 = problem.start();
     let start_value = problem.value(&x0);
+    // LM searches the whole bounds: the sensitivity box (one Jacobian diagonal, 5 % of LM's
+    // time on the yacht) is for the populations of GA, PSO and GSA only.
+    let search_scale = if algorithm == Algorithm::Lm { None } else { settings.weights.search_scale };
     let search_half_width = {
-        let (lo, hi) = problem.search_box();
+        let (lo, hi) = match search_scale {
+            Some(_) => problem.search_box(),
+            None => (problem.lower().to_vec(), problem.upper().to_vec()),
+        };
         let h = hi.iter().zip(&lo).map(|(h, l)| (h - l) / 2.0);
         [h.clone().fold(f64::INFINITY, f64::min), h.fold(0.0, f64::max)]
     };
@@ -270,7 +276,7 @@ pub fn optimize_weights(
         weight_bounds: [lo, hi],
         weight_range: [wmin, wmax],
         weights_at_bounds: at_bounds,
-        search_scale: settings.weights.search_scale,
+        search_scale,
         search_half_width,
         iterations: result.iterations,
         evaluations: result.evaluations,

@@ -102,16 +102,24 @@ pub struct LmOptions {
 impl Default for LmOptions {
     /// 100 iterations, tolerance `1e-7` (on the Series 60 table, `6 x 19`, the 13 iterations
     /// a tolerance of `1e-10` adds gain `2.6e-8` of the RMS, `1e-10` m), gradient and step
-    /// tolerances `1e-10`, stall `(10, 1e-5)` (from the foot points the Series 60 sample at
-    /// `6 x 19` crawls from iteration 60 to 138 for 1e-5 of its RMS as weights settle on their
-    /// bounds), `μ_0 = 1e-3`, Kaufman's Jacobian.
+    /// tolerances `1e-10`, stall `(10, 1e-3)`, `μ_0 = 1e-3`, Kaufman's Jacobian.
+    ///
+    /// The stall test: from the foot points the Series 60 sample at `6 x 19` crawls from
+    /// iteration 60 to 138 for 1e-5 of its RMS as weights settle on their bounds, and on the
+    /// fair objective (`--fair auto`) the large tables of `testdata/` crawl the same way after
+    /// their first 20-30 iterations: with `(10, 1e-5)` the yacht (780 weights) ran to the
+    /// 120-iteration cap for 0.3 % of its objective, the DTMB 5415 bow (192) for 0.2 %, with the
+    /// true RMS within 0.05 % and the held-out RMS within 0.3 % of where `(10, 1e-3)` stops (at
+    /// 51 and 68 iterations; measured on every table, `--fair auto` and `--fair 0`, the README's
+    /// LM section). On the plain objective (`--fair 0`) the large tables gain more than 0.1 % in
+    /// 10 iterations to the end and run as before.
     fn default() -> Self {
         LmOptions {
             max_iterations: 100,
             tolerance: 1e-7,
             gradient_tolerance: 1e-10,
             step_tolerance: 1e-10,
-            stall: (10, 1e-5),
+            stall: (10, 1e-3),
             initial_damping: 1e-3,
             jacobian: JacobianKind::Kaufman,
             cg_tolerance: CG_TOLERANCE,
@@ -232,13 +240,7 @@ pub fn run_best_of(
     control: &Control<'_>,
 ) -> (usize, OptimResult) {
     let probe_opts = LmOptions { max_iterations: probe.min(opts.max_iterations), ..*opts };
-    let mut runs: Vec<(OptimResult, f64)> = Vec::with_capacity(problems.len());
-    for p in problems {
-        if control.stopped() && !runs.is_empty() {
-            break;
-        }
-        runs.push(polish_from(p, &p.start(), &probe_opts, control));
-    }
+    let mut runs = probes(problems, &probe_opts, control);
     // The lowest value; the first on ties.
     let best = (0..runs.len()).fold(0, |b, i| if runs[i].0.value < runs[b].0.value { i } else { b });
     let (mut history, mut iterations, mut evaluations) = (Vec::new(), 0, 0);
@@ -273,6 +275,28 @@ pub fn run_best_of(
     result.iterations = iterations;
     result.evaluations = evaluations;
     (best, result)
+}
+
+/// The probes of [`run_best_of`], one per problem, in order: run side by side (`rayon::join`,
+/// so on as many threads as the pool has), each the same sequential run whatever the thread
+/// count, so the results do not depend on it. Only the first reports progress (two runs'
+/// iterations interleaved would be meaningless); all stop on the stop flag.
+fn probes(problems: &[&WeightProblem], opts: &LmOptions, control: &Control<'_>) -> Vec<(OptimResult, f64)> {
+    match problems {
+        [] => Vec::new(),
+        [p] => vec![polish_from(p, &p.start(), opts, control)],
+        [first, rest @ ..] => {
+            let stop = control.stop;
+            let (head, tail) = rayon::join(
+                || polish_from(first, &first.start(), opts, control),
+                || probes(rest, opts, &Control { stop, progress: &|_| {} }),
+            );
+            let mut runs = Vec::with_capacity(problems.len());
+            runs.push(head);
+            runs.extend(tail);
+            runs
+        }
+    }
 }
 
 /// Levenberg-Marquardt on the log-weights (from `x0`, clamped) and the data parameters
@@ -643,8 +667,11 @@ mod tests {
         let out = fit(&o, (3, 3), (5, 8));
         let p = problem(&o, &out, WeightMode::Resolved, WeightLayout::RankOne);
         let f0 = p.value(&p.start());
-        let k = quiet(|c| run(&p, &LmOptions::default(), c));
-        let e = quiet(|c| run(&p, &LmOptions { jacobian: JacobianKind::Exact, ..LmOptions::default() }, c));
+        // Both run to the local minimum: the stall test off (with the default `(10, 1e-3)` the
+        // two crawls stop 2.4e-6 apart), the tolerances decide.
+        let tight = LmOptions { stall: (0, 0.0), ..LmOptions::default() };
+        let k = quiet(|c| run(&p, &tight, c));
+        let e = quiet(|c| run(&p, &LmOptions { jacobian: JacobianKind::Exact, ..tight }, c));
         assert_history(&e, f0);
         // Same local minimum from the same start (the Jacobians differ by a term that vanishes
         // with the residual; their gradients agree): values within 1e-6.
