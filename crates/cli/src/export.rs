@@ -19,6 +19,7 @@ use nurbs::{NurbsSurface, Vec3};
 use serde_json::json;
 
 use crate::fit::fit_with_progress;
+use crate::parse::parse_skin_method;
 use crate::skin_args::SkinArgs;
 use crate::stdout::outln;
 use crate::surface_arg::{read_input, Input};
@@ -115,7 +116,7 @@ pub struct ExportArgs {
     #[command(flatten)]
     pub skin: SkinArgs,
     /// Fit of an offsets input: interp or approx.
-    #[arg(long, default_value = "approx", value_parser = parse_method)]
+    #[arg(long, default_value = "approx", value_parser = parse_skin_method)]
     pub method: FitMethod,
     /// Output format; by default from the extension of FILE (.stp/.step, .igs/.iges, .dxf,
     /// .stl, .obj, .glb).
@@ -143,18 +144,6 @@ pub struct ExportArgs {
     /// units, poles or triangles), for scripts; notes stay on standard error.
     #[arg(long)]
     pub json: bool,
-}
-
-fn parse_method(s: &str) -> Result<FitMethod, String> {
-    match s.parse::<FitMethod>()? {
-        m @ (FitMethod::Interp | FitMethod::Approx) => Ok(m),
-        m => Err(format!(
-            "{} optimises weights: fit with `hullskin fit --method {}` and pass its surface.json \
-             (expected interp or approx)",
-            m.name(),
-            m.name()
-        )),
-    }
 }
 
 /// The format asked for, or the one of the output's extension; checks that the flags apply.

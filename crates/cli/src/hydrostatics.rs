@@ -10,6 +10,7 @@ use hull::optimize::OptimSettings;
 use hull::{FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, SEA_WATER_DENSITY};
 
 use crate::fit::fit_with_progress;
+use crate::parse::parse_skin_method;
 use crate::skin_args::SkinArgs;
 use crate::stdout::{out, outln};
 use crate::surface_arg::{read_input, Input};
@@ -36,7 +37,7 @@ pub struct HydrostaticsArgs {
     #[command(flatten)]
     pub skin: SkinArgs,
     /// Fit of an offsets input: interp or approx.
-    #[arg(long, default_value = "approx", value_parser = parse_method)]
+    #[arg(long, default_value = "approx", value_parser = parse_skin_method)]
     pub method: FitMethod,
     /// Draft T (z of the waterplane above the baseline, in the surface's length unit); the
     /// first draft of a range with --to and --step.
@@ -61,18 +62,6 @@ pub struct HydrostaticsArgs {
     /// Write the table to FILE instead of standard output.
     #[arg(short = 'o', long = "out", value_name = "FILE")]
     pub out: Option<PathBuf>,
-}
-
-fn parse_method(s: &str) -> Result<FitMethod, String> {
-    match s.parse::<FitMethod>()? {
-        m @ (FitMethod::Interp | FitMethod::Approx) => Ok(m),
-        m => Err(format!(
-            "{} optimises weights: fit with `hullskin fit --method {}` and pass its surface.json \
-             (expected interp or approx)",
-            m.name(),
-            m.name()
-        )),
-    }
 }
 
 /// The drafts asked for: `--draft`, or the range to `--to` by `--step`.

@@ -1,6 +1,6 @@
 //! Value parsers shared by the subcommands' flags.
 
-use hull::{Fairing, Units};
+use hull::{Fairing, FitMethod, Units};
 use nurbs::fit::SkinParameterization;
 
 /// `NU,NV` or `P,Q`: two non-negative integers.
@@ -30,5 +30,19 @@ pub(crate) fn parse_fair(s: &str) -> Result<Fairing, String> {
         Ok(0.0) => Ok(Fairing::Off),
         Ok(l) if l > 0.0 && l.is_finite() => Ok(Fairing::Lambda(l)),
         _ => Err(format!("`{s}` is not a fairness weight (expected auto, 0, or a finite number > 0 such as 1e-3)")),
+    }
+}
+
+/// The fit of an offsets input to commands that take a surface (`hydrostatics`, `export`):
+/// `interp` or `approx`; an optimised method is refused with the way to it.
+pub(crate) fn parse_skin_method(s: &str) -> Result<FitMethod, String> {
+    match s.parse::<FitMethod>()? {
+        m @ (FitMethod::Interp | FitMethod::Approx) => Ok(m),
+        m => Err(format!(
+            "{} optimises weights: fit with `hullskin fit --method {}` and pass its surface.json \
+             (expected interp or approx)",
+            m.name(),
+            m.name()
+        )),
     }
 }
