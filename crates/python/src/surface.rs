@@ -311,7 +311,9 @@ impl PySurface {
         crate::export::write(py, self, &path, format, mirror, tolerance, None)
     }
 
-    /// The surface as the `surface.json` that `hullskin fit` writes (exact round trip).
+    /// The surface as the `surface.json` that `hullskin fit` writes: the Euclidean control
+    /// points and weights with their shortest round-trip digits (read back, a rational
+    /// surface's products w·P are rounded once more; pickling keeps them exactly).
     fn to_json(&self) -> PyResult<String> {
         let mut out = Vec::new();
         hull::export::write_surface_json(&mut out, &self.surface, self.units.symbol())
@@ -347,20 +349,41 @@ impl PySurface {
         )
     }
 
-    /// Pickled as its JSON (exact), source and perpendiculars.
+    /// Pickled exactly: degrees, knots, homogeneous control points, units, source and
+    /// perpendiculars.
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
         let py = slf.py();
         let me = slf.get();
         let f = py.import("hullskin._hullskin")?.getattr("_surface_from_state")?;
-        let state = (me.to_json()?, me.source.clone(), me.perpendiculars.map(|p| (p.aft, p.fore)));
+        let s = &me.surface;
+        let state = (
+            (s.degree_u(), s.degree_v()),
+            s.knots_u().as_slice().to_vec(),
+            s.knots_v().as_slice().to_vec(),
+            s.homogeneous().to_vec(),
+            me.units.symbol(),
+            me.source.clone(),
+            me.perpendiculars.map(|p| (p.aft, p.fore)),
+        );
         Ok((f, state.into_pyobject(py)?.into_any()))
     }
 }
 
 /// Rebuild a pickled surface.
 #[pyfunction]
-pub fn _surface_from_state(json: &str, source: String, perpendiculars: Option<(f64, f64)>) -> PyResult<PySurface> {
-    let mut s = PySurface::from_json(json, &source)?;
-    s.perpendiculars = perpendiculars.map(crate::offsets::perpendiculars_of).transpose()?;
-    Ok(s)
+pub fn _surface_from_state(
+    degree: (usize, usize),
+    knots_u: Vec<f64>,
+    knots_v: Vec<f64>,
+    homogeneous: Vec<[f64; 4]>,
+    units: &str,
+    source: String,
+    perpendiculars: Option<(f64, f64)>,
+) -> PyResult<PySurface> {
+    let bad = |e: nurbs::NurbsError| bad_arg(format!("pickled surface: {e}"));
+    let ku = KnotVector::try_new(degree.0, knots_u).map_err(bad)?;
+    let kv = KnotVector::try_new(degree.1, knots_v).map_err(bad)?;
+    let surface = NurbsSurface::try_from_homogeneous(ku, kv, homogeneous).map_err(bad)?;
+    let perpendiculars = perpendiculars.map(crate::offsets::perpendiculars_of).transpose()?;
+    Ok(PySurface { surface, units: options::units(units)?, source, perpendiculars })
 }
