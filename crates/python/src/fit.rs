@@ -69,6 +69,19 @@ fn run_fit(
 }
 
 /// Fit one NURBS surface to offsets, as `hullskin fit` does with the same arguments.
+///
+/// `offsets_or_path`: a `hullskin.Offsets`, a path read as `hullskin fit PATH` reads it (with
+/// `units`, `lpp`, `beam`, `design_draft`, `outliers`), or None for the built-in Series 60
+/// Cb 0.60 parent. `method`: interp, approx, ga, pso, gsa, lm or gsa+lm. `ctrl`: control
+/// points (nu, nv) (default three quarters of the offsets); `tolerance`: the fewest control
+/// points whose max error is within it instead. `seed`, `iterations`, `population`,
+/// `weights` (full, rank1), `control_points` (resolved, fixed), `param_correction`,
+/// `fitted_params`: the weight optimisers'. `degree` (p, q), `param`, `fair` ("auto", 0 or
+/// a weight; None is "auto"), `knuckles` (auto, auto+flats, off), `corner_angle`, `envelope`
+/// (hold, free): the skinning's. `held_out`: folds of the held-out error (0: none).
+///
+/// Returns a `hullskin.Fit`: `.surface`, `.report` (report.json), `.error`, `.validity`,
+/// `.timings`, `.warnings`. Runs without the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (
     offsets_or_path = None, *, method = "approx", ctrl = None, tolerance = None, seed = 1, iterations = None,
