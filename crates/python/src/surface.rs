@@ -138,16 +138,19 @@ impl PySurface {
     }
 
     /// The points S(u, v): `u` and `v` arrays of one shape (or one a scalar), result of that
-    /// shape + (3,). Released from the GIL and evaluated in parallel.
+    /// shape + (3,). Released from the GIL and evaluated in parallel by the kernel's
+    /// evaluator of scattered points (equal to `derivatives()["point"]` to a few ulps).
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
         u: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let (shape, pairs) = arrays::parameters(u, v)?;
-        let pts = py.detach(|| each(&pairs, |u, v| self.surface.point(u, v)));
-        arrays::vec3s(py, &shape, &pts)
+        let evaluator = nurbs::PointEvaluator::new(&self.surface);
+        arrays::map_pairs(py, u, v, |u, v| {
+            let p = evaluator.point(u, v);
+            [p.x, p.y, p.z]
+        })
     }
 
     /// The point and the partial derivatives up to second order: a dict of arrays of shape
@@ -184,10 +187,7 @@ impl PySurface {
         u: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let (shape, pairs) = arrays::parameters(u, v)?;
-        let nan = Vec3::new(f64::NAN, f64::NAN, f64::NAN);
-        let n = py.detach(|| each(&pairs, |u, v| self.surface.normal(u, v).unwrap_or(nan)));
-        arrays::vec3s(py, &shape, &n)
+        arrays::map_pairs(py, u, v, |u, v| self.surface.normal(u, v).map_or([f64::NAN; 3], |n| [n.x, n.y, n.z]))
     }
 
     /// Gaussian curvature K and mean curvature H (from the fundamental forms), and the
