@@ -28,6 +28,7 @@ from ._hullskin import (
     fit,
     read_offsets,
 )
+from . import study  # noqa: E402  (design studies on Dask; imports pandas only when run)
 
 __all__ = [
     "DEFAULT_HELD_OUT_FOLDS",
@@ -39,4 +40,5 @@ __all__ = [
     "__version__",
     "fit",
     "read_offsets",
+    "study",
 ]
