@@ -53,7 +53,8 @@ def main():
 
     ok = df[df["error"] == ""]
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-    for bt, g in ok.groupby("b_over_t"):
+    # One line per B/T (its computed value carries the scale factors' rounding).
+    for bt, g in ok.groupby(ok["b_over_t"].round(6)):
         axes[0].plot(g["l_over_b"], g["kmt"], "-o", ms=3, label=f"B/T {bt:.2f}")
         axes[1].plot(g["l_over_b"], 1000 * g["max_error"], "-o", ms=3)
     axes[0].set_xlabel("L/B")
