@@ -52,6 +52,19 @@ def cli():
     return run
 
 
+def import_or_skip(name):
+    """`name` imported; where it is not installed, a skip saying so, except under CI=true
+    (where `.ci/run` installs it), where the import error fails the test."""
+    import importlib
+
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        if os.environ.get("CI") == "true":
+            raise
+        pytest.skip(f"{name} is not installed (pip install -r crates/python/requirements-ci.txt)", allow_module_level=True)
+
+
 def without_timings(value):
     """A report with its measured times removed (everything else is compared exactly)."""
     if isinstance(value, dict):

@@ -13,27 +13,16 @@ centre plane, the end sections fanned from their centroid), and the wetted surfa
 NavalToolbox's less the immersed area of those added planes (hullskin's S is the surface's).
 """
 
-import os
-
 import numpy as np
 import pytest
 
 import hullskin
-from conftest import TESTDATA
+from conftest import TESTDATA, import_or_skip
 
 # 0.5 %: the issue's bound. The meshes are within 1e-4 of the hull's size of the surface
 # (export tolerance) or finer (the 121 x 241 grid), which moves volume and areas by about
 # 1e-4 relative; NavalToolbox's own integration is exact on the triangles.
 BOUND = 0.005
-
-
-def import_or_skip(name):
-    try:
-        return __import__(name)
-    except ImportError:
-        if os.environ.get("CI") == "true":
-            raise
-        pytest.skip(f"{name} is not installed (pip install -r crates/python/requirements-ci.txt)")
 
 
 def closed_grid_mesh(surface, nu=121, nv=241):

@@ -12,7 +12,9 @@ import pytest
 
 from hullskin import study
 
-distributed = pytest.importorskip("dask.distributed", reason="dask[distributed] is not installed")
+from conftest import import_or_skip
+
+distributed = import_or_skip("dask.distributed")
 EXAMPLE = pathlib.Path(__file__).resolve().parents[1] / "examples" / "series60_study.py"
 
 
@@ -69,6 +71,7 @@ def test_a_failed_fit_is_a_row_with_its_message():
 
 
 def test_the_example_study_runs(tmp_path):
+    import_or_skip("matplotlib")
     r = subprocess.run([sys.executable, str(EXAMPLE), "--grid", "3", "2", "--out", str(tmp_path)],
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
