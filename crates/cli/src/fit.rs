@@ -136,12 +136,13 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
     };
     let (mut outcome, search) = args.fit.fit(&args.skin, &offsets)?;
     if args.held_out > 0 && !progress::stopped() {
-        outcome.error.held_out = held_out_with_progress(&offsets, &held_out_config(&outcome), args.held_out);
+        outcome.error.held_out =
+            held_out_with_progress(&offsets, &hull::held_out_refit_config(&outcome), args.held_out);
     }
     let mut report = hull::Report::new(&offsets, &outcome);
     report.input.warnings = warnings;
     report.tolerance_search = search;
-    let overfit = overfitting(&offsets, &outcome);
+    let overfit = hull::overfitting_warning(&offsets, &outcome);
     report.overfitting = overfit.as_ref().map(|l| l.trim_start_matches("warning: ").to_string());
     write_outputs(&args.out, &offsets, &outcome, &report)?;
     print_summary(args.json, &report, || hull::summary_table(&offsets, &outcome))?;
@@ -263,58 +264,11 @@ pub(crate) fn fit_with_progress(
     config: &FitConfig,
     tolerance: Option<f64>,
 ) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
-    let fit = |control: &hull::optimize::Control<'_>| match tolerance {
-        // The counts are searched on the plain fits; the count found is then faired within T.
-        Some(t) => {
-            let plain = FitConfig { fair: hull::Fairing::Off, ..*config };
-            let r = hull::fit_to_tolerance(offsets, &plain, &hull::ToleranceSettings::new(t), control)?;
-            let fair = match config.fair {
-                hull::Fairing::Auto { tolerance: None } => hull::Fairing::Auto { tolerance: Some(t) },
-                f => f,
-            };
-            if fair == hull::Fairing::Off || control.stopped() {
-                return Ok((r.outcome, Some(r.search)));
-            }
-            let [nu, nv] = r.search.control_points;
-            let faired = FitConfig { ctrl: Some((nu, nv)), fair, ..*config };
-            let out = hull::fit_offsets_with(offsets, &faired, control)?;
-            // The faired fit must keep what the search found: within T, and valid if that was.
-            let keeps = out.error.overall.max <= t && (out.validity.is_empty() || !r.outcome.validity.is_empty());
-            if keeps || control.stopped() {
-                return Ok((out, Some(r.search)));
-            }
-            let mut plain = r.outcome;
-            plain.rejected.push(format!(
-                "the faired fit at {nu}x{nv} (max {:.3e}, {} validity finding(s)) does not keep the searched fit's \
-                 tolerance or soundness; the searched fit is kept",
-                out.error.overall.max,
-                out.validity.len()
-            ));
-            Ok((plain, Some(r.search)))
-        }
-        None => hull::fit_offsets_with(offsets, config, control).map(|o| (o, None)),
-    };
+    let fit = |control: &hull::optimize::Control<'_>| hull::fit_offsets_within(offsets, config, tolerance, control);
     match config.method.algorithm() {
         Some(a) => progress::with_progress(a.name(), fit),
         None => hull::optimize::quiet(fit),
     }
-}
-
-/// The settings the held-out refits use: the fit's own, with the approximation's automatic
-/// fairing replaced by the smoothing it chose (or none, where it kept the plain fit), so the
-/// refits measure the surface that was written between its offsets, at the cost of one fit
-/// each instead of a whole search each.
-pub(crate) fn held_out_config(outcome: &FitOutcome) -> FitConfig {
-    let mut config = outcome.config;
-    if config.method.algorithm().is_none() {
-        if let hull::Fairing::Auto { .. } = config.fair {
-            config.fair = match &outcome.fairing {
-                Some(r) if r.lambda > 0.0 => hull::Fairing::Lambda(r.lambda),
-                _ => hull::Fairing::Off,
-            };
-        }
-    }
-    config
 }
 
 /// The held-out error of the fit `config` with `folds` folds ([`hull::held_out_for_config`]),
@@ -332,29 +286,6 @@ pub(crate) fn held_out_with_progress(offsets: &Offsets, config: &FitConfig, fold
     result.unwrap_or_else(|e| {
         eprintln!("hullskin: warning: no held-out error: {e}");
         None
-    })
-}
-
-/// For an optimised method with a held-out error: a warning line when it over-fits against
-/// the plain approximation at the same control points ([`HeldOutError::overfits`]: lower RMS
-/// at the offsets, higher held-out RMS), which is fitted and cross-validated for it (the cost
-/// of an approximation and its refits, small beside the optimiser's).
-fn overfitting(offsets: &Offsets, outcome: &FitOutcome) -> Option<String> {
-    let held = outcome.error.held_out.as_ref()?;
-    outcome.config.method.algorithm()?;
-    let plain = FitConfig { method: FitMethod::Approx, ..outcome.config };
-    let base = hull::fit_offsets(offsets, &plain).ok()?;
-    let base_held =
-        hull::held_out_for_config(offsets, &held_out_config(&base), &hull::HeldOutOptions::with_folds(held.folds))
-            .ok()?;
-    let (at, at_base) = (outcome.error.overall.rms, base.error.overall.rms);
-    held.overfits(at, at_base, &base_held).then(|| {
-        let u = offsets.units.symbol();
-        format!(
-            "warning: {} over-fits: RMS {at:.3e} {u} at the offsets, below the plain approximation's {at_base:.3e} {u}, \
-             but {:.3e} {u} held out, above its {:.3e} {u} (expected fewer control points or a fairer fit)",
-            outcome.config.method, held.rms, base_held.rms
-        )
     })
 }
 
@@ -397,12 +328,12 @@ mod tests {
         let base = hull::fit_offsets(&offsets, &plain).expect("fits");
         assert!(lm.error.overall.rms < base.error.overall.rms, "LM improves at the offsets");
         let base_held = hull::held_out_for_config(&offsets, &plain, &hull::HeldOutOptions::default()).expect("ok");
-        assert_eq!(overfitting(&offsets, &lm), None, "no held-out error, no verdict");
+        assert_eq!(hull::overfitting_warning(&offsets, &lm), None, "no held-out error, no verdict");
         lm.error.held_out = Some(HeldOutError { rms: 2.0 * base_held.rms, ..base_held.clone() });
-        let line = overfitting(&offsets, &lm).expect("over-fits");
+        let line = hull::overfitting_warning(&offsets, &lm).expect("over-fits");
         assert!(line.starts_with("warning: lm over-fits: RMS") && line.contains(&format!("{:.3e}", base_held.rms)));
         lm.error.held_out = Some(HeldOutError { rms: 0.5 * base_held.rms, ..base_held });
-        assert_eq!(overfitting(&offsets, &lm), None);
+        assert_eq!(hull::overfitting_warning(&offsets, &lm), None);
     }
 
     #[test]

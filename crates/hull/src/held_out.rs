@@ -309,6 +309,45 @@ pub fn held_out_error_with(
     }))
 }
 
+/// The settings the held-out refits of `outcome` use: the fit's own, with the approximation's
+/// automatic fairing replaced by the smoothing it chose (or none, where it kept the plain fit),
+/// so the refits measure the surface that was written between its offsets, at the cost of one
+/// fit each instead of a whole search each.
+pub fn held_out_refit_config(outcome: &crate::FitOutcome) -> FitConfig {
+    let mut config = outcome.config;
+    if config.method.algorithm().is_none() {
+        if let crate::Fairing::Auto { .. } = config.fair {
+            config.fair = match &outcome.fairing {
+                Some(r) if r.lambda > 0.0 => crate::Fairing::Lambda(r.lambda),
+                _ => crate::Fairing::Off,
+            };
+        }
+    }
+    config
+}
+
+/// For an optimised method with a held-out error: a warning line when it over-fits against
+/// the plain approximation at the same control points ([`HeldOutError::overfits`]: lower RMS
+/// at the offsets, higher held-out RMS), which is fitted and cross-validated for it (the cost
+/// of an approximation and its refits, small beside the optimiser's).
+pub fn overfitting_warning(offsets: &Offsets, outcome: &crate::FitOutcome) -> Option<String> {
+    let held = outcome.error.held_out.as_ref()?;
+    outcome.config.method.algorithm()?;
+    let plain = FitConfig { method: FitMethod::Approx, ..outcome.config };
+    let base = crate::fit_offsets(offsets, &plain).ok()?;
+    let base_held =
+        held_out_for_config(offsets, &held_out_refit_config(&base), &HeldOutOptions::with_folds(held.folds)).ok()?;
+    let (at, at_base) = (outcome.error.overall.rms, base.error.overall.rms);
+    held.overfits(at, at_base, &base_held).then(|| {
+        let u = offsets.units.symbol();
+        format!(
+            "warning: {} over-fits: RMS {at:.3e} {u} at the offsets, below the plain approximation's {at_base:.3e} {u}, \
+             but {:.3e} {u} held out, above its {:.3e} {u} (expected fewer control points or a fairer fit)",
+            outcome.config.method, held.rms, base_held.rms
+        )
+    })
+}
+
 /// The held-out error of [`crate::fit_offsets`] with `config` (its degrees replace those of
 /// `options`). Each refit keeps the full fit's density of control points: its counts
 /// (`config.ctrl`, or [`default_ctrl`] of all the offsets) scaled by the share of the data the

@@ -42,8 +42,8 @@ pub use error::{HullError, InputErrorKind, Location};
 pub use fairing::{FairReport, Fairing};
 pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
 pub use held_out::{
-    held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, overfit, HeldOutError,
-    HeldOutOptions,
+    held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, held_out_refit_config, overfit,
+    overfitting_warning, HeldOutError, HeldOutOptions,
 };
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
@@ -68,5 +68,7 @@ pub use report::{
     write_fit_outputs_with_report, write_report_json, InputSummary, Measured, Report, SurfaceSummary,
 };
 pub use sample::{series60_sample, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
-pub use tolerance_search::{fit_to_tolerance, ToleranceFit, ToleranceSearch, ToleranceSettings, TriedCount};
+pub use tolerance_search::{
+    fit_offsets_within, fit_to_tolerance, ToleranceFit, ToleranceSearch, ToleranceSettings, TriedCount,
+};
 pub use units::Units;

@@ -49,6 +49,53 @@ use serde::Serialize;
 use crate::optimize::Control;
 use crate::{fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, Offsets};
 
+/// Fit `offsets` with `config`, or, with a `tolerance`, with the fewest control points whose
+/// max error is within it ([`fit_to_tolerance`] on the plain fits), then that count faired
+/// within the tolerance (an automatic fairing takes `tolerance` as its bound), with the record
+/// of the search. The faired fit is kept when it stays within the tolerance and is no less
+/// sound than the searched fit; otherwise the searched fit is kept, the faired one noted in
+/// [`FitOutcome::rejected`]. What `hullskin fit --tolerance` (and every caller that fits as
+/// the command line does) runs; a stop on `control` returns the best surface so far.
+///
+/// # Errors
+/// Those of [`crate::fit_offsets`], and of [`fit_to_tolerance`] with a tolerance.
+pub fn fit_offsets_within(
+    offsets: &Offsets,
+    config: &FitConfig,
+    tolerance: Option<f64>,
+    control: &Control<'_>,
+) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
+    let Some(t) = tolerance else {
+        return fit_offsets_with(offsets, config, control).map(|o| (o, None));
+    };
+    // The counts are searched on the plain fits; the count found is then faired within T.
+    let plain = FitConfig { fair: crate::Fairing::Off, ..*config };
+    let r = fit_to_tolerance(offsets, &plain, &ToleranceSettings::new(t), control)?;
+    let fair = match config.fair {
+        crate::Fairing::Auto { tolerance: None } => crate::Fairing::Auto { tolerance: Some(t) },
+        f => f,
+    };
+    if fair == crate::Fairing::Off || control.stopped() {
+        return Ok((r.outcome, Some(r.search)));
+    }
+    let [nu, nv] = r.search.control_points;
+    let faired = FitConfig { ctrl: Some((nu, nv)), fair, ..*config };
+    let out = fit_offsets_with(offsets, &faired, control)?;
+    // The faired fit must keep what the search found: within T, and valid if that was.
+    let keeps = out.error.overall.max <= t && (out.validity.is_empty() || !r.outcome.validity.is_empty());
+    if keeps || control.stopped() {
+        return Ok((out, Some(r.search)));
+    }
+    let mut plain = r.outcome;
+    plain.rejected.push(format!(
+        "the faired fit at {nu}x{nv} (max {:.3e}, {} validity finding(s)) does not keep the searched fit's \
+         tolerance or soundness; the searched fit is kept",
+        out.error.overall.max,
+        out.validity.len()
+    ));
+    Ok((plain, Some(r.search)))
+}
+
 /// Settings of [`fit_to_tolerance`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ToleranceSettings {

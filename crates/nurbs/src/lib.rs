@@ -12,6 +12,7 @@ mod grid;
 mod knots;
 mod project;
 mod refine;
+mod scattered;
 mod surface;
 #[macro_use]
 pub mod tolerance;
@@ -21,6 +22,7 @@ pub use curve::{Homogeneous, NurbsCurve};
 pub use error::NurbsError;
 pub use grid::FirstDerivatives;
 pub use knots::{KnotVector, MAX_DEGREE};
+pub use scattered::PointEvaluator;
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
 pub use vec3::Vec3;
 // refine / elevate / project: their helpers add `pub use` lines below.
