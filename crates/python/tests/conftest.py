@@ -42,12 +42,12 @@ def cli():
             pytest.fail(message)
         pytest.skip(message)
 
-    def run(*args, cwd=None):
+    def run(*args, cwd=None, stderr=False):
         env = dict(os.environ, SOURCE_DATE_EPOCH="1000000000")
         r = subprocess.run([str(path), *map(str, args)], capture_output=True, text=True, cwd=cwd, env=env)
         if r.returncode != 0:
             raise AssertionError(f"hullskin {' '.join(map(str, args))} exited {r.returncode}: {r.stderr}")
-        return r.stdout
+        return (r.stdout, r.stderr) if stderr else r.stdout
 
     return run
 

@@ -103,3 +103,21 @@ def test_the_report_is_json_and_pickles(sample_fit):
     o = pickle.loads(pickle.dumps(sample_fit.offsets))
     assert [s.tolist() for s in o.sections] == [s.tolist() for s in sample_fit.offsets.sections]
     assert math.isfinite(back.error["max"])
+
+
+@pytest.mark.parametrize("name", ["freeship_wigley_offsets.txt", "series60_cb070_offsets.csv", "gunnerus_offsets.csv", "matlab_trawler.csv"])
+def test_reading_notes_and_warnings_are_the_command_lines(cli, tmp_path, name):
+    path = TESTDATA / name
+    _, err = cli("fit", path, "--held-out", "0", "-o", tmp_path, stderr=True)
+    o = hullskin.read_offsets(path)
+    notes = [line.removeprefix("hullskin: note: ") for line in err.splitlines() if line.startswith("hullskin: note: ")]
+    warnings = [line.removeprefix("hullskin: warning: ") for line in err.splitlines()
+                if line.startswith("hullskin: warning: ")]
+    # The command line prints a sections CSV's or offset table's reading notes only when
+    # there is more to say than the format; the bindings always keep them.
+    if notes:
+        assert o.notes == notes
+    else:
+        assert len(o.notes) == 1 and "read as" in o.notes[0]
+    f = hullskin.fit(o, held_out=0)
+    assert f.warnings == warnings
