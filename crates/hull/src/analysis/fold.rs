@@ -158,6 +158,9 @@ mod tests {
         let fold = findings.iter().find(|f| f.kind == super::super::FindingKind::Fold).expect("a fold");
         // The allowance: FOLD_RUN_REL of the control net's x extent, 6.
         assert!((fold.limit - 6e-3).abs() < 1e-15 && fold.size > fold.limit, "{fold:?}");
+        // Said as a hook, not as a self-intersection.
+        let message = fold.message("m");
+        assert!(message.contains("hooks back") && !message.contains("self-intersecting"), "{message}");
     }
 
     #[test]

@@ -232,6 +232,14 @@ impl Finding {
         };
         let more_ctrl = "try more control points along the sections (--ctrl) or --method interp";
         match self.kind {
+            FindingKind::Fold if self.limit > 0.0 => format!(
+                "the surface hooks back across the sections{band} (it runs {} {u} back, deepest {at}, more than the \
+                 {} {u} allowed (0.1 % of the length) without turning over): sections crossing each other or \
+                 unevenly spaced parameters across them (expected sections that advance in x; try --param \
+                 centripetal,centripetal or fewer control points across)",
+                len(self.size),
+                len(self.limit)
+            ),
             FindingKind::Fold => format!(
                 "the surface folds back across the sections{band} (it runs {} {u} back, deepest {at}; a CAD system \
                  sees it as self-intersecting): sections crossing each other or unevenly spaced parameters across \
