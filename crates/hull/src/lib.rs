@@ -3,6 +3,31 @@
 //!
 //! Axes everywhere: x forward (aft to fore), y to starboard (half-breadth, >= 0), z up from
 //! the baseline; coordinates stay in the user's [`Units`].
+//!
+//! Read offsets, fit one surface, measure it and write IGES (what `hullskin fit` does):
+//!
+//! ```
+//! use hull::export::{write_iges, IgesMeta};
+//! use hull::{fit_offsets, series60_sample, FitConfig, Hydrostatics, HydrostaticsOptions, Units};
+//!
+//! // The built-in Series 60 Cb 0.60 parent (Todd 1963): 25 stations by 8 waterlines, metres.
+//! // A file is read the same way: `hull::read_offsets(path, Units::Metre)?`.
+//! let offsets = series60_sample();
+//! // The default fit: skinning approximation, faired, held within the offsets' envelope.
+//! let fit = fit_offsets(&offsets, &FitConfig::default())?;
+//! // Every offset's true (closest-point) distance to the surface, and the validity checks.
+//! assert!(fit.error.overall.max < 0.2, "max error {} m", fit.error.overall.max);
+//! assert!(fit.validity.is_empty(), "{:?}", fit.validity);
+//! // Hydrostatics at the design draft on the data's perpendiculars: Todd's CB 0.60 within 1 %.
+//! let options = HydrostaticsOptions { perpendiculars: offsets.perpendiculars, ..HydrostaticsOptions::default() };
+//! let row = Hydrostatics::new(&fit.surface, &options)?.at(6.5)?;
+//! assert!((row.cb_lpp.expect("perpendiculars known") / 0.60 - 1.0).abs() < 0.01);
+//! // IGES 5.3, entity 128, in metres.
+//! let mut iges = Vec::new();
+//! write_iges(&mut iges, &fit.surface, &IgesMeta::new(Units::Metre.into(), "hull.igs", "20261206.000000"))?;
+//! assert!(iges.len() > 1000);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub mod analysis;
 mod compare;
