@@ -145,6 +145,18 @@ def run_case(case, args, hullskin, inputs_dir, work_dir, log):
         "interp",
         lambda: fitters.geomdl_interp(case.sections),
     )
+    # The default fit (issue 11) against NURBS-Python's approximation with about half the
+    # offsets' count each way.
+    if hullskin:
+        add(f"hullskin default fit ({args.param})", "hullskin", "default", ours("approx"))
+    half = [max(4, math.ceil(nu_d / 2)), max(4, math.ceil(nv_d / 2))]
+    add(
+        f"geomdl approximate_surface {half[0]}x{half[1]} (centripetal), half the offsets' count",
+        "geomdl",
+        "half",
+        lambda: fitters.geomdl_approx(case.sections, tuple(half)),
+        half,
+    )
     # Approximation at fixed counts
     for nu, nv in case.approx:
         ctrl = [nu, nv]
@@ -263,6 +275,28 @@ def judge(result):
                     f"{k} {a * 1e3:.4g} vs {b * 1e3:.4g} mm (x{a / b if b else math.inf:.3f})"
                     for k, a, b in pairs
                 ),
+            }
+        )
+    default, half = _find(rows, "hullskin", "default"), _find(rows, "geomdl", "half")
+    if default and half:
+        pairs = [
+            ("between max", default["between"]["max"], half["between"]["max"]),
+            ("between RMS", default["between"]["rms"], half["between"]["rms"]),
+        ]
+        dp = default["poles"]
+        ip = ours_i["poles"] if ours_i else None
+        fewer = ip is None or dp["nu"] * dp["nv"] <= ip["nu"] * ip["nv"]
+        verdicts.append(
+            {
+                "floor": f"default fit <= geomdl approximate_surface {half['ctrl'][0]}x{half['ctrl'][1]} "
+                "(half the offsets' count), with no more poles than interp",
+                "holds": all(_le(a, b) for _, a, b in pairs) and fewer,
+                "detail": ", ".join(
+                    f"{k} {a * 1e3:.4g} vs {b * 1e3:.4g} mm (x{a / b if b else math.inf:.3f})"
+                    for k, a, b in pairs
+                )
+                + f"; poles {dp['nu']}x{dp['nv']}"
+                + (f" vs interp {ip['nu']}x{ip['nv']}" if ip else ""),
             }
         )
     ts = _find(rows, "occt", "thrusections")
