@@ -44,7 +44,9 @@ def main(argv=None):
     if a.method == "interp":
         s = fitting.interpolate_surface(pts, nu, nv, p, q, centripetal=cen)
     else:
-        cu, cv = (int(v) for v in a.ctrl.split(","))
+        # Without --ctrl, hullskin's default: three quarters of the offsets each way.
+        ctrl = a.ctrl or f"{max(p + 1, (3 * nu + 3) // 4)},{max(q + 1, (3 * nv + 3) // 4)}"
+        cu, cv = (int(v) for v in ctrl.split(","))
         s = fitting.approximate_surface(
             pts, nu, nv, p, q, ctrlpts_size_u=cu, ctrlpts_size_v=cv, centripetal=cen
         )
