@@ -40,7 +40,8 @@ def main(argv=None):
     nu, nv = len(sections[0]), len(sections)
     pts = [sections[j][i] for i in range(nu) for j in range(nv)]
     p, q = (int(v) for v in a.degree.split(","))
-    cen = a.param == "centripetal"
+    # The parameterization along the sections (hullskin's --param U,V or one name for both).
+    cen = a.param.split(",")[0] == "centripetal"
     if a.method == "interp":
         s = fitting.interpolate_surface(pts, nu, nv, p, q, centripetal=cen)
     else:
