@@ -89,18 +89,26 @@ mod tests {
     use super::*;
     use nurbs::{KnotVector, Vec3};
 
-    /// A ruled-in-u, cubic-in-v strip over x with the x of its poles across given by `xs`
-    /// (y, z from the pole's indices): x_v follows the differences of `xs`.
-    fn strip(xs: &[f64]) -> NurbsSurface {
+    /// A ruled-in-u (2 rows of poles), cubic-in-v surface on uniform knots whose pole `(i, j)`
+    /// is `pole(i, j, xs[j])`.
+    fn ruled(xs: &[f64], pole: impl Fn(usize, usize, f64) -> Vec3) -> NurbsSurface {
         let ku = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
         let n = xs.len();
         let mut kv = vec![0.0; 4];
         kv.extend((1..n - 3).map(|i| i as f64 / (n - 3) as f64));
         kv.extend([1.0; 4]);
         let kv = KnotVector::try_new(3, kv).expect("valid");
-        let pts: Vec<Vec3> =
-            (0..2).flat_map(|i| xs.iter().map(move |&x| Vec3::new(x, 1.0 + 0.1 * x, i as f64))).collect::<Vec<_>>();
+        let pts: Vec<Vec3> = (0..2)
+            .flat_map(|i| xs.iter().enumerate().map(move |(j, &x)| (i, j, x)))
+            .map(|(i, j, x)| pole(i, j, x))
+            .collect();
         NurbsSurface::try_new(ku, kv, &pts, None).expect("valid")
+    }
+
+    /// A ruled-in-u, cubic-in-v strip over x with the x of its poles across given by `xs`
+    /// (y, z from the pole's indices): x_v follows the differences of `xs`.
+    fn strip(xs: &[f64]) -> NurbsSurface {
+        ruled(xs, |i, _, x| Vec3::new(x, 1.0 + 0.1 * x, i as f64))
     }
 
     #[test]
@@ -116,16 +124,7 @@ mod tests {
     /// 10 per pole, y from the pole's index across. `S_u x S_v = (0, 1, 0) x (x_v, 0, z_v) =
     /// (z_v, 0, -x_v)` keeps its side wherever `z_v < 0`, whatever `x_v` does.
     fn steep(xs: &[f64]) -> NurbsSurface {
-        let ku = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
-        let n = xs.len();
-        let mut kv = vec![0.0; 4];
-        kv.extend((1..n - 3).map(|i| i as f64 / (n - 3) as f64));
-        kv.extend([1.0; 4]);
-        let kv = KnotVector::try_new(3, kv).expect("valid");
-        let pts: Vec<Vec3> = (0..2)
-            .flat_map(|i| xs.iter().enumerate().map(move |(j, &x)| Vec3::new(x, i as f64, -10.0 * j as f64)))
-            .collect();
-        NurbsSurface::try_new(ku, kv, &pts, None).expect("valid")
+        ruled(xs, |i, j, x| Vec3::new(x, i as f64, -10.0 * j as f64))
     }
 
     /// True if `x_v` turns somewhere along the middle u line.
