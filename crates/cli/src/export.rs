@@ -201,8 +201,8 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
         Input::Surface { surface, units, source } => (surface, units, source, None),
         Input::Offsets(offsets) => {
             let config = args.skin.fit_config(args.method, OptimSettings::default());
-            let (outcome, _) =
-                fit_with_progress(&offsets, &config, None).with_context(|| format!("cannot fit {}", offsets.source))?;
+            let (outcome, _) = fit_with_progress(&offsets, &config, hull::Goal::Count)
+                .with_context(|| format!("cannot fit {}", offsets.source))?;
             let source = format!("{}, fitted by {}", offsets.source, args.method.name());
             let vs = section_parameters(&outcome.params);
             (outcome.surface, offsets.units, source, Some((offsets, vs)))

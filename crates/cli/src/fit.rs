@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context};
 use clap::Args;
-use hull::{FitConfig, FitMethod, FitOutcome, HeldOutError, HullError, Offsets, ToleranceSearch};
+use hull::{FitConfig, FitMethod, FitOutcome, Goal, HeldOutError, HullError, Offsets, ToleranceSearch};
 
 use crate::optim_args::OptimArgs;
 use crate::progress;
@@ -74,12 +74,14 @@ pub struct MethodArgs {
     /// Method: `interp` passes through every offset; `approx` is a least-squares fit with the
     /// control-point counts of --ctrl; `ga`, `pso`, `gsa`, `lm` and `gsa+lm` then optimise the
     /// approximation's weights (Genetic Algorithm, Particle Swarm, Gravitational Search,
-    /// Levenberg-Marquardt, GSA then LM).
-    #[arg(long, default_value = "approx", value_parser = parse_method)]
-    pub method: FitMethod,
+    /// Levenberg-Marquardt, GSA then LM). Without --method, --ctrl or --tolerance the default
+    /// fit is made: the approximation with the fewest control points within the default
+    /// tolerance, 0.5 % of the beam (or, where no count reaches it, the closest surface found).
+    #[arg(long, value_parser = parse_method)]
+    pub method: Option<FitMethod>,
     /// Search the control-point counts for the fewest control points whose max error (true
     /// closest-point distance, in the input's units) is within T, for approx or an optimised
-    /// method; report.json gets a "tolerance_search" block.
+    /// method; report.json gets a "tolerance_search" block. A T no count reaches is an error.
     #[arg(long, value_name = "T", conflicts_with = "ctrl")]
     pub tolerance: Option<f64>,
     #[command(flatten)]
@@ -88,11 +90,22 @@ pub struct MethodArgs {
 
 impl Default for MethodArgs {
     fn default() -> Self {
-        MethodArgs { method: FitMethod::Approx, tolerance: None, optim: OptimArgs::default() }
+        MethodArgs { method: None, tolerance: None, optim: OptimArgs::default() }
     }
 }
 
 impl MethodArgs {
+    /// The method: `--method`, else the approximation.
+    pub(crate) fn method(&self) -> FitMethod {
+        self.method.unwrap_or(FitMethod::Approx)
+    }
+
+    /// What the fit aims at ([`hull::Goal::of`]): `--tolerance`, else the count of `--ctrl`
+    /// or of a given `--method`, else the default fit.
+    pub(crate) fn goal(&self, skin: &SkinArgs) -> Goal {
+        Goal::of(self.method.is_some(), skin.ctrl.is_some(), self.tolerance)
+    }
+
     /// Fit `offsets` with these flags and the skinning flags `skin`: see [`fit_with_progress`].
     ///
     /// # Errors
@@ -102,7 +115,7 @@ impl MethodArgs {
         skin: &SkinArgs,
         offsets: &Offsets,
     ) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
-        fit_with_progress(offsets, &skin.fit_config(self.method, self.optim.settings()), self.tolerance)
+        fit_with_progress(offsets, &skin.fit_config(self.method(), self.optim.settings()), self.goal(skin))
     }
 }
 
@@ -135,7 +148,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         }
     };
     let (mut outcome, search) = args.fit.fit(&args.skin, &offsets)?;
-    if args.held_out > 0 && !progress::stopped() {
+    if hull::held_out_wanted(&mut outcome, args.held_out) && !progress::stopped() {
         outcome.error.held_out =
             held_out_with_progress(&offsets, &hull::held_out_refit_config(&outcome), args.held_out);
     }
@@ -252,19 +265,19 @@ fn print_mesh_distance(mesh: &hull::mesh::TriMesh, offsets: &Offsets, surface: &
     }
 }
 
-/// Fit `offsets` with `config`, or with the fewest control points whose max error is within
-/// `tolerance` when one is given (then with the record of that search). An optimised method
+/// Fit `offsets` with `config` as `goal` asks ([`hull::fit_offsets_within`]: the count given,
+/// or the fewest control points within a tolerance, then with the record of that search). An optimised method
 /// draws a progress bar and stops on SIGINT (Ctrl-C) or SIGTERM with its best surface so far
 /// ([`progress::stopped`] then says so); the others run quietly.
 ///
 /// # Errors
-/// Those of [`hull::fit_offsets`], and of [`hull::fit_to_tolerance`] with a tolerance.
+/// Those of [`hull::fit_offsets_within`].
 pub(crate) fn fit_with_progress(
     offsets: &Offsets,
     config: &FitConfig,
-    tolerance: Option<f64>,
+    goal: Goal,
 ) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
-    let fit = |control: &hull::optimize::Control<'_>| hull::fit_offsets_within(offsets, config, tolerance, control);
+    let fit = |control: &hull::optimize::Control<'_>| hull::fit_offsets_within(offsets, config, goal, control);
     match config.method.algorithm() {
         Some(a) => progress::with_progress(a.name(), fit),
         None => hull::optimize::quiet(fit),

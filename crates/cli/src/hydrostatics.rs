@@ -100,8 +100,8 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
         }
         Input::Offsets(offsets) => {
             let config = args.skin.fit_config(args.method, OptimSettings::default());
-            let (outcome, _) =
-                fit_with_progress(&offsets, &config, None).with_context(|| format!("cannot fit {}", offsets.source))?;
+            let (outcome, _) = fit_with_progress(&offsets, &config, hull::Goal::Count)
+                .with_context(|| format!("cannot fit {}", offsets.source))?;
             (
                 vec![outcome.surface],
                 offsets.units,

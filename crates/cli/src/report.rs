@@ -32,7 +32,7 @@ use crate::surface_arg::{read_input, Input};
            or offset table) fitted first with --method and the skinning flags. Without it the built-in \
            Series 60 Cb 0.60 sample is fitted")),
     mut_arg("method", |a| a.help("Fit of an offsets input, as `hullskin fit --method`: interp, approx, or approx \
-           with its weights optimised by ga, pso, gsa, lm or gsa+lm (the report then plots the convergence)")),
+           with its weights optimised by ga, pso, gsa, lm or gsa+lm (the report then plots the convergence); without --method, --ctrl and --tolerance, the default fit of `hullskin fit`")),
     mut_arg("tolerance", |a| a.help("As `hullskin fit --tolerance`: fit an offsets input with the fewest control \
            points whose max error is within T (approx or an optimised method); the report notes the search")))]
 pub struct ReportArgs {
@@ -326,13 +326,10 @@ mod tests {
         let a = &w.args;
         assert_eq!(a.skin.input, Some(PathBuf::from("in.csv")));
         assert_eq!((a.out.as_path(), a.draft, a.compare), (Path::new("R"), Some(6.5), true));
-        assert_eq!(a.fit.method, FitMethod::Optimized(hull::optimize::Algorithm::Ga));
+        assert_eq!(a.fit.method, Some(FitMethod::Optimized(hull::optimize::Algorithm::Ga)));
         assert_eq!((a.fit.optim.settings().iterations, a.skin.ctrl), (Some(5), Some((5, 9))));
         let d = Wrap::try_parse_from(["x"]).expect("no flags");
-        assert_eq!(
-            (d.args.out.as_path(), d.args.fit.method, d.args.draft),
-            (Path::new("hullskin-report"), FitMethod::Approx, None)
-        );
+        assert_eq!((d.args.out.as_path(), d.args.fit.method, d.args.draft), (Path::new("hullskin-report"), None, None));
         assert!(Wrap::try_parse_from(["x", "--method", "bogus"]).is_err());
     }
 

@@ -67,8 +67,8 @@ pub use error::{HullError, InputErrorKind, Location};
 pub use fairing::{FairReport, Fairing};
 pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
 pub use held_out::{
-    held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, held_out_refit_config, overfit,
-    overfitting_warning, HeldOutError, HeldOutOptions,
+    held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, held_out_refit_config,
+    held_out_wanted, overfit, overfitting_warning, HeldOutError, HeldOutOptions,
 };
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
@@ -94,6 +94,7 @@ pub use report::{
 };
 pub use sample::{series60_sample, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
 pub use tolerance_search::{
-    fit_offsets_within, fit_to_tolerance, ToleranceFit, ToleranceSearch, ToleranceSettings, TriedCount,
+    default_tolerance, fit_offsets_within, fit_to_tolerance, Goal, Referee, ToleranceFit, ToleranceSearch,
+    ToleranceSettings, TriedCount, DEFAULT_TOLERANCE_OF_BEAM,
 };
 pub use units::Units;

@@ -49,34 +49,166 @@ use serde::Serialize;
 use crate::optimize::Control;
 use crate::{fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, Offsets};
 
-/// Fit `offsets` with `config`, or, with a `tolerance`, with the fewest control points whose
-/// max error is within it ([`fit_to_tolerance`] on the plain fits), then that count faired
-/// within the tolerance (an automatic fairing takes `tolerance` as its bound), with the record
-/// of the search. The faired fit is kept when it stays within the tolerance and is no less
-/// sound than the searched fit; otherwise the searched fit is kept, the faired one noted in
-/// [`FitOutcome::rejected`]. What `hullskin fit --tolerance` (and every caller that fits as
-/// the command line does) runs; a stop on `control` returns the best surface so far.
+/// The default tolerance as a fraction of the beam: 0.5 % (1 % of the largest half-breadth).
+///
+/// A fraction of the beam because the beam is the size every offset of a hull is read
+/// against; 0.5 % because it is what the plain least squares reaches on the tables of
+/// `testdata/` at about its default count or fewer (measured: the Series 60 sample 81 mm at
+/// 8x25, the yacht 20 mm at 5x23), while a finer figure is reached on most of them only by a
+/// net as dense as interpolation's.
+pub const DEFAULT_TOLERANCE_OF_BEAM: f64 = 0.005;
+
+/// The default fit's tolerance: [`DEFAULT_TOLERANCE_OF_BEAM`] of the beam `2 max |y|` of the
+/// offsets (for free-form sections, twice their largest distance from the plane `y = 0`);
+/// `None` for offsets all in that plane (then there is no beam to take a fraction of).
+///
+/// ```
+/// let sample = hull::series60_sample();
+/// // The Series 60 parent's beam is 16.26 m: 0.5 % of it is 81 mm.
+/// let t = hull::default_tolerance(&sample).expect("a beam");
+/// assert!((t - 0.005 * 16.264).abs() < 1e-3, "{t}");
+/// ```
+pub fn default_tolerance(offsets: &Offsets) -> Option<f64> {
+    let half = offsets.sections.iter().flat_map(|s| s.points.iter()).map(|p| p.y.abs()).fold(0.0, f64::max);
+    (half > 0.0 && half.is_finite()).then(|| DEFAULT_TOLERANCE_OF_BEAM * 2.0 * half)
+}
+
+/// What [`fit_offsets_within`] aims at.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Goal {
+    /// The default fit: the fewest control points within [`default_tolerance`], faired within
+    /// it; where no count reaches it, the closest surface found (the search record says so).
+    #[default]
+    Default,
+    /// The fewest control points within this max error (in the offsets' units); no count
+    /// reaching it is an error ([`HullError::ToleranceNotReached`]).
+    Tolerance(f64),
+    /// `config.ctrl` (or [`crate::default_ctrl`]) as given: no search.
+    Count,
+}
+
+impl Goal {
+    /// The goal of a command line or a script that may give a method, a count and a
+    /// tolerance: the tolerance when given, the count when a method or a count is given, else
+    /// the default fit.
+    pub fn of(method_given: bool, ctrl_given: bool, tolerance: Option<f64>) -> Goal {
+        match tolerance {
+            Some(t) => Goal::Tolerance(t),
+            None if method_given || ctrl_given => Goal::Count,
+            None => Goal::Default,
+        }
+    }
+}
+
+/// Fit `offsets` with `config` as `goal` asks: with `config.ctrl` ([`Goal::Count`]), or with
+/// the fewest control points whose max error is within a tolerance ([`fit_to_tolerance`] on
+/// the plain fits), then that count faired within the tolerance (an automatic fairing takes
+/// the tolerance as its bound), with the record of the search. The faired fit is kept when it
+/// stays within the tolerance and is no less sound than the searched fit; otherwise the
+/// searched fit is kept, the faired one noted in [`FitOutcome::rejected`]. The default goal
+/// searches with [`default_tolerance`] and takes the closest surface where none reaches it
+/// (offsets in one plane have no beam: they get [`crate::default_ctrl`]). What `hullskin fit`
+/// (and every caller that fits as the command line does) runs; a stop on `control` returns
+/// the best surface so far.
 ///
 /// # Errors
 /// Those of [`crate::fit_offsets`], and of [`fit_to_tolerance`] with a tolerance.
 pub fn fit_offsets_within(
     offsets: &Offsets,
     config: &FitConfig,
-    tolerance: Option<f64>,
+    goal: Goal,
     control: &Control<'_>,
 ) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
-    let Some(t) = tolerance else {
+    let settings = match goal {
+        Goal::Count => None,
+        Goal::Tolerance(t) => Some(ToleranceSettings::new(t)),
+        Goal::Default => {
+            default_tolerance(offsets).map(|t| ToleranceSettings { closest: true, ..ToleranceSettings::new(t) })
+        }
+    };
+    let Some(settings) = settings else {
         return fit_offsets_with(offsets, config, control).map(|o| (o, None));
     };
-    // The counts are searched on the plain fits; the count found is then faired within T.
+    let (searched, mut search) = searched_and_faired(offsets, config, &settings, control)?;
+    if goal != Goal::Default || control.stopped() {
+        return Ok((searched, Some(search)));
+    }
+    search.default = true;
+    // The default fit's referee: the count found against the default count, by their
+    // held-out max error (the error where there are no offsets).
+    // The default count is fitted as `Goal::Count` fits it (faired within its own accuracy).
+    let t = if search.reached { settings.tolerance } else { searched.error.overall.max };
+    let usual = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
+    let counts = |o: &FitOutcome| [o.surface.n_u(), o.surface.n_v()];
+    if counts(&usual) == counts(&searched) || control.stopped() {
+        return Ok((searched, Some(search)));
+    }
+    let options = crate::HeldOutOptions::default();
+    let held = |o: &FitOutcome| {
+        crate::held_out_for_config_with(offsets, &crate::held_out_refit_config(o), &options, control).ok().flatten()
+    };
+    let (h_searched, h_usual) = (held(&searched), held(&usual));
+    let (Some(hs), Some(hu)) = (h_searched, h_usual) else {
+        return Ok((searched, Some(search)));
+    };
+    // The default count replaces the count found when it is as sound, within the tolerance
+    // (or no farther from it) and closer to the offsets held out.
+    let sound = |o: &FitOutcome| o.validity.is_empty();
+    let takes = sound(&usual) >= sound(&searched) && usual.error.overall.max <= t && hu.max < hs.max;
+    search.referee = Some(Referee {
+        searched: counts(&searched),
+        searched_held_out_max: hs.max,
+        default_count: counts(&usual),
+        default_count_held_out_max: hu.max,
+        default_count_max: usual.error.overall.max,
+        default_count_valid: sound(&usual),
+        chose_default_count: takes,
+    });
+    // The chosen fit's held-out error is the default cross-validation's: kept.
+    let (mut chosen, held_out) = if takes { (usual, hu) } else { (searched, hs) };
+    chosen.error.held_out = Some(held_out);
+    Ok((chosen, Some(search)))
+}
+
+/// The default fit's second opinion: the count the tolerance search found and the default
+/// count ([`crate::default_ctrl`]), each with its held-out max error (the default
+/// cross-validation), and which was kept: the default count when it is as sound, within the
+/// tolerance and closer to the held-out offsets; else the count found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Referee {
+    /// The count the search found `[nu, nv]`.
+    pub searched: [usize; 2],
+    pub searched_held_out_max: f64,
+    /// The default count `[nu, nv]`.
+    pub default_count: [usize; 2],
+    pub default_count_held_out_max: f64,
+    /// The default count's max error at the offsets.
+    pub default_count_max: f64,
+    /// Whether the default count's fit has no validity finding.
+    pub default_count_valid: bool,
+    /// Whether the default count was kept.
+    pub chose_default_count: bool,
+}
+
+/// The fewest control points within `settings` on the plain fits, then that count faired
+/// within the tolerance (or, where it was not reached, within the max error reached). The
+/// faired fit is kept when it stays within that bound and is no less sound than the searched
+/// fit; otherwise the searched fit is kept, the faired one noted in [`FitOutcome::rejected`].
+fn searched_and_faired(
+    offsets: &Offsets,
+    config: &FitConfig,
+    settings: &ToleranceSettings,
+    control: &Control<'_>,
+) -> Result<(FitOutcome, ToleranceSearch), HullError> {
     let plain = FitConfig { fair: crate::Fairing::Off, ..*config };
-    let r = fit_to_tolerance(offsets, &plain, &ToleranceSettings::new(t), control)?;
+    let r = fit_to_tolerance(offsets, &plain, settings, control)?;
+    let t = if r.search.reached { settings.tolerance } else { r.outcome.error.overall.max };
     let fair = match config.fair {
         crate::Fairing::Auto { tolerance: None } => crate::Fairing::Auto { tolerance: Some(t) },
         f => f,
     };
     if fair == crate::Fairing::Off || control.stopped() {
-        return Ok((r.outcome, Some(r.search)));
+        return Ok((r.outcome, r.search));
     }
     let [nu, nv] = r.search.control_points;
     let faired = FitConfig { ctrl: Some((nu, nv)), fair, ..*config };
@@ -84,7 +216,7 @@ pub fn fit_offsets_within(
     // The faired fit must keep what the search found: within T, and valid if that was.
     let keeps = out.error.overall.max <= t && (out.validity.is_empty() || !r.outcome.validity.is_empty());
     if keeps || control.stopped() {
-        return Ok((out, Some(r.search)));
+        return Ok((out, r.search));
     }
     let mut plain = r.outcome;
     plain.rejected.push(format!(
@@ -93,7 +225,7 @@ pub fn fit_offsets_within(
         out.error.overall.max,
         out.validity.len()
     ));
-    Ok((plain, Some(r.search)))
+    Ok((plain, r.search))
 }
 
 /// Settings of [`fit_to_tolerance`].
@@ -103,6 +235,10 @@ pub struct ToleranceSettings {
     pub tolerance: f64,
     /// Fits at most (each a whole fit with its error measurement).
     pub max_fits: usize,
+    /// Where no count reaches the tolerance, return the closest surface found (the valid one
+    /// with the smallest max error, or the smallest max error if none is valid) instead of
+    /// [`HullError::ToleranceNotReached`].
+    pub closest: bool,
 }
 
 impl ToleranceSettings {
@@ -112,7 +248,7 @@ impl ToleranceSettings {
 
     /// `tolerance` with the default cap on fits.
     pub fn new(tolerance: f64) -> Self {
-        ToleranceSettings { tolerance, max_fits: Self::DEFAULT_MAX_FITS }
+        ToleranceSettings { tolerance, max_fits: Self::DEFAULT_MAX_FITS, closest: false }
     }
 }
 
@@ -146,6 +282,15 @@ pub struct ToleranceSearch {
     /// Whether the chosen fit is valid: false when no count within the tolerance was, and the
     /// smallest within it (with its findings) was taken.
     pub valid: bool,
+    /// Whether the chosen fit is within the tolerance: false only when the closest surface
+    /// was asked for ([`ToleranceSettings::closest`]) and no count reached the tolerance.
+    pub reached: bool,
+    /// Whether the tolerance was the default one ([`Goal::Default`]).
+    pub default: bool,
+    /// The default fit's comparison of the count found with the default count, by held-out
+    /// error (`None` when they are the same count, or for an explicit tolerance).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub referee: Option<Referee>,
     /// Every count fitted, in order.
     pub tried: Vec<TriedCount>,
 }
@@ -156,21 +301,53 @@ impl ToleranceSearch {
     pub fn summary(&self, units: &str) -> String {
         let [nu, nv] = self.control_points;
         let [n, k] = self.interp_control_points;
-        let mut s = format!(
-            "tolerance {:.3e} {units}: {nu}x{nv} = {} control points, {:.1} % of interpolation's {n}x{k} = {} ({} fits",
-            self.tolerance,
-            nu * nv,
+        let which = if self.default {
+            format!("default tolerance {:.3e} {units} (0.5 % of the beam)", self.tolerance)
+        } else {
+            format!("tolerance {:.3e} {units}", self.tolerance)
+        };
+        let mut s = if self.reached {
+            format!("{which}: {nu}x{nv} = {} control points", nu * nv)
+        } else {
+            format!(
+                "{which} not reached by any count: the closest surface found, {nu}x{nv} = {} control points,",
+                nu * nv
+            )
+        };
+        s.push_str(&format!(
+            ", {:.1} % of interpolation's {n}x{k} = {} ({} fits",
             100.0 * self.ratio,
             n * k,
             self.fits
-        );
+        ));
         if !self.complete {
             s.push_str(", search cut short: the count may not be the smallest");
         }
         if !self.valid {
-            s.push_str("; no count within it is valid: the smallest within it is taken, with its findings");
+            s.push_str(if self.reached {
+                "; no count within it is valid: the smallest within it is taken, with its findings"
+            } else {
+                "; no count fitted is valid: the closest is taken, with its findings"
+            });
         }
         s.push(')');
+        if let Some(r) = &self.referee {
+            let [a, b] = r.searched;
+            let [c, d] = r.default_count;
+            s.push_str(&format!(
+                "\nheld-out max error {:.3e} {units} at {a}x{b} against {:.3e} {units} at the default count {c}x{d} \
+                 (max {:.3e} {units}{}): {}",
+                r.searched_held_out_max,
+                r.default_count_held_out_max,
+                r.default_count_max,
+                if r.default_count_valid { "" } else { ", with validity findings" },
+                if r.chose_default_count {
+                    format!("{c}x{d} is kept, closer between the offsets within the tolerance")
+                } else {
+                    format!("{a}x{b} is kept")
+                }
+            ));
+        }
         s
     }
 }
@@ -222,6 +399,7 @@ pub fn fit_to_tolerance(
         tried: Vec::new(),
         best: None,
         unsound: None,
+        closest: None,
         cut: false,
     };
     // 1. Interpolation's count. Held within the offsets' envelope it may miss where fewer
@@ -269,8 +447,11 @@ pub fn fit_to_tolerance(
         }
     }
     let fits = s.tried.len();
-    let valid = s.best.is_some();
-    let Some(outcome) = s.best.or(s.unsound) else {
+    let reached = s.best.is_some() || s.unsound.is_some();
+    let closest = if settings.closest { s.closest.take() } else { None };
+    let outcome = s.best.or(s.unsound).or(closest);
+    let valid = outcome.as_ref().is_some_and(|o| o.validity.is_empty());
+    let Some(outcome) = outcome else {
         let (best, at) = s
             .tried
             .iter()
@@ -294,6 +475,9 @@ pub fn fit_to_tolerance(
         fits,
         complete: !s.cut,
         valid,
+        reached,
+        default: false,
+        referee: None,
         tried: s.tried,
     };
     Ok(ToleranceFit { outcome, search })
@@ -319,6 +503,8 @@ struct Searcher<'a, 'c> {
     best: Option<FitOutcome>,
     /// The smallest surface within the tolerance that has validity findings.
     unsound: Option<FitOutcome>,
+    /// The closest surface: valid before not, then the smallest max error.
+    closest: Option<FitOutcome>,
     /// The cap or a stop ended the search.
     cut: bool,
 }
@@ -351,6 +537,13 @@ impl Searcher<'_, '_> {
         let within = close && valid;
         self.tried.push(TriedCount { control_points: [nu, nv], max, within, valid });
         self.memo.insert((nu, nv), within);
+        if let Some(out) = &outcome {
+            let rank = |o: &FitOutcome| (!o.validity.is_empty(), o.error.overall.max);
+            let closer = |c: &FitOutcome| rank(out).0.cmp(&rank(c).0).then(rank(out).1.total_cmp(&rank(c).1)).is_lt();
+            if self.closest.as_ref().is_none_or(closer) {
+                self.closest = Some(out.clone());
+            }
+        }
         // Within T but with findings: the answer only if no valid count is.
         if let (true, false, Some(out)) = (close, valid, &outcome) {
             let count = |o: &FitOutcome| o.surface.n_u() * o.surface.n_v();
@@ -536,6 +729,92 @@ mod tests {
     }
 
     #[test]
+    fn an_unreachable_tolerance_gives_the_closest_surface_when_asked() {
+        let offsets = small_hull();
+        // Below round-off (as above): no count reaches it, and every count is fitted.
+        let s = ToleranceSettings { closest: true, ..ToleranceSettings::new(1e-15) };
+        let r = quiet(|c| fit_to_tolerance(&offsets, &FitConfig::default(), &s, c)).expect("the closest");
+        assert!(!r.search.reached && r.search.complete && r.search.fits == 24);
+        // The closest is the smallest max error of every count tried (all valid here).
+        let least = r.search.tried.iter().filter_map(|c| c.max).fold(f64::INFINITY, f64::min);
+        assert_eq!(r.outcome.error.overall.max, least);
+        assert!(r.search.valid && r.outcome.validity.is_empty());
+        let line = r.search.summary("m");
+        assert!(line.contains("not reached by any count: the closest surface found, 7x9"), "{line}");
+    }
+
+    #[test]
+    fn the_goal_follows_the_flags_given() {
+        assert_eq!(Goal::of(false, false, None), Goal::Default);
+        assert_eq!(Goal::of(true, false, None), Goal::Count);
+        assert_eq!(Goal::of(false, true, None), Goal::Count);
+        assert_eq!(Goal::of(true, false, Some(0.1)), Goal::Tolerance(0.1));
+        // Offsets in the plane y = 0 have no beam: the default fit is the default count.
+        let flat = Offsets::new(
+            "flat",
+            Units::Metre,
+            (0..5)
+                .map(|s| {
+                    let pts = (0..5).map(|j| Vec3::new(s as f64, 0.0, j as f64 + 0.1 * (s * j) as f64)).collect();
+                    Section::new(format!("{s}"), pts)
+                })
+                .collect(),
+        );
+        assert_eq!(default_tolerance(&flat), None);
+        let (out, search) =
+            quiet(|c| fit_offsets_within(&flat, &FitConfig::default(), Goal::Default, c)).expect("fits");
+        assert!(search.is_none());
+        let (nu, nv) = crate::default_ctrl(&flat, (3, 3));
+        assert_eq!((out.surface.n_u(), out.surface.n_v()), (nu, nv));
+    }
+
+    #[test]
+    fn the_default_fit_is_within_its_tolerance_and_refereed_by_the_held_out_error() {
+        let offsets = small_hull();
+        let t = default_tolerance(&offsets).expect("a beam");
+        // 0.5 % of the 16 m beam.
+        assert!((t - 0.08).abs() < 1e-12, "{t}");
+        let (out, search) =
+            quiet(|c| fit_offsets_within(&offsets, &FitConfig::default(), Goal::Default, c)).expect("fits");
+        let search = search.expect("searched");
+        assert!(search.default && search.reached && search.valid);
+        assert!(out.error.overall.max <= t, "{} > {t}", out.error.overall.max);
+        assert!(out.validity.is_empty());
+        let counts = [out.surface.n_u(), out.surface.n_v()];
+        let (du, dv) = crate::default_ctrl(&offsets, (3, 3));
+        match &search.referee {
+            // The count found is the default count: nothing to referee.
+            None => assert_eq!(search.control_points, [du, dv]),
+            Some(r) => {
+                assert_eq!(r.default_count, [du, dv]);
+                assert_eq!(r.searched, search.control_points);
+                assert_eq!(counts, if r.chose_default_count { r.default_count } else { r.searched });
+                // The held-out figure carried is the chosen fit's own, measured again here.
+                let again = crate::held_out_for_config(
+                    &offsets,
+                    &crate::held_out_refit_config(&out),
+                    &crate::HeldOutOptions::default(),
+                )
+                .expect("held out");
+                let carried = out.error.held_out.as_ref().expect("carried");
+                assert_eq!(carried.max, again.max);
+                let kept = if r.chose_default_count { r.default_count_held_out_max } else { r.searched_held_out_max };
+                assert_eq!(kept, again.max);
+                // The default count is only taken within the tolerance and when closer.
+                if r.chose_default_count {
+                    assert!(r.default_count_max <= t && r.default_count_held_out_max < r.searched_held_out_max);
+                }
+                assert!(search.summary("m").contains("held-out max error"), "{}", search.summary("m"));
+            }
+        }
+        // The searched count is the least within T: no count with fewer control points is.
+        let [nu, nv] = search.control_points;
+        for c in search.tried.iter().filter(|c| c.control_points[0] * c.control_points[1] < nu * nv) {
+            assert!(!c.within, "{:?}", c.control_points);
+        }
+    }
+
+    #[test]
     fn a_cap_or_a_stop_cuts_the_search_and_keeps_a_verified_surface() {
         let offsets = small_hull();
         let t = fit_offsets(&offsets, &FitConfig { ctrl: Some((6, 7)), ..FitConfig::default() })
@@ -543,7 +822,7 @@ mod tests {
             .error
             .overall
             .max;
-        let s = ToleranceSettings { tolerance: t, max_fits: 3 };
+        let s = ToleranceSettings { max_fits: 3, ..ToleranceSettings::new(t) };
         let r = quiet(|c| fit_to_tolerance(&offsets, &FitConfig::default(), &s, c)).expect("corner is within");
         assert_eq!(r.search.fits, 3);
         assert!(!r.search.complete);

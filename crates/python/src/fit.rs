@@ -36,14 +36,14 @@ struct Outcome {
 fn run_fit(
     offsets: &PyOffsets,
     config: &hull::FitConfig,
-    tolerance: Option<f64>,
+    goal: hull::Goal,
     folds: usize,
     control: &hull::optimize::Control<'_>,
 ) -> Result<Outcome, hull::HullError> {
     let o = &offsets.offsets;
-    let (mut outcome, search) = hull::fit_offsets_within(o, config, tolerance, control)?;
+    let (mut outcome, search) = hull::fit_offsets_within(o, config, goal, control)?;
     let mut warnings = Vec::new();
-    if folds > 0 && !control.stopped() {
+    if hull::held_out_wanted(&mut outcome, folds) && !control.stopped() {
         let options = hull::HeldOutOptions::with_folds(folds);
         outcome.error.held_out =
             match hull::held_out_for_config_with(o, &hull::held_out_refit_config(&outcome), &options, control) {
@@ -74,7 +74,9 @@ fn run_fit(
 /// `units`, `lpp`, `beam`, `design_draft`, `outliers`), or None for the built-in Series 60
 /// Cb 0.60 parent. `method`: interp, approx, ga, pso, gsa, lm or gsa+lm. `ctrl`: control
 /// points (nu, nv) (default three quarters of the offsets); `tolerance`: the fewest control
-/// points whose max error is within it instead. `seed`, `iterations`, `population`,
+/// points whose max error is within it instead. With none of `method`, `ctrl` and
+/// `tolerance`, the default fit of `hullskin fit`: the approximation with the fewest control
+/// points within 0.5 % of the beam (or the closest surface found where none reaches it). `seed`, `iterations`, `population`,
 /// `weights` (full, rank1), `control_points` (resolved, fixed), `param_correction`,
 /// `fitted_params`: the weight optimisers'. `degree` (p, q), `param`, `fair` ("auto", 0 or
 /// a weight; None is "auto"), `knuckles` (auto, auto+flats, off), `corner_angle`, `envelope`
@@ -84,7 +86,7 @@ fn run_fit(
 /// `.timings`, `.warnings`. Runs without the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (
-    offsets_or_path = None, *, method = "approx", ctrl = None, tolerance = None, seed = 1, iterations = None,
+    offsets_or_path = None, *, method = None, ctrl = None, tolerance = None, seed = 1, iterations = None,
     population = None, degree = (3, 3), param = "centripetal,chord", fair = None, knuckles = "auto",
     corner_angle = 30.0, envelope = "hold", weights = "full", control_points = "resolved", param_correction = false,
     fitted_params = false, held_out = 4, units = "m", lpp = None, beam = None, design_draft = None, outliers = "warn"
@@ -92,7 +94,7 @@ fn run_fit(
 pub fn fit(
     py: Python<'_>,
     offsets_or_path: Option<&Bound<'_, PyAny>>,
-    method: &str,
+    method: Option<&str>,
     ctrl: Option<(i64, i64)>,
     tolerance: Option<f64>,
     seed: u64,
@@ -117,8 +119,9 @@ pub fn fit(
 ) -> PyResult<PyFit> {
     let auto = pyo3::types::PyString::new(py, "auto").into_any();
     let fair = fair.unwrap_or(&auto);
+    let goal = hull::Goal::of(method.is_some(), ctrl.is_some(), tolerance);
     let args = FitArgs {
-        method,
+        method: method.unwrap_or("approx"),
         ctrl,
         degree,
         param,
@@ -156,8 +159,8 @@ pub fn fit(
         }
         None => PyOffsets::read(None, &hull::ReadOptions::default())?,
     };
-    let out = crate::interrupt::run(py, |control| run_fit(&offsets, &config, tolerance, held_out, control))?
-        .map_err(to_py)?;
+    let out =
+        crate::interrupt::run(py, |control| run_fit(&offsets, &config, goal, held_out, control))?.map_err(to_py)?;
     let source = format!("{}, fitted by {}", offsets.offsets.source, config.method.name());
     let surface = PySurface {
         surface: out.surface,

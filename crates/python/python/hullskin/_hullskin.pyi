@@ -144,7 +144,7 @@ def read_offsets(
 def fit(
     offsets_or_path: Union[Offsets, PathLike, None] = None,
     *,
-    method: str = "approx",
+    method: Optional[str] = None,
     ctrl: Optional[Tuple[int, int]] = None,
     tolerance: Optional[float] = None,
     seed: int = 1,
