@@ -70,7 +70,7 @@ pub const DEFAULT_TOLERANCE_OF_BEAM: f64 = 0.005;
 /// ```
 pub fn default_tolerance(offsets: &Offsets) -> Option<f64> {
     let half = offsets.sections.iter().flat_map(|s| s.points.iter()).map(|p| p.y.abs()).fold(0.0, f64::max);
-    (half > 0.0 && half.is_finite()).then(|| DEFAULT_TOLERANCE_OF_BEAM * 2.0 * half)
+    (half > 0.0 && half.is_finite()).then_some(DEFAULT_TOLERANCE_OF_BEAM * 2.0 * half)
 }
 
 /// What [`fit_offsets_within`] aims at.
