@@ -69,7 +69,7 @@ pub(crate) fn parse_folds(s: &str) -> Result<usize, String> {
 
 /// How offsets are fitted: the method, `--tolerance` and the weight optimisers' flags (shared
 /// by `fit` and `report`).
-#[derive(Debug, Clone, Args)]
+#[derive(Debug, Clone, Default, Args)]
 pub struct MethodArgs {
     /// Method: `interp` passes through every offset; `approx` is a least-squares fit with the
     /// control-point counts of --ctrl; `ga`, `pso`, `gsa`, `lm` and `gsa+lm` then optimise the
@@ -88,11 +88,6 @@ pub struct MethodArgs {
     pub optim: OptimArgs,
 }
 
-impl Default for MethodArgs {
-    fn default() -> Self {
-        MethodArgs { method: None, tolerance: None, optim: OptimArgs::default() }
-    }
-}
 
 impl MethodArgs {
     /// The method: `--method`, else the approximation.
