@@ -7,15 +7,21 @@
 #   tools/default_speed.sh testdata/matlab_yacht.csv ...
 #
 # For each table: the control points and offsets of the default fit; the seconds of the plain
-# approximation (`--fair 0 --envelope free --held-out 0`: the least squares alone, the
+# approximation (`--method approx --fair 0 --envelope free --held-out 0`: the least squares alone, the
 # summary's `time`, i.e. report.json `seconds`, fit plus error measurement; best of 3,
 # interleaved), of the default fit without cross-validation (`--held-out 0`; best of 2) and
-# of the default fit (`hullskin fit T`: fairing search, envelope hold, validity and the
-# 4-fold cross-validation, report.json `seconds` + `error.held_out.seconds`; best of 2), and
-# the ratios. Process start and file writing are left out of every column. Prints a Markdown
+# of the default fit (`hullskin fit T`: the search of the fewest control points within the
+# default tolerance, fairing search, envelope hold, validity, the referee against the default
+# count and the 4-fold cross-validation: report.json `tolerance_search.seconds`, which holds
+# the referee's cross-validation, or else `seconds` + `error.held_out.seconds`; best of 2),
+# and the ratios. Process start and file writing are left out of every column. Prints a Markdown
 # table. Needs jq. Times depend on the machine and its load.
 source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
-secs() { jq '.seconds + (.error.held_out.seconds // 0)' "$1/report.json"; }
+secs() {
+  jq 'if .tolerance_search then .tolerance_search.seconds
+        + (if .tolerance_search.referee then 0 else (.error.held_out.seconds // 0) end)
+      else .seconds + (.error.held_out.seconds // 0) end' "$1/report.json"
+}
 
 echo "| table | ctrl | m | plain ms | default, no CV ms | ratio | default ms | ratio |"
 echo "|---|--:|--:|--:|--:|--:|--:|--:|"
@@ -23,7 +29,7 @@ for t in "${tables[@]}"; do
   name=$(basename "$t" .csv)
   a="" h="" d=""
   for r in 1 2 3; do
-    "$bin" fit "$t" --fair 0 --envelope free --held-out 0 -o "$out/a" >/dev/null 2>&1
+    "$bin" fit "$t" --method approx --fair 0 --envelope free --held-out 0 -o "$out/a" >/dev/null 2>&1
     a="$a $(secs "$out/a")"
     if [ "$r" -le 2 ]; then
       "$bin" fit "$t" --held-out 0 -o "$out/h" >/dev/null 2>&1

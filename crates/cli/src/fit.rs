@@ -88,7 +88,6 @@ pub struct MethodArgs {
     pub optim: OptimArgs,
 }
 
-
 impl MethodArgs {
     /// The method: `--method`, else the approximation.
     pub(crate) fn method(&self) -> FitMethod {
@@ -310,16 +309,29 @@ mod tests {
     use nurbs::fit::{Parameterization, SkinParameterization};
 
     #[test]
-    fn without_a_tolerance_the_fit_is_the_library_fit() {
+    fn the_fit_is_the_library_fit_for_each_goal() {
         let offsets = hull::series60_sample();
-        let args = FitArgs::default();
-        let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
         // The command line fairs by default.
         let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
+        // A method given: its count, no search.
+        let args = FitArgs {
+            fit: MethodArgs { method: Some(FitMethod::Approx), ..MethodArgs::default() },
+            ..FitArgs::default()
+        };
+        let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
         let direct = hull::fit_offsets(&offsets, &config).expect("the sample fits");
         // The same deterministic least-squares fit: bit-identical surfaces.
         assert_eq!(outcome.surface, direct.surface);
         assert!(search.is_none());
+        // No flags: the library's default fit.
+        let args = FitArgs::default();
+        let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
+        let (direct, direct_search) =
+            hull::optimize::quiet(|c| hull::fit_offsets_within(&offsets, &config, Goal::Default, c)).expect("fits");
+        assert_eq!(outcome.surface, direct.surface);
+        let (a, b) = (search.expect("searched"), direct_search.expect("searched"));
+        assert!(a.default && b.default);
+        assert_eq!((a.control_points, a.tried), (b.control_points, b.tried));
     }
 
     #[test]

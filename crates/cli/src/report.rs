@@ -344,8 +344,14 @@ mod tests {
         assert_eq!(search.control_points, [fit.surface.n_u(), fit.surface.n_v()]);
         assert!(search.ratio < 1.0, "fewer control points than interpolation: {}", search.ratio);
         assert!(loaded.notes.iter().any(|n| n.contains(&search.summary("m"))), "{:?}", loaded.notes);
-        let plain = load(&Wrap::try_parse_from(["x"]).expect("no flags").args).expect("the sample fits");
+        // A method given fits its count: no search.
+        let plain = load(&Wrap::try_parse_from(["x", "--method", "approx"]).expect("valid").args).expect("fits");
         assert!(plain.search.is_none() && plain.notes.is_empty());
+        // No flags: the default fit, whose search is noted with its default tolerance.
+        let default = load(&Wrap::try_parse_from(["x"]).expect("no flags").args).expect("the sample fits");
+        let search = default.search.as_ref().expect("the default fit searches");
+        assert!(search.default, "{search:?}");
+        assert!(default.notes.iter().any(|n| n.contains("default tolerance")), "{:?}", default.notes);
         assert!(Wrap::try_parse_from(["x", "--tolerance", "0.2", "--ctrl", "5,9"]).is_err());
     }
 

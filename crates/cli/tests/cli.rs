@@ -151,7 +151,10 @@ fn auto_flats_keeps_the_cargo_ship_inside_its_flats() {
     let keel = rows.iter().map(|p| p[2]).fold(f64::MAX, f64::min);
     let net = |knuckles: &str| {
         // The plain least squares, not held within the offsets' envelope.
-        let o = hullskin(dir.path(), &["fit", input, "--knuckles", knuckles, "--envelope", "free", "-o", knuckles]);
+        let o = hullskin(
+            dir.path(),
+            &["fit", input, "--method", "approx", "--knuckles", knuckles, "--envelope", "free", "-o", knuckles],
+        );
         assert!(o.status.success(), "{knuckles}: {:?}", text(&o));
         let s = read_json(&dir.path().join(knuckles).join("surface.json"));
         let cp = s["control_points"].as_array().expect("control points").clone();
@@ -178,7 +181,7 @@ fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
     let dir = tempfile::tempdir().expect("temp dir");
     let input = testdata("gunnerus_offsets.csv");
     let input = input.to_str().expect("utf-8 path");
-    let o = hullskin(dir.path(), &["fit", input, "--held-out", "0", "-o", "auto"]);
+    let o = hullskin(dir.path(), &["fit", input, "--method", "approx", "--held-out", "0", "-o", "auto"]);
     let (out, err) = text(&o);
     assert!(
         o.status.success(),
@@ -187,7 +190,8 @@ fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
     );
     assert!(!out.contains("folds back") && out.contains("fairing (auto): smoothing"), "{out}");
     assert!(read_json(&dir.path().join("auto/report.json")).get("folds").is_none());
-    let o = hullskin(dir.path(), &["fit", input, "--fair", "0", "--held-out", "0", "-o", "default"]);
+    let o =
+        hullskin(dir.path(), &["fit", input, "--method", "approx", "--fair", "0", "--held-out", "0", "-o", "default"]);
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}\n{err}");
     // Warnings on standard error, the summary on standard output.
@@ -204,7 +208,20 @@ fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
     assert!(x(0) > 16.24 && x(1) < 16.82 && x(0) <= x(1), "{}", folds[0]);
     let o = hullskin(
         dir.path(),
-        &["fit", input, "--param", "centripetal,centripetal", "--fair", "0", "--held-out", "0", "-o", "centripetal"],
+        &[
+            "fit",
+            input,
+            "--method",
+            "approx",
+            "--param",
+            "centripetal,centripetal",
+            "--fair",
+            "0",
+            "--held-out",
+            "0",
+            "-o",
+            "centripetal",
+        ],
     );
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}\n{err}");
@@ -261,8 +278,18 @@ fn every_validity_finding_is_warned_of_and_recorded() {
     let dir = tempfile::tempdir().expect("temp dir");
     let input = testdata("cargo116_offsets.csv");
     // The flats' refit as it was (not held within the rest of the envelope).
-    let args =
-        ["fit", input.to_str().expect("utf-8 path"), "--knuckles", "auto+flats", "--envelope", "free", "-o", "f"];
+    let args = [
+        "fit",
+        input.to_str().expect("utf-8 path"),
+        "--method",
+        "approx",
+        "--knuckles",
+        "auto+flats",
+        "--envelope",
+        "free",
+        "-o",
+        "f",
+    ];
     let o = hullskin(dir.path(), &args);
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}\n{err}");

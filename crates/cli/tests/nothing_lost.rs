@@ -143,7 +143,7 @@ fn stopped_run(dir: &Path, args: &[&str], sig: &str) -> Output {
 fn sigint_and_sigterm_stop_the_search_and_write_its_best_surface() {
     let root = tempfile::tempdir().expect("temp dir");
     let dir = root.path();
-    let o = hullskin(dir, &["fit", "-o", "approx"]);
+    let o = hullskin(dir, &["fit", "--method", "approx", "-o", "approx"]);
     assert!(o.status.success(), "{:?}", text(&o));
     let approx = read_json(&dir.join("approx/report.json"));
     for (sig, status) in [("INT", 130), ("TERM", 143)] {

@@ -121,7 +121,7 @@ fn bad_thread_counts_are_clear_errors() {
 #[test]
 fn lm_beats_the_plain_approximation_and_reports_its_run() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let o = hullskin(dir.path(), &["fit", "-o", "approx"]);
+    let o = hullskin(dir.path(), &["fit", "--method", "approx", "-o", "approx"]);
     assert!(o.status.success(), "{:?}", text(&o));
     let o = hullskin(dir.path(), &["fit", "-o", "lm", "--method", "lm"]);
     let (out, err) = text(&o);

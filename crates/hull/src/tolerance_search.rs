@@ -129,11 +129,28 @@ pub fn fit_offsets_within(
     let Some(settings) = settings else {
         return fit_offsets_with(offsets, config, control).map(|o| (o, None));
     };
-    let (searched, mut search) = searched_and_faired(offsets, config, &settings, control)?;
-    if goal != Goal::Default || control.stopped() {
-        return Ok((searched, Some(search)));
+    let start = std::time::Instant::now();
+    let (outcome, mut search) = refereed(offsets, config, goal, &settings, control)?;
+    search.seconds = start.elapsed().as_secs_f64();
+    if goal == Goal::Default {
+        search.default = true;
     }
-    search.default = true;
+    Ok((outcome, Some(search)))
+}
+
+/// [`fit_offsets_within`] with its settings: the search and fairing, and for the default
+/// fit the referee.
+fn refereed(
+    offsets: &Offsets,
+    config: &FitConfig,
+    goal: Goal,
+    settings: &ToleranceSettings,
+    control: &Control<'_>,
+) -> Result<(FitOutcome, ToleranceSearch), HullError> {
+    let (searched, mut search) = searched_and_faired(offsets, config, settings, control)?;
+    if goal != Goal::Default || control.stopped() {
+        return Ok((searched, search));
+    }
     // The default fit's referee: the count found against the default count, by their
     // held-out max error (the error where there are no offsets).
     // The default count is fitted as `Goal::Count` fits it (faired within its own accuracy).
@@ -141,7 +158,7 @@ pub fn fit_offsets_within(
     let usual = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
     let counts = |o: &FitOutcome| [o.surface.n_u(), o.surface.n_v()];
     if counts(&usual) == counts(&searched) || control.stopped() {
-        return Ok((searched, Some(search)));
+        return Ok((searched, search));
     }
     let options = crate::HeldOutOptions::default();
     let held = |o: &FitOutcome| {
@@ -149,7 +166,7 @@ pub fn fit_offsets_within(
     };
     let (h_searched, h_usual) = (held(&searched), held(&usual));
     let (Some(hs), Some(hu)) = (h_searched, h_usual) else {
-        return Ok((searched, Some(search)));
+        return Ok((searched, search));
     };
     // The default count replaces the count found when it is as sound, within the tolerance
     // (or no farther from it) and closer to the offsets held out.
@@ -167,7 +184,7 @@ pub fn fit_offsets_within(
     // The chosen fit's held-out error is the default cross-validation's: kept.
     let (mut chosen, held_out) = if takes { (usual, hu) } else { (searched, hs) };
     chosen.error.held_out = Some(held_out);
-    Ok((chosen, Some(search)))
+    Ok((chosen, search))
 }
 
 /// The default fit's second opinion: the count the tolerance search found and the default
@@ -291,6 +308,10 @@ pub struct ToleranceSearch {
     /// error (`None` when they are the same count, or for an explicit tolerance).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub referee: Option<Referee>,
+    /// Wall time of the whole [`fit_offsets_within`] call, seconds: the search, the fairing
+    /// of the count found and, for the default fit, the referee's fit and held-out refits
+    /// (0 when only [`fit_to_tolerance`] ran).
+    pub seconds: f64,
     /// Every count fitted, in order.
     pub tried: Vec<TriedCount>,
 }
@@ -478,6 +499,7 @@ pub fn fit_to_tolerance(
         reached,
         default: false,
         referee: None,
+        seconds: 0.0,
         tried: s.tried,
     };
     Ok(ToleranceFit { outcome, search })
