@@ -122,9 +122,11 @@ pub fn fit_offsets_within(
     let settings = match goal {
         Goal::Count => None,
         Goal::Tolerance(t) => Some(ToleranceSettings::new(t)),
-        Goal::Default => {
-            default_tolerance(offsets).map(|t| ToleranceSettings { closest: true, ..ToleranceSettings::new(t) })
-        }
+        Goal::Default => default_tolerance(offsets).map(|t| ToleranceSettings {
+            closest: true,
+            diagonal: true,
+            ..ToleranceSettings::new(t)
+        }),
     };
     let Some(settings) = settings else {
         return fit_offsets_with(offsets, config, control).map(|o| (o, None));
@@ -151,15 +153,31 @@ fn refereed(
     if goal != Goal::Default || control.stopped() {
         return Ok((searched, search));
     }
+    if !search.valid {
+        // No valid count was found: the default count is kept, as `--method approx` fits it
+        // (the default fit is never less sound than that).
+        let kept = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
+        let (nu, nv) = (kept.surface.n_u(), kept.surface.n_v());
+        let [n, k] = search.interp_control_points;
+        search.control_points = [nu, nv];
+        search.ratio = (nu * nv) as f64 / (n * k) as f64;
+        search.valid = kept.validity.is_empty();
+        search.kept_default_count = true;
+        return Ok((kept, search));
+    }
     // The default fit's referee: the count found against the default count, by their
     // held-out max error (the error where there are no offsets).
-    // The default count is fitted as `Goal::Count` fits it (faired within its own accuracy).
+    // The default count is fitted as `Goal::Count` fits it (faired within its own accuracy),
+    // if its plain fit is within the tolerance: fairing only smooths within the plain fit's
+    // max error, and a count outside the tolerance cannot be kept.
     let t = if search.reached { settings.tolerance } else { searched.error.overall.max };
-    let usual = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
     let counts = |o: &FitOutcome| [o.surface.n_u(), o.surface.n_v()];
-    if counts(&usual) == counts(&searched) || control.stopped() {
+    let default_config = FitConfig { ctrl: None, ..*config };
+    let usual_plain = fit_offsets_with(offsets, &FitConfig { fair: crate::Fairing::Off, ..default_config }, control)?;
+    if counts(&usual_plain) == counts(&searched) || usual_plain.error.overall.max > t || control.stopped() {
         return Ok((searched, search));
     }
+    let usual = fit_offsets_with(offsets, &default_config, control)?;
     let options = crate::HeldOutOptions::default();
     let held = |o: &FitOutcome| {
         crate::held_out_for_config_with(offsets, &crate::held_out_refit_config(o), &options, control).ok().flatten()
@@ -256,6 +274,13 @@ pub struct ToleranceSettings {
     /// with the smallest max error, or the smallest max error if none is valid) instead of
     /// [`HullError::ToleranceNotReached`].
     pub closest: bool,
+    /// The quick search: the default count ([`crate::default_ctrl`]), then a bisection over
+    /// the counts in proportion to interpolation's (`nu / N = nv / K`), below the default
+    /// count when it is within the tolerance and above it when not: about `log2 K` fits,
+    /// instead of the exact scan (up to [`Self::max_fits`]). The count found is the fewest on
+    /// that diagonal if the error falls as the counts grow along it, not necessarily the
+    /// fewest of all counts.
+    pub diagonal: bool,
 }
 
 impl ToleranceSettings {
@@ -265,7 +290,7 @@ impl ToleranceSettings {
 
     /// `tolerance` with the default cap on fits.
     pub fn new(tolerance: f64) -> Self {
-        ToleranceSettings { tolerance, max_fits: Self::DEFAULT_MAX_FITS, closest: false }
+        ToleranceSettings { tolerance, max_fits: Self::DEFAULT_MAX_FITS, closest: false, diagonal: false }
     }
 }
 
@@ -304,8 +329,14 @@ pub struct ToleranceSearch {
     pub reached: bool,
     /// Whether the tolerance was the default one ([`Goal::Default`]).
     pub default: bool,
+    /// Whether the quick search ran ([`ToleranceSettings::diagonal`]).
+    pub quick: bool,
+    /// Whether the default fit found no valid count and kept the default count
+    /// ([`crate::default_ctrl`]) as `Goal::Count` fits it.
+    pub kept_default_count: bool,
     /// The default fit's comparison of the count found with the default count, by held-out
-    /// error (`None` when they are the same count, or for an explicit tolerance).
+    /// error (`None` when they are the same count, when the default count's plain fit is
+    /// outside the tolerance (then it cannot be kept), or for an explicit tolerance).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub referee: Option<Referee>,
     /// Wall time of the whole [`fit_offsets_within`] call, seconds: the search, the fairing
@@ -327,7 +358,13 @@ impl ToleranceSearch {
         } else {
             format!("tolerance {:.3e} {units}", self.tolerance)
         };
-        let mut s = if self.reached {
+        let mut s = if self.kept_default_count {
+            format!(
+                "{which}: no valid count found {}: the default count {nu}x{nv} = {} control points is kept",
+                if self.reached { "within it" } else { "within it or close to it" },
+                nu * nv
+            )
+        } else if self.reached {
             format!("{which}: {nu}x{nv} = {} control points", nu * nv)
         } else {
             format!(
@@ -341,10 +378,16 @@ impl ToleranceSearch {
             n * k,
             self.fits
         ));
+        if self.quick {
+            s.push_str(", quick search over counts in proportion to interpolation's");
+        }
+        if self.seconds > 0.0 {
+            s.push_str(&format!(", {:.2} s in all", self.seconds));
+        }
         if !self.complete {
             s.push_str(", search cut short: the count may not be the smallest");
         }
-        if !self.valid {
+        if !self.valid && !self.kept_default_count {
             s.push_str(if self.reached {
                 "; no count within it is valid: the smallest within it is taken, with its findings"
             } else {
@@ -423,11 +466,30 @@ pub fn fit_to_tolerance(
         closest: None,
         cut: false,
     };
-    // 1. Interpolation's count. Held within the offsets' envelope it may miss where fewer
-    //    control points reach T (the hold costs more where the net is denser), so a miss
-    //    does not end the search: the scan below then covers every count, within the cap.
-    s.probe(big_n, k)?;
-    {
+    if settings.diagonal {
+        // The quick search: from the default count, bisection over `nv` on the diagonal
+        // `nu / N = nv / K`, down when the default count is within T, up when it is not.
+        let (du, dv) = crate::default_ctrl(offsets, config.degree);
+        let nu_of = |nv: usize| ((nv * big_n + k / 2) / k.max(1)).clamp(nu_lo, big_n.max(nu_lo));
+        let anchor = s.probe(du, dv)?;
+        let (mut lo, mut hi) = match anchor {
+            Some(true) => (nv_lo, dv.saturating_sub(1)),
+            Some(false) => (dv + 1, k),
+            None => (1, 0),
+        };
+        while lo <= hi && hi >= nv_lo {
+            let mid = lo + (hi - lo) / 2;
+            match s.probe(nu_of(mid), mid)? {
+                Some(true) => hi = mid - 1,
+                Some(false) => lo = mid + 1,
+                None => break,
+            }
+        }
+    } else {
+        // 1. Interpolation's count. Held within the offsets' envelope it may miss where fewer
+        //    control points reach T (the hold costs more where the net is denser), so a miss
+        //    does not end the search: the scan below then covers every count, within the cap.
+        s.probe(big_n, k)?;
         // 2. The bound: the staircase, nu upward.
         let mut nv_prev = k;
         for nu in nu_lo..=big_n {
@@ -498,6 +560,8 @@ pub fn fit_to_tolerance(
         valid,
         reached,
         default: false,
+        quick: settings.diagonal,
+        kept_default_count: false,
         referee: None,
         seconds: 0.0,
         tried: s.tried,
