@@ -8,9 +8,14 @@ mod curve;
 mod elevate;
 mod error;
 pub mod fit;
+#[cfg(any(test, feature = "fixtures"))]
+#[doc(hidden)]
+pub mod fixtures;
 mod grid;
 mod knots;
+mod linalg;
 mod project;
+mod quadrature;
 mod refine;
 mod scattered;
 mod surface;
@@ -22,6 +27,8 @@ pub use curve::{Homogeneous, NurbsCurve};
 pub use error::NurbsError;
 pub use grid::FirstDerivatives;
 pub use knots::{KnotVector, MAX_DEGREE};
+pub use linalg::{band_cholesky, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu};
+pub use quadrature::GaussLegendre;
 pub use scattered::PointEvaluator;
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
 pub use vec3::Vec3;

@@ -9,11 +9,11 @@
 //! every set of points with the same parameters and knots (every coordinate, every section of
 //! a skinning, every column of control points).
 
-use super::banded::BandedLu;
 use super::knots::{check_params, knots_for_interpolation};
 use super::{parameterize, Parameterization};
 use crate::basis::{basis_funs, BasisRow};
 use crate::knots::MAX_DEGREE;
+use crate::linalg::BandedLu;
 use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
 
 /// The factored collocation matrix `N_{i,p}(t_k)` of one parameter vector and knot vector.

@@ -10,12 +10,12 @@
 //! Schoenberg-Whitney condition; it is factored once by banded Cholesky
 //! ([`LeastSquaresSolver`]) and reused for every set of points with the same parameters and knots.
 
-use super::banded::BandedCholesky;
 use super::interp::check_in_domain;
 use super::knots::{check_ctrl_count, check_params, knots_for_approximation, schoenberg_whitney};
 use super::{parameterize, Parameterization};
 use crate::basis::{basis_funs, BasisRow};
 use crate::knots::MAX_DEGREE;
+use crate::linalg::BandedCholesky;
 use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
 
 /// The factored normal equations of one parameter vector and knot vector.

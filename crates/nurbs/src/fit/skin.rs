@@ -20,7 +20,7 @@
 use std::collections::HashMap;
 
 use super::constrained::EnergyGram;
-use super::features::join_knot_vectors;
+use super::continuity::join_knot_vectors;
 use super::interp::InterpolationSolver;
 use super::knots::{
     approximation_knots, centred_approximation_knots, check_ctrl_count, knots_for_approximation,
