@@ -1,4 +1,4 @@
-//! The NURBS kernel of hullskin: knot vectors, B-spline basis functions, rational curves and
+//! The NURBS kernel: knot vectors, B-spline basis functions, rational curves and
 //! surfaces with derivatives and curvature, knot insertion and refinement, degree elevation,
 //! closest-point projection, and fitting (parameterization, interpolation, least squares,
 //! skinning). `f64` and 3-D only; no I/O; every fallible call returns [`NurbsError`].

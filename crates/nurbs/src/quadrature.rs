@@ -1,5 +1,6 @@
 //! Gauss-Legendre quadrature, the one rule of the workspace: the fitting energies of the
-//! kernel, the fairness integrals and the hydrostatics of `hull` all take it from here.
+//! kernel and the surface integrals of the crates above it (fairness, hydrostatics) all take it
+//! from here.
 
 /// Gauss-Legendre nodes and weights on `[-1, 1]`: `int_{-1}^{1} f = sum_k w_k f(x_k)`, exact
 /// for polynomials of degree `2 n - 1`.

@@ -223,7 +223,7 @@ impl NurbsSurface {
     }
 
     /// The unit normal `S_u x S_v / |S_u x S_v|`. At a degenerate point (a collapsed edge, as at
-    /// a hull's stem) the normal is taken as the limit from slightly inside the domain.
+    /// a pointed end) the normal is taken as the limit from slightly inside the domain.
     pub fn normal(&self, u: f64, v: f64) -> Option<Vec3> {
         if let Some(n) = self.derivatives(u, v).normal() {
             return Some(n);

@@ -6,8 +6,8 @@ use crate::linalg::BandedCholesky;
 use crate::{NurbsError, NurbsSurface, Vec3};
 
 /// A box for the control points of a surface: `lo[c] <= P[c] <= hi[c]` for `c` = x, y, z. An
-/// infinite bound is no bound. By the convex-hull property (The NURBS Book P3.4 and P4.4: with
-/// positive weights every point of the surface is a convex combination of its control points),
+/// infinite bound is no bound. By the convex-combination property (The NURBS Book P3.4 and P4.4:
+/// with positive weights every point of the surface is a convex combination of its control points),
 /// a net within the box keeps the whole surface within it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ControlBox {
@@ -66,7 +66,7 @@ impl BoundedRefit {
 /// reach (the row of a pointed end, the ends of a short section) where the skin put them.
 pub const BOUNDED_REFIT_PULL: f64 = 1e-3;
 
-/// Keep a surface within a box ([`ControlBox`]), by the convex-hull property (The NURBS Book
+/// Keep a surface within a box ([`ControlBox`]), by the convex-combination property (The NURBS Book
 /// P3.4 and P4.4: with positive weights `S(u, v)` is a convex combination of its control
 /// points): once every control point is within the box, so is every point of the surface. A
 /// least-squares skin rings past the plane of a straight run of its data where the run meets
@@ -306,7 +306,7 @@ mod tests {
         let points: Vec<Vec3> = sections.iter().flatten().copied().collect();
         let (refit, report) = bounded_refit(&fit.surface, &params, &points, &bounds).expect("valid").expect("moved");
         assert!(!crossing(&refit) && report.held[0] == 0 && report.total() > 0, "{report:?}");
-        // Same knots, and the convex-hull property on a grid (no round-off can cross: a convex
+        // Same knots, and the convex-combination property on a grid (no round-off can cross: a convex
         // combination of values <= 3 is <= 3 up to one rounding of the sum, 4e-16 here).
         assert_eq!((refit.knots_u(), refit.knots_v()), (fit.surface.knots_u(), fit.surface.knots_v()));
         for i in 0..=40 {
@@ -326,7 +326,7 @@ mod tests {
         let outside = vec![(2.0, 0.5); params.len()];
         assert!(bounded_refit(&fit.surface, &outside, &points, &bounds).is_err());
         // A rational surface keeps its weights, and its net and every point come within the
-        // box (positive weights: the convex-hull property holds for the rational basis).
+        // box (positive weights: the convex-combination property holds for the rational basis).
         let w: Vec<f64> = (0..fit.surface.control_points().len()).map(|i| 1.0 + 0.5 * ((i % 5) as f64 / 4.0)).collect();
         let rational =
             NurbsSurface::try_new(fit.surface.knots_u().clone(), fit.surface.knots_v().clone(), &before, Some(&w))

@@ -42,11 +42,11 @@ pub struct CornerOptions {
 impl Default for CornerOptions {
     /// 30 degrees, dominance 3, on three quarters of the sections, positions within 0.15.
     ///
-    /// Why: a planing hull's chine turns by 30 to 90 degrees with nearly straight bottom and
-    /// sides either side (neighbouring turns of a few degrees), while the coarse bilge of the
-    /// Series 60 tables turns by up to 51 degrees at one offset with 12 degrees at the next
-    /// (dominance 4) in the parallel midbody only (under half of the stations); a chine runs
-    /// from the transom to near the stem. Measured on every table in `testdata/`: no knuckle
+    /// Why (measured on ship offset tables): a hard corner turns by 30 to 90 degrees with
+    /// nearly straight runs either side (neighbouring turns of a few degrees) and runs through
+    /// nearly all the sections, while a coarsely sampled round turn of the Series 60 tables
+    /// turns by up to 51 degrees at one point with 12 degrees at the next (dominance 4) in
+    /// under half of the sections. Measured on every table in `testdata/`: no knuckle
     /// line is found on any of them with these settings.
     fn default() -> Self {
         CornerOptions { min_angle_deg: 30.0, dominance: 3.0, min_share: 0.75, match_gap: 0.15 }
@@ -371,9 +371,9 @@ mod tests {
     use super::*;
     use crate::assert_near;
 
-    /// A chine section: keel `(0, 0)` to chine `(b, h)` in `n_bottom` chords, chine to sheer
-    /// `(b + f, h + d)` in `n_side` chords, at `x`.
-    fn chine_section(x: f64, b: f64, h: f64, f: f64, d: f64, n_bottom: usize, n_side: usize) -> Vec<Vec3> {
+    /// A cornered section at `x`: a straight run from `(0, 0)` to the corner `(b, h)` in
+    /// `n_bottom` chords, then to `(b + f, h + d)` in `n_side` chords.
+    fn cornered_section(x: f64, b: f64, h: f64, f: f64, d: f64, n_bottom: usize, n_side: usize) -> Vec<Vec3> {
         let mut pts: Vec<Vec3> =
             (0..=n_bottom).map(|i| i as f64 / n_bottom as f64).map(|t| Vec3::new(x, b * t, h * t)).collect();
         pts.extend((1..=n_side).map(|i| i as f64 / n_side as f64).map(|t| Vec3::new(x, b + f * t, h + d * t)));
@@ -396,7 +396,7 @@ mod tests {
     }
 
     #[test]
-    fn a_round_bilge_has_no_corner_and_a_chine_has_one() {
+    fn a_round_arc_has_no_corner_and_a_sharp_turn_has_one() {
         // A quarter circle of 9 points: every interior turn is 11.25 degrees, none dominates.
         let arc: Vec<Vec3> = (0..9)
             .map(|i| i as f64 * std::f64::consts::FRAC_PI_2 / 8.0)
@@ -405,7 +405,7 @@ mod tests {
         assert!(section_corners(&arc, &CornerOptions::default()).is_empty());
         // Deadrise 15 degrees to the chine, vertical side: turn 75 degrees at the chine.
         let b = 3.0;
-        let s = chine_section(0.0, b, b * 15f64.to_radians().tan(), 0.0, 2.0, 4, 3);
+        let s = cornered_section(0.0, b, b * 15f64.to_radians().tan(), 0.0, 2.0, 4, 3);
         let c = section_corners(&s, &CornerOptions::default());
         assert_eq!(c.iter().map(|c| c.index).collect::<Vec<_>>(), vec![4]);
         // Two chords' directions, each exact to a few ulps: the angle to ~1e-13 degrees.
@@ -422,7 +422,7 @@ mod tests {
                 // Side at 4 degrees less than the bottom's 14.9 degrees in the last two.
                 let side = (0.8f64 / 3.0).atan() - 4f64.to_radians();
                 let (f, d) = if k >= 8 { (2.0, 2.0 * side.tan()) } else { (0.0, 2.0) };
-                chine_section(k as f64, 3.0, 0.8, f, d, 4, 3)
+                cornered_section(k as f64, 3.0, 0.8, f, d, 4, 3)
             })
             .collect();
         // A pointed stem at the end: no extent, no knuckle.
@@ -448,7 +448,7 @@ mod tests {
         let sections: Vec<Vec<Vec3>> = (0..10)
             .map(|k| {
                 if k < 3 {
-                    chine_section(k as f64, 3.0, 0.8, 0.0, 2.0, 4, 3)
+                    cornered_section(k as f64, 3.0, 0.8, 0.0, 2.0, 4, 3)
                 } else {
                     (0..8)
                         .map(|i| i as f64 * std::f64::consts::FRAC_PI_2 / 7.0)

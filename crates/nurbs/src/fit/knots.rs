@@ -363,8 +363,8 @@ pub fn approximation_knots(params: &[f64], n_ctrl: usize, degree: usize) -> Resu
 /// where the book's `T(j d - 1)` is biased by half an index toward `t_0`. Every span holds
 /// about `d` parameters, including the two end spans; [`approximation_knots`] instead makes
 /// its end spans about twice as wide as the others (they are the averaging knots of `n + 1`
-/// resampled parameters). Which fits better depends on the data: on hull tables with
-/// stations crowded at the ends (where the shape changes fastest) the equal spans are better,
+/// resampled parameters). Which fits better depends on the data: on tables with
+/// sections crowded at the ends (where the shape changes fastest) the equal spans are better,
 /// on tables with evenly spaced sections the wider end spans; the skinning therefore tries
 /// both ([`crate::fit::skin_approximate`]). As `n` approaches `m` the spans shrink to about one
 /// parameter and knots come close to parameters: for 62 uneven parameters (30 random sets,
