@@ -40,6 +40,18 @@ pub fn knot_multiplicity(degree: usize, continuity: Continuity) -> usize {
 /// # Errors
 /// [`NurbsError::Incompatible`] for no piece, pieces of different degrees or a breakpoint list
 /// that does not strictly increase from 0 to 1 with one more entry than pieces.
+///
+/// ```
+/// use nurbs::fit::{join_knot_vectors, knot_multiplicity, Continuity};
+/// use nurbs::KnotVector;
+/// // Two cubic pieces joined at 0.4: the join is a knot of multiplicity p = 3, a C0 corner.
+/// let a = KnotVector::uniform(3, 4)?;
+/// let b = KnotVector::uniform(3, 5)?;
+/// let j = join_knot_vectors(&[a.clone(), b.clone()], &[0.0, 0.4, 1.0])?;
+/// assert_eq!(j.multiplicity(0.4), knot_multiplicity(3, Continuity::C0));
+/// assert_eq!(j.num_basis(), a.num_basis() + b.num_basis() - 1);
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 pub fn join_knot_vectors(pieces: &[KnotVector], breaks: &[f64]) -> Result<KnotVector, NurbsError> {
     let Some(first) = pieces.first() else {
         return Err(NurbsError::Incompatible { what: "joining knot vectors: no piece".into() });

@@ -82,6 +82,16 @@ impl CornerOptions {
 /// The turning angle in radians at every point of a polyline: `θ_i` between the chords
 /// `Q_i - Q_{i-1}` and `Q_{i+1} - Q_i` for interior points (`acos` of the normalized dot
 /// product, clamped to `[-1, 1]`), 0 at the two ends and where a chord has no length.
+///
+/// ```
+/// use nurbs::fit::turning_angles;
+/// use nurbs::Vec3;
+/// // A square corner turns by 90 degrees; the ends and a straight run turn by none.
+/// let q = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(1.0, 2.0, 0.0)];
+/// let t = turning_angles(&q);
+/// assert!((t[1] - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+/// assert_eq!((t[0], t[2], t[3]), (0.0, 0.0, 0.0));
+/// ```
 pub fn turning_angles(points: &[Vec3]) -> Vec<f64> {
     let n = points.len();
     let mut out = vec![0.0; n];

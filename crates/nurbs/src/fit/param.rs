@@ -185,6 +185,21 @@ impl FromStr for SkinParameterization {
 /// - [`NurbsError::CoincidentPoints`] if two consecutive points are closer than
 ///   [`COINCIDENT_REL`] times the polyline length (for every kind: the interpolant of such data
 ///   would have a cusp or a loop, and chord-based parameters would repeat).
+///
+/// ```
+/// use nurbs::fit::{parameterize, Parameterization};
+/// use nurbs::Vec3;
+/// // Chords of 1, 2 and 1: chord-length parameters 0, 1/4, 3/4, 1 (eq. 9.5); centripetal ones
+/// // follow the square roots of the chords (eq. 9.6).
+/// let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.0), Vec3::new(1.0, 3.0, 0.0)];
+/// assert_eq!(parameterize(&pts, Parameterization::ChordLength, 3)?, vec![0.0, 0.25, 0.75, 1.0]);
+/// let c = parameterize(&pts, Parameterization::Centripetal, 3)?;
+/// let s = 2.0 + 2f64.sqrt();
+/// assert!((c[1] - 1.0 / s).abs() < 1e-15 && (c[2] - (1.0 + 2f64.sqrt()) / s).abs() < 1e-15);
+/// // Points given twice are refused.
+/// assert!(parameterize(&[pts[0], pts[0], pts[1]], Parameterization::ChordLength, 1).is_err());
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 pub fn parameterize(points: &[Vec3], kind: Parameterization, degree: usize) -> Result<Vec<f64>, NurbsError> {
     parameterize_labelled(points, kind, degree, "points")
 }

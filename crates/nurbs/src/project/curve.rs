@@ -241,6 +241,20 @@ pub(super) fn hermite_turn(g0: f64, h0: f64, g1: f64, h1: f64, w: f64) -> Option
 
 /// The closest point of `curve` to `q` (builds a [`CurveProjector`]; keep one instead when
 /// projecting many points onto the same curve).
+///
+/// ```
+/// use nurbs::{project_point_to_curve, KnotVector, NurbsCurve, ProjectionOptions, Vec3};
+/// // The quarter unit circle: the foot of a point is on its ray from the centre.
+/// let k = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0])?;
+/// let p = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)];
+/// let arc = NurbsCurve::try_new(k, &p, Some(&[1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0]))?;
+/// let q = Vec3::new(1.5, 2.0, 0.0);
+/// let foot = project_point_to_curve(&arc, q, &ProjectionOptions::default());
+/// assert!(foot.converged);
+/// assert!(foot.point.distance(Vec3::new(0.6, 0.8, 0.0)) < 1e-10);
+/// assert!((foot.distance - 1.5).abs() < 1e-10);
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 pub fn project_point_to_curve(curve: &NurbsCurve, q: Vec3, opts: &ProjectionOptions) -> CurveProjection {
     CurveProjector::new(curve, *opts).project(q)
 }

@@ -268,6 +268,21 @@ impl<'a> SurfaceProjector<'a> {
     ///
     /// For a finite `q` every field of the result is finite. A non-finite `q` gives
     /// `converged = false` at the domain's first corner, with a non-finite distance.
+    ///
+    /// ```
+    /// use nurbs::{KnotVector, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
+    /// // A bilinear patch on the plane z = 0: the foot of (0.3, 0.8, 2) is (0.3, 0.8, 0).
+    /// let k = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0])?;
+    /// let net = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0)];
+    /// let s = NurbsSurface::try_new(k.clone(), k, &net, None)?;
+    /// let foot = SurfaceProjector::new(&s, ProjectionOptions::default()).project(Vec3::new(0.3, 0.8, 2.0));
+    /// assert!((foot.u - 0.3).abs() < 1e-12 && (foot.v - 0.8).abs() < 1e-12);
+    /// assert!((foot.distance - 2.0).abs() < 1e-12);
+    /// // A point beyond an edge lands on that edge (u held at its bound).
+    /// let foot = SurfaceProjector::new(&s, ProjectionOptions::default()).project(Vec3::new(1.5, 0.5, 0.0));
+    /// assert!((foot.u - 1.0).abs() < 1e-12 && (foot.distance - 0.5).abs() < 1e-12);
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
     pub fn project(&self, q: Vec3) -> SurfaceProjection {
         self.project_with(q, &mut Scratch::default())
     }

@@ -70,6 +70,22 @@ use crate::{KnotVector, NurbsError, NurbsSurface, Vec3};
 /// all sections in order); [`NurbsError::CoincidentPoints`] for consecutive equal points within
 /// a section (the message names it) or two coincident sections; [`NurbsError::SingularSystem`]
 /// (naming the section when its fair interpolation fails even after reparameterization).
+///
+/// ```
+/// use nurbs::fit::{skin_interpolate, SkinOptions};
+/// use nurbs::Vec3;
+/// // Four sections of five points on a paraboloid: the skin passes through every point.
+/// let sections: Vec<Vec<Vec3>> = (0..4)
+///     .map(|k| (0..5).map(|i| (k as f64, i as f64 / 4.0)).map(|(x, y)| Vec3::new(x, y, x * x + y * y)).collect())
+///     .collect();
+/// let skin = skin_interpolate(&sections, &SkinOptions::default())?;
+/// for (sec, params) in sections.iter().zip(&skin.params) {
+///     for (q, &(u, v)) in sec.iter().zip(params) {
+///         assert!(skin.surface.point(u, v).distance(*q) < 1e-12);
+///     }
+/// }
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 pub fn skin_interpolate(sections: &[Vec<Vec3>], opts: &SkinOptions) -> Result<SkinResult, NurbsError> {
     let secs = classify(sections, opts)?;
     let q = opts.degree_v.min(secs.len() - 1);
