@@ -1,5 +1,6 @@
 //! Test data shared by the kernel's tests and, with the feature `fixtures`, by the tests of the
-//! crates above it: one place for each fixture. Not part of the API.
+//! crates above it (the benchmarks include this file): one place for each fixture. Not part
+//! of the API.
 
 use crate::Vec3;
 
@@ -38,4 +39,22 @@ pub fn rounded_box_sections() -> Vec<Vec<Vec3>> {
             }
         })
         .collect()
+}
+
+/// The R/V Gunnerus sections of `testdata/gunnerus_sections.csv` (`section,x,y,z`, one row per
+/// point, a section's rows together; the offset table's points, see `testdata/README.md`): 62
+/// sections of 8 to 16 points, bottom to top.
+pub fn gunnerus_sections() -> Vec<Vec<Vec3>> {
+    let text = include_str!("../../../testdata/gunnerus_sections.csv");
+    let mut sections: Vec<(&str, Vec<Vec3>)> = Vec::new();
+    for line in text.lines().skip(1).filter(|l| !l.trim().is_empty()) {
+        let f: Vec<&str> = line.split(',').collect();
+        let num = |i: usize| -> f64 { f[i].trim().parse().expect("a number") };
+        let p = Vec3::new(num(1), num(2), num(3));
+        match sections.last_mut() {
+            Some((label, pts)) if *label == f[0] => pts.push(p),
+            _ => sections.push((f[0], vec![p])),
+        }
+    }
+    sections.into_iter().map(|(_, pts)| pts).collect()
 }

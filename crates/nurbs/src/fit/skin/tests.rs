@@ -13,6 +13,7 @@ use crate::fit::knots::{approximation_knots, knots_for_interpolation};
 use crate::fit::lsq::LeastSquaresSolver;
 use crate::fit::param::{uniform_params, universal_params};
 use crate::fit::{Parameterization, SkinParameterization};
+use crate::fixtures::gunnerus_sections;
 use crate::{NurbsError, NurbsSurface, Vec3};
 
 /// A tapered body: `k` sections over length `l`, `n` points each at equal `z`; its width
@@ -449,24 +450,6 @@ fn degrees_are_lowered_to_the_data() {
     assert_passes_through(&r, &s, 1e-14);
 }
 
-/// The R/V Gunnerus sections of `testdata/gunnerus_sections.csv` (`section,x,y,z`, one row per
-/// point, a section's rows together; the offset table's points, see `testdata/README.md`): 62
-/// sections of 8 to 16 points, bottom to top.
-fn gunnerus() -> Vec<Vec<Vec3>> {
-    let text = include_str!("../../../../../testdata/gunnerus_sections.csv");
-    let mut sections: Vec<(&str, Vec<Vec3>)> = Vec::new();
-    for line in text.lines().skip(1).filter(|l| !l.trim().is_empty()) {
-        let f: Vec<&str> = line.split(',').collect();
-        let num = |i: usize| -> f64 { f[i].trim().parse().expect("a number") };
-        let p = Vec3::new(num(1), num(2), num(3));
-        match sections.last_mut() {
-            Some((label, pts)) if *label == f[0] => pts.push(p),
-            _ => sections.push((f[0], vec![p])),
-        }
-    }
-    sections.into_iter().map(|(_, pts)| pts).collect()
-}
-
 /// The largest distance from the curve `c` on `[0, 1]` (sampled) to the polyline `pts`: how
 /// far a fit bulges away from its data.
 fn bulge(c: impl Fn(f64) -> Vec3, pts: &[Vec3]) -> f64 {
@@ -522,7 +505,7 @@ fn unequal_counts_keep_one_pole_per_offset_and_pass_through() {
 
 #[test]
 fn gunnerus_interpolation_stays_at_sixteen_poles_and_does_not_bulge() {
-    let s = gunnerus();
+    let s = gunnerus_sections();
     assert_eq!(s.len(), 62);
     let counts: Vec<usize> = s.iter().map(Vec::len).collect();
     assert_eq!((counts.iter().min(), counts.iter().max()), (Some(&8), Some(&16)));
@@ -660,7 +643,7 @@ fn near_square_least_squares_does_not_blow_up() {
     // parameters on the common knots the least-squares curves overshoot by up to 31 m (the
     // normal equations are nearly singular); at the chosen blend they stay within 0.25 m
     // of their offsets' polyline (0.16 m measured; sections with knuckles, up to 12 m long).
-    let g = gunnerus();
+    let g = gunnerus_sections();
     let secs = classify(&g, &SkinOptions::default()).expect("valid");
     for nu in [12, 14, 15] {
         let u_of = own_params(&secs, Parameterization::Centripetal, 3).expect("valid");
