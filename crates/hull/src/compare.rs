@@ -171,7 +171,7 @@ fn sample_params(knots: &KnotVector, n: usize) -> Vec<f64> {
 /// values per direction (at least 2) joined with the distinct interior knots of each direction
 /// (the knot lines). A point is skipped as degenerate where the curvature is undefined
 /// (`S_u x S_v = 0`, e.g. along a section collapsed to a point at a stem) or where
-/// `|S_u x S_v|` is round-off: at most `1e-12` ([`COINCIDENT_REL`]) of the square of the
+/// `|S_u x S_v|` is round-off: at most `1e-9` ([`COINCIDENT_REL`]) of the square of the
 /// control net's size per unit parameter area. `None` if every point is degenerate.
 pub fn gaussian_curvature_range(surface: &NurbsSurface, grid: usize) -> Option<CurvatureRange> {
     let us = sample_params(surface.knots_u(), grid);

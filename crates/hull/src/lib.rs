@@ -37,6 +37,7 @@ mod error;
 pub mod export;
 pub mod fairing;
 pub mod fit_error;
+mod flats;
 mod held_out;
 pub mod hydrostatics;
 pub mod limits;
@@ -66,6 +67,7 @@ pub use compare::{
 pub use error::{HullError, InputErrorKind, Location};
 pub use fairing::{FairReport, Fairing};
 pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
+pub use flats::{find_flat_lines, flat_bounds, refit_within_flats, FlatKind, FlatLine, FlatOptions};
 pub use held_out::{
     held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, held_out_refit_config,
     held_out_wanted, overfit, overfitting_warning, HeldOutError, HeldOutOptions,

@@ -19,10 +19,9 @@ use crate::error::{HullError, InputErrorKind, Location};
 use crate::units::Units;
 
 /// Two consecutive points closer than `COINCIDENT_REL` times the model size (the diagonal of
-/// the bounding box) are the same point. 1e-9 is far below any drawing precision (a 100 m ship
-/// gives 0.1 µm) yet far above the rounding of a coordinate (1e-16 relative), so it only
-/// catches points that were typed twice.
-pub const COINCIDENT_REL: f64 = 1e-9;
+/// the bounding box) are the same point: the kernel's tolerance, so that what the reader
+/// accepts the fit accepts too.
+pub use nurbs::tolerance::COINCIDENT_REL;
 
 /// A section is planar in x when all its x lie within `PLANAR_REL` times the model size of
 /// their mean (same reasoning as [`COINCIDENT_REL`]).

@@ -7,15 +7,15 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use nurbs::fit::{
-    bounded_refit, find_flat_lines, find_knuckle_lines, knuckle_indices, refit_within_flats,
-    skin_approximate_with_knuckles, skin_interpolate_with_knuckles, CornerOptions, FlatLine, FlatOptions, KnuckleLine,
-    SkinOptions, SkinParameterization,
+    bounded_refit, find_knuckle_lines, knuckle_indices, skin_approximate_with_knuckles, skin_interpolate_with_knuckles,
+    CornerOptions, KnuckleLine, SkinOptions, SkinParameterization,
 };
 use nurbs::{NurbsError, NurbsSurface};
 
 use crate::analysis::Envelope;
 use crate::fairing::{FairReport, Fairing};
 use crate::fit_error::{measure_fit_error, FitError};
+use crate::flats::{find_flat_lines, refit_within_flats, FlatKind, FlatLine, FlatOptions};
 use crate::optimize::{optimize_weights, quiet, Algorithm, Control, OptimReport, OptimSettings};
 use crate::{HullError, Offsets};
 
@@ -591,7 +591,7 @@ fn within_envelope(
     let mut faces: BTreeMap<(usize, bool), f64> = BTreeMap::new();
     // A fit refitted within its flats stays on their planes.
     for kind in out.flat_lines.iter().map(|l| l.kind) {
-        faces.insert(if kind == nurbs::fit::FlatKind::Side { (1, true) } else { (2, false) }, 0.0);
+        faces.insert(if kind == FlatKind::Side { (1, true) } else { (2, false) }, 0.0);
     }
     // A refit of one coordinate can push it across that coordinate's other face, or leave a
     // flat's bulge within the envelope's allowance: later rounds hold those too.

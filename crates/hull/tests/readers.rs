@@ -310,3 +310,13 @@ fn every_format_reports_bad_input_with_file_line_and_column() {
         assert!(e.contains("(expected"), "{name}: {e}");
     }
 }
+
+#[test]
+fn gunnerus_sections_csv_gives_the_tables_sections() {
+    // `gunnerus_sections.csv` holds the offset table's points as a sections CSV for the kernel's
+    // skinning tests (which know no offset tables): read by hull, both give the same sections,
+    // point for point and bit for bit (the same decimal text).
+    let want = table("gunnerus_offsets.csv");
+    let got = table("gunnerus_sections.csv");
+    assert_eq!(max_gap(&all(&got), &all(&want)), 0.0);
+}

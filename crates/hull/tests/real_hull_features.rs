@@ -7,8 +7,9 @@ use std::path::{Path, PathBuf};
 
 use hull::analysis::{cut_surface, CutOptions, CutPlane};
 use hull::mesh::{read_mesh, slice_mesh, MeshReadOptions, SliceOptions, Stations};
+use hull::{find_flat_lines, FlatKind, FlatOptions};
 use hull::{fit_offsets, read_offsets, FitConfig, FitMethod, FitOutcome, Knuckles, Offsets, Units};
-use nurbs::fit::{find_flat_lines, CornerOptions, FlatKind, FlatOptions};
+use nurbs::fit::CornerOptions;
 use nurbs::{NurbsSurface, Vec3};
 
 fn testdata(name: &str) -> PathBuf {

@@ -196,7 +196,7 @@ fn the_wigley_hull_is_valid_interpolated_and_approximated() {
 }
 
 /// The Series 60 Cb 0.80 parent's plain approximation bulges 36 mm beyond its flat side (as
-/// `nurbs::fit::refit_within_flats` documents): inside the envelope's 47 mm, through the flat's
+/// `hull::refit_within_flats` documents): inside the envelope's 47 mm, through the flat's
 /// 4.7 mm. Refitted within the flats it stays on the plane.
 #[test]
 fn the_cb080_parent_bulges_through_its_flat_side_unless_refitted_within_it() {

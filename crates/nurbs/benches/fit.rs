@@ -1,15 +1,20 @@
-//! Fitting cost: skinning an offset table (interpolation and least squares) and curve
-//! interpolation, sweeping the table size. The degenerate cases are a table whose end sections
-//! have zero width (a vertical stem and stern line, the usual hull table) and one whose end
+//! Fitting cost: skinning a family of sections (interpolation and least squares) and curve
+//! interpolation, sweeping the family's size. The degenerate cases are a family whose end
+//! sections have zero width (vertical lines, as in a ship's offset table) and one whose end
 //! sections collapse to single points (pointed ends), plus unequal point counts (`ragged`, and
-//! the R/V Gunnerus table: 62 stations of 8 to 16 waterline points), which take the
-//! common-knot path with fair constrained interpolation of the shorter sections.
+//! the R/V Gunnerus sections: 62 of 8 to 16 points), which take the common-knot path with fair
+//! constrained interpolation of the shorter sections.
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use nurbs::fit::{interpolate_curve_auto, skin_approximate, skin_interpolate, Parameterization, SkinOptions};
 use nurbs::Vec3;
 
-/// `k` stations x `n` waterlines of a Wigley-like hull, `y = B/2 (1 - (2x/L)^2) (1 - (1 - z/T)^4)`:
+/// The kernel's test data (`nurbs::fixtures`, behind a feature there), included as a module.
+#[allow(dead_code)]
+#[path = "../src/fixtures.rs"]
+mod fixtures;
+
+/// `k` sections of `n` points of a Wigley-like body, `y = B/2 (1 - (2x/L)^2) (1 - (1 - z/T)^4)`:
 /// zero width at both ends. `pointed` collapses the end sections to one point each; `ragged`
 /// drops the top point of every other section.
 fn table(k: usize, n: usize, pointed: bool, ragged: bool) -> Vec<Vec<Vec3>> {
@@ -23,7 +28,7 @@ fn table(k: usize, n: usize, pointed: bool, ragged: bool) -> Vec<Vec<Vec3>> {
             let count = if ragged && s % 2 == 1 { n - 1 } else { n };
             (0..count)
                 .map(|j| {
-                    // Cosine spacing of the waterlines: dense at the keel, as in real tables.
+                    // Cosine spacing of the points: dense at the bottom, as in real tables.
                     let z = t * (1.0 - (std::f64::consts::FRAC_PI_2 * j as f64 / (n - 1) as f64).cos());
                     let y = b / 2.0 * (1.0 - (2.0 * x / l).powi(2)) * (1.0 - (1.0 - z / t).powi(4));
                     Vec3::new(x, y, z)
@@ -33,25 +38,6 @@ fn table(k: usize, n: usize, pointed: bool, ragged: bool) -> Vec<Vec<Vec3>> {
         .collect()
 }
 
-/// The R/V Gunnerus offset table of `testdata/` (first row stations x, first column waterlines
-/// z, cells half-breadths, empty = missing) as sections keel to deck, as the hull reader builds
-/// them: 62 sections of 8 to 16 points.
-fn gunnerus() -> Vec<Vec<Vec3>> {
-    let text = include_str!("../../../testdata/gunnerus_offsets.csv");
-    let rows: Vec<Vec<&str>> = text.lines().filter(|l| !l.trim().is_empty()).map(|l| l.split(',').collect()).collect();
-    let xs: Vec<f64> = rows[0][1..].iter().map(|c| c.trim().parse().expect("station x")).collect();
-    let mut sections = vec![Vec::new(); xs.len()];
-    for row in &rows[1..] {
-        let z: f64 = row[0].trim().parse().expect("waterline z");
-        for ((section, &x), cell) in sections.iter_mut().zip(&xs).zip(&row[1..]) {
-            if !cell.trim().is_empty() {
-                section.push(Vec3::new(x, cell.trim().parse().expect("half-breadth"), z));
-            }
-        }
-    }
-    sections
-}
-
 fn bench_skin(c: &mut Criterion) {
     let opts = SkinOptions::default();
     let cases = [
@@ -59,7 +45,7 @@ fn bench_skin(c: &mut Criterion) {
         ("21x11_pointed", table(21, 11, true, false)),
         ("21x11_ragged", table(21, 11, false, true)),
         ("64x20", table(64, 20, false, false)),
-        ("gunnerus_62x8-16", gunnerus()),
+        ("gunnerus_62x8-16", fixtures::gunnerus_sections()),
     ];
     let mut g = c.benchmark_group("skin_interpolate");
     for (name, s) in &cases {

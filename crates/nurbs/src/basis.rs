@@ -10,6 +10,21 @@ pub type BasisRow = [f64; MAX_DEGREE + 1];
 
 /// The `p + 1` non-vanishing basis functions `N_{span-p,p}(u) ..= N_{span,p}(u)` written to
 /// `out[..=p]` (A2.2). `knots` is the full knot vector, `span` from `find_span`.
+///
+/// ```
+/// use nurbs::basis::basis_funs;
+/// use nurbs::{KnotVector, MAX_DEGREE};
+/// let k = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0])?;
+/// let mut n = [0.0; MAX_DEGREE + 1];
+/// for i in 0..=20 {
+///     let t = i as f64 / 20.0;
+///     basis_funs(k.as_slice(), k.find_span(t), t, 3, &mut n);
+///     // Partition of unity and non-negativity (The NURBS Book P2.4, P2.3).
+///     assert!((n[..4].iter().sum::<f64>() - 1.0).abs() < 1e-15);
+///     assert!(n[..4].iter().all(|&b| b >= 0.0));
+/// }
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 #[inline]
 pub fn basis_funs(knots: &[f64], span: usize, u: f64, p: usize, out: &mut BasisRow) {
     let mut left = [0.0; MAX_DEGREE + 1];

@@ -67,6 +67,23 @@ impl NurbsCurve {
     /// [`NurbsError::ControlPointCount`] if `points.len()` differs from the number of basis
     /// functions, [`NurbsError::WeightCount`], [`NurbsError::BadWeight`] for a weight that is not
     /// finite and positive, [`NurbsError::NonFinitePoint`].
+    ///
+    /// ```
+    /// use nurbs::{KnotVector, NurbsCurve, Vec3};
+    /// // A quarter of the unit circle as a rational quadratic (The NURBS Book eq. 7.1):
+    /// // control points (1, 0), (1, 1), (0, 1), middle weight cos(45 degrees).
+    /// let k = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0])?;
+    /// let p = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)];
+    /// let arc = NurbsCurve::try_new(k, &p, Some(&[1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0]))?;
+    /// for i in 0..=10 {
+    ///     assert!((arc.point(i as f64 / 10.0).norm() - 1.0).abs() < 1e-15);
+    /// }
+    /// // The same net with weights 1 is a parabola, not a circle.
+    /// let k = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0])?;
+    /// let parabola = NurbsCurve::try_new(k, &p, None)?;
+    /// assert!((parabola.point(0.5).norm() - 1.0).abs() > 0.01);
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
     pub fn try_new(knots: KnotVector, points: &[Vec3], weights: Option<&[f64]>) -> Result<Self, NurbsError> {
         let cw = pack(points, weights, knots.num_basis())?;
         Ok(NurbsCurve { knots, cw })
@@ -135,6 +152,16 @@ impl NurbsCurve {
     }
 
     /// The point `C(u)` (A4.1); `u` is clamped to the domain.
+    ///
+    /// ```
+    /// use nurbs::{KnotVector, NurbsCurve, Vec3};
+    /// let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.0), Vec3::new(3.0, 2.0, 1.0), Vec3::new(4.0, 0.0, 0.0)];
+    /// let c = NurbsCurve::try_new(KnotVector::uniform(3, 4)?, &pts, None)?;
+    /// // A clamped curve interpolates its end control points (The NURBS Book P3.3).
+    /// assert_eq!(c.point(0.0), pts[0]);
+    /// assert!(c.point(1.0).distance(pts[3]) < 1e-15);
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
     #[inline]
     pub fn point(&self, u: f64) -> Vec3 {
         let u = self.knots.clamp(u);
@@ -154,6 +181,19 @@ impl NurbsCurve {
 
     /// `C(u)` and its derivatives up to order `d`: `out[k]` = `C^(k)(u)` (A3.2 on the
     /// homogeneous curve, then A4.2: `C^(k) = (A^(k) - sum_{i=1..k} C(k,i) w^(i) C^(k-i)) / w`).
+    ///
+    /// ```
+    /// use nurbs::{KnotVector, NurbsCurve, Vec3};
+    /// let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.0), Vec3::new(3.0, 2.0, 1.0), Vec3::new(4.0, 0.0, 0.0)];
+    /// let c = NurbsCurve::try_new(KnotVector::uniform(3, 4)?, &pts, Some(&[1.0, 2.0, 0.5, 1.0]))?;
+    /// // The first derivative equals the central difference of the points (to O(h^2)).
+    /// let (u, h) = (0.4, 1e-5);
+    /// let d = c.derivatives(u, 1);
+    /// assert_eq!(d[0], c.point(u));
+    /// let central = (c.point(u + h) - c.point(u - h)) * (0.5 / h);
+    /// assert!(d[1].distance(central) < 1e-8);
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
     pub fn derivatives(&self, u: f64, d: usize) -> Vec<Vec3> {
         let u = self.knots.clamp(u);
         let p = self.degree();

@@ -116,6 +116,21 @@ impl NurbsCurve {
     ///
     /// # Errors
     /// [`NurbsError::BadDegree`] if the new degree would exceed [`MAX_DEGREE`].
+    ///
+    /// ```
+    /// use nurbs::{KnotVector, NurbsCurve, Vec3};
+    /// let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.0), Vec3::new(3.0, 2.0, 1.0)];
+    /// let k = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0])?;
+    /// let c = NurbsCurve::try_new(k, &pts, None)?;
+    /// // A quadratic Bezier raised to degree 4 (A5.9): five control points, the same curve.
+    /// let e = c.elevate_degree(2)?;
+    /// assert_eq!((e.degree(), e.num_control_points()), (4, 5));
+    /// for i in 0..=10 {
+    ///     let t = i as f64 / 10.0;
+    ///     assert!(e.point(t).distance(c.point(t)) < 1e-14);
+    /// }
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
     pub fn elevate_degree(&self, t: usize) -> Result<NurbsCurve, NurbsError> {
         let p = self.degree();
         let ph = p.saturating_add(t);

@@ -22,6 +22,16 @@ impl KnotVector {
     /// [`NurbsError::DecreasingKnots`], [`NurbsError::NotClamped`],
     /// [`NurbsError::KnotMultiplicity`] or [`NurbsError::EmptyDomain`] when `knots` is not a
     /// clamped knot vector of degree `degree`.
+    ///
+    /// ```
+    /// use nurbs::KnotVector;
+    /// // Clamped cubic with one interior knot: m + 1 = 9 knots, n + 1 = m - p = 5 basis functions.
+    /// let k = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0])?;
+    /// assert_eq!((k.num_basis(), k.domain()), (5, (0.0, 1.0)));
+    /// // Decreasing knots are refused.
+    /// assert!(KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 0.5, 1.0, 1.0]).is_err());
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
     pub fn try_new(degree: usize, knots: Vec<f64>) -> Result<Self, NurbsError> {
         if degree == 0 || degree > MAX_DEGREE {
             return Err(NurbsError::BadDegree { degree, max: MAX_DEGREE });
@@ -133,6 +143,19 @@ impl KnotVector {
 
     /// The knot span index `i` with `u_i <= u < u_{i+1}` (A2.1); `u` at the domain end maps to
     /// the last non-empty span, `u` outside the domain to the first or last span.
+    ///
+    /// ```
+    /// use nurbs::KnotVector;
+    /// let k = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 0.25, 0.5, 1.0, 1.0, 1.0])?;
+    /// let u = k.as_slice();
+    /// // u_s <= t < u_{s+1} inside the domain (A2.1); the end of the domain belongs to the last span.
+    /// for t in [0.0, 0.1, 0.25, 0.7] {
+    ///     let s = k.find_span(t);
+    ///     assert!(u[s] <= t && t < u[s + 1], "t = {t}");
+    /// }
+    /// assert_eq!(k.find_span(1.0), 4);
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
     #[inline]
     pub fn find_span(&self, u: f64) -> usize {
         let p = self.degree;

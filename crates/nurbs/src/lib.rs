@@ -1,16 +1,52 @@
-//! The NURBS kernel of hullskin: knot vectors, B-spline basis functions, rational curves and
+//! The NURBS kernel: knot vectors, B-spline basis functions, rational curves and
 //! surfaces with derivatives and curvature, knot insertion and refinement, degree elevation,
 //! closest-point projection, and fitting (parameterization, interpolation, least squares,
 //! skinning). `f64` and 3-D only; no I/O; every fallible call returns [`NurbsError`].
+//!
+//! Skin a surface through a family of sections, then measure how far a point lies from it:
+//!
+//! ```
+//! use nurbs::fit::{skin_interpolate, SkinOptions};
+//! use nurbs::{ProjectionOptions, SurfaceProjector, Vec3};
+//!
+//! // Five sections across a half cylinder of radius 1 (x along its axis), seven points each.
+//! let sections: Vec<Vec<Vec3>> = (0..5)
+//!     .map(|k| {
+//!         (0..7)
+//!             .map(|i| std::f64::consts::PI * i as f64 / 6.0)
+//!             .map(|a| Vec3::new(k as f64, a.cos(), a.sin()))
+//!             .collect()
+//!     })
+//!     .collect();
+//! let skin = skin_interpolate(&sections, &SkinOptions::default())?;
+//! // A bicubic through every point: its control net is 7 x 5.
+//! assert_eq!((skin.surface.n_u(), skin.surface.n_v()), (7, 5));
+//! // The point (2, 0, 0) on the axis is at distance ~1 from the surface (the cubic
+//! // approximates the circle to about 1e-3 with seven points).
+//! let foot = SurfaceProjector::new(&skin.surface, ProjectionOptions::default()).project(Vec3::new(2.0, 0.0, 0.0));
+//! assert!(foot.converged && (foot.distance - 1.0).abs() < 2e-3, "{}", foot.distance);
+//! # Ok::<(), nurbs::NurbsError>(())
+//! ```
+//!
+//! The modules: `knots`, `basis`, `curve`, `surface` (evaluation, derivatives, curvature),
+//! `refine` and `elevate` (knot insertion, degree elevation), `project` (closest points),
+//! `fit` (parameterization, knots, interpolation, least squares, skinning, corner lines,
+//! bounded refits), `linalg` (band and dense factorizations), `quadrature` (Gauss-Legendre)
+//! and `tolerance` (named tolerances).
 
 pub mod basis;
 mod curve;
 mod elevate;
 mod error;
 pub mod fit;
+#[cfg(any(test, feature = "fixtures"))]
+#[doc(hidden)]
+pub mod fixtures;
 mod grid;
 mod knots;
+mod linalg;
 mod project;
+mod quadrature;
 mod refine;
 mod scattered;
 mod surface;
@@ -22,6 +58,8 @@ pub use curve::{Homogeneous, NurbsCurve};
 pub use error::NurbsError;
 pub use grid::FirstDerivatives;
 pub use knots::{KnotVector, MAX_DEGREE};
+pub use linalg::{band_cholesky, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu};
+pub use quadrature::GaussLegendre;
 pub use scattered::PointEvaluator;
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
 pub use vec3::Vec3;

@@ -154,6 +154,20 @@ impl NurbsCurve {
     /// [`NurbsError::ParameterOutOfDomain`] if `u` is not in the domain (or not finite),
     /// [`NurbsError::KnotMultiplicity`] if the multiplicity of `u` would exceed the degree
     /// (in particular at the end knots, which already have multiplicity `p + 1`).
+    ///
+    /// ```
+    /// use nurbs::{KnotVector, NurbsCurve, Vec3};
+    /// let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.0), Vec3::new(3.0, 2.0, 1.0), Vec3::new(4.0, 0.0, 0.0)];
+    /// let c = NurbsCurve::try_new(KnotVector::uniform(3, 4)?, &pts, Some(&[1.0, 2.0, 0.5, 1.0]))?;
+    /// // Knot insertion (A5.1) adds control points and leaves the curve as it was.
+    /// let r = c.insert_knot(0.3, 2)?;
+    /// assert_eq!(r.num_control_points(), c.num_control_points() + 2);
+    /// for i in 0..=10 {
+    ///     let t = i as f64 / 10.0;
+    ///     assert!(r.point(t).distance(c.point(t)) < 1e-14);
+    /// }
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
     pub fn insert_knot(&self, u: f64, r: usize) -> Result<NurbsCurve, NurbsError> {
         let (start, end) = self.domain();
         if !(start <= u && u <= end) {
@@ -253,6 +267,16 @@ impl NurbsCurve {
 ///
 /// # Errors
 /// [`NurbsError::Incompatible`] if `vectors` is empty or the vectors differ in degree or domain.
+///
+/// ```
+/// use nurbs::{merge_knot_vectors, KnotVector};
+/// let a = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0])?;
+/// let b = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 0.25, 0.5, 0.5, 1.0, 1.0, 1.0])?;
+/// // The union, each knot at the largest of its multiplicities.
+/// let m = merge_knot_vectors(&[&a, &b])?;
+/// assert_eq!(m.as_slice(), &[0.0, 0.0, 0.0, 0.25, 0.5, 0.5, 1.0, 1.0, 1.0]);
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 pub fn merge_knot_vectors(vectors: &[&KnotVector]) -> Result<KnotVector, NurbsError> {
     let first = vectors.first().ok_or_else(|| NurbsError::Incompatible { what: "no knot vectors to merge".into() })?;
     let (p, domain) = (first.degree(), first.domain());

@@ -223,7 +223,7 @@ impl NurbsSurface {
     }
 
     /// The unit normal `S_u x S_v / |S_u x S_v|`. At a degenerate point (a collapsed edge, as at
-    /// a hull's stem) the normal is taken as the limit from slightly inside the domain.
+    /// a pointed end) the normal is taken as the limit from slightly inside the domain.
     pub fn normal(&self, u: f64, v: f64) -> Option<Vec3> {
         if let Some(n) = self.derivatives(u, v).normal() {
             return Some(n);
@@ -236,6 +236,25 @@ impl NurbsSurface {
     }
 
     /// Gaussian and mean curvature at `(u, v)`, `None` at a degenerate point.
+    ///
+    /// ```
+    /// use nurbs::{KnotVector, NurbsSurface, Vec3};
+    /// // A quarter cylinder of radius 2: the quarter circle (rational quadratic) along u, a line
+    /// // along v. Its Gaussian curvature is 0 and its mean curvature 1/(2r) in magnitude.
+    /// let arc = [Vec3::new(2.0, 0.0, 0.0), Vec3::new(2.0, 2.0, 0.0), Vec3::new(0.0, 2.0, 0.0)];
+    /// let net: Vec<Vec3> = arc.iter().flat_map(|&p| [p, p + Vec3::new(0.0, 0.0, 3.0)]).collect();
+    /// let w = std::f64::consts::FRAC_1_SQRT_2;
+    /// let s = NurbsSurface::try_new(
+    ///     KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0])?,
+    ///     KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0])?,
+    ///     &net,
+    ///     Some(&[1.0, 1.0, w, w, 1.0, 1.0]),
+    /// )?;
+    /// let c = s.curvature(0.3, 0.6).expect("a regular point");
+    /// assert!(c.gaussian.abs() < 1e-12);
+    /// assert!((c.mean.abs() - 0.25).abs() < 1e-12);
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
     pub fn curvature(&self, u: f64, v: f64) -> Option<Curvature> {
         self.derivatives(u, v).curvature()
     }

@@ -6,8 +6,18 @@ pub const KNOT_EQ: f64 = 1e-12;
 pub const EVAL_REL: f64 = 1e-12;
 /// Default geometric tolerance of closest-point projection, relative to the model size.
 pub const PROJECTION_REL: f64 = 1e-12;
-/// Two consecutive input points closer than this (relative to the section length) coincide.
-pub const COINCIDENT_REL: f64 = 1e-12;
+/// Two points closer than this times the size they are measured against (a section's polyline
+/// length, the diagonal of the data's bounding box; a gap of parameters in `[0, 1]`) are one
+/// point. 1e-9 is far below any drawing precision (0.1 µm on a 100 m model) yet far above the
+/// rounding of a coordinate (1e-16 relative), so it catches only points given twice; the fit
+/// refuses such data (its chord-length parameters would repeat) and a section of one repeated
+/// point is a pointed end. The same tolerance serves the kernel and the readers above it.
+pub const COINCIDENT_REL: f64 = 1e-9;
+/// A pivot of a factorization not above this times its diagonal entry (Cholesky) or the largest
+/// entry of its row (LU) marks the matrix singular or too ill-conditioned: the relative pivot
+/// bounds the reciprocal condition number from above, and beyond `1e12` the solution would have
+/// lost most of its digits.
+pub const PIVOT_REL: f64 = 1e-12;
 
 /// Assert that two numbers (or `Vec3`s) agree within an absolute tolerance, printing both.
 #[macro_export]

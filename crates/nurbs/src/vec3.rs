@@ -23,6 +23,13 @@ impl Vec3 {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
+    /// ```
+    /// use nurbs::Vec3;
+    /// let (x, y) = (Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
+    /// // A right-handed frame: x cross y = z, orthogonal to both.
+    /// assert_eq!(x.cross(y), Vec3::new(0.0, 0.0, 1.0));
+    /// assert_eq!(x.cross(y).dot(x), 0.0);
+    /// ```
     #[inline]
     pub fn cross(self, o: Vec3) -> Vec3 {
         Vec3::new(self.y * o.z - self.z * o.y, self.z * o.x - self.x * o.z, self.x * o.y - self.y * o.x)

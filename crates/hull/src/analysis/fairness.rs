@@ -135,37 +135,11 @@ pub struct FairnessReport {
     pub inflections: usize,
 }
 
-/// Gauss-Legendre nodes and weights on `[-1, 1]`, `n` of them (at least 1), ascending: Newton
-/// iteration on the Legendre polynomial `P_n` from the asymptotic guesses
-/// `cos(pi (i + 3/4) / (n + 1/2))`, weights `2 / ((1 - x^2) P_n'(x)^2)` (Numerical Recipes
-/// 3rd ed. 4.6, `gauleg`). Exact for polynomials of degree `2n - 1`.
+/// Gauss-Legendre nodes and weights on `[-1, 1]`, `n` of them (at least 1), ascending, as
+/// `(node, weight)` pairs: the kernel's rule ([`nurbs::GaussLegendre`]). Exact for polynomials
+/// of degree `2n - 1`.
 pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
-    let n = n.max(1);
-    let mut out = vec![(0.0, 0.0); n];
-    let nf = n as f64;
-    for i in 0..n.div_ceil(2) {
-        let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (nf + 0.5)).cos();
-        let mut pp = 1.0;
-        for _ in 0..100 {
-            let (mut p1, mut p2) = (1.0, 0.0);
-            for j in 1..=n {
-                let jf = j as f64;
-                let p3 = p2;
-                p2 = p1;
-                p1 = ((2.0 * jf - 1.0) * z * p2 - (jf - 1.0) * p3) / jf;
-            }
-            pp = nf * (z * p1 - p2) / (z * z - 1.0);
-            let z1 = z;
-            z = z1 - p1 / pp;
-            if (z - z1).abs() <= 1e-15 {
-                break;
-            }
-        }
-        let w = 2.0 / ((1.0 - z * z) * pp * pp);
-        out[i] = (-z, w);
-        out[n - 1 - i] = (z, w);
-    }
-    out
+    nurbs::GaussLegendre::new(n).on(-1.0, 1.0).collect()
 }
 
 /// The distinct knot values of the domain (span boundaries).

@@ -45,13 +45,13 @@
 
 use std::collections::VecDeque;
 
-use nurbs::fit::{FlatKind, FlatLine};
 use nurbs::{NurbsSurface, Vec3};
 use rayon::prelude::*;
 use serde::Serialize;
 
 use super::fold::{folds_on_grid, Fold, PER_SPAN};
 use super::{model_size, param_grid};
+use crate::flats::{FlatKind, FlatLine};
 use crate::{Offsets, COINCIDENT_REL};
 
 /// Allowance of the envelope checks, relative to the half-beam (y), the depth (z) and the
@@ -509,7 +509,7 @@ pub(crate) fn validity_and_folds(
 }
 
 /// [`check_validity`] of a surface fitted to `offsets`, with the flats found in them
-/// ([`nurbs::fit::find_flat_lines`] with its default settings, as `--knuckles auto+flats`).
+/// ([`crate::flats::find_flat_lines`] with its default settings, as `--knuckles auto+flats`).
 /// Offsets without a point have no envelope: folds and inward-facing facets only.
 ///
 /// # Errors
@@ -530,7 +530,7 @@ pub(crate) fn fit_validity_and_folds(
 ) -> Result<(Vec<Finding>, Vec<Fold>), crate::HullError> {
     let envelope = Envelope::of_offsets(offsets).unwrap_or_else(Envelope::unbounded);
     let sections: Vec<Vec<Vec3>> = offsets.sections.iter().map(|s| s.points.clone()).collect();
-    let flats = nurbs::fit::find_flat_lines(&sections, &nurbs::fit::FlatOptions::default())
+    let flats = crate::flats::find_flat_lines(&sections, &crate::flats::FlatOptions::default())
         .map_err(|reason| crate::HullError::Fit { method: "validity", reason })?;
     Ok(validity_and_folds(surface, &envelope, &flats))
 }
@@ -1028,7 +1028,7 @@ mod tests {
                     .collect()
             })
             .collect();
-        let flats = nurbs::fit::find_flat_lines(&sections, &nurbs::fit::FlatOptions::default()).expect("finite");
+        let flats = crate::flats::find_flat_lines(&sections, &crate::flats::FlatOptions::default()).expect("finite");
         let sections_x = (0..5).map(|k| (2.5 * k as f64, 2.5 * k as f64)).collect();
         (Envelope { x: (0.0, 10.0), y: (0.0, 2.0), z: (0.0, 2.0), sections_x }, flats)
     }

@@ -14,7 +14,8 @@
 use nurbs::basis::{basis_funs, ders_basis_funs, BasisRow};
 use nurbs::{NurbsSurface, Vec3, MAX_DEGREE};
 
-use super::gauss::{brent_max, brent_root, GaussLegendre};
+use super::gauss::{brent_max, brent_root};
+use nurbs::GaussLegendre;
 
 /// Subdivision levels of a cell where the level set is monotone in neither parameter.
 const MAX_DEPTH: usize = 6;

@@ -823,7 +823,7 @@ mod tests {
         let fit = fit_offsets(&series60_sample(), &FitConfig::default()).expect("the sample fits");
         let s = &fit.surface;
         let integ = Integrator::new(s, 8, 2);
-        let gl = gauss::GaussLegendre::new(12);
+        let gl = nurbs::GaussLegendre::new(12);
         for t in [1.0, 3.25, 6.5, 8.0] {
             let level = t + integ.eps;
             let sums = integ.wet(level, 2.0 * integ.eps).sums;

@@ -47,12 +47,12 @@
 //!
 //! For `n = N` (a square, nonsingular `A`) the solution is `A^{-1} Q`: ordinary interpolation.
 
-use super::banded::{BandedCholesky, PIVOT_REL};
 use super::interp::check_in_domain;
 use super::knots::check_params;
 use crate::basis::{basis_funs, ders_basis_funs, BasisRow};
 use crate::knots::MAX_DEGREE;
-use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
+use crate::linalg::BandedCholesky;
+use crate::{GaussLegendre, KnotVector, NurbsCurve, NurbsError, Vec3};
 
 /// The order `r` of the energy `∫ |C^(r)|^2` minimized for degree `p`: 2 (bending) for
 /// `p >= 2`, 1 (stretching) for `p = 1`.
@@ -80,7 +80,8 @@ impl EnergyGram {
         let order = energy_order(p);
         let n = knots.num_basis();
         let u = knots.as_slice();
-        let (nodes, weights) = gauss_legendre(p - order + 1);
+        let gl = GaussLegendre::new(p - order + 1);
+        let (nodes, weights) = (gl.nodes(), gl.weights());
         let mut band = vec![0.0; n * (p + 1)];
         let mut ders: [BasisRow; 3] = [[0.0; MAX_DEGREE + 1]; 3];
         for s in p..n {
@@ -89,7 +90,7 @@ impl EnergyGram {
                 continue;
             }
             let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-            for (&x, &w) in nodes.iter().zip(&weights) {
+            for (&x, &w) in nodes.iter().zip(weights) {
                 ders_basis_funs(u, s, mid + half * x, p, order, &mut ders);
                 let d = &ders[order];
                 for ia in 0..=p {
@@ -136,44 +137,6 @@ impl EnergyGram {
     }
 }
 
-/// The `m`-point Gauss-Legendre rule on `[-1, 1]` (exact for polynomials of degree `2m - 1`):
-/// the nodes are the roots of the Legendre polynomial `P_m`, found by Newton's method from
-/// the Tricomi estimate `cos(π (i + 3/4) / (m + 1/2))`, and the weights are
-/// `2 / ((1 - x^2) P_m'(x)^2)` (Abramowitz and Stegun 25.4.29; Numerical Recipes `gauleg`).
-pub(crate) fn gauss_legendre(m: usize) -> (Vec<f64>, Vec<f64>) {
-    if m <= 1 {
-        return (vec![0.0], vec![2.0]);
-    }
-    let mut nodes = vec![0.0; m];
-    let mut weights = vec![0.0; m];
-    for i in 0..m.div_ceil(2) {
-        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (m as f64 + 0.5)).cos();
-        let mut dp = 1.0;
-        for _ in 0..100 {
-            // Three-term recurrence k P_k = (2k - 1) x P_{k-1} - (k - 1) P_{k-2}, then
-            // P_m' = m (x P_m - P_{m-1}) / (x^2 - 1).
-            let (mut p0, mut p1) = (1.0, x);
-            for k in 2..=m {
-                let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = m as f64 * (x * p1 - p0) / (x * x - 1.0);
-            let step = p1 / dp;
-            x -= step;
-            if step.abs() <= 1e-15 {
-                break;
-            }
-        }
-        let w = 2.0 / ((1.0 - x * x) * dp * dp);
-        nodes[i] = -x;
-        nodes[m - 1 - i] = x;
-        weights[i] = w;
-        weights[m - 1 - i] = w;
-    }
-    (nodes, weights)
-}
-
 /// The factored fair-interpolation system of one parameter vector and knot vector: solves for
 /// the control points of the least-energy curve through any points at those parameters
 /// (see the module documentation for the mathematics).
@@ -184,81 +147,9 @@ pub struct FairInterpolationSolver {
     /// `W = H^{-1} A^T`, `N x n` row-major.
     w: Vec<f64>,
     /// Cholesky factor of `S = A W`.
-    s: DenseCholesky,
+    s: BandedCholesky,
     /// `g`, the largest diagonal entry of the Gram matrix (`H = G / g + A^T A`).
     energy_scale: f64,
-}
-
-/// `S = L L^T` of a small dense symmetric positive definite matrix, lower triangle row-major.
-#[derive(Clone, Debug)]
-struct DenseCholesky {
-    n: usize,
-    l: Vec<f64>,
-}
-
-impl DenseCholesky {
-    fn zeros(n: usize) -> Self {
-        DenseCholesky { n, l: vec![0.0; n * n] }
-    }
-
-    /// Set entry `(i, j)` of the lower triangle, `j <= i`.
-    fn set(&mut self, i: usize, j: usize, v: f64) {
-        self.l[i * self.n + j] = v;
-    }
-
-    /// Factor in place.
-    ///
-    /// # Errors
-    /// [`NurbsError::SingularSystem`] if a pivot `s_ii - sum_k l_ik^2` is not above
-    /// [`PIVOT_REL`] times `s_ii` (the same test as the banded factorizations).
-    fn factor(&mut self, what: &str) -> Result<(), NurbsError> {
-        let n = self.n;
-        for i in 0..n {
-            for j in 0..=i {
-                let (ri, rj) = (i * n, j * n);
-                let mut s = self.l[ri + j];
-                for k in 0..j {
-                    s -= self.l[ri + k] * self.l[rj + k];
-                }
-                if i == j {
-                    let d = self.l[ri + i];
-                    let usable = s > PIVOT_REL * d; // false for NaN too
-                    if !usable {
-                        return Err(NurbsError::SingularSystem {
-                            what: format!("{what}: pivot {s:e} against diagonal {d:e} in row {i} of {n}"),
-                        });
-                    }
-                    self.l[ri + i] = s.sqrt();
-                } else {
-                    self.l[ri + j] = s / self.l[rj + j];
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Overwrite `b` with `S^{-1} b`.
-    fn solve<const D: usize>(&self, b: &mut [[f64; D]]) {
-        let n = self.n;
-        for i in 0..n {
-            let mut s = b[i];
-            for (k, bk) in b[..i].iter().enumerate() {
-                let l = self.l[i * n + k];
-                s.iter_mut().zip(bk).for_each(|(x, y)| *x -= l * y);
-            }
-            let d = self.l[i * n + i];
-            b[i] = s.map(|x| x / d);
-        }
-        for i in (0..n).rev() {
-            let mut s = b[i];
-            for (k, bk) in b.iter().enumerate().skip(i + 1) {
-                let l = self.l[k * n + i];
-                s.iter_mut().zip(bk).for_each(|(x, y)| *x -= l * y);
-            }
-            let d = self.l[i * n + i];
-            b[i] = s.map(|x| x / d);
-        }
-    }
 }
 
 impl FairInterpolationSolver {
@@ -356,11 +247,12 @@ impl FairInterpolationSolver {
             }
         }
         // S = A W (symmetric positive definite iff A has full row rank).
-        let mut sc = DenseCholesky::zeros(n);
+        // A full band: the dense lower triangle.
+        let mut sc = BandedCholesky::zeros(n, n.saturating_sub(1));
         for (k, &(s, a)) in a_rows.iter().enumerate() {
             for l in 0..=k {
                 let v: f64 = a.iter().enumerate().map(|(ia, &av)| av * w[(s - p + ia) * n + l]).sum();
-                sc.set(k, l, v);
+                sc.add(k, l, v);
             }
         }
         sc.factor("fair interpolation: the interpolation conditions are (nearly) dependent")?;
@@ -520,19 +412,6 @@ mod tests {
             }
         }
         a
-    }
-
-    #[test]
-    fn gauss_legendre_integrates_polynomials_exactly() {
-        for m in 1..=MAX_DEGREE {
-            let (x, w) = gauss_legendre(m);
-            for d in 0..2 * m {
-                let q: f64 = x.iter().zip(&w).map(|(xi, wi)| wi * xi.powi(d as i32)).sum();
-                let exact = if d % 2 == 1 { 0.0 } else { 2.0 / (d + 1) as f64 };
-                // Sums of m <= 15 terms of size <= 2: a few ulps each.
-                assert_near!(q, exact, 1e-14, "m {m} degree {d}");
-            }
-        }
     }
 
     #[test]

@@ -9,11 +9,11 @@
 //! every set of points with the same parameters and knots (every coordinate, every section of
 //! a skinning, every column of control points).
 
-use super::banded::BandedLu;
 use super::knots::{check_params, knots_for_interpolation};
 use super::{parameterize, Parameterization};
 use crate::basis::{basis_funs, BasisRow};
 use crate::knots::MAX_DEGREE;
+use crate::linalg::BandedLu;
 use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
 
 /// The factored collocation matrix `N_{i,p}(t_k)` of one parameter vector and knot vector.
@@ -160,6 +160,19 @@ pub fn interpolate_curve(
 /// # Errors
 /// Those of [`parameterize`], [`knots_for_interpolation`] (in particular
 /// [`NurbsError::TooFewPoints`] if `points.len() <= degree`) and [`interpolate_curve`].
+///
+/// ```
+/// use nurbs::fit::{interpolate_curve_auto, parameterize, Parameterization};
+/// use nurbs::Vec3;
+/// let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(3.0, 1.5, 0.5), Vec3::new(4.0, 0.0, 1.0), Vec3::new(6.0, 0.5, 1.0)];
+/// let c = interpolate_curve_auto(&pts, 3, Parameterization::Centripetal)?;
+/// // The curve passes through every point at its parameter (The NURBS Book A9.1).
+/// let t = parameterize(&pts, Parameterization::Centripetal, 3)?;
+/// for (q, &u) in pts.iter().zip(&t) {
+///     assert!(c.point(u).distance(*q) < 1e-12);
+/// }
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 pub fn interpolate_curve_auto(
     points: &[Vec3],
     degree: usize,

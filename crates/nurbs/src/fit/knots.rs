@@ -1,9 +1,9 @@
 //! Knot vectors for fitting: averaging (interpolation), symmetric placement (least squares),
 //! uniform (paired with universal parameters), and the Schoenberg-Whitney check.
 
-use super::banded::BandedLu;
 use super::Parameterization;
 use crate::basis::{basis_funs, BasisRow};
+use crate::linalg::BandedLu;
 use crate::{KnotVector, NurbsError, MAX_DEGREE};
 
 /// Check that `params` are finite and non-decreasing (strictly increasing if `strict`).
@@ -138,7 +138,8 @@ impl<'a> OptimalKnots<'a> {
         u.extend_from_slice(&t[1..n - 1]);
         u.extend(std::iter::repeat_n(t[n - 1], k));
         let clamped = KnotVector::try_new(p, u)?;
-        let (nodes, weights) = super::constrained::gauss_legendre(k);
+        let gl = crate::GaussLegendre::new(k);
+        let (nodes, weights) = (gl.nodes().to_vec(), gl.weights().to_vec());
         let mut me = OptimalKnots { t, k, clamped, nodes, weights, cum: vec![0.0; (n - k) * (k + 1)] };
         // Integrals over whole intervals between parameters, then running sums.
         for r in 0..n - 1 {
@@ -362,8 +363,8 @@ pub fn approximation_knots(params: &[f64], n_ctrl: usize, degree: usize) -> Resu
 /// where the book's `T(j d - 1)` is biased by half an index toward `t_0`. Every span holds
 /// about `d` parameters, including the two end spans; [`approximation_knots`] instead makes
 /// its end spans about twice as wide as the others (they are the averaging knots of `n + 1`
-/// resampled parameters). Which fits better depends on the data: on hull tables with
-/// stations crowded at the ends (where the shape changes fastest) the equal spans are better,
+/// resampled parameters). Which fits better depends on the data: on tables with
+/// sections crowded at the ends (where the shape changes fastest) the equal spans are better,
 /// on tables with evenly spaced sections the wider end spans; the skinning therefore tries
 /// both ([`crate::fit::skin_approximate`]). As `n` approaches `m` the spans shrink to about one
 /// parameter and knots come close to parameters: for 62 uneven parameters (30 random sets,
@@ -645,7 +646,8 @@ mod tests {
                 // between all parameters and knots with p + 1 Gauss nodes (exact).
                 let mut breaks: Vec<f64> = t.iter().chain(xi).copied().collect();
                 breaks.sort_by(f64::total_cmp);
-                let (nodes, weights) = crate::fit::constrained::gauss_legendre(k);
+                let gl = crate::GaussLegendre::new(k);
+                let (nodes, weights) = (gl.nodes(), gl.weights());
                 for j in 0..n - k {
                     let mut f = 0.0;
                     for w in breaks.windows(2) {
@@ -656,7 +658,7 @@ mod tests {
                             * half
                             * nodes
                                 .iter()
-                                .zip(&weights)
+                                .zip(weights)
                                 .map(|(&s, &g)| g * unit_bspline(&t, p, j, mid + half * s))
                                 .sum::<f64>();
                     }

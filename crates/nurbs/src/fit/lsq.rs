@@ -10,12 +10,12 @@
 //! Schoenberg-Whitney condition; it is factored once by banded Cholesky
 //! ([`LeastSquaresSolver`]) and reused for every set of points with the same parameters and knots.
 
-use super::banded::BandedCholesky;
 use super::interp::check_in_domain;
 use super::knots::{check_ctrl_count, check_params, knots_for_approximation, schoenberg_whitney};
 use super::{parameterize, Parameterization};
 use crate::basis::{basis_funs, BasisRow};
 use crate::knots::MAX_DEGREE;
+use crate::linalg::BandedCholesky;
 use crate::{KnotVector, NurbsCurve, NurbsError, Vec3};
 
 /// The factored normal equations of one parameter vector and knot vector.
@@ -280,6 +280,23 @@ pub fn approximate_curve(
 ///
 /// # Errors
 /// Those of [`parameterize`], [`knots_for_approximation`] and [`approximate_curve`].
+///
+/// ```
+/// use nurbs::fit::{approximate_curve_auto, Parameterization};
+/// use nurbs::Vec3;
+/// // 20 points of the parabola y = x^2 at equal steps of x: with uniform parameters t = x,
+/// // x(t) and y(t) are polynomials a cubic of 4 control points holds exactly, and least
+/// // squares (The NURBS Book 9.4.1) reproduces them and keeps the end points.
+/// let pts: Vec<Vec3> = (0..20).map(|i| i as f64 / 19.0).map(|x| Vec3::new(x, x * x, 0.0)).collect();
+/// let c = approximate_curve_auto(&pts, 3, 4, Parameterization::Uniform)?;
+/// assert_eq!(c.num_control_points(), 4);
+/// assert!(c.point(0.0).distance(pts[0]) < 1e-14 && c.point(1.0).distance(pts[19]) < 1e-12);
+/// for i in 0..=10 {
+///     let p = c.point(i as f64 / 10.0);
+///     assert!((p.y - p.x * p.x).abs() < 1e-12);
+/// }
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 pub fn approximate_curve_auto(
     points: &[Vec3],
     degree: usize,

@@ -10,21 +10,25 @@
 
 use crate::{KnotVector, NurbsCurve, NurbsError, NurbsSurface, Vec3};
 
-mod banded;
+mod bounded;
 mod constrained;
-mod features;
+mod continuity;
+mod corners;
+mod extent;
 mod interp;
 mod knots;
 mod lsq;
 mod param;
+mod plane_runs;
 mod skin;
 
+pub use bounded::{bounded_refit, BoundedRefit, ControlBox, BOUNDED_REFIT_PULL};
 pub use constrained::{energy_order, fair_interpolate_curve, row_schoenberg_whitney, FairInterpolationSolver};
-pub use features::{
-    bounded_refit, find_flat_lines, find_knuckle_lines, join_knot_vectors, knot_multiplicity, knuckle_indices,
-    refit_within_flats, section_corners, turning_angles, BoundedRefit, Continuity, ControlBox, CornerOptions, FlatKind,
-    FlatLine, FlatOptions, KnuckleLine, SectionCorner, BOUNDED_REFIT_PULL,
+pub use continuity::{join_knot_vectors, knot_multiplicity, Continuity};
+pub use corners::{
+    find_knuckle_lines, knuckle_indices, section_corners, turning_angles, CornerOptions, KnuckleLine, SectionCorner,
 };
+pub use extent::{bounding_diagonal, has_extent};
 pub use interp::{interpolate_curve, interpolate_curve_auto, InterpolationSolver};
 pub use knots::{
     approximation_knots, averaging_knots, centred_approximation_knots, knots_for_approximation,
@@ -32,6 +36,7 @@ pub use knots::{
 };
 pub use lsq::{approximate_curve, approximate_curve_auto, LeastSquaresSolver};
 pub use param::{common_parameters, parameterize, Parameterization, SkinParameterization, UnknownParameterization};
+pub use plane_runs::{plane_run_ends, AxisPlane, RunEnd};
 pub use skin::{
     skin_approximate, skin_approximate_with_knuckles, skin_interpolate, skin_interpolate_with_knuckles, SkinOptions,
     SkinResult,

@@ -100,17 +100,17 @@ impl FromStr for Parameterization {
 /// `v` across them.
 ///
 /// The default is centripetal along the sections and chord length across them. Why: a
-/// section (keel to deck) turns sharply at a bilge or a knuckle, where centripetal parameters
-/// (eq. 9.6) keep the interpolant from overshooting; across the sections the data are stations
-/// spread along the length, and chord length (eq. 9.5) keeps the surface's speed across them
-/// proportional to their spacing, so that a table with half stations at the ends is not
-/// distorted. Measured on the nine tables of `tools/peers` (three exact surfaces, six real
-/// tables with every other station or waterline held out), chord length across the sections
-/// lowered the error of the interpolating skin between the offsets on six tables (by 26 % in
-/// RMS on the Series-60-like hull, 21 % on the Series 60 stations) and changed the other three
+/// section may turn sharply (a tight arc or a corner), where centripetal parameters (eq. 9.6)
+/// keep the interpolant from overshooting; across the sections the data are sections spread
+/// along the length, and chord length (eq. 9.5) keeps the surface's speed across them
+/// proportional to their spacing, so that a family with half-spaced sections at the ends is
+/// not distorted. Measured on the nine tables of `tools/peers` (three exact surfaces, six ship
+/// offset tables with every other section or row held out), chord length across the sections
+/// lowered the error of the interpolating skin between the points on six tables (by 26 % in
+/// RMS on the Series-60-like table, 21 % on the Series 60 table) and changed the other three
 /// by less than 0.1 %, and it lowered the least-squares error by 15 % in the geometric mean.
 /// Along the sections neither kind wins everywhere (chord length: 22 % less error on the Wigley
-/// hull, 9 % more on the 116 m cargo ship's waterlines); with centripetal parameters the skins
+/// table, 9 % more on the 116 m cargo ship's); with centripetal parameters the skins
 /// lost 5 of the 45 comparisons with the peer tools, with chord length 8.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct SkinParameterization {
@@ -185,6 +185,21 @@ impl FromStr for SkinParameterization {
 /// - [`NurbsError::CoincidentPoints`] if two consecutive points are closer than
 ///   [`COINCIDENT_REL`] times the polyline length (for every kind: the interpolant of such data
 ///   would have a cusp or a loop, and chord-based parameters would repeat).
+///
+/// ```
+/// use nurbs::fit::{parameterize, Parameterization};
+/// use nurbs::Vec3;
+/// // Chords of 1, 2 and 1: chord-length parameters 0, 1/4, 3/4, 1 (eq. 9.5); centripetal ones
+/// // follow the square roots of the chords (eq. 9.6).
+/// let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 2.0, 0.0), Vec3::new(1.0, 3.0, 0.0)];
+/// assert_eq!(parameterize(&pts, Parameterization::ChordLength, 3)?, vec![0.0, 0.25, 0.75, 1.0]);
+/// let c = parameterize(&pts, Parameterization::Centripetal, 3)?;
+/// let s = 2.0 + 2f64.sqrt();
+/// assert!((c[1] - 1.0 / s).abs() < 1e-15 && (c[2] - (1.0 + 2f64.sqrt()) / s).abs() < 1e-15);
+/// // Points given twice are refused.
+/// assert!(parameterize(&[pts[0], pts[0], pts[1]], Parameterization::ChordLength, 1).is_err());
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 pub fn parameterize(points: &[Vec3], kind: Parameterization, degree: usize) -> Result<Vec<f64>, NurbsError> {
     parameterize_labelled(points, kind, degree, "points")
 }
