@@ -31,14 +31,18 @@
 
 pub mod analysis;
 mod compare;
+mod curvature_range;
 pub mod digitize;
 pub mod drawing;
 mod error;
 pub mod export;
 pub mod fairing;
+mod fit;
 pub mod fit_error;
 mod held_out;
 pub mod hydrostatics;
+#[cfg(test)]
+mod layering;
 pub mod limits;
 mod markup;
 pub mod mesh;
@@ -59,16 +63,17 @@ pub mod viewer;
 pub use analysis::{check_fit_validity, check_validity, Envelope, Finding, FindingKind};
 pub use compare::{
     check_floors, compare_offsets, compare_offsets_with, comparison_json, comparison_markdown, comparison_table,
-    floors_markdown, gaussian_curvature_range, CompareConfig, CompareOptimization, CompareRow, Comparison,
-    CurvatureRange, CurvatureSampling, FloorCheck, Floors, OptimRunner, RowError, RowStatus, RowValidity,
-    COMPARE_METHODS, CURVATURE_GRID, FAIR_ROWS, FLOOR_RELATIVE_TOLERANCE,
+    floors_markdown, CompareConfig, CompareOptimization, CompareRow, Comparison, CurvatureSampling, FloorCheck, Floors,
+    OptimRunner, RowError, RowStatus, RowValidity, COMPARE_METHODS, FAIR_ROWS, FLOOR_RELATIVE_TOLERANCE,
 };
+pub use curvature_range::{gaussian_curvature_range, CurvatureRange, CURVATURE_GRID};
 pub use error::{HullError, InputErrorKind, Location};
 pub use fairing::{FairReport, Fairing};
-pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
+pub use fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles};
+pub use fit_error::{measure_fit_error, overfit, ErrorStats, FitError, HeldOutError, SectionError, WorstPoint};
 pub use held_out::{
-    held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, held_out_refit_config, overfit,
-    overfitting_warning, HeldOutError, HeldOutOptions,
+    held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, held_out_refit_config,
+    overfitting_warning, HeldOutOptions,
 };
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
@@ -77,9 +82,7 @@ pub use hydrostatics::{
 pub use numfmt::{format_figure, format_short};
 pub use offsets::{Offsets, Perpendiculars, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
-pub use pipeline::{
-    default_ctrl, fit_offsets, fit_offsets_with, EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles, HOLD_SHARE,
-};
+pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, HOLD_SHARE};
 pub use read::{
     decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
 };

@@ -43,8 +43,9 @@ use super::net_energy::NetEnergy;
 
 mod gauge;
 mod within;
+use super::FittedSurface;
 use super::Objective;
-use crate::{FitOutcome, HullError, Offsets};
+use crate::{HullError, Offsets};
 pub use within::ControlBox;
 
 mod matvec;
@@ -514,19 +515,19 @@ impl WeightProblem {
     /// with its fitted parameters, section by section.
     ///
     /// # Errors
-    /// [`HullError::Config`] if `fit.params` does not match the offsets point for point, and as
+    /// [`HullError::Config`] if `fit.params()` does not match the offsets point for point, and as
     /// [`WeightProblem::new`].
-    pub fn from_fit(fit: &FitOutcome, offsets: &Offsets, options: WeightOptions) -> Result<Self, HullError> {
-        let shapes_match = fit.params.len() == offsets.sections.len()
-            && fit.params.iter().zip(&offsets.sections).all(|(t, s)| t.len() == s.points.len());
+    pub fn from_fit(fit: &impl FittedSurface, offsets: &Offsets, options: WeightOptions) -> Result<Self, HullError> {
+        let shapes_match = fit.params().len() == offsets.sections.len()
+            && fit.params().iter().zip(&offsets.sections).all(|(t, s)| t.len() == s.points.len());
         if !shapes_match {
             return Err(HullError::Config(
                 "the fit's parameters do not match the offsets (expected the fit of these offsets)".into(),
             ));
         }
         let points: Vec<Vec3> = offsets.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
-        let params: Vec<(f64, f64)> = fit.params.iter().flatten().copied().collect();
-        Self::new(&fit.surface, &points, &params, options)
+        let params: Vec<(f64, f64)> = fit.params().iter().flatten().copied().collect();
+        Self::new(fit.surface(), &points, &params, options)
     }
 
     /// The same problem at other data parameters (clamped to the domain).
@@ -1781,7 +1782,7 @@ impl Objective for WeightProblem {
 mod tests {
     use super::*;
     use crate::optimize::evaluate_all;
-    use crate::{fit_offsets, series60_sample, FitConfig};
+    use crate::{fit_offsets, series60_sample, FitConfig, FitOutcome};
     use nurbs::assert_near;
 
     fn sample_fit(ctrl: (usize, usize)) -> (FitOutcome, Offsets) {
