@@ -60,6 +60,27 @@ impl fmt::Display for Location {
     }
 }
 
+/// How the caller's user names the inputs the library checks, for the messages
+/// ([`crate::table_drafts`], [`crate::ExportFormat::for_file`]): `--draft` on the command line,
+/// `draft` as a keyword argument.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InputNames {
+    /// Command-line flags: `--draft`, `--to`, `--step`, `--density`.
+    Flags,
+    /// Keyword arguments: `draft`, `to`, `step`, `density`.
+    Keywords,
+}
+
+impl InputNames {
+    /// What goes before an input's name: `--` or nothing.
+    pub fn prefix(self) -> &'static str {
+        match self {
+            InputNames::Flags => "--",
+            InputNames::Keywords => "",
+        }
+    }
+}
+
 /// Everything that can go wrong in the hull crate. Variants carry the offending values.
 #[derive(Debug, Error)]
 pub enum HullError {

@@ -36,6 +36,7 @@ pub mod digitize;
 pub mod drawing;
 mod error;
 pub mod export;
+mod export_format;
 pub mod fairing;
 mod fit;
 pub mod fit_error;
@@ -46,6 +47,7 @@ mod layering;
 pub mod limits;
 mod markup;
 pub mod mesh;
+mod mesh_comparison;
 mod numfmt;
 mod offsets;
 pub mod optimize;
@@ -56,6 +58,7 @@ pub mod render;
 mod report;
 pub mod report_html;
 mod sample;
+mod surface_input;
 mod tolerance_search;
 mod units;
 pub mod viewer;
@@ -67,7 +70,8 @@ pub use compare::{
     OptimRunner, RowError, RowStatus, RowValidity, COMPARE_METHODS, FAIR_ROWS, FLOOR_RELATIVE_TOLERANCE,
 };
 pub use curvature_range::{gaussian_curvature_range, CurvatureRange, CURVATURE_GRID};
-pub use error::{HullError, InputErrorKind, Location};
+pub use error::{HullError, InputErrorKind, InputNames, Location};
+pub use export_format::{export_timestamp, ExportFormat};
 pub use fairing::{FairReport, Fairing};
 pub use fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles};
 pub use fit_error::{measure_fit_error, overfit, ErrorStats, FitError, HeldOutError, SectionError, WorstPoint};
@@ -76,9 +80,10 @@ pub use held_out::{
     overfitting_warning, HeldOutOptions,
 };
 pub use hydrostatics::{
-    density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
-    HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
+    density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, table_drafts, Hydrostatics,
+    HydrostaticsOptions, HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
 };
+pub use mesh_comparison::{compare_mesh_and_surface, MeshComparison};
 pub use numfmt::{format_figure, format_short};
 pub use offsets::{Offsets, Perpendiculars, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
@@ -96,6 +101,7 @@ pub use report::{
     write_fit_outputs_with_report, write_report_json, InputSummary, Measured, Report, SurfaceSummary,
 };
 pub use sample::{series60_sample, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
+pub use surface_input::{detect_surface_input, holds_surface, is_mesh_path, strip_bom, SurfaceInput};
 pub use tolerance_search::{
     fit_offsets_within, fit_to_tolerance, ToleranceFit, ToleranceSearch, ToleranceSettings, TriedCount,
 };
