@@ -2,10 +2,12 @@
 //! as STEP, IGES (with section curves, or a polynomial approximation), DXF 3-D lines, STL, OBJ
 //! or binary glTF.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::LazyLock;
 
-use anyhow::{bail, Context};
+use anyhow::Context;
+use clap::builder::PossibleValue;
 use clap::{Args, ValueEnum};
 use hull::drawing::{lines_3d, write_dxf_3d_lines, LinesPlanOptions};
 use hull::export::{
@@ -14,8 +16,8 @@ use hull::export::{
     TessellationOptions,
 };
 use hull::optimize::OptimSettings;
-use hull::{FitMethod, Offsets};
-use nurbs::{NurbsSurface, Vec3};
+use hull::{ExportFormat, FitMethod, InputNames, Offsets};
+use nurbs::Vec3;
 use serde_json::json;
 
 use crate::fit::fit_with_progress;
@@ -24,85 +26,18 @@ use crate::skin_args::SkinArgs;
 use crate::stdout::outln;
 use crate::surface_arg::{read_input, Input};
 
-/// What to write.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ExportFormat {
-    /// STEP AP214: one B-spline face (`.stp`, `.step`).
-    Step,
-    /// IGES 5.3: the rational B-spline surface, entity 128 (`.igs`, `.iges`).
-    Iges,
-    /// IGES 5.3: the surface and the skinned sections as rational B-spline curves (126).
-    IgesCurves,
-    /// IGES 5.3: a polynomial (non-rational) surface within --tolerance of the surface, for
-    /// systems that drop weights.
-    IgesPolynomial,
-    /// DXF R12: stations, waterlines and buttocks as 3-D polylines (`.dxf`).
-    Dxf,
-    /// Binary STL triangulated to --tolerance (`.stl`).
-    Stl,
-    /// ASCII STL triangulated to --tolerance.
-    StlAscii,
-    /// Wavefront OBJ with vertex normals, triangulated to --tolerance (`.obj`).
-    Obj,
-    /// Binary glTF 2.0 coloured by Gaussian curvature, in metres, Y up (`.glb`).
-    Glb,
-}
+/// `--format`: a [`hull::ExportFormat`] by its name, each listed with its description.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FormatArg(pub ExportFormat);
 
-impl ExportFormat {
-    /// The format a file name's extension stands for.
-    pub fn from_path(path: &Path) -> Option<Self> {
-        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-        Some(match ext.as_str() {
-            "stp" | "step" => ExportFormat::Step,
-            "igs" | "iges" => ExportFormat::Iges,
-            "dxf" => ExportFormat::Dxf,
-            "stl" => ExportFormat::Stl,
-            "obj" => ExportFormat::Obj,
-            "glb" => ExportFormat::Glb,
-            _ => return None,
-        })
+impl ValueEnum for FormatArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        static ALL: LazyLock<[FormatArg; ExportFormat::ALL.len()]> = LazyLock::new(|| ExportFormat::ALL.map(FormatArg));
+        &*ALL
     }
 
-    fn name(self) -> &'static str {
-        match self {
-            ExportFormat::Step => "step",
-            ExportFormat::Iges => "iges",
-            ExportFormat::IgesCurves => "iges-curves",
-            ExportFormat::IgesPolynomial => "iges-polynomial",
-            ExportFormat::Dxf => "dxf",
-            ExportFormat::Stl => "stl",
-            ExportFormat::StlAscii => "stl-ascii",
-            ExportFormat::Obj => "obj",
-            ExportFormat::Glb => "glb",
-        }
-    }
-
-    /// The file family: formats that share an extension (the IGES variants, the STLs).
-    fn family(self) -> &'static str {
-        match self {
-            ExportFormat::Step => "STEP",
-            ExportFormat::Iges | ExportFormat::IgesCurves | ExportFormat::IgesPolynomial => "IGES",
-            ExportFormat::Dxf => "DXF",
-            ExportFormat::Stl | ExportFormat::StlAscii => "STL",
-            ExportFormat::Obj => "OBJ",
-            ExportFormat::Glb => "glTF",
-        }
-    }
-
-    /// The usual extension of the format's files.
-    fn extension(self) -> &'static str {
-        match self {
-            ExportFormat::Step => "stp",
-            ExportFormat::Iges | ExportFormat::IgesCurves | ExportFormat::IgesPolynomial => "igs",
-            ExportFormat::Dxf => "dxf",
-            ExportFormat::Stl | ExportFormat::StlAscii => "stl",
-            ExportFormat::Obj => "obj",
-            ExportFormat::Glb => "glb",
-        }
-    }
-
-    fn is_mesh(self) -> bool {
-        matches!(self, ExportFormat::Stl | ExportFormat::StlAscii | ExportFormat::Obj | ExportFormat::Glb)
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.0.name()).help(self.0.description()))
     }
 }
 
@@ -122,7 +57,7 @@ pub struct ExportArgs {
     /// Output format; by default from the extension of FILE (.stp/.step, .igs/.iges, .dxf,
     /// .stl, .obj, .glb).
     #[arg(long, value_enum)]
-    pub format: Option<ExportFormat>,
+    pub format: Option<FormatArg>,
     /// Meshes: largest distance between the triangles and the surface; iges-polynomial:
     /// largest distance between the polynomial and the rational surface. In the surface's
     /// length unit; default 1e-4 (meshes) or 1e-5 (iges-polynomial) of the control net's
@@ -147,52 +82,15 @@ pub struct ExportArgs {
     pub json: bool,
 }
 
-/// The format asked for, or the one of the output's extension; checks that the flags apply.
+/// The format asked for, or the one of the output's extension; checks that the flags apply
+/// ([`ExportFormat::for_file`]).
 fn format_of(args: &ExportArgs) -> anyhow::Result<ExportFormat> {
-    let Some(format) = args.format.or_else(|| ExportFormat::from_path(&args.out)) else {
-        bail!(
-            "cannot tell the format from {} (expected an extension .stp, .step, .igs, .iges, .dxf, .stl, .obj or \
-             .glb, or --format)",
-            args.out.display()
-        );
-    };
-    if let Some(named) = ExportFormat::from_path(&args.out).filter(|n| n.family() != format.family()) {
-        bail!(
-            "--format {} writes a {} file, but {} names a {} file: name it {} or pass --format {}",
-            format.name(),
-            format.family(),
-            args.out.display(),
-            named.family(),
-            args.out.with_extension(format.extension()).display(),
-            named.name()
-        );
-    }
-    if let Some(t) = args.tolerance {
-        if !(format.is_mesh() || format == ExportFormat::IgesPolynomial) {
-            bail!("--tolerance applies to stl, stl-ascii, obj, glb and iges-polynomial, not {}", format.name());
-        }
-        if !(t.is_finite() && t > 0.0) {
-            bail!("--tolerance {t}: expected a positive length");
-        }
-    }
-    Ok(format)
+    Ok(ExportFormat::for_file(args.format.map(|f| f.0), &args.out, args.tolerance, InputNames::Flags)?)
 }
 
-/// The header date: `--timestamp`, else `SOURCE_DATE_EPOCH`, else now.
+/// The header date: `--timestamp`, else `SOURCE_DATE_EPOCH`, else now ([`hull::export_timestamp`]).
 fn unix_time(args: &ExportArgs) -> i64 {
-    args.timestamp
-        .or_else(|| std::env::var("SOURCE_DATE_EPOCH").ok().and_then(|s| s.trim().parse().ok()))
-        .unwrap_or_else(|| {
-            std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map_or(0, |d| i64::try_from(d.as_secs()).unwrap_or(i64::MAX))
-        })
-}
-
-/// Diagonal of the control net's box.
-fn size(s: &NurbsSurface) -> f64 {
-    let (lo, hi) = s.control_bounds();
-    (hi - lo).norm()
+    hull::export_timestamp(args.timestamp)
 }
 
 pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
@@ -263,7 +161,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
             )
         }
         ExportFormat::IgesPolynomial => {
-            let tol = args.tolerance.unwrap_or(1e-5 * size(&surface));
+            let tol = args.tolerance.or(format.default_tolerance(&surface)).unwrap_or_default();
             let approx = polynomial_approximation(&surface, tol)?;
             hull::check_finite(&approx.surface).context("cannot export the polynomial approximation")?;
             write(&|mut w| write_iges(&mut w, &approx.surface, &iges_meta()))?;

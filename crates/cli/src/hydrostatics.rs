@@ -4,10 +4,10 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{bail, Context};
+use anyhow::Context;
 use clap::{Args, ValueEnum};
 use hull::optimize::OptimSettings;
-use hull::{FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, SEA_WATER_DENSITY};
+use hull::{FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, InputNames, SEA_WATER_DENSITY};
 
 use crate::fit::fit_with_progress;
 use crate::parse::parse_skin_method;
@@ -65,27 +65,15 @@ pub struct HydrostaticsArgs {
     pub out: Option<PathBuf>,
 }
 
-/// The drafts asked for: `--draft`, or the range to `--to` by `--step`.
+/// The drafts asked for: `--draft`, or the range to `--to` by `--step`, with `--density`
+/// checked too ([`hull::table_drafts`]).
 fn drafts(args: &HydrostaticsArgs) -> anyhow::Result<Vec<f64>> {
-    for (name, value) in [("--draft", Some(args.draft)), ("--to", args.to)] {
-        if let Some(t) = value {
-            if !(t.is_finite() && t > 0.0) {
-                bail!("{name} {t}: expected a draft greater than 0");
-            }
-        }
-    }
-    Ok(match (args.to, args.step) {
-        (Some(to), Some(step)) => hull::draft_range(args.draft, to, step)?,
-        _ => vec![args.draft],
-    })
+    Ok(hull::table_drafts(Some(args.draft), args.to, args.step, args.density, InputNames::Flags)?)
 }
 
 /// Run `hullskin hydrostatics`.
 pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
     let drafts = drafts(args)?;
-    if !(args.density.is_finite() && args.density > 0.0) {
-        bail!("--density {}: expected a positive density in t/m³", args.density);
-    }
     let (surfaces, units, source, data_pp) = match read_input(&args.skin)? {
         Input::Surface { surface, units, source } => {
             crate::surface_arg::note_units_not_applied(&args.skin, units, &source);

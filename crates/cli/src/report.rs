@@ -102,14 +102,7 @@ struct Loaded {
 pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
     let start = Instant::now();
     progress::install_stop_handler();
-    if let Some(t) = args.draft {
-        if !(t.is_finite() && t > 0.0) {
-            bail!("--draft {t}: expected a draft greater than 0");
-        }
-    }
-    if !(args.density.is_finite() && args.density > 0.0) {
-        bail!("--density {}: expected a positive density in t/m³", args.density);
-    }
+    hull::table_drafts(args.draft, None, None, args.density, hull::InputNames::Flags)?;
     let loaded = load(args)?;
     hull::check_finite(&loaded.surface).with_context(|| format!("cannot report on {}", loaded.source))?;
     let comparison = match (&loaded.offsets, args.compare) {

@@ -10,10 +10,10 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 use hull::mesh::{
-    mesh_distance, mesh_hydrostatics, read_mesh, slice_mesh, write_sections_csv, Axes, MeshFormat, MeshHydrostatics,
-    MeshReadOptions, Resample, SliceOptions, SliceOutcome, Spacing, Stations, TriMesh, VertexFilter,
+    mesh_hydrostatics, read_mesh, slice_mesh, write_sections_csv, Axes, MeshHydrostatics, MeshReadOptions, Resample,
+    SliceOptions, SliceOutcome, Spacing, Stations, TriMesh,
 };
-use hull::{Hydrostatics, HydrostaticsOptions, Offsets, Units};
+use hull::{Offsets, Units};
 use nurbs::Vec3;
 
 use crate::parse::parse_units;
@@ -113,10 +113,8 @@ impl MeshArgs {
     }
 }
 
-/// True if `path` names a mesh: `.stl`, `.obj`, either optionally followed by `.gz`.
-pub fn is_mesh_path(path: &Path) -> bool {
-    MeshFormat::from_path(path).is_some()
-}
+/// True if `path` names a mesh ([`hull::is_mesh_path`]).
+pub use hull::is_mesh_path;
 
 /// The sections of the mesh at `path`, sliced with `args` (for `fit` and the commands that
 /// fit first).
@@ -284,23 +282,22 @@ fn check_surface(
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let (surface, _) = hull::export::read_surface_json(&text)
         .with_context(|| format!("cannot read the surface {}", path.display()))?;
-    let row = Hydrostatics::new(&surface, &HydrostaticsOptions::default())
-        .and_then(|h| h.at(m.draft))
+    let c = hull::compare_mesh_and_surface(&surface, mesh, offsets, m)
         .with_context(|| format!("hydrostatics of {}", path.display()))?;
-    let pct = |a: f64, b: f64| if b != 0.0 { 100.0 * (a - b) / b } else { f64::NAN };
+    let row = &c.surface;
     let f = hull::format_figure;
     let mut s = format!("surface {} against the mesh at draft {}:\n", path.display(), hull::format_short(m.draft));
     s += &format!(
         "  volume {} ({:+.3} %), LCB {} ({}), KB {} ({})\n",
         f(row.vol),
-        pct(row.vol, m.volume),
+        c.volume_pct,
         f(row.lcb),
-        signed(row.lcb - m.lcb),
+        signed(c.lcb_diff),
         f(row.vcb),
-        signed(row.vcb - m.vcb)
+        signed(c.kb_diff)
     );
-    s += &format!("  wetted surface {} ({:+.3} %)\n", f(row.s), pct(row.s, m.wetted_surface));
-    s += &format!("  waterplane {} ({:+.3} %)\n", f(row.aw), pct(row.aw, m.waterplane_area));
+    s += &format!("  wetted surface {} ({:+.3} %)\n", f(row.s), c.wetted_surface_pct);
+    s += &format!("  waterplane {} ({:+.3} %)\n", f(row.aw), c.waterplane_pct);
     let mut json = serde_json::json!({
         "surface": path.display().to_string(),
         "volume": row.vol,
@@ -309,8 +306,7 @@ fn check_surface(
         "wetted_surface": row.s,
         "waterplane_area": row.aw,
     });
-    if let Some(filter) = VertexFilter::for_sections(offsets, m.draft) {
-        let d = mesh_distance(mesh, &surface, &filter);
+    if let Some(d) = &c.distance {
         let h = &d.over_hull;
         s += &format!(
             "  distance of {} wetted starboard mesh vertices to the surface: max {:.3e}, mean {:.3e}, RMS {:.3e} \
@@ -398,13 +394,6 @@ mod tests {
         assert!(parse_axes("x,x,y").expect_err("twice").contains("each of x, y, z once"));
         assert_eq!(parse_spacing("Uniform"), Ok(Spacing::Uniform));
         assert!(parse_resample("spline").is_err());
-    }
-
-    #[test]
-    fn mesh_paths_by_extension() {
-        for (p, mesh) in [("a.stl", true), ("b/A.STL.GZ", true), ("c.obj", true), ("d.csv", false), ("e.json", false)] {
-            assert_eq!(is_mesh_path(Path::new(p)), mesh, "{p}");
-        }
     }
 
     #[test]

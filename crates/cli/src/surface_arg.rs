@@ -3,10 +3,8 @@
 //! B-spline surface, or offsets to be fitted first with the skinning flags of [`SkinArgs`] (the
 //! built-in Series 60 sample when no input is given).
 
-use std::path::Path;
-
 use anyhow::{bail, Context};
-use hull::{Offsets, Units};
+use hull::{Offsets, SurfaceInput, Units};
 use nurbs::NurbsSurface;
 
 use crate::skin_args::SkinArgs;
@@ -62,24 +60,23 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
     let Some(path) = &skin.input else {
         return Ok(Input::Offsets(hull::series60_sample()));
     };
-    if crate::slice::is_mesh_path(path) {
+    if hull::is_mesh_path(path) {
         return Ok(Input::Offsets(crate::slice::mesh_offsets(path, &skin.mesh, skin.units())?));
     }
     let source = path.display().to_string();
     hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface.json or offsets file")?;
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
-    if let Some(format) = cad_format(path, &bytes) {
-        return cad_surface(&bytes, &source, format);
-    }
-    let text = hull::decode(&bytes, &source)?;
-    let text = without_bom(text);
-    if is_surface_json(text) {
-        let (surface, units) = hull::export::read_surface_json(text).map_err(|e| surface_json_error(e, &source))?;
-        // Finite coordinates can still overflow every length, area and volume computed from
-        // them (a control net of 1e308): refused here for every command, not only the writers.
-        hull::check_finite(&surface).with_context(|| format!("cannot use the surface {source}"))?;
-        let units: Units = units.parse().with_context(|| format!("{source}: \"units\""))?;
-        return Ok(Input::Surface { surface, units, source });
+    match hull::detect_surface_input(path, &bytes)? {
+        SurfaceInput::Cad(format) => return cad_surface(&bytes, &source, format),
+        SurfaceInput::SurfaceJson(text) => {
+            let (surface, units) = hull::export::read_surface_json(text).map_err(|e| surface_json_error(e, &source))?;
+            // Finite coordinates can still overflow every length, area and volume computed from
+            // them (a control net of 1e308): refused here for every command, not only the writers.
+            hull::check_finite(&surface).with_context(|| format!("cannot use the surface {source}"))?;
+            let units: Units = units.parse().with_context(|| format!("{source}: \"units\""))?;
+            return Ok(Input::Surface { surface, units, source });
+        }
+        SurfaceInput::Offsets => {}
     }
     let outcome = hull::read_offsets_with(path, &skin.read_options())?;
     // hydrostatics and report take --lpp as the perpendiculars too.
@@ -87,37 +84,8 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
     Ok(Input::Offsets(crate::skin_args::report_reading(outcome)))
 }
 
-/// The CAD format of a file, by its content, else its extension.
-fn cad_format(path: &Path, bytes: &[u8]) -> Option<hull::CadFormat> {
-    hull::CadFormat::sniff(bytes).or_else(|| hull::CadFormat::from_path(path))
-}
-
-/// A UTF-8 byte-order mark (a Windows editor's) is no part of the text.
-fn without_bom(text: &str) -> &str {
-    text.strip_prefix('\u{FEFF}').unwrap_or(text)
-}
-
-/// A JSON object that is not an offset table: a surface.json.
-fn is_surface_json(text: &str) -> bool {
-    text.trim_start().starts_with('{') && !hull::read::json_table::is_offset_json(text)
-}
-
-/// Whether `path` holds a surface: an IGES or STEP file (told apart as [`read_input`] does),
-/// or a JSON that reads as a surface.json. A file that cannot be read, is too large or is a
-/// broken JSON is not: the offsets reader names its error and place.
-pub(crate) fn holds_surface(path: &Path) -> bool {
-    if crate::slice::is_mesh_path(path)
-        || hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface file").is_err()
-    {
-        return false;
-    }
-    let Ok(bytes) = std::fs::read(path) else { return false };
-    cad_format(path, &bytes).is_some()
-        || hull::decode(&bytes, &path.display().to_string()).is_ok_and(|t| {
-            let t = without_bom(t);
-            is_surface_json(t) && hull::export::read_surface_json(t).is_ok()
-        })
-}
+/// Whether `path` holds a surface ([`hull::holds_surface`]).
+pub(crate) use hull::holds_surface;
 
 /// A note on standard error when `--units` was given for a surface.json input in other units
 /// (a command that does not convert: the surface keeps its own).

@@ -20,33 +20,13 @@ use serde_json::{json, Value};
 
 mod common;
 use common::*;
+/// The Python of `tools/requirements.txt`: the helper of hull's tests, one for the workspace.
+#[path = "../../hull/tests/common/python.rs"]
+mod python;
+use python::tools_python;
 
 fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// The Python with the tools' requirements; panics, naming `skip_var`, when there is none (the
-/// tests that call it are ignored when `skip_var=1`: the build script turns it into a cfg).
-fn tools_python(skip_var: &str) -> String {
-    static PYTHON: OnceLock<Result<String, String>> = OnceLock::new();
-    if let Ok(p) = std::env::var("HULLSKIN_PYTHON") {
-        if !p.is_empty() {
-            return p;
-        }
-    }
-    let found = PYTHON.get_or_init(|| {
-        let script = workspace_root().join("tools/setup-python.sh");
-        let out = Command::new("bash").arg(&script).output().map_err(|e| format!("cannot run setup: {e}"))?;
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        match stdout.lines().last() {
-            Some(p) if out.status.success() => Ok(p.trim().to_string()),
-            _ => Err(format!("{} failed:\n{}", script.display(), String::from_utf8_lossy(&out.stderr))),
-        }
-    });
-    match found {
-        Ok(p) => p.clone(),
-        Err(e) => panic!("{e}\nPoint HULLSKIN_PYTHON at a Python with tools/requirements.txt, or set {skip_var}=1."),
-    }
 }
 
 /// Run `tools/<script>` on `args`; the exit code and the JSON it printed.
@@ -138,7 +118,7 @@ fn expected(dir: &Path, name: &str, s: &NurbsSurface, units: &str, extra: Value)
 #[test]
 #[cfg_attr(skip_occt, ignore = "HULLSKIN_SKIP_OCCT=1")]
 fn step_and_iges_exports_are_read_by_occt() {
-    let python = tools_python("HULLSKIN_SKIP_OCCT");
+    let python = tools_python("HULLSKIN_SKIP_OCCT", "Open CASCADE check of the exported STEP and IGES");
     let dir = tempfile::tempdir().expect("temp dir");
     let d = dir.path();
     let (plain, rational) = inputs();
@@ -221,7 +201,7 @@ fn step_and_iges_exports_are_read_by_occt() {
 #[test]
 #[cfg_attr(skip_occt, ignore = "HULLSKIN_SKIP_OCCT=1")]
 fn mirrored_and_converted_exports_are_read_by_occt() {
-    let python = tools_python("HULLSKIN_SKIP_OCCT");
+    let python = tools_python("HULLSKIN_SKIP_OCCT", "Open CASCADE check of the exported STEP and IGES");
     let dir = tempfile::tempdir().expect("temp dir");
     let d = dir.path();
     let (plain, _) = inputs();
@@ -274,7 +254,7 @@ fn read_mesh(python: &str, path: &Path) -> (Vec<Vec3>, usize, Value) {
 #[test]
 #[cfg_attr(skip_mesh, ignore = "HULLSKIN_SKIP_MESH=1")]
 fn mesh_exports_are_read_by_trimesh_and_pygltflib() {
-    let python = tools_python("HULLSKIN_SKIP_MESH");
+    let python = tools_python("HULLSKIN_SKIP_MESH", "trimesh/pygltflib check of the exported meshes");
     let dir = tempfile::tempdir().expect("temp dir");
     let d = dir.path();
     let (_, rational) = inputs();
@@ -318,7 +298,7 @@ fn mesh_exports_are_read_by_trimesh_and_pygltflib() {
 #[test]
 #[cfg_attr(skip_dxf, ignore = "HULLSKIN_SKIP_DXF=1")]
 fn dxf_export_is_read_by_ezdxf() {
-    let python = tools_python("HULLSKIN_SKIP_DXF");
+    let python = tools_python("HULLSKIN_SKIP_DXF", "ezdxf check of the exported DXF");
     let dir = tempfile::tempdir().expect("temp dir");
     let d = dir.path();
     let (plain, _) = inputs();

@@ -60,6 +60,27 @@ impl fmt::Display for Location {
     }
 }
 
+/// How the caller's user names the inputs the library checks, for the messages
+/// ([`crate::table_drafts`], [`crate::ExportFormat::for_file`]): `--draft` on the command line,
+/// `draft` as a keyword argument.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InputNames {
+    /// Command-line flags: `--draft`, `--to`, `--step`, `--density`.
+    Flags,
+    /// Keyword arguments: `draft`, `to`, `step`, `density`.
+    Keywords,
+}
+
+impl InputNames {
+    /// What goes before an input's name: `--` or nothing.
+    pub fn prefix(self) -> &'static str {
+        match self {
+            InputNames::Flags => "--",
+            InputNames::Keywords => "",
+        }
+    }
+}
+
 /// Everything that can go wrong in the hull crate. Variants carry the offending values.
 #[derive(Debug, Error)]
 pub enum HullError {
@@ -104,7 +125,7 @@ pub enum HullError {
     /// An input above one of the documented caps of [`crate::limits`] (boxed to keep
     /// `Result<_, HullError>` small).
     #[error("{0}")]
-    Limit(Box<crate::limits::LimitExceeded>),
+    Limit(Box<LimitExceeded>),
     /// No control-point count tried reached the requested max error.
     #[error(
         "no control-point count reaches max error {tolerance:.3e} {units}: the best max error is {best:.3e} {units} at {}x{} control points after {fits} fits (expected a tolerance of at least that)",
@@ -494,6 +515,52 @@ fn line_note(line: Option<usize>) -> String {
     match line {
         Some(l) => format!(" (line {l})"),
         None => String::new(),
+    }
+}
+
+/// An input above one of the caps: what was counted, how many, the cap, and what was
+/// expected. Prints as `input: 3,200,000 points exceed the cap of 2,000,000 (expected ...;
+/// see README Limits)`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LimitExceeded {
+    /// The input (a path as given, or a name such as `surface JSON`).
+    pub input: String,
+    /// What was counted, plural: `points`, `points in section "7"`, `bytes`.
+    pub what: String,
+    /// How many there are (or are claimed).
+    pub value: u64,
+    /// The cap.
+    pub cap: u64,
+    /// What is accepted, e.g. `at most 2,000,000 offsets in all`.
+    pub expected: String,
+}
+
+impl LimitExceeded {
+    /// `value` of `what` in `input` against `cap`; `expected` says what is accepted.
+    pub fn new(input: &str, what: impl Into<String>, value: u64, cap: u64, expected: impl Into<String>) -> Self {
+        LimitExceeded { input: input.to_string(), what: what.into(), value, cap, expected: expected.into() }
+    }
+}
+
+impl fmt::Display for LimitExceeded {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}: {} {} exceed the cap of {} (expected {}; see README Limits)",
+            self.input,
+            crate::numfmt::thousands(self.value),
+            self.what,
+            crate::numfmt::thousands(self.cap),
+            self.expected
+        )
+    }
+}
+
+impl std::error::Error for LimitExceeded {}
+
+impl From<LimitExceeded> for HullError {
+    fn from(e: LimitExceeded) -> Self {
+        HullError::Limit(Box::new(e))
     }
 }
 

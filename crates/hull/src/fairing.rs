@@ -20,36 +20,9 @@
 //! plain, 29 µm at 1e-3), so the plain fit stays.
 
 use rayon::prelude::*;
-use serde::Serialize;
 
-use crate::analysis::{bending_energy, default_quadrature};
-use crate::{gaussian_curvature_range, FitOutcome, HullError, CURVATURE_GRID};
-
-/// The fairness term of a fit.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub enum Fairing {
-    /// None: the plain least squares (`--fair 0`).
-    #[default]
-    Off,
-    /// This weight: the smoothing `ν` of the approximation
-    /// ([`nurbs::fit::SkinOptions::smoothing`]) and, for the weight optimisers, the net's
-    /// fairness [`WeightOptions::fair`](crate::optimize::WeightOptions::fair).
-    Lambda(f64),
-    /// The fairest surface within `tolerance` (module docs); `None`: the plain approximation's
-    /// own max error.
-    Auto { tolerance: Option<f64> },
-}
-
-impl Fairing {
-    /// The name in reports: `off`, the `λ`, or `auto`.
-    pub fn name(self) -> String {
-        match self {
-            Fairing::Off => "off".into(),
-            Fairing::Lambda(l) => format!("{l:e}"),
-            Fairing::Auto { .. } => "auto".into(),
-        }
-    }
-}
+pub use crate::fit::{FairReport, FairTry, Fairing, FairnessFigures};
+use crate::{FitOutcome, HullError};
 
 /// [`WeightOptions::weight_smoothing`](crate::optimize::WeightOptions::weight_smoothing) of the
 /// optimisers on the fair objective: a difference of 1 between neighbouring log-weights (a
@@ -78,91 +51,6 @@ pub const NET_FAIR: f64 = 1e-4;
 /// The smoothing weights `ν` ([`nurbs::fit::SkinOptions::smoothing`]) that [`Fairing::Auto`]
 /// tries, smallest first.
 pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.0];
-
-/// One smoothing weight tried.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct FairTry {
-    pub lambda: f64,
-    /// True max error at the offsets.
-    pub max: f64,
-    /// Validity findings ([`crate::analysis::check_fit_validity`]).
-    pub findings: usize,
-    /// The one taken: sound, within the tolerance and fairer; or, for a plain fit with
-    /// findings, the least smoothing with the fewest (within twice the tolerance).
-    pub accepted: bool,
-}
-
-/// Thin-plate energy and Gaussian-curvature range of a surface.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct FairnessFigures {
-    /// `∫ (k1^2 + k2^2) dA`, dimensionless ([`crate::analysis::BendingEnergy::thin_plate`]).
-    pub thin_plate: f64,
-    /// Smallest and largest Gaussian curvature on the comparison grid, 1/units^2.
-    pub gaussian: [f64; 2],
-}
-
-impl FairnessFigures {
-    /// The figures of `surface`.
-    pub fn of(surface: &nurbs::NurbsSurface) -> Self {
-        let thin_plate = bending_energy(surface, default_quadrature(surface)).thin_plate;
-        let gaussian = gaussian_curvature_range(surface, CURVATURE_GRID).map_or([f64::NAN; 2], |k| [k.min, k.max]);
-        FairnessFigures { thin_plate, gaussian }
-    }
-}
-
-/// What fairing did, for `report.json` (`"fairing"`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct FairReport {
-    /// `"off"`, a number, or `"auto"`.
-    pub setting: String,
-    /// The `λ` used (0: the plain approximation was kept).
-    pub lambda: f64,
-    /// The max error the auto choice allowed.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub tolerance: Option<f64>,
-    pub tried: Vec<FairTry>,
-    /// Validity findings of the plain approximation.
-    pub plain_findings: usize,
-    /// Before (the plain approximation at the same control points) and after.
-    pub before: FairnessFigures,
-    pub after: FairnessFigures,
-}
-
-impl FairReport {
-    /// One line for the summary table (`units`: the offsets' unit symbol).
-    pub fn summary(&self, units: &str) -> String {
-        let figures = format!(
-            "thin-plate energy {:.4} -> {:.4}, Gaussian curvature [{:.3e}, {:.3e}] -> [{:.3e}, {:.3e}] 1/{units}^2",
-            self.before.thin_plate,
-            self.after.thin_plate,
-            self.before.gaussian[0],
-            self.before.gaussian[1],
-            self.after.gaussian[0],
-            self.after.gaussian[1]
-        );
-        let limit = self.tolerance.map(|t| format!(" within max error {t:.3e} {units}")).unwrap_or_default();
-        let chosen = self.tried.iter().find(|t| t.accepted);
-        if let (Some(c), Some(t)) = (chosen, self.tolerance) {
-            if c.max > t || self.plain_findings > 0 {
-                return format!(
-                    "fairing ({}): smoothing {:.0e} leaves {} validity finding(s) against the plain fit's {}, at a \
-                     max error of {:.3e} {units} against {t:.3e} {units}; {figures}",
-                    self.setting, self.lambda, c.findings, self.plain_findings, c.max
-                );
-            }
-        }
-        if self.lambda == 0.0 {
-            format!(
-                "fairing ({}): none of {} smoothed fits{limit} was sound and fairer (thin-plate energy, curvature \
-                 extreme) than the plain least squares, which is kept",
-                self.setting,
-                self.tried.len()
-            )
-        } else {
-            format!("fairing ({}): smoothing {:.0e}{limit}, {figures}", self.setting, self.lambda)
-        }
-    }
-}
 
 /// The largest absolute Gaussian curvature of `f`.
 fn extreme(f: &FairnessFigures) -> f64 {

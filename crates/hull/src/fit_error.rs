@@ -71,7 +71,43 @@ pub struct FitError {
     /// The error between the offsets, by cross-validation ([`crate::held_out_for_config`]);
     /// `None` (left out of the JSON) unless it was asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub held_out: Option<crate::HeldOutError>,
+    pub held_out: Option<HeldOutError>,
+}
+
+/// The held-out (cross-validated) error ([`crate::held_out_error`]): `report.json`'s
+/// `error.held_out`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct HeldOutError {
+    /// RMS of the true distances of all held-out offsets (both kinds) to their refits.
+    pub rms: f64,
+    /// The largest of them.
+    pub max: f64,
+    /// The held-out sections' offsets (zero points when none could be held out).
+    pub sections: ErrorStats,
+    /// The held-out points within sections.
+    pub points: ErrorStats,
+    /// `K`.
+    pub folds: usize,
+    /// Refits done (folds of either kind that held something out).
+    pub refits: usize,
+    /// Wall time of the refits and measurements.
+    pub seconds: f64,
+}
+
+impl HeldOutError {
+    /// Whether a fit with RMS error `at_offsets` at the offsets and this held-out error
+    /// over-fits compared with a baseline fit (`baseline_at_offsets`, `baseline`): see
+    /// [`overfit`], on the RMS errors.
+    pub fn overfits(&self, at_offsets: f64, baseline_at_offsets: f64, baseline: &HeldOutError) -> bool {
+        overfit(at_offsets, self.rms, baseline_at_offsets, baseline.rms)
+    }
+}
+
+/// Over-fitting of fit `a` against fit `b`: `a` is closer to the offsets than `b`
+/// (`at_offsets_a < at_offsets_b`) but farther from the held-out ones (`held_a > held_b`), so
+/// what it gained at the offsets it lost between them.
+pub fn overfit(at_offsets_a: f64, held_a: f64, at_offsets_b: f64, held_b: f64) -> bool {
+    at_offsets_a < at_offsets_b && held_a > held_b
 }
 
 /// Distance of every offset to `surface` by closest-point projection, per section and overall.

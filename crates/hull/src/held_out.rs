@@ -37,7 +37,7 @@ use nurbs::{NurbsError, NurbsSurface};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::fit_error::{project_offsets, ErrorStats};
+use crate::fit_error::{project_offsets, ErrorStats, HeldOutError};
 use crate::optimize::{quiet, Control, Progress};
 use crate::pipeline::fit_surface_with;
 use crate::{default_ctrl, FitConfig, FitMethod, HullError, Offsets, Section};
@@ -92,41 +92,6 @@ impl Default for HeldOutOptions {
     fn default() -> Self {
         HeldOutOptions { folds: Self::DEFAULT_FOLDS, sections: true, points: true, degree: (3, 3) }
     }
-}
-
-/// The held-out (cross-validated) error: `report.json`'s `error.held_out`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct HeldOutError {
-    /// RMS of the true distances of all held-out offsets (both kinds) to their refits.
-    pub rms: f64,
-    /// The largest of them.
-    pub max: f64,
-    /// The held-out sections' offsets (zero points when none could be held out).
-    pub sections: ErrorStats,
-    /// The held-out points within sections.
-    pub points: ErrorStats,
-    /// `K`.
-    pub folds: usize,
-    /// Refits done (folds of either kind that held something out).
-    pub refits: usize,
-    /// Wall time of the refits and measurements.
-    pub seconds: f64,
-}
-
-impl HeldOutError {
-    /// Whether a fit with RMS error `at_offsets` at the offsets and this held-out error
-    /// over-fits compared with a baseline fit (`baseline_at_offsets`, `baseline`): see
-    /// [`overfit`], on the RMS errors.
-    pub fn overfits(&self, at_offsets: f64, baseline_at_offsets: f64, baseline: &HeldOutError) -> bool {
-        overfit(at_offsets, self.rms, baseline_at_offsets, baseline.rms)
-    }
-}
-
-/// Over-fitting of fit `a` against fit `b`: `a` is closer to the offsets than `b`
-/// (`at_offsets_a < at_offsets_b`) but farther from the held-out ones (`held_a > held_b`), so
-/// what it gained at the offsets it lost between them.
-pub fn overfit(at_offsets_a: f64, held_a: f64, at_offsets_b: f64, held_b: f64) -> bool {
-    at_offsets_a < at_offsets_b && held_a > held_b
 }
 
 /// Which kind of offsets a split holds out.
@@ -448,6 +413,7 @@ fn data_extent(offsets: &Offsets) -> (usize, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fit_error::overfit;
     use crate::{fit_offsets, series60_sample};
     use nurbs::{assert_near, Vec3};
 

@@ -31,18 +31,24 @@
 
 pub mod analysis;
 mod compare;
+mod curvature_range;
 pub mod digitize;
 pub mod drawing;
 mod error;
 pub mod export;
+mod export_format;
 pub mod fairing;
+mod fit;
 pub mod fit_error;
 mod flats;
 mod held_out;
 pub mod hydrostatics;
+#[cfg(test)]
+mod layering;
 pub mod limits;
 mod markup;
 pub mod mesh;
+mod mesh_comparison;
 mod numfmt;
 mod offsets;
 pub mod optimize;
@@ -53,6 +59,7 @@ pub mod render;
 mod report;
 pub mod report_html;
 mod sample;
+mod surface_input;
 mod tolerance_search;
 mod units;
 pub mod viewer;
@@ -60,28 +67,29 @@ pub mod viewer;
 pub use analysis::{check_fit_validity, check_validity, Envelope, Finding, FindingKind};
 pub use compare::{
     check_floors, compare_offsets, compare_offsets_with, comparison_json, comparison_markdown, comparison_table,
-    floors_markdown, gaussian_curvature_range, CompareConfig, CompareOptimization, CompareRow, Comparison,
-    CurvatureRange, CurvatureSampling, FloorCheck, Floors, OptimRunner, RowError, RowStatus, RowValidity,
-    COMPARE_METHODS, CURVATURE_GRID, FAIR_ROWS, FLOOR_RELATIVE_TOLERANCE,
+    floors_markdown, CompareConfig, CompareOptimization, CompareRow, Comparison, CurvatureSampling, FloorCheck, Floors,
+    OptimRunner, RowError, RowStatus, RowValidity, COMPARE_METHODS, FAIR_ROWS, FLOOR_RELATIVE_TOLERANCE,
 };
-pub use error::{HullError, InputErrorKind, Location};
+pub use curvature_range::{gaussian_curvature_range, CurvatureRange, CURVATURE_GRID};
+pub use error::{HullError, InputErrorKind, InputNames, Location};
+pub use export_format::{export_timestamp, ExportFormat};
 pub use fairing::{FairReport, Fairing};
-pub use fit_error::{measure_fit_error, ErrorStats, FitError, SectionError, WorstPoint};
+pub use fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles};
+pub use fit_error::{measure_fit_error, overfit, ErrorStats, FitError, HeldOutError, SectionError, WorstPoint};
 pub use flats::{find_flat_lines, flat_bounds, refit_within_flats, FlatKind, FlatLine, FlatOptions};
 pub use held_out::{
     held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, held_out_refit_config,
-    held_out_wanted, overfit, overfitting_warning, HeldOutError, HeldOutOptions,
+    held_out_wanted, overfitting_warning, HeldOutOptions,
 };
 pub use hydrostatics::{
-    density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, Hydrostatics, HydrostaticsOptions,
-    HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
+    density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, table_drafts, Hydrostatics,
+    HydrostaticsOptions, HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
 };
+pub use mesh_comparison::{compare_mesh_and_surface, MeshComparison};
 pub use numfmt::{format_figure, format_short};
 pub use offsets::{Offsets, Perpendiculars, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
-pub use pipeline::{
-    default_ctrl, fit_offsets, fit_offsets_with, EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles, HOLD_SHARE,
-};
+pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, HOLD_SHARE};
 pub use read::{
     decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
 };
@@ -95,6 +103,7 @@ pub use report::{
     write_fit_outputs_with_report, write_report_json, InputSummary, Measured, Report, SurfaceSummary,
 };
 pub use sample::{series60_sample, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
+pub use surface_input::{detect_surface_input, holds_surface, is_mesh_path, strip_bom, SurfaceInput};
 pub use tolerance_search::{
     default_tolerance, fit_offsets_within, fit_to_tolerance, Goal, Referee, ToleranceFit, ToleranceSearch,
     ToleranceSettings, TriedCount, DEFAULT_TOLERANCE_OF_BEAM,

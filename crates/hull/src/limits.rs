@@ -34,12 +34,12 @@
 //! | [`MAX_OPTIM_POPULATION`] | 10,000 | 200 times the GA's default 50 |
 //! | [`MAX_OPTIM_EVALUATIONS`] | 100,000,000 | population x iterations: 10,000 times the GA's default |
 
-use std::fmt;
 use std::io::Read;
 use std::path::Path;
 
-use crate::optimize::{OptimSettings, WeightLayout};
-use crate::{HullError, Offsets};
+pub use crate::error::LimitExceeded;
+pub use crate::numfmt::thousands;
+use crate::HullError;
 
 /// Bytes of an offsets file (any format of [`crate::read_offsets`]). A sections CSV holds about
 /// 40 bytes a point, so [`MAX_POINTS`] is about 80 MB; 256 MiB leaves room for comments, wide
@@ -108,65 +108,6 @@ const _: () = {
     assert!((MAX_OPTIM_ITERATIONS as u64).checked_mul(MAX_OPTIM_POPULATION as u64).is_some());
 };
 
-/// An input above one of the caps: what was counted, how many, the cap, and what was
-/// expected. Prints as `input: 3,200,000 points exceed the cap of 2,000,000 (expected ...;
-/// see README Limits)`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LimitExceeded {
-    /// The input (a path as given, or a name such as `surface JSON`).
-    pub input: String,
-    /// What was counted, plural: `points`, `points in section "7"`, `bytes`.
-    pub what: String,
-    /// How many there are (or are claimed).
-    pub value: u64,
-    /// The cap.
-    pub cap: u64,
-    /// What is accepted, e.g. `at most 2,000,000 offsets in all`.
-    pub expected: String,
-}
-
-impl LimitExceeded {
-    /// `value` of `what` in `input` against `cap`; `expected` says what is accepted.
-    pub fn new(input: &str, what: impl Into<String>, value: u64, cap: u64, expected: impl Into<String>) -> Self {
-        LimitExceeded { input: input.to_string(), what: what.into(), value, cap, expected: expected.into() }
-    }
-}
-
-impl fmt::Display for LimitExceeded {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{}: {} {} exceed the cap of {} (expected {}; see README Limits)",
-            self.input,
-            thousands(self.value),
-            self.what,
-            thousands(self.cap),
-            self.expected
-        )
-    }
-}
-
-impl std::error::Error for LimitExceeded {}
-
-impl From<LimitExceeded> for HullError {
-    fn from(e: LimitExceeded) -> Self {
-        HullError::Limit(Box::new(e))
-    }
-}
-
-/// `n` with a comma every three digits: `3200000` -> `3,200,000`.
-pub fn thousands(n: u64) -> String {
-    let digits = n.to_string();
-    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
-
 /// A byte count as people write it: `1 GiB`, `256 MiB`, else `1,234 bytes`.
 fn size_text(bytes: u64) -> String {
     match bytes {
@@ -231,18 +172,29 @@ pub fn check_file_size(path: &Path, cap: u64, kind: &str) -> Result<(), HullErro
     }
 }
 
+/// What the offsets caps count, as the data model gives it ([`crate::Offsets`] does): this
+/// module knows the caps, not the types they bound, so every module may use it.
+pub trait OffsetCounts {
+    /// The input's name, for messages.
+    fn source(&self) -> &str;
+    /// Each section's label and number of points, in order.
+    fn section_sizes(&self) -> Vec<(&str, usize)>;
+}
+
 /// Checks the counts of an offsets set: sections, points per section, points in all.
 ///
 /// # Errors
 /// [`HullError::Limit`] above [`MAX_SECTIONS`], [`MAX_POINTS_PER_SECTION`] or [`MAX_POINTS`].
-pub fn check_offsets(offsets: &Offsets) -> Result<(), HullError> {
-    let src = offsets.source.as_str();
-    check(src, "sections", offsets.sections.len(), MAX_SECTIONS, "at most 10,000 sections")?;
-    for s in &offsets.sections {
-        let what = format!("points in section \"{}\"", s.label);
-        check(src, what, s.points.len(), MAX_POINTS_PER_SECTION, "at most 100,000 points per section")?;
+pub fn check_offsets(offsets: &impl OffsetCounts) -> Result<(), HullError> {
+    let src = offsets.source();
+    let sizes = offsets.section_sizes();
+    check(src, "sections", sizes.len(), MAX_SECTIONS, "at most 10,000 sections")?;
+    for &(label, points) in &sizes {
+        let what = format!("points in section \"{label}\"");
+        check(src, what, points, MAX_POINTS_PER_SECTION, "at most 100,000 points per section")?;
     }
-    check(src, "points", offsets.num_points(), MAX_POINTS, "at most 2,000,000 offsets in all")
+    let points = sizes.iter().map(|&(_, n)| n).sum();
+    check(src, "points", points, MAX_POINTS, "at most 2,000,000 offsets in all")
 }
 
 /// Checks the control-point counts `(nu, nv)` of a surface to be built or read.
@@ -302,16 +254,24 @@ pub fn check_drawing_entities(input: &str, entities: usize) -> Result<(), HullEr
     check(input, "drawing entities", entities, MAX_DRAWING_ENTITIES, "at most 1,000,000 curves in the drawing")
 }
 
+/// The sizes of a weight optimisation the caps bound, as its settings give them
+/// ([`crate::optimize::OptimSettings`] does).
+pub trait OptimSizes {
+    /// Variables (weights) optimised on a surface of `nu x nv` control points.
+    fn variables(&self, nu: usize, nv: usize) -> usize;
+    /// Iterations asked for (`None`: the algorithm's default).
+    fn iterations(&self) -> Option<usize>;
+    /// Population asked for (`None`: the algorithm's default).
+    fn population(&self) -> Option<usize>;
+}
+
 /// Checks the sizes of a weight optimisation of a surface with `nu x nv` control points.
 ///
 /// # Errors
 /// [`HullError::Limit`] above [`MAX_OPTIM_VARIABLES`], [`MAX_OPTIM_ITERATIONS`],
 /// [`MAX_OPTIM_POPULATION`] or [`MAX_OPTIM_EVALUATIONS`].
-pub fn check_optimization(input: &str, settings: &OptimSettings, nu: usize, nv: usize) -> Result<(), HullError> {
-    let variables = match settings.weights.layout {
-        WeightLayout::Full => nu.saturating_mul(nv),
-        WeightLayout::RankOne => nu + nv,
-    };
+pub fn check_optimization(input: &str, settings: &impl OptimSizes, nu: usize, nv: usize) -> Result<(), HullError> {
+    let variables = settings.variables(nu, nv);
     check(
         input,
         "optimisation variables (weights)",
@@ -319,9 +279,9 @@ pub fn check_optimization(input: &str, settings: &OptimSettings, nu: usize, nv: 
         MAX_OPTIM_VARIABLES,
         "at most 10,000 weights: fewer control points, or --weight-layout rank-one",
     )?;
-    let iterations = settings.iterations.unwrap_or(0);
+    let iterations = settings.iterations().unwrap_or(0);
     check(input, "optimisation iterations", iterations, MAX_OPTIM_ITERATIONS, "at most 1,000,000 iterations")?;
-    let population = settings.population.unwrap_or(0);
+    let population = settings.population().unwrap_or(0);
     check(input, "population members", population, MAX_OPTIM_POPULATION, "a population of at most 10,000")?;
     let evaluations = iterations.max(1) as u64 * population.max(1) as u64;
     if evaluations > MAX_OPTIM_EVALUATIONS {
@@ -340,7 +300,8 @@ pub fn check_optimization(input: &str, settings: &OptimSettings, nu: usize, nv: 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Section, Units};
+    use crate::optimize::{OptimSettings, WeightLayout};
+    use crate::{Offsets, Section, Units};
     use nurbs::Vec3;
 
     #[test]

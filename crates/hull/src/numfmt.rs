@@ -79,6 +79,19 @@ pub fn format_short(v: f64) -> String {
     format!("{mantissa}{exponent}")
 }
 
+/// `n` with a comma every three digits: `3200000` -> `3,200,000`.
+pub fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -379,6 +379,16 @@ fn first_crossing(pts: &[[f64; 2]]) -> Option<(usize, usize)> {
     best
 }
 
+impl crate::limits::OffsetCounts for Offsets {
+    fn source(&self) -> &str {
+        &self.source
+    }
+
+    fn section_sizes(&self) -> Vec<(&str, usize)> {
+        self.sections.iter().map(|s| (s.label.as_str(), s.points.len())).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

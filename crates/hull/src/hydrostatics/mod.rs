@@ -150,7 +150,7 @@ use serde::{Deserialize, Serialize};
 
 use nurbs::{NurbsSurface, Vec3};
 
-use crate::error::HullError;
+use crate::error::{HullError, InputNames};
 use crate::offsets::Perpendiculars;
 use crate::units::Units;
 
@@ -318,6 +318,51 @@ pub fn draft_range(from: f64, to: f64, step: f64) -> Result<Vec<f64>, HullError>
             }
         })
         .collect())
+}
+
+/// The drafts of a hydrostatic table as a user asks for it, checked: `draft` alone, or the
+/// range from it to `to` by `step` ([`draft_range`]); no draft (`None`) gives none. Every draft
+/// must be finite and above 0 and the density (t/m³) finite and positive; `names` spells the
+/// inputs in the messages as the user wrote them.
+///
+/// ```
+/// use hull::{table_drafts, InputNames};
+///
+/// assert_eq!(table_drafts(Some(2.0), Some(3.0), Some(0.5), 1.025, InputNames::Flags)?, [2.0, 2.5, 3.0]);
+/// let e = table_drafts(Some(0.0), None, None, 1.025, InputNames::Flags).unwrap_err();
+/// assert_eq!(e.to_string(), "--draft 0: expected a draft greater than 0");
+/// let e = table_drafts(Some(1.0), None, None, -1.0, InputNames::Keywords).unwrap_err();
+/// assert_eq!(e.to_string(), "density -1: expected a positive density in t/m³");
+/// # Ok::<(), hull::HullError>(())
+/// ```
+///
+/// # Errors
+/// [`HullError::Config`] naming the input: a draft or `to` not above 0 (or not finite), a
+/// density not positive, `to` without `step` or the other way round, and those of
+/// [`draft_range`].
+pub fn table_drafts(
+    draft: Option<f64>,
+    to: Option<f64>,
+    step: Option<f64>,
+    density: f64,
+    names: InputNames,
+) -> Result<Vec<f64>, HullError> {
+    let p = names.prefix();
+    for (name, value) in [("draft", draft), ("to", to)] {
+        if let Some(t) = value.filter(|t| !(t.is_finite() && *t > 0.0)) {
+            return Err(HullError::Config(format!("{p}{name} {t}: expected a draft greater than 0")));
+        }
+    }
+    if !(density.is_finite() && density > 0.0) {
+        return Err(HullError::Config(format!("{p}density {density}: expected a positive density in t/m³")));
+    }
+    match (draft, to, step) {
+        (Some(from), Some(to), Some(step)) => draft_range(from, to, step),
+        (_, None, None) => Ok(draft.into_iter().collect()),
+        _ => Err(HullError::Config(format!(
+            "{p}to and {p}step go together (a range of drafts from {p}draft to `{p}to` by `{p}step`)"
+        ))),
+    }
 }
 
 /// A surface prepared for hydrostatics at any number of drafts.

@@ -11,9 +11,10 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::lm::{self, LmOptions};
-use super::weights::{ParamFreedom, WeightOptions, WeightProblem};
+use super::weights::{ParamFreedom, WeightLayout, WeightOptions, WeightProblem};
+use super::FittedSurface;
 use super::{ga, gsa, pso, Control, GaOptions, GsaOptions, Objective, OptimResult, PsoOptions, StopReason};
-use crate::{FitOutcome, HullError, Offsets};
+use crate::{HullError, Offsets};
 
 /// The weight optimisers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -102,6 +103,23 @@ impl Default for OptimSettings {
     }
 }
 
+impl crate::limits::OptimSizes for OptimSettings {
+    fn variables(&self, nu: usize, nv: usize) -> usize {
+        match self.weights.layout {
+            WeightLayout::Full => nu.saturating_mul(nv),
+            WeightLayout::RankOne => nu + nv,
+        }
+    }
+
+    fn iterations(&self) -> Option<usize> {
+        self.iterations
+    }
+
+    fn population(&self) -> Option<usize> {
+        self.population
+    }
+}
+
 /// What a weight optimisation did, for `report.json` (`"optimization"`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct OptimReport {
@@ -162,7 +180,7 @@ fn settings_json<T: Serialize>(t: &T) -> serde_json::Value {
 /// [`HullError::Fit`] if the resulting surface is not finite.
 pub fn optimize_weights(
     offsets: &Offsets,
-    base: &FitOutcome,
+    base: &impl FittedSurface,
     algorithm: Algorithm,
     settings: &OptimSettings,
     control: &Control<'_>,
@@ -313,10 +331,10 @@ fn lm_settings(o: &LmOptions) -> serde_json::Value {
 
 /// Each offset's foot point on the plain approximation (its closest point, the fit's own
 /// parameters as a Newton seed).
-fn foot_points(offsets: &Offsets, base: &FitOutcome) -> Vec<(f64, f64)> {
-    let projector = SurfaceProjector::new(&base.surface, ProjectionOptions::default());
+fn foot_points(offsets: &Offsets, base: &impl FittedSurface) -> Vec<(f64, f64)> {
+    let projector = SurfaceProjector::new(base.surface(), ProjectionOptions::default());
     let points: Vec<Vec3> = offsets.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
-    let hints: Vec<(f64, f64)> = base.params.iter().flatten().copied().collect();
+    let hints: Vec<(f64, f64)> = base.params().iter().flatten().copied().collect();
     points
         .par_iter()
         .zip(&hints)

@@ -13,6 +13,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use nurbs::NurbsSurface;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -35,6 +36,15 @@ pub use weights::{
     ControlBox, JacobianKind, Linearization, NormalEquations, ParamFreedom, WeightLayout, WeightMode, WeightOptions,
     WeightProblem,
 };
+
+/// A fitted surface and the data parameters of its offsets: where a weight optimisation starts
+/// ([`crate::FitOutcome`] is one). The optimisers need no more of a fit, and know no more.
+pub trait FittedSurface {
+    /// The surface.
+    fn surface(&self) -> &NurbsSurface;
+    /// The data parameters `(u, v)` of every offset, one list per section.
+    fn params(&self) -> &[Vec<(f64, f64)>];
+}
 
 /// A function to minimise over a box.
 pub trait Objective: Sync {

@@ -2,11 +2,13 @@
 //! export checks run: `HULLSKIN_PYTHON`, or else `.venv` made by `tools/setup-python.sh` (once
 //! per test binary). If that fails the checks fail (they cannot vanish silently) unless the
 //! check's skip variable is set to 1.
+//!
+//! One helper for the workspace: `crates/cli/tests/export.rs` includes this file too (`#[path]`),
+//! so it names nothing outside itself.
 
+use std::path::Path;
 use std::process::Command;
 use std::sync::OnceLock;
-
-use super::browser::workspace_root;
 
 /// The Python with the tools' requirements (`HULLSKIN_PYTHON`, else made by
 /// `tools/setup-python.sh`); panics, naming `skip_var`, when there is none. A test that calls
@@ -20,7 +22,8 @@ pub fn tools_python(skip_var: &str, what: &str) -> String {
         }
     }
     let found = PYTHON.get_or_init(|| {
-        let script = workspace_root().join("tools/setup-python.sh");
+        // Every crate of the workspace sits at `crates/<name>`.
+        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tools/setup-python.sh");
         let out =
             Command::new("bash").arg(&script).output().map_err(|e| format!("cannot run {}: {e}", script.display()))?;
         let stdout = String::from_utf8_lossy(&out.stdout);

@@ -1,0 +1,331 @@
+//! What a fit is asked for ([`FitConfig`]: method, degrees, control points, parameterization,
+//! knuckles, fairing, envelope hold) and what it gives ([`FitOutcome`], with the report of its
+//! fairing, [`FairReport`]): the vocabulary the pipeline ([`crate::fit_offsets`]), its stages
+//! (fairing, the weight optimisation, the held-out refits) and the reports share. It sits
+//! below all of them, so that none has to import another to name a fit.
+
+use std::fmt;
+use std::str::FromStr;
+
+use nurbs::fit::{CornerOptions, KnuckleLine, SkinParameterization};
+
+use crate::flats::FlatLine;
+use nurbs::NurbsSurface;
+use serde::Serialize;
+
+use crate::analysis::{bending_energy, default_quadrature};
+use crate::curvature_range::{gaussian_curvature_range, CURVATURE_GRID};
+use crate::fit_error::FitError;
+use crate::optimize::{Algorithm, OptimReport, OptimSettings};
+
+/// How the surface is built from the sections.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FitMethod {
+    /// Skinning interpolation (The NURBS Book 10.3): passes through every offset.
+    Interp,
+    /// Skinning approximation: least squares with `NU x NV` control points.
+    Approx,
+    /// Skinning approximation whose weights are then optimised by an algorithm.
+    Optimized(Algorithm),
+}
+
+impl FitMethod {
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            FitMethod::Interp => "interp",
+            FitMethod::Approx => "approx",
+            FitMethod::Optimized(a) => a.name(),
+        }
+    }
+
+    /// The weight optimiser, for the optimised methods.
+    pub fn algorithm(self) -> Option<Algorithm> {
+        match self {
+            FitMethod::Optimized(a) => Some(a),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for FitMethod {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for FitMethod {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "interp" | "interpolation" => Ok(FitMethod::Interp),
+            "approx" | "approximation" => Ok(FitMethod::Approx),
+            t => t
+                .parse::<Algorithm>()
+                .map(FitMethod::Optimized)
+                .map_err(|_| format!("unknown method `{s}` (expected interp, approx, ga, pso, gsa, lm or gsa+lm)")),
+        }
+    }
+}
+
+/// Whether the fitted surface keeps the knuckles (chines) of the sections.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Knuckles {
+    /// One smooth surface: no knuckle is looked for.
+    Off,
+    /// Knuckle lines found by [`find_knuckle_lines`](nurbs::fit::find_knuckle_lines) with these settings are kept as tangent
+    /// discontinuities (a knot of multiplicity `p` along the sections,
+    /// [`skin_interpolate_with_knuckles`](nurbs::fit::skin_interpolate_with_knuckles)); without any, the fit is the plain skin.
+    Auto(CornerOptions),
+    /// As [`Knuckles::Auto`], and where no knuckle line is found, an approximation (`approx`,
+    /// and the start of the optimised methods) of a hull with flats of side or bottom
+    /// ([`find_flat_lines`](nurbs::fit::find_flat_lines)) is refitted within the flats' planes, `y <= y_max` and
+    /// `z >= z_min` ([`refit_within_flats`](nurbs::fit::refit_within_flats)): no ringing past the flats, for 2 more control
+    /// points along `u` per flat line and up to 2 more across per line's end. Interpolation is
+    /// left as it is (held on the planes it could no longer pass through every offset). Not the
+    /// default: at equal control-point counts the plain approximation is closer to the offsets
+    /// (README, hull features).
+    AutoFlats(CornerOptions),
+}
+
+impl Default for Knuckles {
+    /// [`Knuckles::Auto`] with [`CornerOptions::default`], which finds no knuckle line on any
+    /// table of `testdata/` (round bilges, bulbs and transoms) and finds the chine of a
+    /// hard-chine hull.
+    fn default() -> Self {
+        Knuckles::Auto(CornerOptions::default())
+    }
+}
+
+impl Knuckles {
+    /// The name used on the command line: `off`, or `auto` (with the angle when it is not
+    /// the default, `auto(25 deg)`).
+    pub fn name(self) -> String {
+        match self {
+            Knuckles::Off => "off".into(),
+            Knuckles::Auto(o) if o == CornerOptions::default() => "auto".into(),
+            Knuckles::Auto(o) => format!("auto({} deg)", o.min_angle_deg),
+            Knuckles::AutoFlats(o) if o == CornerOptions::default() => "auto+flats".into(),
+            Knuckles::AutoFlats(o) => format!("auto+flats({} deg)", o.min_angle_deg),
+        }
+    }
+}
+
+/// Settings of [`fit_offsets`](crate::fit_offsets).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FitConfig {
+    pub method: FitMethod,
+    /// Degrees `(p, q)`: along the sections (u) and across them (v).
+    pub degree: (usize, usize),
+    /// Control points `(NU, NV)` of `approx`; `None` picks [`default_ctrl`](crate::default_ctrl).
+    pub ctrl: Option<(usize, usize)>,
+    /// Parameterization along the sections (u) and across them (v); the default is
+    /// centripetal along, chord length across ([`SkinParameterization::default`]).
+    pub param: SkinParameterization,
+    /// Settings of the weight optimisation (optimised methods only).
+    pub optim: OptimSettings,
+    /// Knuckles (chines) kept as tangent discontinuities; the default looks for them.
+    pub knuckles: Knuckles,
+    /// The fairness term of `approx` and of the optimised methods ([`crate::fairing`]); the
+    /// default is [`Fairing::Off`], the plain least squares (the command line's default is
+    /// [`Fairing::Auto`]). Not applied to `interp` (it passes through every offset) nor to a
+    /// fit refitted within flats (`auto+flats`).
+    pub fair: Fairing,
+    /// [`SkinOptions::smoothing`](nurbs::fit::SkinOptions::smoothing) of the skinning approximation (set by [`crate::fairing`]).
+    pub smoothing: f64,
+    /// Whether an approximation (`approx`, and the start of the optimised methods) that leaves
+    /// the offsets' envelope is held within it ([`EnvelopeHold`]; the default holds it in the
+    /// offsets' own envelope). An optimised surface re-solves its control points: one that
+    /// leaves the envelope is held too (its weights kept), or gives way to the held
+    /// approximation where that is closer to the offsets.
+    pub envelope: EnvelopeHold,
+}
+
+/// How [`FitConfig::envelope`] holds a surface that leaves the offsets' envelope: a refit of
+/// its control net behind the faces it crossed ([`nurbs::fit::bounded_refit`]), so that by the
+/// convex-hull property no point of it can cross them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum EnvelopeHold {
+    /// Keep the least squares as it is (its findings reported).
+    Free,
+    /// Behind the faces of the offsets' own envelope ([`Envelope::bounds`](crate::Envelope::bounds)).
+    #[default]
+    Own,
+    /// Behind the faces of this box: the envelope of a whole table, for the cross-validation
+    /// refits of part of it (the principal dimensions of the hull are known even where some
+    /// of its offsets are held out).
+    Given(nurbs::fit::ControlBox),
+}
+
+impl Default for FitConfig {
+    fn default() -> Self {
+        FitConfig {
+            method: FitMethod::Approx,
+            degree: (3, 3),
+            ctrl: None,
+            param: SkinParameterization::default(),
+            optim: OptimSettings::default(),
+            knuckles: Knuckles::default(),
+            fair: Fairing::Off,
+            smoothing: 0.0,
+            envelope: EnvelopeHold::Own,
+        }
+    }
+}
+
+/// A fitted surface with its measured error and timings.
+#[derive(Clone, Debug)]
+pub struct FitOutcome {
+    pub config: FitConfig,
+    pub surface: NurbsSurface,
+    /// Data parameters `(u, v)` of every offset, per section.
+    pub params: Vec<Vec<(f64, f64)>>,
+    pub error: FitError,
+    /// Seconds spent in the kernel's skinning.
+    pub fit_seconds: f64,
+    /// Seconds spent measuring the error by projection.
+    pub error_seconds: f64,
+    /// What the weight optimisation did (optimised methods only).
+    pub optimization: Option<OptimReport>,
+    /// The knuckle lines kept in the surface (empty without any, or with [`Knuckles::Off`]).
+    pub knuckle_lines: Vec<KnuckleLine>,
+    /// The flat lines the surface was refitted within ([`Knuckles::AutoFlats`]; empty otherwise).
+    pub flat_lines: Vec<FlatLine>,
+    /// Where the surface folds back across its sections ([`crate::analysis::find_folds`]);
+    /// empty for a sound surface.
+    pub folds: Vec<crate::analysis::Fold>,
+    /// What fairing did (`approx` and the optimised methods with a fairness setting).
+    pub fairing: Option<FairReport>,
+    /// Results not taken as the answer, and why (e.g. an optimised surface that folds: the
+    /// fair start is kept instead).
+    pub rejected: Vec<String>,
+    /// Every defect of the surface ([`crate::analysis::check_fit_validity`]: folds, leaving the
+    /// offsets' envelope, bulging through a flat of the offsets, inward-facing facets); empty
+    /// for a valid surface.
+    pub validity: Vec<crate::analysis::Finding>,
+    /// Control-point coordinates held on the offsets' envelope: an approximation that left it
+    /// is refitted with its net within the envelope ([`nurbs::fit::bounded_refit`]); 0 when
+    /// none was needed.
+    pub envelope_held: usize,
+}
+
+/// The fairness term of a fit.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Fairing {
+    /// None: the plain least squares (`--fair 0`).
+    #[default]
+    Off,
+    /// This weight: the smoothing `ν` of the approximation
+    /// ([`nurbs::fit::SkinOptions::smoothing`]) and, for the weight optimisers, the net's
+    /// fairness [`WeightOptions::fair`](crate::optimize::WeightOptions::fair).
+    Lambda(f64),
+    /// The fairest surface within `tolerance` ([`crate::fairing`]); `None`: the plain approximation's
+    /// own max error.
+    Auto { tolerance: Option<f64> },
+}
+
+impl Fairing {
+    /// The name in reports: `off`, the `λ`, or `auto`.
+    pub fn name(self) -> String {
+        match self {
+            Fairing::Off => "off".into(),
+            Fairing::Lambda(l) => format!("{l:e}"),
+            Fairing::Auto { .. } => "auto".into(),
+        }
+    }
+}
+
+/// One smoothing weight tried.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct FairTry {
+    pub lambda: f64,
+    /// True max error at the offsets.
+    pub max: f64,
+    /// Validity findings ([`crate::analysis::check_fit_validity`]).
+    pub findings: usize,
+    /// The one taken: sound, within the tolerance and fairer; or, for a plain fit with
+    /// findings, the least smoothing with the fewest (within twice the tolerance).
+    pub accepted: bool,
+}
+
+/// Thin-plate energy and Gaussian-curvature range of a surface.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct FairnessFigures {
+    /// `∫ (k1^2 + k2^2) dA`, dimensionless ([`crate::analysis::BendingEnergy::thin_plate`]).
+    pub thin_plate: f64,
+    /// Smallest and largest Gaussian curvature on the comparison grid, 1/units^2.
+    pub gaussian: [f64; 2],
+}
+
+impl FairnessFigures {
+    /// The figures of `surface`.
+    pub fn of(surface: &nurbs::NurbsSurface) -> Self {
+        let thin_plate = bending_energy(surface, default_quadrature(surface)).thin_plate;
+        let gaussian = gaussian_curvature_range(surface, CURVATURE_GRID).map_or([f64::NAN; 2], |k| [k.min, k.max]);
+        FairnessFigures { thin_plate, gaussian }
+    }
+}
+
+/// What fairing did, for `report.json` (`"fairing"`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FairReport {
+    /// `"off"`, a number, or `"auto"`.
+    pub setting: String,
+    /// The `λ` used (0: the plain approximation was kept).
+    pub lambda: f64,
+    /// The max error the auto choice allowed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<f64>,
+    pub tried: Vec<FairTry>,
+    /// Validity findings of the plain approximation.
+    pub plain_findings: usize,
+    /// Before (the plain approximation at the same control points) and after.
+    pub before: FairnessFigures,
+    pub after: FairnessFigures,
+}
+
+impl FairReport {
+    /// One line for the summary table (`units`: the offsets' unit symbol).
+    pub fn summary(&self, units: &str) -> String {
+        let figures = format!(
+            "thin-plate energy {:.4} -> {:.4}, Gaussian curvature [{:.3e}, {:.3e}] -> [{:.3e}, {:.3e}] 1/{units}^2",
+            self.before.thin_plate,
+            self.after.thin_plate,
+            self.before.gaussian[0],
+            self.before.gaussian[1],
+            self.after.gaussian[0],
+            self.after.gaussian[1]
+        );
+        let limit = self.tolerance.map(|t| format!(" within max error {t:.3e} {units}")).unwrap_or_default();
+        let chosen = self.tried.iter().find(|t| t.accepted);
+        if let (Some(c), Some(t)) = (chosen, self.tolerance) {
+            if c.max > t || self.plain_findings > 0 {
+                return format!(
+                    "fairing ({}): smoothing {:.0e} leaves {} validity finding(s) against the plain fit's {}, at a \
+                     max error of {:.3e} {units} against {t:.3e} {units}; {figures}",
+                    self.setting, self.lambda, c.findings, self.plain_findings, c.max
+                );
+            }
+        }
+        if self.lambda == 0.0 {
+            format!(
+                "fairing ({}): none of {} smoothed fits{limit} was sound and fairer (thin-plate energy, curvature \
+                 extreme) than the plain least squares, which is kept",
+                self.setting,
+                self.tried.len()
+            )
+        } else {
+            format!("fairing ({}): smoothing {:.0e}{limit}, {figures}", self.setting, self.lambda)
+        }
+    }
+}
+
+impl crate::optimize::FittedSurface for FitOutcome {
+    fn surface(&self) -> &NurbsSurface {
+        &self.surface
+    }
+
+    fn params(&self) -> &[Vec<(f64, f64)>] {
+        &self.params
+    }
+}
