@@ -30,6 +30,7 @@
 //! ```
 
 pub mod analysis;
+pub mod colormap;
 mod compare;
 pub mod digitize;
 pub mod drawing;
@@ -37,6 +38,7 @@ mod error;
 pub mod export;
 pub mod fairing;
 pub mod fit_error;
+pub mod float;
 mod held_out;
 pub mod hydrostatics;
 pub mod limits;
@@ -81,7 +83,8 @@ pub use pipeline::{
     default_ctrl, fit_offsets, fit_offsets_with, EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles, HOLD_SHARE,
 };
 pub use read::{
-    decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
+    decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, write_sections_csv,
+    InputFormat,
 };
 pub use read::{parse_cad_surfaces, read_cad_surfaces, CadFormat, CadSurface, CadSurfaces};
 pub use read::{

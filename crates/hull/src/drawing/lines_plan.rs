@@ -61,10 +61,10 @@ use std::fmt;
 use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use rayon::prelude::*;
 
-use super::colormap;
 use super::model::{Anchor, Drawing, Item, Rgb, Stroke};
 use super::sheet::Sheet;
 use crate::analysis::cuts::{cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
+use crate::colormap;
 use crate::offsets::{Offsets, PLANAR_REL};
 use crate::units::Units;
 

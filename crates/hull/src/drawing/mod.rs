@@ -1,7 +1,6 @@
-//! Drawings: a format-independent model of a sheet ([`Drawing`]), colour maps, and the figures
-//! built on them.
+//! Drawings: a format-independent model of a sheet ([`Drawing`]) and the figures built on it
+//! (their colours from [`crate::colormap`]).
 
-pub mod colormap;
 pub mod dxf;
 pub mod lines_plan;
 pub mod model;

@@ -65,7 +65,7 @@ use crate::units::Units;
 
 pub use cad::{parse_cad_surfaces, read_cad_surfaces, CadFormat, CadSurface, CadSurfaces};
 pub use offset_table::parse_offset_table;
-pub use sections_csv::parse_sections_csv;
+pub use sections_csv::{parse_sections_csv, write_sections_csv};
 pub use sense::{find_outliers, Outlier, OutlierPolicy, SenseKind, SenseWarning};
 pub use series60_table::{parse_series60_table, MainDimensions, Series60Table};
 pub use views::{Disagreement, MergeOptions, Merged, Station, ThreeViews, View, ViewLine};

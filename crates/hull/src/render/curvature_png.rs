@@ -31,7 +31,7 @@
 use nurbs::{KnotVector, NurbsSurface, Vec3};
 use tiny_skia::Pixmap;
 
-use crate::drawing::colormap::diverging;
+use crate::colormap::diverging;
 use crate::drawing::{Anchor, Item, Rgb, Stroke};
 use crate::{HullError, COINCIDENT_REL};
 
