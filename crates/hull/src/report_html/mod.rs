@@ -330,8 +330,8 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
         };
         render::curvature_map(surface, field, &o)
     };
-    let gaussian = picture(render::CurvatureField::Gaussian)?;
-    let mean = picture(render::CurvatureField::Mean)?;
+    let gaussian = picture(analysis::CurvatureField::Gaussian)?;
+    let mean = picture(analysis::CurvatureField::Mean)?;
     let convergence = match optimization {
         Some(o) => {
             let plot = render::convergence_plot(
@@ -457,28 +457,14 @@ fn hydrostatics_table(
     Ok((HydrostaticsTable { source, units: inputs.units, density: options.density, perpendiculars, rows }, choice))
 }
 
-/// +1 if the surface's normal `S_u x S_v` points toward the inside of the hull at most regular
-/// nodes of `map`, else -1: the factor that makes the mean curvature positive where the hull
-/// is convex. The inside of a node `p` is the direction to `(p.x, y_min, z_mid)`: the
-/// centre-plane axis at mid-depth of the sampled points (as the curvature picture).
+/// +1 if the surface's normal `S_u x S_v` points toward the inside of the hull at most
+/// regular nodes of `map` ([`CurvatureMap::outward_flip`], as the curvature picture), else
+/// -1: the factor that makes the mean curvature positive where the hull is convex.
 fn convex_sign(map: &CurvatureMap) -> f64 {
-    let (lo, hi) = bounds(&map.points);
-    let z_mid = 0.5 * (lo.z + hi.z);
-    let mut votes = 0i64;
-    for (p, s) in map.points.iter().zip(&map.samples) {
-        let Some(s) = s else { continue };
-        let inward = Vec3::new(p.x, lo.y, z_mid) - *p;
-        let d = s.normal.dot(inward);
-        if d > 0.0 {
-            votes += 1;
-        } else if d < 0.0 {
-            votes -= 1;
-        }
-    }
-    if votes >= 0 {
-        1.0
-    } else {
+    if map.outward_flip() {
         -1.0
+    } else {
+        1.0
     }
 }
 
@@ -974,7 +960,7 @@ impl Page<'_, '_> {
                 || "no regular point".to_string(),
                 |(a, b)| format!("values from {} to {} {unit}", num(a), num(b)),
             );
-            let id = format!("map-{}", if field == render::CurvatureField::Gaussian { "gaussian" } else { "mean" });
+            let id = format!("map-{}", if field == analysis::CurvatureField::Gaussian { "gaussian" } else { "mean" });
             let alt = format!("{} of the hull, profile and bottom view", field.name());
             s.push_str(&format!(
                 "<figure>\n{}\n<figcaption>{} {} (<code>{file}</code>): profile (x right, z up) and bottom view; \
