@@ -25,17 +25,19 @@
 
 mod dxf_in;
 pub mod geom;
+mod join;
 mod map;
+mod options;
+mod stations;
 mod svg_in;
 
 use std::path::Path;
 
 pub use dxf_in::parse_dxf;
 pub use geom::{Affine, Segment, Spline, P2};
-pub use map::{
-    digitize, label_number, CurveOrder, DigitizeOptions, Digitized, DrawingScale, Side, StationIds, StationInfo,
-    StationX,
-};
+pub use map::digitize;
+pub use options::{CurveOrder, DigitizeOptions, Digitized, DrawingScale, Side, StationIds, StationInfo, StationX};
+pub use stations::label_number;
 pub use svg_in::parse_svg;
 
 use crate::error::{HullError, InputErrorKind, Location};
