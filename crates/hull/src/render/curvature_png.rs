@@ -40,7 +40,7 @@ use crate::drawing::{Anchor, Item, Rgb, Stroke};
 use crate::HullError;
 
 use super::raster::{canvas, draw_items, pixels_per_metre, text_width_mm, Image, Mapping};
-use super::{format_tick, nice_ticks};
+use crate::drawing::{format_tick, nice_ticks};
 use crate::numfmt::format_sig;
 
 /// Colour of points where the curvature is undefined.
