@@ -6,10 +6,9 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
-use hull::digitize::{
-    digitize, read_drawing, write_sections_csv, CurveOrder, DigitizeOptions, DrawingScale, Side, StationIds, StationX,
-};
-use hull::{write_atomic, Units};
+use hull::digitize::{digitize, read_drawing, CurveOrder, DigitizeOptions, DrawingScale, Side, StationIds, StationX};
+use hull::float::Notation;
+use hull::{write_atomic, write_sections_csv, Units};
 
 use crate::parse::parse_units;
 use crate::stdout::outln;
@@ -196,7 +195,7 @@ pub fn run(args: &DigitizeArgs) -> anyhow::Result<ExitCode> {
         Side::Fore => "fore",
         Side::Centreline => "centreline",
     };
-    write_atomic(&args.out, |w| write_sections_csv(w, &d.offsets))
+    write_atomic(&args.out, |w| write_sections_csv(w, &d.offsets, Notation::Plain))
         .with_context(|| format!("cannot write {}", args.out.display()))?;
     if args.json {
         let stations: Vec<_> = d

@@ -11,10 +11,10 @@ use clap::builder::PossibleValue;
 use clap::{Args, ValueEnum};
 use hull::drawing::{lines_3d, write_dxf_3d_lines, LinesPlanOptions};
 use hull::export::{
-    greville_v, polynomial_approximation, section_curves, section_parameters, tessellate, write_glb, write_iges,
-    write_iges_model, write_obj, write_step, write_stl_ascii, write_stl_binary, IgesMeta, StepMeta,
-    TessellationOptions,
+    greville_v, mesh_name, obj_comments, polynomial_approximation, section_curves, section_parameters, stl_header,
+    tessellate, write_glb, write_iges, write_iges_model, write_step, IgesMeta, StepMeta, TessellationOptions,
 };
+use hull::mesh::{write_obj, write_stl_ascii, write_stl_binary};
 use hull::optimize::OptimSettings;
 use hull::{ExportFormat, FitMethod, InputNames, Offsets};
 use nurbs::Vec3;
@@ -208,13 +208,17 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
             if let Some(t) = args.tolerance {
                 options.tolerance = t;
             }
-            let mesh = tessellate(&surface, &options)?;
+            let tess = tessellate(&surface, &options)?;
+            let mesh = &tess.mesh;
             let name = "hull";
             match format {
-                ExportFormat::Stl => write(&|mut w| write_stl_binary(&mut w, &mesh, name, units))?,
-                ExportFormat::StlAscii => write(&|mut w| write_stl_ascii(&mut w, &mesh, name))?,
-                ExportFormat::Obj => write(&|mut w| write_obj(&mut w, &mesh, name, units))?,
-                _ => write(&|mut w| write_glb(&mut w, &mesh, name, units))?,
+                ExportFormat::Stl => write(&|mut w| write_stl_binary(&mut w, mesh, &stl_header(name, units)))?,
+                ExportFormat::StlAscii => write(&|mut w| write_stl_ascii(&mut w, mesh, &mesh_name(name)))?,
+                ExportFormat::Obj => {
+                    let comments = obj_comments(name, tess.tolerance, units)?;
+                    write(&|mut w| write_obj(&mut w, mesh, &comments, Some(&mesh_name(name))))?
+                }
+                _ => write(&|mut w| write_glb(&mut w, &tess, name, units))?,
             }
             (
                 format!(
@@ -223,7 +227,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
                     options.tolerance,
                     if format == ExportFormat::Glb { ", in metres" } else { "" }
                 ),
-                json!({ "triangles": mesh.triangles.len(), "vertices": mesh.positions.len(), "tolerance": options.tolerance }),
+                json!({ "triangles": mesh.triangles.len(), "vertices": mesh.vertices.len(), "tolerance": options.tolerance }),
             )
         }
     };

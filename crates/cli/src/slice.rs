@@ -9,9 +9,10 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
+use hull::float::Notation;
 use hull::mesh::{
-    mesh_hydrostatics, read_mesh, slice_mesh, write_sections_csv, Axes, MeshHydrostatics, MeshReadOptions, Resample,
-    SliceOptions, SliceOutcome, Spacing, Stations, TriMesh,
+    mesh_hydrostatics, read_mesh, slice_mesh, Axes, MeshHydrostatics, MeshReadOptions, Resample, SliceOptions,
+    SliceOutcome, Spacing, Stations, TriMesh,
 };
 use hull::{Offsets, Units};
 use nurbs::Vec3;
@@ -217,7 +218,7 @@ pub fn run(args: &SliceArgs) -> anyhow::Result<ExitCode> {
     }
     // Written last, atomically: a run that fails (e.g. an unreadable --check surface) leaves
     // an earlier file as it was.
-    hull::write_atomic(&args.out, |w| write_sections_csv(w, &out.offsets))
+    hull::write_atomic(&args.out, |w| hull::write_sections_csv(w, &out.offsets, Notation::Exchange))
         .with_context(|| format!("cannot write {}", args.out.display()))?;
     line(format!("wrote {}", args.out.display()));
     summary["wrote"] = serde_json::json!(args.out.display().to_string());

@@ -22,7 +22,7 @@ fn bench(c: &mut Criterion) {
     let mut binary = Vec::new();
     write_stl_binary(&mut binary, &mesh, "dtc").expect("writes");
     let mut obj = Vec::new();
-    write_obj(&mut obj, &mesh).expect("writes");
+    write_obj(&mut obj, &mesh, &[], None).expect("writes");
 
     let mut g = c.benchmark_group("mesh_read_dtc");
     g.sample_size(10);

@@ -10,9 +10,8 @@
 use std::f64::consts::FRAC_1_SQRT_2;
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
-use hull::render::{
-    convergence_plot, curvature_map_png, render_png, CurvatureField, CurvatureMapOptions, RasterOptions,
-};
+use hull::analysis::CurvatureField;
+use hull::render::{convergence_plot, curvature_map_png, render_png, CurvatureMapOptions, RasterOptions};
 use hull::{fit_offsets, series60_sample, FitConfig, FitMethod};
 use nurbs::{KnotVector, NurbsSurface, Vec3};
 

@@ -30,6 +30,7 @@
 //! ```
 
 pub mod analysis;
+pub mod colormap;
 mod compare;
 mod curvature_range;
 pub mod digitize;
@@ -41,6 +42,7 @@ pub mod fairing;
 mod fit;
 pub mod fit_error;
 mod flats;
+pub mod float;
 mod held_out;
 pub mod hydrostatics;
 #[cfg(test)]
@@ -91,7 +93,8 @@ pub use offsets::{Offsets, Perpendiculars, Section, COINCIDENT_REL, MAX_SIZE, MI
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
 pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, HOLD_SHARE};
 pub use read::{
-    decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, InputFormat,
+    decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, write_sections_csv,
+    InputFormat,
 };
 pub use read::{parse_cad_surfaces, read_cad_surfaces, CadFormat, CadSurface, CadSurfaces};
 pub use read::{

@@ -14,11 +14,12 @@ use std::path::{Path, PathBuf};
 
 use hull::analysis::cuts::{cut_surface, CutOptions, CutPlane};
 use hull::digitize::{
-    digitize, parse_drawing, read_drawing, write_sections_csv, CurveOrder, DigitizeOptions, Digitized, DrawingScale,
-    Side, StationIds, StationX,
+    digitize, parse_drawing, read_drawing, CurveOrder, DigitizeOptions, Digitized, DrawingScale, Side, StationIds,
+    StationX,
 };
 use hull::drawing::{lines_plan, write_dxf, write_svg, Drawing, Item, LinesPlanOptions, Rgb};
-use hull::{fit_offsets, parse_sections_csv, series60_sample, FitConfig, Units};
+use hull::float::Notation;
+use hull::{fit_offsets, parse_sections_csv, series60_sample, write_sections_csv, FitConfig, Units};
 use nurbs::{KnotVector, NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 
 fn testdata(name: &str) -> PathBuf {
@@ -198,7 +199,7 @@ fn sample_lines_plan_svg_reads_back_within_the_rounding() {
 
     // And the sections CSV written from it reads back as the same offsets.
     let mut csv = Vec::new();
-    write_sections_csv(&mut csv, &d.offsets).expect("writes CSV");
+    write_sections_csv(&mut csv, &d.offsets, Notation::Plain).expect("writes CSV");
     let back =
         parse_sections_csv(std::str::from_utf8(&csv).expect("UTF-8"), "sample.svg", Units::Metre).expect("reads back");
     for (a, b) in back.sections.iter().zip(&d.offsets.sections) {

@@ -21,10 +21,11 @@ use common::surfaces::samples;
 
 use hull::export::mesh_out::{curvature_colors, srgb_to_linear};
 use hull::export::{
-    greville_v, polynomial_approximation, section_curves, section_parameters, tessellate, write_glb, write_iges,
-    write_iges_model, write_obj, write_step, write_stl_ascii, write_stl_binary, IgesMeta, StepMeta, SurfaceFile,
-    TessellationOptions, TriangleMesh,
+    greville_v, mesh_name, obj_comments, polynomial_approximation, section_curves, section_parameters, stl_header,
+    tessellate, write_glb, write_iges, write_iges_model, write_step, IgesMeta, StepMeta, SurfaceFile, Tessellation,
+    TessellationOptions,
 };
+use hull::mesh::{write_obj, write_stl_ascii, write_stl_binary};
 use hull::Units;
 use nurbs::{KnotVector, NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
@@ -457,10 +458,10 @@ struct MeshDeviation {
 }
 
 /// The surface point of mesh vertex `k`, mirrored for the port half.
-fn vertex_on_surface(s: &NurbsSurface, mesh: &TriangleMesh, mirror: bool, k: usize) -> Vec3 {
-    let (u, v) = mesh.params[k];
+fn vertex_on_surface(s: &NurbsSurface, tess: &Tessellation, mirror: bool, k: usize) -> Vec3 {
+    let (u, v) = tess.params[k];
     let p = s.point(u, v);
-    if mirror && k >= mesh.positions.len() / 2 {
+    if mirror && k >= tess.mesh.vertices.len() / 2 {
         Vec3::new(p.x, -p.y, p.z)
     } else {
         p
@@ -472,25 +473,25 @@ fn vertex_on_surface(s: &NurbsSurface, mesh: &TriangleMesh, mirror: bool, k: usi
 /// surface, and surface points against the triangles.
 fn compare_mesh(
     s: &NurbsSurface,
-    mesh: &TriangleMesh,
+    tess: &Tessellation,
     mirror: bool,
     read: &ReadMesh,
     per_corner: bool,
 ) -> MeshDeviation {
     let size = size(s);
-    let on_surface = |k: usize| vertex_on_surface(s, mesh, mirror, k);
+    let on_surface = |k: usize| vertex_on_surface(s, tess, mirror, k);
     let mut dev = MeshDeviation::default();
     // Vertices: STL has three per triangle in triangle order; OBJ and glTF keep ours.
     let corner_ids: Vec<usize> = if per_corner {
-        mesh.triangles.iter().flat_map(|t| t.map(|k| k as usize)).collect()
+        tess.mesh.triangles.iter().flat_map(|t| t.map(|k| k as usize)).collect()
     } else {
-        (0..mesh.positions.len()).collect()
+        (0..tess.mesh.vertices.len()).collect()
     };
     assert_eq!(read.vertices.len(), corner_ids.len(), "vertex count");
     for (q, &k) in read.vertices.iter().zip(&corner_ids) {
         dev.vertex_rel = dev.vertex_rel.max(q.distance(on_surface(k)) / size);
     }
-    assert_eq!(read.faces.len(), mesh.triangles.len(), "triangle count");
+    assert_eq!(read.faces.len(), tess.mesh.triangles.len(), "triangle count");
     // Chords: centroid and edge midpoints of every 7th triangle, projected onto the surface
     // (or its mirror image).
     let projector = SurfaceProjector::new(s, ProjectionOptions::default());
@@ -521,7 +522,7 @@ fn compare_mesh(
 /// Outward: the area-weighted y component of the normals of the starboard half is positive
 /// (it is the hull's projected area on the centre plane); every stored normal agrees with
 /// its triangle's winding (STL) or its vertex's surface normal (OBJ, glTF).
-fn check_orientation(name: &str, s: &NurbsSurface, mesh: &TriangleMesh, mirror: bool, read: &ReadMesh) {
+fn check_orientation(name: &str, s: &NurbsSurface, tess: &Tessellation, mirror: bool, read: &ReadMesh) {
     let mut ny_area = 0.0;
     let starboard_faces = read.faces.len() / if mirror { 2 } else { 1 };
     for f in &read.faces[..starboard_faces] {
@@ -534,13 +535,13 @@ fn check_orientation(name: &str, s: &NurbsSurface, mesh: &TriangleMesh, mirror: 
         let w = (b - a).cross(c - a).normalized().expect("no degenerate triangle");
         assert!(n.dot(w) > 0.99, "{name}: facet {t} normal {n:?} against its winding {w:?}");
     }
-    let half = mesh.positions.len() / if mirror { 2 } else { 1 };
+    let half = tess.mesh.vertices.len() / if mirror { 2 } else { 1 };
     for (k, n) in read.vertex_normals.iter().enumerate() {
-        let (u, v) = mesh.params[k];
+        let (u, v) = tess.params[k];
         let Some(sn) = s.normal(u, v) else { continue };
-        let sn = if mesh.flipped { -sn } else { sn };
+        let sn = if tess.flipped { -sn } else { sn };
         let sn = if k >= half { Vec3::new(sn.x, -sn.y, sn.z) } else { sn };
-        assert!((n.norm() - 1.0).abs() < 1e-4, "{name}: normal {k} {n:?} not unit (ours {:?})", mesh.normals[k]);
+        assert!((n.norm() - 1.0).abs() < 1e-4, "{name}: normal {k} {n:?} not unit (ours {:?})", tess.mesh.normals[k]);
         assert!(n.dot(sn) > 0.999, "{name}: vertex normal {k} {n:?} is not the surface's {sn:?}");
     }
 }
@@ -561,26 +562,27 @@ fn meshes_read_back_by_trimesh_and_pygltflib() {
     ];
     for (name, s, units, mirror, rel) in &cases {
         let tol = rel * size(s);
-        let mesh = tessellate(s, &TessellationOptions { tolerance: tol, mirror: *mirror }).expect("tessellates");
+        let tess = tessellate(s, &TessellationOptions { tolerance: tol, mirror: *mirror }).expect("tessellates");
         for (ext, kind) in [("stl", "binary"), ("stl", "ascii"), ("obj", "obj"), ("glb", "glb")] {
             let path = dir.path().join(format!("{name}_{kind}.{ext}"));
             let mut out = Vec::new();
             match kind {
-                "binary" => write_stl_binary(&mut out, &mesh, name, *units),
-                "ascii" => write_stl_ascii(&mut out, &mesh, name),
-                "obj" => write_obj(&mut out, &mesh, name, *units),
-                _ => write_glb(&mut out, &mesh, name, *units),
+                "binary" => write_stl_binary(&mut out, &tess.mesh, &stl_header(name, *units)),
+                "ascii" => write_stl_ascii(&mut out, &tess.mesh, &mesh_name(name)),
+                "obj" => obj_comments(name, tess.tolerance, *units)
+                    .and_then(|c| write_obj(&mut out, &tess.mesh, &c, Some(&mesh_name(name)))),
+                _ => write_glb(&mut out, &tess, name, *units),
             }
             .expect("writes");
             std::fs::write(&path, out).expect("write");
             let read = read_mesh(&python, &path, *units);
             let case = format!("{name} {kind}");
-            let dev = compare_mesh(s, &mesh, *mirror, &read, ext == "stl");
-            check_orientation(&case, s, &mesh, *mirror, &read);
+            let dev = compare_mesh(s, &tess, *mirror, &read, ext == "stl");
+            check_orientation(&case, s, &tess, *mirror, &read);
             eprintln!(
                 "{case}: {} triangles; vertices {:.1e} of the size; chords {:.2e}, surface to mesh {:.2e}, tolerance \
                  {tol:.2e}",
-                mesh.triangles.len(),
+                tess.mesh.triangles.len(),
                 dev.vertex_rel,
                 dev.chord,
                 dev.surface_to_mesh
@@ -591,7 +593,7 @@ fn meshes_read_back_by_trimesh_and_pygltflib() {
             assert!(dev.chord <= tol + 1e-6 * size(s), "{case}: a chord deviates by {} > {tol}", dev.chord);
             assert!(dev.surface_to_mesh <= tol + 1e-6 * size(s), "{case}: surface to mesh {}", dev.surface_to_mesh);
             if kind == "glb" {
-                let want = curvature_colors(&mesh);
+                let want = curvature_colors(&tess);
                 assert_eq!(read.colors.len(), want.len());
                 for (c, w) in read.colors.iter().zip(&want) {
                     assert_eq!(*c, w.map(f64::from), "{case}: colour");
@@ -601,11 +603,11 @@ fn meshes_read_back_by_trimesh_and_pygltflib() {
         // The cylinder's Gaussian curvature is zero: every colour is the map's white.
         if *name == "quarter_cylinder" {
             let white = srgb_to_linear(247);
-            assert!(mesh.gaussian.iter().all(|k| k.abs() < 1e-9));
-            assert!(curvature_colors(&mesh).iter().all(|c| *c == [white; 3]));
+            assert!(tess.gaussian.iter().all(|k| k.abs() < 1e-9));
+            assert!(curvature_colors(&tess).iter().all(|c| *c == [white; 3]));
         } else {
             // A hull bends both ways: both ends of the map appear.
-            assert!(mesh.gaussian.iter().any(|&k| k > 0.0) && mesh.gaussian.iter().any(|&k| k < 0.0));
+            assert!(tess.gaussian.iter().any(|&k| k > 0.0) && tess.gaussian.iter().any(|&k| k < 0.0));
         }
     }
 }
@@ -655,15 +657,15 @@ fn run_validator(prefix: &Path, glb: &Path) -> (i32, Value) {
 fn gltf_and_corrupted(dir: &Path) -> (PathBuf, PathBuf, usize) {
     let (_, s60_rational) = series60();
     let s = s60_rational.scaled(1.0 / 0.3048);
-    let mesh = tessellate(&s, &TessellationOptions { tolerance: 1e-4 * size(&s), mirror: true }).expect("tessellates");
+    let tess = tessellate(&s, &TessellationOptions { tolerance: 1e-4 * size(&s), mirror: true }).expect("tessellates");
     let mut bytes = Vec::new();
-    write_glb(&mut bytes, &mesh, "hull", Units::Foot).expect("writes");
+    write_glb(&mut bytes, &tess, "hull", Units::Foot).expect("writes");
     let (glb, bad) = (dir.join("hull.glb"), dir.join("bad.glb"));
     std::fs::write(&glb, &bytes).expect("write");
     let n = bytes.len();
     bytes[n - 4..].copy_from_slice(&u32::MAX.wrapping_sub(7).to_le_bytes());
     std::fs::write(&bad, &bytes).expect("write");
-    (glb, bad, mesh.triangles.len())
+    (glb, bad, tess.mesh.triangles.len())
 }
 
 /// The Khronos glTF-Validator finds no error, warning, info or hint in our glTF (mirrored

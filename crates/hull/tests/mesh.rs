@@ -192,7 +192,7 @@ fn ascii_and_binary_stl_obj_and_gzip_read_the_same_mesh() {
     let from_binary = parse_mesh(&binary, "b.stl", Some(MeshFormat::Stl), &opts).expect("binary");
     let from_gz = parse_mesh(&gzip(&ascii), "a.stl.gz", None, &opts).expect("gzip");
     let mut obj = Vec::new();
-    write_obj(&mut obj, &from_ascii).expect("writes");
+    write_obj(&mut obj, &from_ascii, &[], None).expect("writes");
     let from_obj = parse_mesh(&obj, "a.obj", None, &opts).expect("obj");
     // Every STL facet brings its own three corners: welding gives back the shared vertices.
     assert_eq!(from_ascii.vertices.len(), mesh.vertices.len());

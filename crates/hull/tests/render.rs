@@ -5,10 +5,11 @@
 
 use std::f64::consts::FRAC_1_SQRT_2;
 
+use hull::analysis::CurvatureField;
 use hull::drawing::{Anchor, Drawing, Item, Rgb, Stroke};
 use hull::render::{
-    convergence_plot, curvature_map, curvature_map_png, render_png, render_rgba, CurvatureField, CurvatureMap,
-    CurvatureMapOptions, Image, RasterOptions, View,
+    convergence_plot, curvature_map, curvature_map_png, render_png, render_rgba, CurvatureMap, CurvatureMapOptions,
+    Image, RasterOptions, View,
 };
 use hull::{fit_offsets, series60_sample, FitConfig, HullError};
 use nurbs::{KnotVector, NurbsSurface, Vec3};

@@ -24,7 +24,7 @@ use std::sync::OnceLock;
 use std::time::Instant;
 
 use common::browser::{console_messages, decode_png, keep, page_requests, run_chromium, screenshot, Picture};
-use hull::drawing::colormap::diverging_stops;
+use hull::colormap::diverging_stops;
 use hull::report_html::{build_report, write_report, ReportFiles, ReportInputs, ReportOptions};
 use hull::{FitOutcome, Hydrostatics, HydrostaticsOptions, Offsets};
 use serde_json::Value;

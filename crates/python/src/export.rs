@@ -5,9 +5,10 @@
 use std::path::Path;
 
 use hull::export::{
-    mirrored_full_hull, tessellate, write_iges, write_step, write_stl_ascii, write_stl_binary, IgesMeta, StepMeta,
-    TessellationOptions, TriangleMesh,
+    mesh_name, mirrored_full_hull, stl_header, tessellate, write_iges, write_step, IgesMeta, StepMeta,
+    TessellationOptions,
 };
+use hull::mesh::{write_stl_ascii, write_stl_binary, TriMesh};
 use pyo3::prelude::*;
 
 use crate::errors::{bad_arg, io_error, to_py};
@@ -24,7 +25,7 @@ pub enum Format {
 
 /// The mesh of `s` within `tolerance` (default: the command line's, 1e-4 of the control net's
 /// diagonal), with the port half when `mirror`.
-pub fn mesh(py: Python<'_>, s: &PySurface, tolerance: Option<f64>, mirror: bool) -> PyResult<TriangleMesh> {
+pub fn mesh(py: Python<'_>, s: &PySurface, tolerance: Option<f64>, mirror: bool) -> PyResult<TriMesh> {
     let mut options = TessellationOptions::for_surface(&s.surface);
     options.mirror = mirror;
     if let Some(t) = tolerance {
@@ -33,7 +34,7 @@ pub fn mesh(py: Python<'_>, s: &PySurface, tolerance: Option<f64>, mirror: bool)
         }
         options.tolerance = t;
     }
-    py.detach(|| tessellate(&s.surface, &options)).map_err(to_py)
+    py.detach(|| tessellate(&s.surface, &options)).map(|t| t.mesh).map_err(to_py)
 }
 
 /// The header date: `timestamp`, else SOURCE_DATE_EPOCH, else now (the command line's rule).
@@ -79,9 +80,9 @@ pub fn write(
             hull::check_finite(&s.surface).map_err(to_py)?;
             let mesh = mesh(py, s, tolerance, mirror)?;
             if format == Format::Stl {
-                Box::new(move |mut w| write_stl_binary(&mut w, &mesh, "hull", units))
+                Box::new(move |mut w| write_stl_binary(&mut w, &mesh, &stl_header("hull", units)))
             } else {
-                Box::new(move |mut w| write_stl_ascii(&mut w, &mesh, "hull"))
+                Box::new(move |mut w| write_stl_ascii(&mut w, &mesh, &mesh_name("hull")))
             }
         }
     };

@@ -265,7 +265,7 @@ impl PySurface {
         let mesh = crate::export::mesh(py, self, tolerance, mirror)?;
         let faces: Vec<i64> = mesh.triangles.iter().flat_map(|t| t.map(i64::from)).collect();
         Ok((
-            arrays::vec3s(py, &[mesh.positions.len()], &mesh.positions)?,
+            arrays::vec3s(py, &[mesh.vertices.len()], &mesh.vertices)?,
             arrays::array(py, &[mesh.triangles.len(), 3], faces)?,
         ))
     }

@@ -16,15 +16,19 @@
 //! pointing outboard, so a convex bilge has `H < 0`.
 //!
 //! Nodes where the normal is undefined or the fundamental forms are round-off (a collapsed
-//! edge: a pole, a pointed stem; see `cuts::DEGENERATE_REL`) are flagged (`None`) and left out
-//! of the statistics, so nothing is NaN.
+//! edge: a pole, a pointed stem; see [`Degeneracy`]) are flagged (`None`) and left out of the
+//! statistics, so nothing is NaN.
+//!
+//! This is the one sampling of curvature over a surface: the report's tables read its
+//! statistics, and the curvature picture ([`crate::render::curvature_map`]) paints its nodes.
 
 use nurbs::{NurbsSurface, Vec3};
 use rayon::prelude::*;
 use serde::Serialize;
 
 use super::cuts::regular_normal;
-use super::param_grid;
+use super::{param_grid, span_grid};
+use crate::offsets::COINCIDENT_REL;
 
 /// Settings of [`curvature_map`].
 #[derive(Clone, Debug, PartialEq)]
@@ -37,13 +41,50 @@ pub struct CurvatureMapOptions {
     /// Low and high percentiles (0..=100) reported for colour scales, robust to a few extreme
     /// nodes (next to a collapsed edge, at a knot).
     pub percentiles: (f64, f64),
+    /// Where the grid lines lie.
+    pub lines: GridLines,
+    /// When a node counts as degenerate.
+    pub degeneracy: Degeneracy,
 }
 
 impl Default for CurvatureMapOptions {
-    /// 64 x 64 intervals with the knot lines, percentiles 1 % and 99 %.
+    /// 64 x 64 uniform intervals with the knot lines, percentiles 1 % and 99 %, degenerate
+    /// nodes told by [`Degeneracy::Skewed`].
     fn default() -> Self {
-        CurvatureMapOptions { grid: (64, 64), refine_at_knots: true, percentiles: (1.0, 99.0) }
+        CurvatureMapOptions {
+            grid: (64, 64),
+            refine_at_knots: true,
+            percentiles: (1.0, 99.0),
+            lines: GridLines::Uniform,
+            degeneracy: Degeneracy::Skewed,
+        }
     }
+}
+
+/// Where the grid lines of a curvature map lie, `grid = (n_u, n_v)` of [`CurvatureMapOptions`]
+/// giving the count along each direction.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GridLines {
+    /// `n` uniform intervals of the domain, joined (with `refine_at_knots`) with every knot
+    /// line and with the midpoint of every knot span.
+    #[default]
+    Uniform,
+    /// A line at every distinct knot and each knot span split in proportion to its length into
+    /// at least 2 equal parts, about `n` lines in all (`refine_at_knots` is implied): the grid
+    /// of the curvature picture, whose cells never straddle a knot.
+    Spans,
+}
+
+/// When a grid node counts as degenerate (its curvatures are then not computed).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Degeneracy {
+    /// The parametrisation is locally too skewed for second-order quantities:
+    /// `|S_u x S_v| < 1e-8 (|S_u|^2 + |S_v|^2)`, as the planar cuts judge it.
+    #[default]
+    Skewed,
+    /// `|S_u x S_v|` is round-off of the model: at most [`COINCIDENT_REL`] of the square of the
+    /// control net's size per unit parameter area (as [`crate::gaussian_curvature_range`]).
+    RoundOff,
 }
 
 /// Which curvature to read from a sample.
@@ -63,6 +104,44 @@ pub enum CurvatureField {
 impl CurvatureField {
     pub const ALL: [CurvatureField; 4] =
         [CurvatureField::Gaussian, CurvatureField::Mean, CurvatureField::K1, CurvatureField::K2];
+
+    /// `Gaussian curvature`, `mean curvature`, `larger principal curvature`, `smaller
+    /// principal curvature`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CurvatureField::Gaussian => "Gaussian curvature",
+            CurvatureField::Mean => "mean curvature",
+            CurvatureField::K1 => "larger principal curvature",
+            CurvatureField::K2 => "smaller principal curvature",
+        }
+    }
+
+    /// `K`, `H`, `k1`, `k2`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            CurvatureField::Gaussian => "K",
+            CurvatureField::Mean => "H",
+            CurvatureField::K1 => "k1",
+            CurvatureField::K2 => "k2",
+        }
+    }
+
+    /// Power of length in the units' denominator: 2 for K, 1 for the others.
+    pub fn power(self) -> i32 {
+        match self {
+            CurvatureField::Gaussian => 2,
+            _ => 1,
+        }
+    }
+
+    /// `1/m²` for K, `1/m` for the others, for length units `units` (`unit` if empty).
+    pub fn units(self, units: &str) -> String {
+        let u = if units.is_empty() { "unit" } else { units };
+        match self {
+            CurvatureField::Gaussian => format!("1/{u}²"),
+            _ => format!("1/{u}"),
+        }
+    }
 }
 
 /// Curvatures at one regular grid node.
@@ -85,6 +164,15 @@ impl CurvatureSample {
             CurvatureField::K1 => self.k1,
             CurvatureField::K2 => self.k2,
         }
+    }
+
+    /// The curvatures with the normal turned over when `flip`: `H`, `k1`, `k2` change sign
+    /// (and `k1`, `k2` swap, `k1 >= k2` still), `K` does not.
+    pub fn oriented(&self, flip: bool) -> CurvatureSample {
+        if !flip {
+            return *self;
+        }
+        CurvatureSample { gaussian: self.gaussian, mean: -self.mean, k1: -self.k2, k2: -self.k1, normal: -self.normal }
     }
 }
 
@@ -144,18 +232,53 @@ pub struct CurvatureSummary {
 
 /// The curvature map of `surface` on the grid of `options`.
 pub fn curvature_map(surface: &NurbsSurface, options: &CurvatureMapOptions) -> CurvatureMap {
-    let us = param_grid(surface.knots_u(), options.grid.0, options.refine_at_knots, 2);
-    let vs = param_grid(surface.knots_v(), options.grid.1, options.refine_at_knots, 2);
+    let grid = |knots, n| match options.lines {
+        GridLines::Uniform => param_grid(knots, n, options.refine_at_knots, 2),
+        GridLines::Spans => span_grid(knots, n),
+    };
+    let us = grid(surface.knots_u(), options.grid.0);
+    let vs = grid(surface.knots_v(), options.grid.1);
+    let regular = Regular::new(surface, options.degeneracy);
     let rows: Vec<Vec<(Vec3, Option<CurvatureSample>)>> =
-        us.par_iter().map(|&u| vs.iter().map(|&v| sample_at(surface, u, v)).collect()).collect();
+        us.par_iter().map(|&u| vs.iter().map(|&v| sample_at(surface, u, v, regular)).collect()).collect();
     let (points, samples) = rows.into_iter().flatten().unzip();
     CurvatureMap { us, vs, points, samples, percentiles: options.percentiles }
 }
 
+/// The test of [`Degeneracy`] for one surface.
+#[derive(Clone, Copy)]
+enum Regular {
+    Skewed,
+    /// Smallest `|S_u x S_v|` that is not round-off.
+    Area(f64),
+}
+
+impl Regular {
+    fn new(surface: &NurbsSurface, degeneracy: Degeneracy) -> Self {
+        match degeneracy {
+            Degeneracy::Skewed => Regular::Skewed,
+            Degeneracy::RoundOff => {
+                let (lo, hi) = surface.control_bounds();
+                let size = (hi - lo).norm();
+                let (au, bu) = surface.domain_u();
+                let (av, bv) = surface.domain_v();
+                Regular::Area(COINCIDENT_REL * size * size / ((bu - au) * (bv - av)))
+            }
+        }
+    }
+
+    fn holds(self, d: &nurbs::SurfaceDerivatives) -> bool {
+        match self {
+            Regular::Skewed => regular_normal(d).is_some(),
+            Regular::Area(tol) => d.su.cross(d.sv).norm() > tol,
+        }
+    }
+}
+
 /// The point and, where regular, the curvatures at `(u, v)`.
-fn sample_at(surface: &NurbsSurface, u: f64, v: f64) -> (Vec3, Option<CurvatureSample>) {
+fn sample_at(surface: &NurbsSurface, u: f64, v: f64, regular: Regular) -> (Vec3, Option<CurvatureSample>) {
     let d = surface.derivatives(u, v);
-    let sample = regular_normal(&d).and_then(|_| d.curvature()).and_then(|c| {
+    let sample = regular.holds(&d).then(|| d.curvature()).flatten().and_then(|c| {
         let disc = (c.mean * c.mean - c.gaussian).max(0.0).sqrt();
         let s = CurvatureSample {
             gaussian: c.gaussian,
@@ -186,6 +309,25 @@ impl CurvatureMap {
     /// Number of flagged (degenerate) nodes.
     pub fn flagged(&self) -> usize {
         self.samples.iter().filter(|s| s.is_none()).count()
+    }
+
+    /// True if the surface's normal `S_u x S_v` points toward the inside of the hull at most
+    /// regular nodes: `sum n . (c - p) / |c - p| < 0` over them, `c = (p.x, y_min, z_mid)` the
+    /// centre-plane axis at mid-depth of the grid's points. The mean and principal curvatures
+    /// of [`CurvatureSample::oriented`] with this `flip` are positive where the hull is convex.
+    pub fn outward_flip(&self) -> bool {
+        let (lo, hi) = point_bounds(&self.points);
+        let z_mid = 0.5 * (lo.z + hi.z);
+        let vote: f64 = self
+            .points
+            .iter()
+            .zip(&self.samples)
+            .filter_map(|(p, s)| {
+                let inward = (Vec3::new(p.x, lo.y, z_mid) - *p).normalized()?;
+                Some(s.as_ref()?.normal.dot(inward))
+            })
+            .sum();
+        vote.is_nan() || vote < 0.0
     }
 
     /// Statistics of `field` over the regular nodes with the percentiles `(lo, hi)` (percent,
@@ -238,6 +380,17 @@ impl CurvatureMap {
             k2: self.stats(CurvatureField::K2, p),
         }
     }
+}
+
+/// The bounding box `(min, max)` of the points.
+pub(crate) fn point_bounds(points: &[Vec3]) -> (Vec3, Vec3) {
+    let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    let mut hi = -lo;
+    for p in points {
+        lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+        hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+    }
+    (lo, hi)
 }
 
 /// The `p`-th percentile (0..=100) of sorted, non-empty `values`: linear interpolation at rank

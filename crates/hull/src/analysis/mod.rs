@@ -19,8 +19,8 @@ pub mod fold;
 pub mod validity;
 
 pub use curvature_map::{
-    curvature_map, CurvatureField, CurvatureMap, CurvatureMapOptions, CurvatureSample, CurvatureSummary, Extreme,
-    FieldStats,
+    curvature_map, CurvatureField, CurvatureMap, CurvatureMapOptions, CurvatureSample, CurvatureSummary, Degeneracy,
+    Extreme, FieldStats, GridLines,
 };
 pub use cuts::{cut_surface, cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
 pub use fairness::{
@@ -61,6 +61,23 @@ pub(crate) fn param_grid(knots: &KnotVector, intervals: usize, refine_at_knots: 
     t
 }
 
+/// Parameter values with a line at every distinct knot and each knot span split in proportion
+/// to its length into at least 2 equal parts, about `target` lines in all (the grid of the
+/// curvature picture, [`crate::render::curvature_map`]).
+pub(crate) fn span_grid(knots: &KnotVector, target: usize) -> Vec<f64> {
+    let (a, b) = knots.domain();
+    let mut breaks = vec![a];
+    breaks.extend(knots.interior_breaks().into_iter().map(|(k, _)| k).filter(|&k| k > a && k < b));
+    breaks.push(b);
+    let mut t = Vec::new();
+    for w in breaks.windows(2) {
+        let n = ((target as f64 * (w[1] - w[0]) / (b - a)).round() as usize).max(2);
+        t.extend((0..n).map(|j| w[0] + (w[1] - w[0]) * j as f64 / n as f64));
+    }
+    t.push(b);
+    t
+}
+
 /// The diagonal of the control net's bounding box: the model size that relative tolerances
 /// refer to. `None` for an empty or non-finite box.
 pub(crate) fn model_size(surface: &NurbsSurface) -> Option<f64> {
@@ -86,5 +103,17 @@ mod tests {
         }
         let plain = param_grid(&kv, 4, false, 2);
         assert_eq!(plain, vec![0.0, 0.25, 0.5, 0.75, 1.0]);
+    }
+
+    #[test]
+    fn span_grid_has_a_line_at_every_knot_and_splits_spans_by_length() {
+        // Spans [0, 0.1], [0.1, 0.5], [0.5, 1]: 20 lines split 2 (the minimum), 8 and 10.
+        let k = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.1, 0.5, 1.0, 1.0, 1.0, 1.0]).expect("valid knots");
+        let t = span_grid(&k, 20);
+        for knot in [0.0, 0.1, 0.5, 1.0] {
+            assert!(t.contains(&knot), "knot {knot} missing");
+        }
+        assert_eq!(t.len(), 2 + 8 + 10 + 1);
+        assert!(t.windows(2).all(|w| w[1] > w[0]));
     }
 }

@@ -20,24 +20,24 @@
 //!    ends meet, the curves are assigned to stations (by layer, by a text label next to them,
 //!    or by their order), each is checked to stay on one side of the centreline, and ordered
 //!    from keel to deck.
-//! 3. **Write** ([`write_sections_csv`]) the [`Offsets`](crate::Offsets) as a sections CSV
+//! 3. **Write** ([`crate::write_sections_csv`], [`crate::float::Notation::Plain`]) the [`Offsets`](crate::Offsets) as a sections CSV
 //!    (`section,x,y,z`), which [`crate::read_offsets`] reads.
 
-mod csv_out;
 mod dxf_in;
 pub mod geom;
+mod join;
 mod map;
+mod options;
+mod stations;
 mod svg_in;
 
 use std::path::Path;
 
-pub use csv_out::write_sections_csv;
 pub use dxf_in::parse_dxf;
 pub use geom::{Affine, Segment, Spline, P2};
-pub use map::{
-    digitize, label_number, CurveOrder, DigitizeOptions, Digitized, DrawingScale, Side, StationIds, StationInfo,
-    StationX,
-};
+pub use map::digitize;
+pub use options::{CurveOrder, DigitizeOptions, Digitized, DrawingScale, Side, StationIds, StationInfo, StationX};
+pub use stations::label_number;
 pub use svg_in::parse_svg;
 
 use crate::error::{HullError, InputErrorKind, Location};

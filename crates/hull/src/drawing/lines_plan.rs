@@ -61,10 +61,10 @@ use std::fmt;
 use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use rayon::prelude::*;
 
-use super::colormap;
 use super::model::{Anchor, Drawing, Item, Rgb, Stroke};
 use super::sheet::Sheet;
 use crate::analysis::cuts::{cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
+use crate::colormap;
 use crate::offsets::{Offsets, PLANAR_REL};
 use crate::units::Units;
 
@@ -364,7 +364,7 @@ impl Lines {
 /// Round values (`{1, 2, 5} x 10^k` steps, about `target` of them) strictly between `lo` and
 /// `hi`, as a draughtsman spaces waterlines and buttocks.
 fn round_inside(lo: f64, hi: f64, target: usize) -> Vec<f64> {
-    let (ticks, step) = crate::render::nice_ticks(lo, hi, target + 1);
+    let (ticks, step) = super::nice_ticks(lo, hi, target + 1);
     // Half a step clear of the ends: a line on the keel or the deck edge is no line.
     ticks.into_iter().filter(|&t| t > lo + 0.25 * step && t < hi - 0.25 * step).collect()
 }
@@ -951,8 +951,8 @@ fn draw_legend(d: &mut Drawing, l: &Layout, errors: &[f64], units: Units) {
         layer: g.into(),
     });
     d.push(text([x, bar_y + bar_h + 2.0], "Offset fit error (mm)", 2.2, Anchor::Start, g));
-    let (ticks, step) = crate::render::nice_ticks(lo_mm, hi_mm, 4);
-    let low = crate::render::format_tick(lo_mm, step / 10.0);
+    let (ticks, step) = super::nice_ticks(lo_mm, hi_mm, 4);
+    let low = super::format_tick(lo_mm, step / 10.0);
     let high = crate::numfmt::format_short(hi_mm);
     let label_w = |s: &str| s.chars().count() as f64 * CHAR_WIDTH_PER_CAP * LABEL_MM;
     d.push(text([x, y + 1.0], low.clone(), LABEL_MM, Anchor::Start, g));
@@ -967,7 +967,7 @@ fn draw_legend(d: &mut Drawing, l: &Layout, errors: &[f64], units: Units) {
                 continue;
             }
             d.push(line(vec![[px, bar_y], [px, bar_y + 0.35 * bar_h]], Rgb::BLACK, 0.13, g));
-            let s = crate::render::format_tick(t, step);
+            let s = super::format_tick(t, step);
             let half = 0.5 * label_w(&s);
             if px - half >= edge && px + half <= free_hi {
                 d.push(text([px, y + 1.0], s, LABEL_MM, Anchor::Middle, g));

@@ -5,20 +5,7 @@
 //! Coordinates are paper millimetres, origin at the bottom-left corner of the sheet, y up (as
 //! in DXF and in the drawings' model space); the SVG writer flips y.
 
-/// A colour, 8 bits per channel.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Rgb(pub u8, pub u8, pub u8);
-
-impl Rgb {
-    pub const BLACK: Rgb = Rgb(0, 0, 0);
-    pub const WHITE: Rgb = Rgb(255, 255, 255);
-    pub const GREY: Rgb = Rgb(128, 128, 128);
-
-    /// `#rrggbb`.
-    pub fn hex(self) -> String {
-        format!("#{:02x}{:02x}{:02x}", self.0, self.1, self.2)
-    }
-}
+pub use crate::colormap::Rgb;
 
 /// How a line is drawn.
 #[derive(Clone, Debug, PartialEq)]

@@ -32,14 +32,14 @@
 //!   curves too.
 //! * **T** (terminate): the record counts of S, G, D and P.
 //!
-//! Reals are written by [`super::float::real`] (shortest round-trip, always with a decimal
+//! Reals are written by [`crate::float::real`] (shortest round-trip, always with a decimal
 //! point), so the file carries the surface bit for bit.
 
 use std::io::{self, Write};
 
 use nurbs::{NurbsCurve, NurbsSurface, Vec3};
 
-use super::float::real;
+use crate::float::real;
 
 /// Units as IGES names them: the global-section units flag (field 14) and units name
 /// (field 15), e.g. `6`/`"M"` or `2`/`"MM"` (IGES 5.3 section 2.2.4.3, table 3).

@@ -1,14 +1,17 @@
-//! Mesh exports of a [`TriangleMesh`]: STL (binary and ASCII), Wavefront OBJ and binary glTF
-//! 2.0 (`.glb`).
+//! Mesh exports of a [`Tessellation`]: STL (binary and ASCII), Wavefront OBJ and binary glTF
+//! 2.0 (`.glb`). STL and OBJ are written by the one writer of each format
+//! ([`crate::mesh::stl`], [`crate::mesh::obj`]), given the labels made here; glTF is written
+//! here.
 //!
-//! * **STL binary**: an 80-byte header (ASCII, never starting with `solid`, so readers do not
-//!   take it for ASCII STL), the triangle count (u32), then per triangle the unit normal and
-//!   the three corners as little-endian f32 and a zero u16 attribute (50 bytes). The normal is
-//!   the triangle's own, agreeing with its counter-clockwise winding (outward).
-//! * **STL ASCII**: `solid NAME`, per triangle `facet normal nx ny nz`, `outer loop`, three
-//!   `vertex x y z`, `endloop`, `endfacet`; `endsolid NAME`.
-//! * **OBJ**: a comment naming the units, `o NAME`, `v x y z` and `vn nx ny nz` per vertex
-//!   (the surface's outward normal there), `f a//a b//b c//c` per triangle (1-based).
+//! * **STL binary**: the header [`stl_header`] (ASCII, never starting with `solid`, so
+//!   readers do not take it for ASCII STL, naming the units), then per triangle the unit
+//!   normal and the three corners as little-endian f32. The normal is the triangle's own,
+//!   agreeing with its counter-clockwise winding (outward).
+//! * **STL ASCII**: `solid NAME` ([`mesh_name`]), per triangle `facet normal nx ny nz`,
+//!   `outer loop`, three `vertex x y z`, `endloop`, `endfacet`; `endsolid NAME`.
+//! * **OBJ**: the comments [`obj_comments`] naming the units, `o NAME`, `v x y z` and
+//!   `vn nx ny nz` per vertex (the surface's outward normal there), `f a//a b//b c//c` per
+//!   triangle (1-based).
 //!
 //! STL and OBJ keep the surface's coordinates and units (neither format records units; the
 //! OBJ comment and the STL header name them).
@@ -23,32 +26,29 @@
 //!   axes permuted cyclically, `(X, Y, Z) = (y, z, x)`: up is up, forward is +Z, and the
 //!   permutation is a rotation (no mirror image). `COLOR_0` is the Gaussian curvature on the
 //!   diverging map [`diverging`] (blue negative, white zero, red positive), saturating at
-//!   the 98th percentile of `|K|` as in the 3-D viewer ([`crate::viewer::CURVATURE_QUANTILE`]),
+//!   [`curvature_limit`] (the 98th percentile of `|K|`, as in the 3-D viewer),
 //!   its sRGB stops turned into linear values as glTF requires
 //!   (`c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055)^2.4`, IEC 61966-2-1). The
 //!   `extras` of the asset record the source units, the axes and the curvature limit.
 //!
-//! Text numbers go through [`super::float::real`]; binary ones are IEEE little-endian.
+//! Text numbers go through [`crate::float::real`]; binary ones are IEEE little-endian.
 
 use std::io::{self, Write};
 
 use nurbs::Vec3;
 
-use super::float::real;
-use super::tessellate::TriangleMesh;
-use crate::drawing::colormap::diverging;
-use crate::viewer::CURVATURE_QUANTILE;
+use super::tessellate::Tessellation;
+use crate::colormap::{curvature_limit, diverging};
+use crate::float::real;
 use crate::Units;
-
-/// Bytes of an STL binary header.
-pub const STL_HEADER_LEN: usize = 80;
 
 fn invalid(msg: String) -> io::Error {
     io::Error::new(io::ErrorKind::InvalidInput, msg)
 }
 
-/// Printable ASCII without spaces (a name token of STL and OBJ); `hull` if nothing is left.
-fn token(name: &str) -> String {
+/// `name` as a name token of STL and OBJ: printable ASCII without spaces (others become
+/// `_`); `hull` if nothing is left.
+pub fn mesh_name(name: &str) -> String {
     let t: String = name.chars().map(|c| if c.is_ascii_graphic() { c } else { '_' }).collect();
     if t.is_empty() {
         "hull".into()
@@ -57,84 +57,28 @@ fn token(name: &str) -> String {
     }
 }
 
-fn f32s(p: Vec3) -> [f32; 3] {
-    [p.x as f32, p.y as f32, p.z as f32]
+/// The binary STL header of a mesh named `name` in `units`:
+/// `hullskin binary STL NAME units SYMBOL` (cut to 80 bytes by the writer).
+pub fn stl_header(name: &str, units: Units) -> String {
+    format!("hullskin binary STL {} units {}", mesh_name(name), units.symbol())
 }
 
-/// Write `mesh` as binary STL.
+/// The OBJ comments of a mesh named `name`, triangulated to `tolerance` in `units`: the
+/// version, the tolerance, the units and the axes.
 ///
 /// # Errors
-/// Whatever `w` returns; [`io::ErrorKind::InvalidInput`] for more than `u32::MAX` triangles.
-pub fn write_stl_binary<W: Write>(w: &mut W, mesh: &TriangleMesh, name: &str, units: Units) -> io::Result<()> {
-    let count = u32::try_from(mesh.triangles.len())
-        .map_err(|_| invalid(format!("{} triangles do not fit binary STL", mesh.triangles.len())))?;
-    let text = format!("hullskin binary STL {} units {}", token(name), units.symbol());
-    let mut header = [b' '; STL_HEADER_LEN];
-    for (h, b) in header.iter_mut().zip(text.bytes()) {
-        *h = b;
-    }
-    w.write_all(&header)?;
-    w.write_all(&count.to_le_bytes())?;
-    let mut rec = [0u8; 50];
-    for t in 0..mesh.triangles.len() {
-        let n = f32s(mesh.face_normal(t));
-        let corners = mesh.triangles[t].map(|k| f32s(mesh.positions[k as usize]));
-        for (k, x) in n.iter().chain(corners.iter().flatten()).enumerate() {
-            rec[4 * k..4 * k + 4].copy_from_slice(&x.to_le_bytes());
-        }
-        w.write_all(&rec)?;
-    }
-    Ok(())
-}
-
-/// Write `mesh` as ASCII STL.
-///
-/// # Errors
-/// Whatever `w` returns; [`io::ErrorKind::InvalidData`] for a non-finite coordinate.
-pub fn write_stl_ascii<W: Write>(w: &mut W, mesh: &TriangleMesh, name: &str) -> io::Result<()> {
-    let name = token(name);
-    writeln!(w, "solid {name}")?;
-    for t in 0..mesh.triangles.len() {
-        let n = mesh.face_normal(t);
-        writeln!(w, "  facet normal {} {} {}", real(n.x)?, real(n.y)?, real(n.z)?)?;
-        writeln!(w, "    outer loop")?;
-        for k in mesh.triangles[t] {
-            let p = mesh.positions[k as usize];
-            writeln!(w, "      vertex {} {} {}", real(p.x)?, real(p.y)?, real(p.z)?)?;
-        }
-        writeln!(w, "    endloop")?;
-        writeln!(w, "  endfacet")?;
-    }
-    writeln!(w, "endsolid {name}")
-}
-
-/// Write `mesh` as Wavefront OBJ with per-vertex normals.
-///
-/// # Errors
-/// Whatever `w` returns; [`io::ErrorKind::InvalidData`] for a non-finite coordinate.
-pub fn write_obj<W: Write>(w: &mut W, mesh: &TriangleMesh, name: &str, units: Units) -> io::Result<()> {
-    writeln!(
-        w,
-        "# hullskin {}: {} triangulated to {} {}",
-        env!("CARGO_PKG_VERSION"),
-        token(name),
-        real(mesh.tolerance)?,
-        units.symbol()
-    )?;
-    writeln!(w, "# units: {}; axes: x forward, y to starboard, z up", units.plural_name())?;
-    writeln!(w, "# {} vertices, {} triangles", mesh.positions.len(), mesh.triangles.len())?;
-    writeln!(w, "o {}", token(name))?;
-    for p in &mesh.positions {
-        writeln!(w, "v {} {} {}", real(p.x)?, real(p.y)?, real(p.z)?)?;
-    }
-    for n in &mesh.normals {
-        writeln!(w, "vn {} {} {}", real(n.x)?, real(n.y)?, real(n.z)?)?;
-    }
-    for t in &mesh.triangles {
-        let [a, b, c] = t.map(|k| k as u64 + 1);
-        writeln!(w, "f {a}//{a} {b}//{b} {c}//{c}")?;
-    }
-    Ok(())
+/// [`io::ErrorKind::InvalidData`] for a non-finite tolerance.
+pub fn obj_comments(name: &str, tolerance: f64, units: Units) -> io::Result<Vec<String>> {
+    Ok(vec![
+        format!(
+            "hullskin {}: {} triangulated to {} {}",
+            env!("CARGO_PKG_VERSION"),
+            mesh_name(name),
+            real(tolerance)?,
+            units.symbol()
+        ),
+        format!("units: {}; axes: x forward, y to starboard, z up", units.plural_name()),
+    ])
 }
 
 /// The glTF position of a model point in `units`: metres, `(X, Y, Z) = (y, z, x)`.
@@ -161,22 +105,10 @@ pub fn srgb_to_linear(c: u8) -> f32 {
     (if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }) as f32
 }
 
-/// The curvature limit of the colours: the 98th percentile of `|K|` (nearest rank), 1 if
-/// there is no positive one.
-pub fn curvature_limit(gaussian: &[f64]) -> f64 {
-    let mut a: Vec<f64> = gaussian.iter().filter(|v| v.is_finite()).map(|v| v.abs()).collect();
-    if a.is_empty() {
-        return 1.0;
-    }
-    a.sort_by(f64::total_cmp);
-    let rank = ((CURVATURE_QUANTILE * a.len() as f64).ceil() as usize).clamp(1, a.len());
-    Some(a[rank - 1]).filter(|&l| l > 0.0).unwrap_or(1.0)
-}
-
 /// Linear RGB of every vertex: its Gaussian curvature on the diverging map.
-pub fn curvature_colors(mesh: &TriangleMesh) -> Vec<[f32; 3]> {
-    let limit = curvature_limit(&mesh.gaussian);
-    mesh.gaussian
+pub fn curvature_colors(tess: &Tessellation) -> Vec<[f32; 3]> {
+    let limit = curvature_limit(&tess.gaussian);
+    tess.gaussian
         .iter()
         .map(|&k| {
             let c = diverging(k, limit);
@@ -217,22 +149,23 @@ const GLB_MAGIC: u32 = 0x4654_6C67;
 const CHUNK_JSON: u32 = 0x4E4F_534A;
 const CHUNK_BIN: u32 = 0x004E_4942;
 
-/// Write `mesh` (in `units`) as one binary glTF 2.0 file (see the module docs).
+/// Write the mesh of `tess` (in `units`) as one binary glTF 2.0 file (see the module docs).
 ///
 /// # Errors
 /// Whatever `w` returns; [`io::ErrorKind::InvalidInput`] for an empty mesh or one too large
 /// for the 32-bit lengths of GLB; [`io::ErrorKind::InvalidData`] for a non-finite number.
-pub fn write_glb<W: Write>(w: &mut W, mesh: &TriangleMesh, name: &str, units: Units) -> io::Result<()> {
+pub fn write_glb<W: Write>(w: &mut W, tess: &Tessellation, name: &str, units: Units) -> io::Result<()> {
+    let mesh = &tess.mesh;
     if mesh.triangles.is_empty() {
         return Err(invalid("no triangles to write".into()));
     }
-    let positions: Vec<[f32; 3]> = mesh.positions.iter().map(|&p| gltf_position(p, units)).collect();
+    let positions: Vec<[f32; 3]> = mesh.vertices.iter().map(|&p| gltf_position(p, units)).collect();
     if positions.iter().flatten().any(|c| !c.is_finite()) {
         return Err(io::Error::new(io::ErrorKind::InvalidData, "a vertex is not finite in f32"));
     }
     let normals: Vec<[f32; 3]> = mesh.normals.iter().map(|&n| gltf_direction(n)).collect();
-    let colors = curvature_colors(mesh);
-    let limit = curvature_limit(&mesh.gaussian);
+    let colors = curvature_colors(tess);
+    let limit = curvature_limit(&tess.gaussian);
     let n = positions.len();
     let vec3_bytes = 12 * n;
     let index_bytes = 12 * mesh.triangles.len();
@@ -275,7 +208,7 @@ pub fn write_glb<W: Write>(w: &mut W, mesh: &TriangleMesh, name: &str, units: Un
         json_string(units.symbol()),
         real(limit / units.metres_per_unit().powi(2))?,
         real(limit / units.metres_per_unit().powi(2))?,
-        real(mesh.tolerance * units.metres_per_unit())?,
+        real(tess.tolerance * units.metres_per_unit())?,
     );
     let mut json = format!(
         "{{\"asset\":{{\"version\":\"2.0\",\"generator\":{generator},\"extras\":{extras}}},\"scene\":0,\
@@ -319,9 +252,11 @@ pub fn write_glb<W: Write>(w: &mut W, mesh: &TriangleMesh, name: &str, units: Un
 mod tests {
     use super::*;
     use crate::export::tessellate::{tessellate, TessellationOptions};
+    use crate::mesh::obj::write_obj;
+    use crate::mesh::stl::{write_stl_ascii, write_stl_binary};
     use nurbs::{KnotVector, NurbsSurface};
 
-    fn cylinder_mesh(mirror: bool) -> TriangleMesh {
+    fn cylinder_mesh(mirror: bool) -> Tessellation {
         let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
         let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
         let s = std::f64::consts::FRAC_1_SQRT_2;
@@ -347,34 +282,34 @@ mod tests {
 
     #[test]
     fn binary_stl_layout() {
-        let mesh = cylinder_mesh(true);
+        let tess = cylinder_mesh(true);
         let mut out = Vec::new();
-        write_stl_binary(&mut out, &mesh, "cyl", Units::Metre).expect("writes");
-        assert_eq!(out.len(), 84 + 50 * mesh.triangles.len());
+        write_stl_binary(&mut out, &tess.mesh, &stl_header("cyl", Units::Metre)).expect("writes");
+        assert_eq!(out.len(), 84 + 50 * tess.mesh.triangles.len());
         assert!(!out.starts_with(b"solid"));
-        assert_eq!(le_u32(&out, 80) as usize, mesh.triangles.len());
+        assert_eq!(le_u32(&out, 80) as usize, tess.mesh.triangles.len());
         // Every record: the corners of its triangle in f32, and a unit normal agreeing with
         // the winding.
         for (t, rec) in out[84..].chunks(50).enumerate() {
             let f = |k: usize| f64::from(le_f32(rec, 4 * k));
             let n = Vec3::new(f(0), f(1), f(2));
             assert!((n.norm() - 1.0).abs() < 1e-6);
-            for (c, &k) in mesh.triangles[t].iter().enumerate() {
-                let p = mesh.positions[k as usize];
+            for (c, &k) in tess.mesh.triangles[t].iter().enumerate() {
+                let p = tess.mesh.vertices[k as usize];
                 let q = Vec3::new(f(3 + 3 * c), f(4 + 3 * c), f(5 + 3 * c));
                 // f32 rounding: half an ulp of |p| <= 3 is below 2.4e-7.
                 assert!(p.distance(q) < 5e-7, "{p:?} vs {q:?}");
             }
-            assert!(n.dot(mesh.face_normal(t)) > 1.0 - 1e-6);
+            assert!(n.dot(tess.mesh.face_normal(t)) > 1.0 - 1e-6);
             assert_eq!(&rec[48..], &[0, 0]);
         }
     }
 
     #[test]
     fn ascii_stl_and_obj_parse_back() {
-        let mesh = cylinder_mesh(false);
+        let tess = cylinder_mesh(false);
         let mut out = Vec::new();
-        write_stl_ascii(&mut out, &mesh, "my hull").expect("writes");
+        write_stl_ascii(&mut out, &tess.mesh, &mesh_name("my hull")).expect("writes");
         let text = String::from_utf8(out).expect("ASCII");
         assert!(text.starts_with("solid my_hull\n") && text.ends_with("endsolid my_hull\n"));
         let vertices: Vec<Vec3> = text
@@ -385,32 +320,36 @@ mod tests {
                 Vec3::new(c[0], c[1], c[2])
             })
             .collect();
-        assert_eq!(vertices.len(), 3 * mesh.triangles.len());
+        assert_eq!(vertices.len(), 3 * tess.mesh.triangles.len());
         for (k, v) in vertices.iter().enumerate() {
             // Shortest round-trip text: exact.
-            assert_eq!(*v, mesh.positions[mesh.triangles[k / 3][k % 3] as usize]);
+            assert_eq!(*v, tess.mesh.vertices[tess.mesh.triangles[k / 3][k % 3] as usize]);
         }
-        assert_eq!(text.matches("facet normal").count(), mesh.triangles.len());
+        assert_eq!(text.matches("facet normal").count(), tess.mesh.triangles.len());
 
         let mut out = Vec::new();
-        write_obj(&mut out, &mesh, "hull", Units::Foot).expect("writes");
+        let comments = obj_comments("hull", tess.tolerance, Units::Foot).expect("finite");
+        write_obj(&mut out, &tess.mesh, &comments, Some(&mesh_name("hull"))).expect("writes");
         let text = String::from_utf8(out).expect("ASCII");
         assert!(text.contains("# units: feet"));
         let v: Vec<&str> = text.lines().filter(|l| l.starts_with("v ")).collect();
         let vn: Vec<&str> = text.lines().filter(|l| l.starts_with("vn ")).collect();
         let f: Vec<&str> = text.lines().filter(|l| l.starts_with("f ")).collect();
-        assert_eq!((v.len(), vn.len(), f.len()), (mesh.positions.len(), mesh.normals.len(), mesh.triangles.len()));
+        assert_eq!(
+            (v.len(), vn.len(), f.len()),
+            (tess.mesh.vertices.len(), tess.mesh.normals.len(), tess.mesh.triangles.len())
+        );
         let first: Vec<f64> = v[0][2..].split(' ').map(|x| x.parse().expect("a number")).collect();
-        assert_eq!(Vec3::new(first[0], first[1], first[2]), mesh.positions[0]);
-        let [a, b, c] = mesh.triangles[0].map(|k| k + 1);
+        assert_eq!(Vec3::new(first[0], first[1], first[2]), tess.mesh.vertices[0]);
+        let [a, b, c] = tess.mesh.triangles[0].map(|k| k + 1);
         assert_eq!(f[0], format!("f {a}//{a} {b}//{b} {c}//{c}"));
     }
 
     #[test]
     fn glb_layout_and_accessors() {
-        let mesh = cylinder_mesh(true);
+        let tess = cylinder_mesh(true);
         let mut out = Vec::new();
-        write_glb(&mut out, &mesh, "cyl", Units::Millimetre).expect("writes");
+        write_glb(&mut out, &tess, "cyl", Units::Millimetre).expect("writes");
         assert_eq!(le_u32(&out, 0), GLB_MAGIC);
         assert_eq!(le_u32(&out, 4), 2);
         assert_eq!(le_u32(&out, 8) as usize, out.len());
@@ -425,10 +364,10 @@ mod tests {
         assert_eq!(bin.len(), bin_len);
         assert_eq!(doc["buffers"][0]["byteLength"].as_u64(), Some(bin_len as u64));
         // POSITION: metres, permuted axes; min and max exactly those of the data.
-        let n = mesh.positions.len();
+        let n = tess.mesh.vertices.len();
         let mut lo = [f32::INFINITY; 3];
         let mut hi = [f32::NEG_INFINITY; 3];
-        for (k, p) in mesh.positions.iter().enumerate() {
+        for (k, p) in tess.mesh.vertices.iter().enumerate() {
             let q = [le_f32(bin, 12 * k), le_f32(bin, 12 * k + 4), le_f32(bin, 12 * k + 8)];
             assert_eq!(q, [(p.y * 1e-3) as f32, (p.z * 1e-3) as f32, (p.x * 1e-3) as f32]);
             for c in 0..3 {
@@ -451,7 +390,7 @@ mod tests {
             }
         }
         let indices = &bin[36 * n..];
-        assert_eq!(indices.len(), 12 * mesh.triangles.len());
+        assert_eq!(indices.len(), 12 * tess.mesh.triangles.len());
         assert!(indices.chunks(4).all(|b| (u32::from_le_bytes(b.try_into().expect("4")) as usize) < n));
     }
 
@@ -464,9 +403,9 @@ mod tests {
         let limit = curvature_limit(&[0.0, -1.0, 2.0, f64::NAN, 0.5]);
         assert_eq!(limit, 2.0);
         assert_eq!(curvature_limit(&[0.0, f64::NAN]), 1.0);
-        let mut mesh = cylinder_mesh(false);
-        mesh.gaussian = (0..mesh.positions.len()).map(|k| k as f64 - 10.0).collect();
-        let colors = curvature_colors(&mesh);
+        let mut tess = cylinder_mesh(false);
+        tess.gaussian = (0..tess.mesh.vertices.len()).map(|k| k as f64 - 10.0).collect();
+        let colors = curvature_colors(&tess);
         // K = 0 is white (247, 247, 247 in sRGB).
         let white = srgb_to_linear(247);
         assert_eq!(colors[10], [white, white, white]);
@@ -474,10 +413,10 @@ mod tests {
 
     #[test]
     fn empty_mesh_is_refused() {
-        let mut mesh = cylinder_mesh(false);
-        mesh.triangles.clear();
+        let mut tess = cylinder_mesh(false);
+        tess.mesh.triangles.clear();
         assert_eq!(
-            write_glb(&mut Vec::new(), &mesh, "x", Units::Metre).expect_err("empty").kind(),
+            write_glb(&mut Vec::new(), &tess, "x", Units::Metre).expect_err("empty").kind(),
             io::ErrorKind::InvalidInput
         );
     }

@@ -2,9 +2,8 @@
 //! curves entity 126, and a polynomial approximation for systems that drop weights), STEP
 //! AP214, triangle meshes to a chordal tolerance (STL, OBJ, binary glTF) and the lossless
 //! hullskin surface JSON. Writers are generic over [`std::io::Write`] and format every real
-//! number of text formats through [`float::real`].
+//! number of text formats through [`crate::float::real`].
 
-pub mod float;
 pub mod iges;
 pub mod mesh_out;
 pub mod mirror;
@@ -16,9 +15,9 @@ pub mod tessellate;
 pub use iges::{
     greville_v, iges_timestamp, section_curves, section_parameters, write_iges, write_iges_model, IgesMeta, IgesUnits,
 };
-pub use mesh_out::{write_glb, write_obj, write_stl_ascii, write_stl_binary};
+pub use mesh_out::{mesh_name, obj_comments, stl_header, write_glb};
 pub use mirror::mirrored_full_hull;
 pub use polynomial::{polynomial_approximation, PolynomialApproximation};
 pub use step::{step_timestamp, write_step, StepMeta};
 pub use surface_json::{read_surface_json, write_surface_json, SurfaceFile, SurfaceJsonError};
-pub use tessellate::{tessellate, TessellationOptions, TriangleMesh};
+pub use tessellate::{tessellate, Tessellation, TessellationOptions};

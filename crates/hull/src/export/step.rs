@@ -38,7 +38,7 @@
 //!   values with their multiplicities (the clamped ends have multiplicity `p + 1`). Boundary
 //!   curves are `B_SPLINE_CURVE_WITH_KNOTS`, or the complex rational curve likewise.
 //!
-//! Reals are written by [`super::float::real`] (shortest round-trip), so the file carries the
+//! Reals are written by [`crate::float::real`] (shortest round-trip), so the file carries the
 //! surface bit for bit; strings are encoded per ISO 10303-21 section 7.3.3 (`'` doubled, `\`
 //! doubled, other characters outside printable ASCII as `\X2\hhhh\X0\` UTF-16 code units).
 //! The output depends only on its inputs (the timestamp is passed in), so it is reproducible.
@@ -47,7 +47,7 @@ use std::io::{self, Write};
 
 use nurbs::{KnotVector, NurbsCurve, NurbsSurface, Vec3};
 
-use super::float::real;
+use crate::float::real;
 use crate::Units;
 
 /// The `FILE_SCHEMA` of AP214 (automotive design, IS edition), as OCCT and most CAD systems

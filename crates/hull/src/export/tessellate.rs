@@ -36,6 +36,7 @@ use std::collections::HashMap;
 use nurbs::{NurbsSurface, Vec3};
 use rayon::prelude::*;
 
+use crate::mesh::TriMesh;
 use crate::HullError;
 
 /// Factor on the tolerance for the edge-midpoint deviation (see the module docs).
@@ -66,23 +67,21 @@ impl TessellationOptions {
     }
 }
 
-/// A triangle mesh of a surface: positions, outward unit normals and the Gaussian curvature
-/// at every vertex, and counter-clockwise (seen from outside) triangles of vertex indices.
+/// A surface triangulated to a tolerance: the mesh (positions, outward unit normals at the
+/// vertices, counter-clockwise triangles seen from outside) and what the tessellation knows
+/// of every vertex and of the grid it was made on.
 #[derive(Clone, Debug, PartialEq)]
-pub struct TriangleMesh {
-    pub positions: Vec<Vec3>,
-    /// Unit normals, outward (see the module docs).
-    pub normals: Vec<Vec3>,
+pub struct Tessellation {
+    /// The triangle mesh, with its vertex normals (unit, outward: see the module docs).
+    /// Triangles with two coincident corners (at a boundary collapsed to a point) are left
+    /// out, and so are the vertices no triangle uses.
+    pub mesh: TriMesh,
     /// Gaussian curvature `K` at every vertex (orientation-free; at a collapsed boundary the
     /// limit from inside the domain); NaN where it is undefined.
     pub gaussian: Vec<f64>,
     /// The surface parameters `(u, v)` of every vertex (a mirrored vertex has those of its
     /// starboard twin).
     pub params: Vec<(f64, f64)>,
-    /// Triangles, counter-clockwise seen from outside. Triangles with two coincident corners
-    /// (at a boundary collapsed to a point) are left out, and so are the vertices no triangle
-    /// uses.
-    pub triangles: Vec<[u32; 3]>,
     /// The grid parameters along u and v.
     pub grid_u: Vec<f64>,
     pub grid_v: Vec<f64>,
@@ -92,14 +91,6 @@ pub struct TriangleMesh {
     pub tolerance: f64,
     /// True if the outward normal is `-(S_u x S_v)`.
     pub flipped: bool,
-}
-
-impl TriangleMesh {
-    /// Unit normal of triangle `t` from its corners (counter-clockwise, so outward).
-    pub fn face_normal(&self, t: usize) -> Vec3 {
-        let [a, b, c] = self.triangles[t].map(|k| self.positions[k as usize]);
-        (b - a).cross(c - a).normalized().unwrap_or(Vec3::new(0.0, 0.0, 0.0))
-    }
 }
 
 /// The distinct knots of `knots` within `domain`, each span cut in two.
@@ -271,7 +262,7 @@ fn nudged(s: &NurbsSurface, u: f64, v: f64) -> (f64, f64) {
 /// [`HullError::Config`] if the tolerance is not a positive finite number, or if meeting it
 /// would take more than [`MAX_GRID_LINES`] grid lines in a direction (a tolerance far below
 /// the surface's size).
-pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Result<TriangleMesh, HullError> {
+pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Result<Tessellation, HullError> {
     let tol = options.tolerance;
     let (lo, hi) = surface.control_bounds();
     let floor = MIN_TOLERANCE_REL * (hi - lo).norm();
@@ -378,12 +369,16 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
     for t in &mut triangles {
         *t = t.map(|k| new_index[k as usize]);
     }
-    let mut mesh = TriangleMesh {
-        normals: kept.iter().map(|&k| verts[k].n * sign).collect(),
+    let mut tess = Tessellation {
+        mesh: TriMesh {
+            source: "tessellated surface".into(),
+            vertices: kept.iter().map(|&k| positions[k]).collect(),
+            triangles,
+            degenerate: 0,
+            normals: kept.iter().map(|&k| verts[k].n * sign).collect(),
+        },
         gaussian: kept.iter().map(|&k| verts[k].k).collect(),
-        positions: kept.iter().map(|&k| positions[k]).collect(),
         params: kept.iter().map(|&k| uv[k]).collect(),
-        triangles,
         grid_u: gu,
         grid_v: gv,
         max_midpoint_deviation,
@@ -391,23 +386,24 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
         flipped,
     };
     if options.mirror {
-        mirror(&mut mesh);
+        mirror(&mut tess);
     }
-    Ok(mesh)
+    Ok(tess)
 }
 
 /// Append the port half: every vertex with `y -> -y`, every triangle with its winding
 /// reversed (a reflection turns counter-clockwise into clockwise).
-fn mirror(mesh: &mut TriangleMesh) {
-    let count = mesh.positions.len();
+fn mirror(tess: &mut Tessellation) {
+    let mesh = &mut tess.mesh;
+    let count = mesh.vertices.len();
     let offset = count as u32;
     let flip = |p: Vec3| Vec3::new(p.x, -p.y, p.z);
-    let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| flip(p)).collect();
+    let positions: Vec<Vec3> = mesh.vertices.iter().map(|&p| flip(p)).collect();
     let normals: Vec<Vec3> = mesh.normals.iter().map(|&p| flip(p)).collect();
-    mesh.positions.extend(positions);
+    mesh.vertices.extend(positions);
     mesh.normals.extend(normals);
-    mesh.gaussian.extend_from_within(..count);
-    mesh.params.extend_from_within(..count);
+    tess.gaussian.extend_from_within(..count);
+    tess.params.extend_from_within(..count);
     let port: Vec<[u32; 3]> = mesh.triangles.iter().map(|&[a, b, c]| [a + offset, c + offset, b + offset]).collect();
     mesh.triangles.extend(port);
 }
@@ -442,17 +438,17 @@ mod tests {
         let r = 2.0;
         let s = quarter_cylinder(r, 3.0);
         for tol in [1e-2, 1e-3, 1e-4] {
-            let mesh = tessellate(&s, &opts(tol)).expect("tessellates");
+            let tess = tessellate(&s, &opts(tol)).expect("tessellates");
             // Vertices on the cylinder (exact evaluation, rounding only).
-            for p in &mesh.positions {
+            for p in &tess.mesh.vertices {
                 assert!(((p.y * p.y + p.z * p.z).sqrt() - r).abs() < 1e-12, "{p:?}");
             }
             // The farthest point of a chord of angle a from the circle is its middle, at
             // r (1 - cos(a / 2)); every point of a triangle is inside the circle, at most
             // the largest such sagitta away, which must be within the tolerance.
             let mut worst = 0.0f64;
-            for t in &mesh.triangles {
-                let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
+            for t in &tess.mesh.triangles {
+                let [a, b, c] = t.map(|k| tess.mesh.vertices[k as usize]);
                 for (w0, w1, w2) in [(1.0, 1.0, 1.0), (1.0, 1.0, 0.0), (0.0, 1.0, 1.0), (1.0, 0.0, 1.0)] {
                     let q = (a * w0 + b * w1 + c * w2) * (1.0 / (w0 + w1 + w2));
                     worst = worst.max(r - (q.y * q.y + q.z * q.z).sqrt());
@@ -462,11 +458,11 @@ mod tests {
             // Not grossly over-refined: the number of arcs is within a factor 2.5 of the
             // fewest equal arcs meeting the tolerance, n = ceil((pi/2) / (2 acos(1 - tol/r))).
             let fewest = (std::f64::consts::FRAC_PI_2 / (2.0 * (1.0 - tol / r).acos())).ceil();
-            let arcs = (mesh.grid_u.len() - 1) as f64;
+            let arcs = (tess.grid_u.len() - 1) as f64;
             assert!(arcs >= fewest && arcs <= 2.5 * fewest, "{arcs} arcs, fewest {fewest} at tolerance {tol}");
             // A cylinder is straight along x: no refinement there beyond the initial split.
-            assert_eq!(mesh.grid_v.len(), 3);
-            assert!(mesh.max_midpoint_deviation <= MIDPOINT_FACTOR * tol);
+            assert_eq!(tess.grid_v.len(), 3);
+            assert!(tess.max_midpoint_deviation <= MIDPOINT_FACTOR * tol);
         }
     }
 
@@ -474,23 +470,23 @@ mod tests {
     fn normals_are_unit_outward_and_match_the_winding() {
         let s = quarter_cylinder(2.0, 3.0);
         for mirror in [false, true] {
-            let mesh = tessellate(&s, &TessellationOptions { tolerance: 1e-3, mirror }).expect("tessellates");
-            for (p, nrm) in mesh.positions.iter().zip(&mesh.normals) {
+            let tess = tessellate(&s, &TessellationOptions { tolerance: 1e-3, mirror }).expect("tessellates");
+            for (p, nrm) in tess.mesh.vertices.iter().zip(&tess.mesh.normals) {
                 // Outward from the cylinder's axis (the x axis): n = (0, y, z) / r.
                 let radial = Vec3::new(0.0, p.y, p.z) * 0.5;
                 assert!((nrm.norm() - 1.0).abs() < 1e-12);
                 assert!(nrm.distance(radial) < 1e-9, "normal {nrm:?} at {p:?}");
             }
-            for t in 0..mesh.triangles.len() {
-                let f = mesh.face_normal(t);
-                let [a, b, c] = mesh.triangles[t].map(|k| mesh.positions[k as usize]);
+            for t in 0..tess.mesh.triangles.len() {
+                let f = tess.mesh.face_normal(t);
+                let [a, b, c] = tess.mesh.triangles[t].map(|k| tess.mesh.vertices[k as usize]);
                 let centroid = (a + b + c) * (1.0 / 3.0);
                 assert!(f.dot(Vec3::new(0.0, centroid.y, centroid.z)) > 0.0, "triangle {t} faces inward");
             }
-            let half = mesh.positions.len() / if mirror { 2 } else { 1 };
+            let half = tess.mesh.vertices.len() / if mirror { 2 } else { 1 };
             if mirror {
                 for k in 0..half {
-                    let (a, b) = (mesh.positions[k], mesh.positions[k + half]);
+                    let (a, b) = (tess.mesh.vertices[k], tess.mesh.vertices[k + half]);
                     assert_eq!((a.x, -a.y, a.z), (b.x, b.y, b.z));
                 }
             }
@@ -504,10 +500,10 @@ mod tests {
         let a = tessellate(&s, &opts(1e-3)).expect("tessellates");
         let b = tessellate(&s.transposed(), &opts(1e-3)).expect("tessellates");
         assert_ne!(a.flipped, b.flipped);
-        for mesh in [a, b] {
-            let t = mesh.triangles.len() / 2;
-            let [p, _, _] = mesh.triangles[t].map(|k| mesh.positions[k as usize]);
-            assert!(mesh.face_normal(t).dot(Vec3::new(0.0, p.y, p.z)) > 0.0);
+        for tess in [a, b] {
+            let t = tess.mesh.triangles.len() / 2;
+            let [p, _, _] = tess.mesh.triangles[t].map(|k| tess.mesh.vertices[k as usize]);
+            assert!(tess.mesh.face_normal(t).dot(Vec3::new(0.0, p.y, p.z)) > 0.0);
         }
     }
 
@@ -528,25 +524,25 @@ mod tests {
         }
         let s = NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid");
         let tol = 2e-3;
-        let mesh = tessellate(&s, &opts(tol)).expect("tessellates");
-        let (m, n) = (mesh.grid_u.len(), mesh.grid_v.len());
+        let tess = tessellate(&s, &opts(tol)).expect("tessellates");
+        let (m, n) = (tess.grid_u.len(), tess.grid_v.len());
         // The last column of every cell row is a fan onto the tip: one triangle per cell.
-        assert_eq!(mesh.triangles.len(), 2 * (m - 1) * (n - 1) - (m - 1));
+        assert_eq!(tess.mesh.triangles.len(), 2 * (m - 1) * (n - 1) - (m - 1));
         // Every vertex is used by a triangle, and fewer than the grid's are left.
-        let mut used = vec![false; mesh.positions.len()];
-        mesh.triangles.iter().flatten().for_each(|&k| used[k as usize] = true);
+        let mut used = vec![false; tess.mesh.vertices.len()];
+        tess.mesh.triangles.iter().flatten().for_each(|&k| used[k as usize] = true);
         assert!(used.iter().all(|&u| u));
-        assert!(mesh.positions.len() < m * n);
-        for k in 0..mesh.triangles.len() {
-            assert!(mesh.face_normal(k).norm() > 0.5, "degenerate triangle {k}");
+        assert!(tess.mesh.vertices.len() < m * n);
+        for k in 0..tess.mesh.triangles.len() {
+            assert!(tess.mesh.face_normal(k).norm() > 0.5, "degenerate triangle {k}");
         }
-        assert!(mesh.normals.iter().all(|v| (v.norm() - 1.0).abs() < 1e-9), "a normal is missing");
-        assert!(mesh.gaussian.iter().all(|k| k.is_finite()));
+        assert!(tess.mesh.normals.iter().all(|v| (v.norm() - 1.0).abs() < 1e-9), "a normal is missing");
+        assert!(tess.gaussian.iter().all(|k| k.is_finite()));
         // Triangle centroids and edge midpoints within the tolerance of the surface.
         let projector = SurfaceProjector::new(&s, ProjectionOptions::default());
         let mut worst = 0.0f64;
-        for t in &mesh.triangles {
-            let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
+        for t in &tess.mesh.triangles {
+            let [a, b, c] = t.map(|k| tess.mesh.vertices[k as usize]);
             for q in [(a + b + c) * (1.0 / 3.0), (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5] {
                 worst = worst.max(projector.project(q).distance);
             }

@@ -43,16 +43,21 @@ use crate::error::{HullError, InputErrorKind, Location};
 
 pub use distance::{mesh_distance, MeshDistance, VertexFilter};
 pub use hydrostatics::{mesh_hydrostatics, MeshHydrostatics};
+pub use obj::write_obj;
 pub use slice::{
-    slice_mesh, station_positions, write_sections_csv, DroppedStation, Resample, SliceOptions, SliceOutcome, Spacing,
-    Stations,
+    slice_mesh, station_positions, DroppedStation, Resample, SliceOptions, SliceOutcome, Spacing, Stations,
 };
+pub use stl::{write_stl_ascii, write_stl_binary, STL_HEADER_LEN};
 
 /// Largest decompressed size of a gzip-compressed mesh, bytes (1 GiB: a 20-million-triangle
 /// ASCII STL); a larger stream is refused rather than exhausting memory.
 pub const MAX_DECOMPRESSED: u64 = 1 << 30;
 
-/// An indexed triangle mesh: shared vertices and triangles as triples of vertex indices.
+/// An indexed triangle mesh: shared vertices and triangles as triples of vertex indices, with
+/// unit normals at the vertices where the mesh has them. The one mesh type of the crate: a
+/// mesh read from STL or OBJ ([`read_mesh`]) and a surface triangulated for export
+/// ([`crate::export::tessellate()`]) alike, written by [`stl::write_stl_ascii`],
+/// [`stl::write_stl_binary`] and [`obj::write_obj`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct TriMesh {
     /// Where the mesh came from (a file path or a name), for messages.
@@ -65,6 +70,9 @@ pub struct TriMesh {
     /// Triangles of the file dropped because two of their corners are the same vertex after
     /// welding (zero area: they cut no plane and bound no volume).
     pub degenerate: usize,
+    /// Unit normals at the vertices, one per vertex, outward; empty when the mesh carries
+    /// none (a mesh read from a file: facet normals of STL and `vn` of OBJ are not read).
+    pub normals: Vec<Vec3>,
 }
 
 /// How the edges of a mesh are shared (see [`TriMesh::edge_counts`]).
@@ -100,13 +108,20 @@ impl TriMesh {
                 &format!("indices below the vertex count {n}"),
             ));
         }
-        Ok(TriMesh { source: source.to_string(), vertices, triangles, degenerate: 0 })
+        Ok(TriMesh { source: source.to_string(), vertices, triangles, degenerate: 0, normals: Vec::new() })
     }
 
     /// The three corners of triangle `t`.
     pub fn corners(&self, t: usize) -> [Vec3; 3] {
         let [a, b, c] = self.triangles[t];
         [self.vertices[a as usize], self.vertices[b as usize], self.vertices[c as usize]]
+    }
+
+    /// The unit normal of triangle `t` by the right-hand rule (outward for a triangle
+    /// counter-clockwise seen from outside), `(0, 0, 0)` if it has no area.
+    pub fn face_normal(&self, t: usize) -> Vec3 {
+        let [a, b, c] = self.corners(t);
+        (b - a).cross(c - a).normalized().unwrap_or(Vec3::new(0.0, 0.0, 0.0))
     }
 
     /// The axis-aligned bounding box `(min, max)` of the vertices used by triangles, `None`
@@ -147,11 +162,13 @@ impl TriMesh {
         out
     }
 
-    /// The mesh with every vertex moved by `f` (the triangles unchanged).
+    /// The mesh with every vertex moved by `f` (the triangles unchanged; the vertex normals,
+    /// which `f` need not carry along, dropped).
     pub fn map_vertices(mut self, f: impl Fn(Vec3) -> Vec3) -> Self {
         for v in &mut self.vertices {
             *v = f(*v);
         }
+        self.normals.clear();
         self
     }
 }
@@ -430,7 +447,7 @@ pub fn parse_mesh(
             triangles.push([a, b, c]);
         }
     }
-    Ok(TriMesh { source: source.to_string(), vertices, triangles, degenerate })
+    Ok(TriMesh { source: source.to_string(), vertices, triangles, degenerate, normals: Vec::new() })
 }
 
 /// Triangles as read from a file, before welding: vertex positions and index triples (STL

@@ -12,7 +12,7 @@ use nurbs::Vec3;
 
 use super::{mesh_error, TriMesh, TriangleSoup};
 use crate::error::{HullError, Location};
-use crate::export::float::real;
+use crate::float::real;
 
 /// Parses an OBJ file; `source` names it in messages.
 ///
@@ -136,18 +136,40 @@ pub fn parse_obj(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError> 
     Ok(soup)
 }
 
-/// Writes `mesh` as OBJ text: one `v` line per vertex, one `f` line per triangle, numbers in
-/// their shortest round-trip form.
+/// Writes `mesh` as OBJ text: a `#` line per comment of `comments`, a `#` line counting the
+/// vertices and triangles, `o object` if an object name is given, one `v` line per vertex,
+/// one `vn` line per vertex normal if the mesh has them, and one `f` line per triangle
+/// (1-based, `f a//a b//b c//c` with normals, `f a b c` without); numbers in their shortest
+/// round-trip form.
 ///
 /// # Errors
-/// Those of `w`.
-pub fn write_obj<W: std::io::Write + ?Sized>(w: &mut W, mesh: &TriMesh) -> std::io::Result<()> {
+/// Those of `w`; [`std::io::ErrorKind::InvalidData`] for a non-finite coordinate.
+pub fn write_obj<W: std::io::Write + ?Sized>(
+    w: &mut W,
+    mesh: &TriMesh,
+    comments: &[String],
+    object: Option<&str>,
+) -> std::io::Result<()> {
+    for c in comments {
+        writeln!(w, "# {c}")?;
+    }
     writeln!(w, "# {} vertices, {} triangles", mesh.vertices.len(), mesh.triangles.len())?;
+    if let Some(name) = object {
+        writeln!(w, "o {name}")?;
+    }
     for v in &mesh.vertices {
         writeln!(w, "v {} {} {}", real(v.x)?, real(v.y)?, real(v.z)?)?;
     }
+    for n in &mesh.normals {
+        writeln!(w, "vn {} {} {}", real(n.x)?, real(n.y)?, real(n.z)?)?;
+    }
     for t in &mesh.triangles {
-        writeln!(w, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1)?;
+        let [a, b, c] = t.map(|k| u64::from(k) + 1);
+        if mesh.normals.is_empty() {
+            writeln!(w, "f {a} {b} {c}")?;
+        } else {
+            writeln!(w, "f {a}//{a} {b}//{b} {c}//{c}")?;
+        }
     }
     Ok(())
 }
@@ -197,7 +219,7 @@ mod tests {
         let soup = parse_obj(text.as_bytes(), "h.obj").expect("valid");
         let mesh = TriMesh::try_new("m", soup.vertices.clone(), soup.triangles.clone()).expect("valid");
         let mut out = Vec::new();
-        write_obj(&mut out, &mesh).expect("writes");
+        write_obj(&mut out, &mesh, &[], None).expect("writes");
         assert_eq!(parse_obj(&out, "o").expect("reads"), soup);
     }
 }

@@ -52,7 +52,6 @@
 
 use std::collections::HashMap;
 use std::fmt;
-use std::io::{self, Write};
 use std::str::FromStr;
 
 use nurbs::Vec3;
@@ -60,7 +59,6 @@ use rayon::prelude::*;
 
 use super::TriMesh;
 use crate::error::HullError;
-use crate::export::float::real;
 use crate::offsets::{Offsets, Section};
 use crate::units::Units;
 
@@ -633,27 +631,6 @@ pub fn resample(pts: &[Vec3], m: usize, how: Resample) -> Vec<Vec3> {
     out
 }
 
-/// Writes offsets as a sections CSV (header `section,x,y,z`, one row per point, read back by
-/// [`crate::read_offsets`]), numbers in their shortest round-trip form; labels holding a
-/// comma, a quote or edge spaces are quoted.
-///
-/// # Errors
-/// Those of `w`; [`io::ErrorKind::InvalidData`] for a non-finite coordinate.
-pub fn write_sections_csv<W: Write + ?Sized>(w: &mut W, offsets: &Offsets) -> io::Result<()> {
-    writeln!(w, "section,x,y,z")?;
-    for s in &offsets.sections {
-        let label = if s.label.contains([',', '"', '\n', '\r']) || s.label.trim() != s.label {
-            format!("\"{}\"", s.label.replace('"', "\"\""))
-        } else {
-            s.label.clone()
-        };
-        for p in &s.points {
-            writeln!(w, "{label},{},{},{}", real(p.x)?, real(p.y)?, real(p.z)?)?;
-        }
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -765,7 +742,7 @@ mod tests {
         let opts = SliceOptions { stations: Stations::At(vec![0.5, 1.5]), points: 4, ..SliceOptions::default() };
         let out = slice_mesh(&cube(), &opts).expect("slices");
         let mut text = Vec::new();
-        write_sections_csv(&mut text, &out.offsets).expect("writes");
+        crate::write_sections_csv(&mut text, &out.offsets, crate::float::Notation::Exchange).expect("writes");
         let text = String::from_utf8(text).expect("utf-8");
         assert!(text.starts_with("section,x,y,z\n1,0.5,0.0,0.0\n"), "{text}");
         let back = crate::parse_sections_csv(&text, "s.csv", Units::Metre).expect("reads");

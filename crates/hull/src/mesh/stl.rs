@@ -27,10 +27,12 @@ use nurbs::Vec3;
 
 use super::{mesh_error, TriMesh, TriangleSoup};
 use crate::error::{HullError, Location};
-use crate::export::float::real;
+use crate::float::real;
 
+/// Bytes of the free-text header of a binary STL.
+pub const STL_HEADER_LEN: usize = 80;
 /// Bytes before the first binary record: the header and the triangle count.
-const HEADER: usize = 84;
+const HEADER: usize = STL_HEADER_LEN + 4;
 /// Bytes of one binary record.
 const RECORD: usize = 50;
 
@@ -313,21 +315,18 @@ fn parse_ascii(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError> {
     Ok(p.soup)
 }
 
-/// The unit normal of a triangle by the right-hand rule, `(0, 0, 0)` if it has no area.
-fn facet_normal(c: [Vec3; 3]) -> Vec3 {
-    (c[1] - c[0]).cross(c[2] - c[0]).normalized().unwrap_or(Vec3::new(0.0, 0.0, 0.0))
-}
-
-/// Writes `mesh` as an ASCII STL named `name`, every number in its shortest round-trip form
-/// (so the file reads back to the very same vertices).
+/// Writes `mesh` as an ASCII STL named `name` (written as given: see
+/// [`crate::export::mesh_name`] for a name made safe), the facet normals those of
+/// [`TriMesh::face_normal`], every number in its shortest round-trip form (so the file reads
+/// back to the very same vertices).
 ///
 /// # Errors
-/// Those of `w`.
+/// Those of `w`; [`io::ErrorKind::InvalidData`] for a non-finite coordinate.
 pub fn write_stl_ascii<W: Write + ?Sized>(w: &mut W, mesh: &TriMesh, name: &str) -> io::Result<()> {
     writeln!(w, "solid {name}")?;
     for t in 0..mesh.triangles.len() {
         let c = mesh.corners(t);
-        let n = facet_normal(c);
+        let n = mesh.face_normal(t);
         writeln!(w, "  facet normal {} {} {}", real(n.x)?, real(n.y)?, real(n.z)?)?;
         writeln!(w, "    outer loop")?;
         for p in c {
@@ -339,15 +338,18 @@ pub fn write_stl_ascii<W: Write + ?Sized>(w: &mut W, mesh: &TriMesh, name: &str)
     writeln!(w, "endsolid {name}")
 }
 
-/// Writes `mesh` as a binary STL with `header` (cut or padded with spaces to 80 bytes).
-/// Coordinates are rounded to `f32`, the format's precision.
+/// Writes `mesh` as a binary STL with `header` (cut or padded with spaces to
+/// [`STL_HEADER_LEN`] bytes; [`crate::export::stl_header`] makes one that readers do not take
+/// for ASCII). Coordinates and the facet normals of [`TriMesh::face_normal`] are rounded to
+/// `f32`, the format's precision; the attribute is 0.
 ///
 /// # Errors
 /// Those of `w`; [`io::ErrorKind::InvalidInput`] for more than `u32::MAX` triangles.
 pub fn write_stl_binary<W: Write + ?Sized>(w: &mut W, mesh: &TriMesh, header: &str) -> io::Result<()> {
-    let mut h = [b' '; 80];
+    let mut h = [b' '; STL_HEADER_LEN];
     let text = header.as_bytes();
-    h[..text.len().min(80)].copy_from_slice(&text[..text.len().min(80)]);
+    let len = text.len().min(STL_HEADER_LEN);
+    h[..len].copy_from_slice(&text[..len]);
     w.write_all(&h)?;
     let n = u32::try_from(mesh.triangles.len())
         .map_err(|_| io::Error::new(io::ErrorKind::InvalidInput, "more than 4294967295 triangles"))?;
@@ -355,7 +357,7 @@ pub fn write_stl_binary<W: Write + ?Sized>(w: &mut W, mesh: &TriMesh, header: &s
     for t in 0..mesh.triangles.len() {
         let c = mesh.corners(t);
         let mut record = [0u8; RECORD];
-        let values = std::iter::once(facet_normal(c)).chain(c).flat_map(|p| [p.x, p.y, p.z]);
+        let values = std::iter::once(mesh.face_normal(t)).chain(c).flat_map(|p| [p.x, p.y, p.z]);
         for (k, v) in values.enumerate() {
             record[4 * k..4 * k + 4].copy_from_slice(&(v as f32).to_le_bytes());
         }

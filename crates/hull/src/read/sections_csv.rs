@@ -16,13 +16,18 @@
 //!   sections follow each other along the length. A label that comes back after another
 //!   section started is an error.
 //! - Blank lines and `#` comment lines are allowed anywhere (see [`crate::read`]).
+//!
+//! [`write_sections_csv`] writes this layout (for `hullskin slice` and `hullskin digitize`),
+//! quoting labels as RFC 4180 says and as the reader needs.
 
 use std::collections::HashMap;
+use std::io::{self, Write};
 
 use nurbs::Vec3;
 
 use super::{parse_number, records};
 use crate::error::{HullError, InputErrorKind, Location};
+use crate::float::Notation;
 use crate::offsets::{Offsets, Section};
 use crate::units::Units;
 
@@ -161,9 +166,70 @@ fn check_header(header: &super::Record<'_>, source: &str) -> Result<[usize; 3], 
     Ok(columns)
 }
 
+/// Writes `offsets` as a sections CSV: the header `section,x,y,z`, then one row per point,
+/// sections in order, numbers in `notation` (both read back to the same `f64`, so the file
+/// reads back exactly). The label is quoted, its quotes doubled, when it holds a comma, a
+/// quote or a line break (RFC 4180), a leading `#`, surrounding spaces, or nothing.
+///
+/// # Errors
+/// Any error of `w`; [`io::ErrorKind::InvalidData`] for a non-finite coordinate.
+pub fn write_sections_csv<W: Write + ?Sized>(w: &mut W, offsets: &Offsets, notation: Notation) -> io::Result<()> {
+    writeln!(w, "{LAYOUT}")?;
+    for s in &offsets.sections {
+        let label = csv_field(&s.label);
+        for p in &s.points {
+            let [x, y, z] = [p.x, p.y, p.z].map(|v| notation.format(v));
+            writeln!(w, "{label},{},{},{}", x?, y?, z?)?;
+        }
+    }
+    Ok(())
+}
+
+/// A CSV field: quoted, its quotes doubled, when it holds a comma, a quote or a line break
+/// (RFC 4180, section 2), and also when the reader would otherwise not read it back: a
+/// leading `#` (a comment line), surrounding spaces (trimmed) or nothing at all (an empty
+/// label).
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) || s.starts_with('#') || s.trim() != s || s.is_empty() {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Labels that need quoting and numbers without a short decimal form read back exactly.
+    #[test]
+    fn round_trip_through_the_reader() {
+        let o = Offsets {
+            source: "t".into(),
+            units: Units::Metre,
+            perpendiculars: None,
+            sections: vec![
+                Section::new(
+                    "ST, \"0\"",
+                    vec![Vec3::new(0.1 + 0.2, 0.0, -0.0), Vec3::new(0.1 + 0.2, 1.0 / 3.0, 2.5e-7)],
+                ),
+                Section::new("#5", vec![Vec3::new(12.0, 1e-30, 0.0), Vec3::new(12.0, 2.0, 1e21)]),
+            ],
+        };
+        let mut out = Vec::new();
+        write_sections_csv(&mut out, &o, Notation::Plain).expect("writes");
+        let text = String::from_utf8(out).expect("UTF-8");
+        assert!(text.starts_with("section,x,y,z\n\"ST, \"\"0\"\"\",0.30000000000000004,0,0\n"), "{text}");
+        let back = parse_sections_csv(&text, "t", Units::Metre).expect("reads back");
+        assert_eq!(back.sections.len(), 2);
+        for (a, b) in back.sections.iter().zip(&o.sections) {
+            assert_eq!(a.label, b.label);
+            assert_eq!(a.points, b.points);
+        }
+        let bad = Offsets { sections: vec![Section::new("a", vec![Vec3::new(f64::NAN, 0.0, 0.0)])], ..o };
+        let e = write_sections_csv(&mut Vec::new(), &bad, Notation::Plain).expect_err("NaN");
+        assert_eq!(e.kind(), io::ErrorKind::InvalidData);
+    }
 
     fn parse(text: &str) -> Result<Offsets, HullError> {
         parse_sections_csv(text, "hull.csv", Units::Metre)

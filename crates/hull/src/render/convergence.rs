@@ -17,7 +17,7 @@
 use crate::drawing::{Anchor, Drawing, Item, Rgb, Stroke};
 
 use super::raster::text_width_mm;
-use super::{format_tick, nice_ticks, power_of_ten};
+use crate::drawing::{format_tick, nice_ticks, power_of_ten};
 use crate::numfmt::format_sig;
 
 /// Sheet size in millimetres (fits an A4 page with margins).

@@ -5,15 +5,16 @@
 //! title.
 //!
 //! How it is drawn:
-//! 1. The surface is sampled on a parameter grid that has a line at every distinct knot and
-//!    splits each knot span in proportion to its length, about `samples` lines per direction.
-//!    At each vertex: the point, and the curvature from the first and second fundamental forms
-//!    (`K = (LN - M²)/(EG - F²)`, `H = (EN - 2FM + GL)/(2(EG - F²))`, The NURBS Book /
-//!    do Carmo §3-3; `nurbs::SurfaceDerivatives::curvature`). Where the normal is undefined or
-//!    `|S_u x S_v|` is round-off (at most 1e-9 of the model size squared per unit parameter
-//!    area, as in [`crate::gaussian_curvature_range`]) the vertex has no value and is drawn grey.
-//! 2. Colour limits are symmetric, `±L` with `L` the 98th percentile (nearest rank, by
-//!    default) of `|value|` over the defined grid vertices, so that a few spikes at a stem or
+//! 1. The surface is sampled by [`analysis::curvature_map`] (the one sampling of curvature;
+//!    this module only paints it) on the grid [`GridLines::Spans`]: a line at every distinct
+//!    knot and each knot span split in proportion to its length, about `samples` lines per
+//!    direction. At each vertex: the point, and the curvature from the first and second
+//!    fundamental forms (`K = (LN - M²)/(EG - F²)`, `H = (EN - 2FM + GL)/(2(EG - F²))`, The
+//!    NURBS Book / do Carmo §3-3; `nurbs::SurfaceDerivatives::curvature`). Where the normal is
+//!    undefined or `|S_u x S_v|` is round-off ([`Degeneracy::RoundOff`], as in
+//!    [`crate::gaussian_curvature_range`]) the vertex has no value and is drawn grey.
+//! 2. Colour limits are symmetric, `±L` with `L` the 98th percentile (nearest rank,
+//!    [`abs_quantile`], by default) of `|value|` over the defined grid vertices, so that a few spikes at a stem or
 //!    knuckle do not wash out the rest; values beyond are drawn in the end colours. `L` is at
 //!    least `(1e-3 / D)^p` (`D` the diagonal of the sampled points' box, `p` = 2 for K, 1 for H),
 //!    so that a developable surface, whose curvature is round-off, reads white and not as noise
@@ -24,19 +25,22 @@
 //!    pixel (a triangle with an undefined vertex interpolates colours, grey for the undefined),
 //!    optionally shaded by `0.6 + 0.4 |n . d|` (`d` the viewing direction).
 //!
-//! Mean curvature is signed with the normal turned toward the inside of the hull (the side of the
-//! centre-plane axis `y = y_min`, `z` = mid-depth), so `H > 0` where the hull is convex (bilge)
-//! and `H < 0` where it is hollow.
+//! Mean and principal curvatures are signed with the normal turned toward the inside of the
+//! hull ([`analysis::CurvatureMap::outward_flip`]: the side of the centre-plane axis
+//! `y = y_min`, `z` = mid-depth), so `H > 0` where the hull is convex (bilge) and `H < 0`
+//! where it is hollow.
 
-use nurbs::{KnotVector, NurbsSurface, Vec3};
+use nurbs::{NurbsSurface, Vec3};
 use tiny_skia::Pixmap;
 
-use crate::drawing::colormap::diverging;
+use crate::analysis::curvature_map::point_bounds;
+use crate::analysis::{self, CurvatureField, Degeneracy, GridLines};
+use crate::colormap::{abs_quantile, diverging};
 use crate::drawing::{Anchor, Item, Rgb, Stroke};
-use crate::{HullError, COINCIDENT_REL};
+use crate::HullError;
 
 use super::raster::{canvas, draw_items, pixels_per_metre, text_width_mm, Image, Mapping};
-use super::{format_tick, nice_ticks};
+use crate::drawing::{format_tick, nice_ticks};
 use crate::numfmt::format_sig;
 
 /// Colour of points where the curvature is undefined.
@@ -48,50 +52,6 @@ const OUTLINE: Rgb = Rgb(60, 60, 60);
 const MAX_SAMPLES: usize = 2000;
 /// Paper resolution used to size the annotations (pixels per millimetre at 150 dpi).
 const PX_PER_MM: f64 = 150.0 / 25.4;
-
-/// Which curvature to map.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CurvatureField {
-    /// Gaussian curvature `K = k1 k2` (units 1/length²): > 0 dome, < 0 saddle, 0 developable.
-    Gaussian,
-    /// Mean curvature `H = (k1 + k2) / 2` (units 1/length), > 0 where the hull is convex.
-    Mean,
-}
-
-impl CurvatureField {
-    /// `Gaussian curvature` / `mean curvature`.
-    pub fn name(self) -> &'static str {
-        match self {
-            CurvatureField::Gaussian => "Gaussian curvature",
-            CurvatureField::Mean => "mean curvature",
-        }
-    }
-
-    /// `K` / `H`.
-    pub fn symbol(self) -> &'static str {
-        match self {
-            CurvatureField::Gaussian => "K",
-            CurvatureField::Mean => "H",
-        }
-    }
-
-    /// Power of length in the units' denominator: 2 for K, 1 for H.
-    fn power(self) -> i32 {
-        match self {
-            CurvatureField::Gaussian => 2,
-            CurvatureField::Mean => 1,
-        }
-    }
-
-    /// `1/m²` or `1/m` for length units `units` (`unit` if empty).
-    pub fn units(self, units: &str) -> String {
-        let u = if units.is_empty() { "unit" } else { units };
-        match self {
-            CurvatureField::Gaussian => format!("1/{u}²"),
-            CurvatureField::Mean => format!("1/{u}"),
-        }
-    }
-}
 
 /// Settings of a curvature map.
 #[derive(Clone, Debug, PartialEq)]
@@ -218,32 +178,6 @@ struct Sample {
     normal: Option<Vec3>,
 }
 
-/// Parameters with a line at every distinct knot and each span split in proportion to its
-/// length into at least 2 parts, about `target` lines in all.
-fn grid_params(knots: &KnotVector, target: usize) -> Vec<f64> {
-    let (a, b) = knots.domain();
-    let mut breaks = vec![a];
-    breaks.extend(knots.interior_breaks().into_iter().map(|(k, _)| k).filter(|&k| k > a && k < b));
-    breaks.push(b);
-    let mut t = Vec::new();
-    for w in breaks.windows(2) {
-        let n = ((target as f64 * (w[1] - w[0]) / (b - a)).round() as usize).max(2);
-        t.extend((0..n).map(|j| w[0] + (w[1] - w[0]) * j as f64 / n as f64));
-    }
-    t.push(b);
-    t
-}
-
-/// Nearest-rank percentile `p` (in `(0, 100]`) of `values` (sorted in place).
-fn percentile(values: &mut [f64], p: f64) -> Option<f64> {
-    if values.is_empty() {
-        return None;
-    }
-    values.sort_by(f64::total_cmp);
-    let rank = ((p / 100.0) * values.len() as f64).ceil() as usize;
-    Some(values[rank.clamp(1, values.len()) - 1])
-}
-
 /// Render the curvature map of `surface`.
 ///
 /// # Errors
@@ -256,10 +190,7 @@ pub fn curvature_map(
     options: &CurvatureMapOptions,
 ) -> Result<CurvatureMap, HullError> {
     check_options(options)?;
-    let us = grid_params(surface.knots_u(), options.samples);
-    let vs = grid_params(surface.knots_v(), options.samples);
-    let (nu, nv) = (us.len(), vs.len());
-    let samples = evaluate(surface, &us, &vs, field);
+    let (samples, nu, nv) = evaluate(surface, field, options.samples);
 
     let (lo, hi) = bounds(&samples);
     let diag = (hi - lo).norm();
@@ -269,11 +200,11 @@ pub fn curvature_map(
             lo.x, hi.x
         )));
     }
-    let mut abs: Vec<f64> = samples.iter().filter_map(|s| s.value.map(f64::abs)).collect();
+    let values: Vec<f64> = samples.iter().filter_map(|s| s.value).collect();
     let floor = (1e-3 / diag).powi(field.power());
     let limit = match options.limit {
         Some(l) => l,
-        None => percentile(&mut abs, options.percentile).map_or(floor, |p| p.max(floor)),
+        None => abs_quantile(&values, options.percentile / 100.0).map_or(floor, |p| p.max(floor)),
     };
     let defined = samples.iter().filter_map(|s| s.value);
     let range =
@@ -334,54 +265,30 @@ fn check_options(o: &CurvatureMapOptions) -> Result<(), HullError> {
     Ok(())
 }
 
-/// Points, values of `field` and normals on the grid (u-major). Mean curvature is turned to the
-/// inward normal (see the module doc).
-fn evaluate(surface: &NurbsSurface, us: &[f64], vs: &[f64], field: CurvatureField) -> Vec<Sample> {
-    let (lo, hi) = surface.control_bounds();
-    let size = (hi - lo).norm();
-    let (au, bu) = surface.domain_u();
-    let (av, bv) = surface.domain_v();
-    // |S_u x S_v| below this is round-off (the threshold of `gaussian_curvature_range`).
-    let area_tol = COINCIDENT_REL * size * size / ((bu - au) * (bv - av));
-    let mut samples = Vec::with_capacity(us.len() * vs.len());
-    let mut means = Vec::with_capacity(us.len() * vs.len());
-    for &u in us {
-        for &v in vs {
-            let d = surface.derivatives(u, v);
-            let c = if d.su.cross(d.sv).norm() > area_tol { d.curvature() } else { None };
-            let c = c.filter(|c| c.gaussian.is_finite() && c.mean.is_finite());
-            samples.push(Sample { p: d.point, value: c.map(|c| c.gaussian), normal: c.map(|c| c.normal) });
-            means.push(c.map(|c| c.mean));
-        }
-    }
-    if field == CurvatureField::Mean {
-        let (lo, hi) = bounds(&samples);
-        let z_mid = 0.5 * (lo.z + hi.z);
-        // Vote over the grid: does the kernel's normal S_u x S_v point toward the inside?
-        let vote: f64 = samples
-            .iter()
-            .filter_map(|s| {
-                let n = s.normal?;
-                let inward = (Vec3::new(s.p.x, lo.y, z_mid) - s.p).normalized()?;
-                Some(n.dot(inward))
-            })
-            .sum();
-        let sign = if vote >= 0.0 { 1.0 } else { -1.0 };
-        for (s, h) in samples.iter_mut().zip(means) {
-            s.value = h.map(|h| sign * h);
-        }
-    }
-    samples
+/// Points, values of `field` and normals on the grid of [`analysis::curvature_map`]
+/// (u-major), with the grid's size. Mean and principal curvatures are turned to the inward
+/// normal (see the module doc).
+fn evaluate(surface: &NurbsSurface, field: CurvatureField, lines: usize) -> (Vec<Sample>, usize, usize) {
+    let options = analysis::CurvatureMapOptions {
+        grid: (lines, lines),
+        lines: GridLines::Spans,
+        degeneracy: Degeneracy::RoundOff,
+        ..analysis::CurvatureMapOptions::default()
+    };
+    let map = analysis::curvature_map(surface, &options);
+    let flip = field != CurvatureField::Gaussian && map.outward_flip();
+    let samples = map
+        .points
+        .iter()
+        .zip(&map.samples)
+        .map(|(&p, s)| Sample { p, value: s.map(|s| s.oriented(flip).get(field)), normal: s.map(|s| s.normal) })
+        .collect();
+    (samples, map.us.len(), map.vs.len())
 }
 
 fn bounds(samples: &[Sample]) -> (Vec3, Vec3) {
-    let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
-    let mut hi = -lo;
-    for s in samples {
-        lo = Vec3::new(lo.x.min(s.p.x), lo.y.min(s.p.y), lo.z.min(s.p.z));
-        hi = Vec3::new(hi.x.max(s.p.x), hi.y.max(s.p.y), hi.z.max(s.p.z));
-    }
-    (lo, hi)
+    let points: Vec<Vec3> = samples.iter().map(|s| s.p).collect();
+    point_bounds(&points)
 }
 
 /// Pixel layout of the picture (all in pixels, rows down).
@@ -749,26 +656,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn grid_has_a_line_at_every_knot_and_splits_spans_by_length() {
-        // Spans [0, 0.1], [0.1, 0.5], [0.5, 1]: 20 lines split 2 (the minimum), 8 and 10.
-        let k = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.1, 0.5, 1.0, 1.0, 1.0, 1.0]).expect("valid knots");
-        let t = grid_params(&k, 20);
-        for knot in [0.0, 0.1, 0.5, 1.0] {
-            assert!(t.contains(&knot), "knot {knot} missing");
-        }
-        assert_eq!(t.len(), 2 + 8 + 10 + 1);
-        assert!(t.windows(2).all(|w| w[1] > w[0]));
-    }
-
-    #[test]
     fn nearest_rank_percentile() {
         // Nearest rank: the 98th percentile of 1..=100 is the 98th value; of 1..=10 the 10th.
-        let mut v: Vec<f64> = (1..=100).rev().map(f64::from).collect();
-        assert_eq!(percentile(&mut v, 98.0), Some(98.0));
-        let mut v: Vec<f64> = (1..=10).map(f64::from).collect();
-        assert_eq!(percentile(&mut v, 98.0), Some(10.0));
-        assert_eq!(percentile(&mut v, 50.0), Some(5.0));
-        assert_eq!(percentile(&mut [], 98.0), None);
+        // (The colour limit is `abs_quantile` of the values at `percentile / 100`.)
+        let v: Vec<f64> = (1..=100).rev().map(f64::from).collect();
+        assert_eq!(abs_quantile(&v, 98.0 / 100.0), Some(98.0));
+        let v: Vec<f64> = (1..=10).map(|i| -f64::from(i)).collect();
+        assert_eq!(abs_quantile(&v, 98.0 / 100.0), Some(10.0));
+        assert_eq!(abs_quantile(&v, 50.0 / 100.0), Some(5.0));
+        assert_eq!(abs_quantile(&[], 98.0 / 100.0), None);
     }
 
     #[test]

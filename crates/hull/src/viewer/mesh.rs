@@ -244,18 +244,6 @@ pub(crate) fn interpolate_errors(
         .collect()
 }
 
-/// The `q`-quantile (`0 <= q <= 1`) of the finite `|values|`, by the nearest-rank rule;
-/// `None` if no value is finite.
-pub(crate) fn abs_quantile(values: &[f64], q: f64) -> Option<f64> {
-    let mut a: Vec<f64> = values.iter().filter(|v| v.is_finite()).map(|v| v.abs()).collect();
-    if a.is_empty() {
-        return None;
-    }
-    a.sort_by(f64::total_cmp);
-    let rank = ((q.clamp(0.0, 1.0) * a.len() as f64).ceil() as usize).clamp(1, a.len());
-    Some(a[rank - 1])
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -342,14 +330,5 @@ mod tests {
         // Shepard's weights are a convex combination: every value within the data's range.
         assert!(field.iter().all(|&f| (-1e-12..=0.25 + 1e-12).contains(&f)));
         assert!(field.iter().any(|&f| f < 0.05) && field.iter().any(|&f| f > 0.2));
-    }
-
-    #[test]
-    fn quantile_by_nearest_rank() {
-        let v: Vec<f64> = (1..=100).map(|i| -(i as f64)).chain([f64::NAN]).collect();
-        assert_eq!(abs_quantile(&v, 0.98), Some(98.0));
-        assert_eq!(abs_quantile(&v, 1.0), Some(100.0));
-        assert_eq!(abs_quantile(&v, 0.0), Some(1.0));
-        assert_eq!(abs_quantile(&[f64::NAN], 0.5), None);
     }
 }

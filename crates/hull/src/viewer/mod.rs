@@ -7,8 +7,8 @@
 //! starboard half (Float32 positions, Int16 unit normals), one Float32 value per vertex and
 //! field, the control net (Float32) and the offsets with their distances to the surface
 //! (Float32). The triangles of the grid and the mirrored half (`y -> -y`, a transform of the
-//! same geometry) are made by the page. The colours come from [`crate::drawing::colormap`]:
-//! the diverging map for curvature, symmetric about zero with its limit at the 98th percentile
+//! same geometry) are made by the page. The colours come from [`crate::colormap`]: the
+//! diverging map for curvature, symmetric about zero with its limit at the 98th percentile
 //! of `|value|` (a few extreme values at a degenerate stem would otherwise wash out the rest),
 //! the sequential map from zero to the largest distance for the error.
 //!
@@ -22,7 +22,7 @@ use std::str::FromStr;
 use nurbs::{NurbsSurface, Vec3};
 use serde_json::{json, Value};
 
-use crate::drawing::colormap::{diverging_stops, sequential_stops};
+use crate::colormap::{curvature_limit, diverging_stops, sequential_stops, CURVATURE_QUANTILE};
 use crate::markup::{base64, escape};
 use crate::{ErrorStats, Offsets, Units};
 pub use mesh::Resolution;
@@ -33,9 +33,6 @@ const STYLE: &str = include_str!("viewer.css");
 /// three.js, bundled by `tools/vendor-three.sh` (version and sha256 in `vendor/three/README.md`).
 const THREE_JS: &str = include_str!("../../../../vendor/three/three.min.js");
 const THREE_LICENSE: &str = include_str!("../../../../vendor/three/LICENSE");
-
-/// Quantile of `|curvature|` at which the diverging colour map saturates.
-pub const CURVATURE_QUANTILE: f64 = 0.98;
 
 /// The field the hull is coloured by when the page opens (the page can switch to any other).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -196,7 +193,7 @@ fn finite_range(values: &[f64]) -> (f64, f64) {
 
 fn curvature_field(label: &str, symbol: &str, unit: String, values: &[f64], note: &str) -> Value {
     let (min, max) = finite_range(values);
-    let limit = mesh::abs_quantile(values, CURVATURE_QUANTILE).filter(|&l| l > 0.0).unwrap_or(1.0);
+    let limit = curvature_limit(values);
     json!({
         "label": label,
         "symbol": symbol,

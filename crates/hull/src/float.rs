@@ -1,4 +1,5 @@
-//! The one place that turns an `f64` into text for the exchange formats (IGES, STEP, ...).
+//! The one place that turns an `f64` into exact text for files (IGES, STEP, DXF, STL, OBJ,
+//! glTF, CSV); `numfmt` rounds figures for people ([`crate::format_figure`]).
 //!
 //! Every real number a writer emits goes through [`real`], so all exports agree on one
 //! representation: the *shortest* decimal string that parses back to the very same `f64`
@@ -48,6 +49,42 @@ pub fn real(x: f64) -> io::Result<String> {
     }
 }
 
+/// Shortest round-trip text of `x` in plain decimal notation: Rust's `Display`, never an
+/// exponent, no decimal point for an integer (`12`, `0.30000000000000004`, `1e-30` as
+/// `0.000000000000000000000000000001`), `-0.0` as `0`.
+///
+/// # Errors
+/// [`io::ErrorKind::InvalidData`] if `x` is NaN or infinite.
+pub fn plain(x: f64) -> io::Result<String> {
+    if !x.is_finite() {
+        return Err(io::Error::new(io::ErrorKind::InvalidData, format!("cannot write the non-finite number {x}")));
+    }
+    Ok(if x == 0.0 { "0".to_string() } else { format!("{x}") })
+}
+
+/// How a text writer spells its numbers; both notations read back to the very same `f64`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Notation {
+    /// [`real`]: always a decimal point, an `E` exponent outside `1e-5 <= |x| < 1e16`.
+    #[default]
+    Exchange,
+    /// [`plain`]: never an exponent, integers without a decimal point.
+    Plain,
+}
+
+impl Notation {
+    /// `x` in this notation.
+    ///
+    /// # Errors
+    /// [`io::ErrorKind::InvalidData`] if `x` is NaN or infinite.
+    pub fn format(self, x: f64) -> io::Result<String> {
+        match self {
+            Notation::Exchange => real(x),
+            Notation::Plain => plain(x),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -75,7 +112,17 @@ mod tests {
     fn non_finite_is_refused() {
         for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             assert_eq!(real(x).expect_err("non-finite").kind(), io::ErrorKind::InvalidData);
+            assert_eq!(plain(x).expect_err("non-finite").kind(), io::ErrorKind::InvalidData);
         }
+    }
+
+    #[test]
+    fn plain_notation_has_no_exponent() {
+        let cases = [(12.0, "12"), (-0.0, "0"), (0.1 + 0.2, "0.30000000000000004"), (1e21, "1000000000000000000000")];
+        for (x, want) in cases {
+            assert_eq!(Notation::Plain.format(x).expect("finite"), want);
+        }
+        assert_eq!(Notation::Exchange.format(12.0).expect("finite"), "12.0");
     }
 
     /// Bit-exact round trip over a spread of bit patterns (a fixed LCG, so the test is

@@ -1,8 +1,22 @@
 //! Colour maps shared by every picture (lines plan markers, curvature maps, the 3-D viewer's
 //! legend): a sequential map for magnitudes (fit error) and a diverging map for signed fields
-//! (Gaussian and mean curvature), both piecewise linear between a few stops.
+//! (Gaussian and mean curvature), both piecewise linear between a few stops; and where the
+//! diverging map of a curvature field saturates ([`curvature_limit`]).
 
-use super::model::Rgb;
+/// A colour, 8 bits per channel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Rgb(pub u8, pub u8, pub u8);
+
+impl Rgb {
+    pub const BLACK: Rgb = Rgb(0, 0, 0);
+    pub const WHITE: Rgb = Rgb(255, 255, 255);
+    pub const GREY: Rgb = Rgb(128, 128, 128);
+
+    /// `#rrggbb`.
+    pub fn hex(self) -> String {
+        format!("#{:02x}{:02x}{:02x}", self.0, self.1, self.2)
+    }
+}
 
 /// Sequential stops (viridis, sampled at 0, 1/4, 1/2, 3/4, 1).
 const SEQUENTIAL: [[u8; 3]; 5] = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
@@ -43,9 +57,40 @@ pub fn diverging_stops() -> Vec<String> {
     DIVERGING.iter().map(|c| Rgb(c[0], c[1], c[2]).hex()).collect()
 }
 
+/// Quantile of `|curvature|` at which the diverging colour map saturates (the 3-D viewer, the
+/// glTF export).
+pub const CURVATURE_QUANTILE: f64 = 0.98;
+
+/// The `q`-quantile (`0 <= q <= 1`) of the finite `|values|`, by the nearest-rank rule;
+/// `None` if no value is finite.
+pub fn abs_quantile(values: &[f64], q: f64) -> Option<f64> {
+    let mut a: Vec<f64> = values.iter().filter(|v| v.is_finite()).map(|v| v.abs()).collect();
+    if a.is_empty() {
+        return None;
+    }
+    a.sort_by(f64::total_cmp);
+    let rank = ((q.clamp(0.0, 1.0) * a.len() as f64).ceil() as usize).clamp(1, a.len());
+    Some(a[rank - 1])
+}
+
+/// The limit `±L` at which a curvature field saturates the diverging map: the
+/// [`CURVATURE_QUANTILE`] of `|K|` (nearest rank), 1 if there is no positive one.
+pub fn curvature_limit(values: &[f64]) -> f64 {
+    abs_quantile(values, CURVATURE_QUANTILE).filter(|&l| l > 0.0).unwrap_or(1.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quantile_by_nearest_rank() {
+        let v: Vec<f64> = (1..=100).map(|i| -(i as f64)).chain([f64::NAN]).collect();
+        assert_eq!(abs_quantile(&v, 0.98), Some(98.0));
+        assert_eq!(abs_quantile(&v, 1.0), Some(100.0));
+        assert_eq!(abs_quantile(&v, 0.0), Some(1.0));
+        assert_eq!(abs_quantile(&[f64::NAN], 0.5), None);
+    }
 
     #[test]
     fn ends_and_middle_hit_the_stops() {
