@@ -79,8 +79,8 @@ pub enum Knuckles {
     Auto(CornerOptions),
     /// As [`Knuckles::Auto`], and where no knuckle line is found, an approximation (`approx`,
     /// and the start of the optimised methods) of a hull with flats of side or bottom
-    /// ([`find_flat_lines`](nurbs::fit::find_flat_lines)) is refitted within the flats' planes, `y <= y_max` and
-    /// `z >= z_min` ([`refit_within_flats`](nurbs::fit::refit_within_flats)): no ringing past the flats, for 2 more control
+    /// ([`find_flat_lines`](crate::flats::find_flat_lines)) is refitted within the flats' planes, `y <= y_max` and
+    /// `z >= z_min` ([`refit_within_flats`](crate::flats::refit_within_flats)): no ringing past the flats, for 2 more control
     /// points along `u` per flat line and up to 2 more across per line's end. Interpolation is
     /// left as it is (held on the planes it could no longer pass through every offset). Not the
     /// default: at equal control-point counts the plain approximation is closer to the offsets
