@@ -149,7 +149,8 @@ fn refereed(
     settings: &ToleranceSettings,
     control: &Control<'_>,
 ) -> Result<(FitOutcome, ToleranceSearch), HullError> {
-    let (searched, mut search) = searched_and_faired(offsets, config, settings, control)?;
+    // The default fit replaces an unsound count found by the default count: no fairing for it.
+    let (searched, mut search) = searched_and_faired(offsets, config, settings, goal != Goal::Default, control)?;
     if goal != Goal::Default || control.stopped() {
         return Ok((searched, search));
     }
@@ -229,14 +230,19 @@ pub struct Referee {
 /// within the tolerance (or, where it was not reached, within the max error reached). The
 /// faired fit is kept when it stays within that bound and is no less sound than the searched
 /// fit; otherwise the searched fit is kept, the faired one noted in [`FitOutcome::rejected`].
+/// Without `fair_unsound`, a searched fit with validity findings is returned unfaired.
 fn searched_and_faired(
     offsets: &Offsets,
     config: &FitConfig,
     settings: &ToleranceSettings,
+    fair_unsound: bool,
     control: &Control<'_>,
 ) -> Result<(FitOutcome, ToleranceSearch), HullError> {
     let plain = FitConfig { fair: crate::Fairing::Off, ..*config };
     let r = fit_to_tolerance(offsets, &plain, settings, control)?;
+    if !fair_unsound && !r.search.valid {
+        return Ok((r.outcome, r.search));
+    }
     let t = if r.search.reached { settings.tolerance } else { r.outcome.error.overall.max };
     let fair = match config.fair {
         crate::Fairing::Auto { tolerance: None } => crate::Fairing::Auto { tolerance: Some(t) },
