@@ -50,8 +50,7 @@ impl ValueEnum for FormatArg {
 pub struct ExportArgs {
     #[command(flatten)]
     pub skin: SkinArgs,
-    /// Fit of an offsets input: interp or approx; without it (and --ctrl), the default fit of
-    /// `hullskin fit`.
+    /// Fit of an offsets input: interp or approx (default), as `hullskin fit` fits it.
     #[arg(long, value_parser = parse_skin_method)]
     pub method: Option<FitMethod>,
     /// Output format; by default from the extension of FILE (.stp/.step, .igs/.iges, .dxf,
@@ -101,9 +100,8 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
         Input::Offsets(offsets) => {
             let method = args.method.unwrap_or(FitMethod::Approx);
             let config = args.skin.fit_config(method, OptimSettings::default());
-            let goal = hull::Goal::of(args.method.is_some(), args.skin.ctrl.is_some(), None);
-            let (outcome, _) =
-                fit_with_progress(&offsets, &config, goal).with_context(|| format!("cannot fit {}", offsets.source))?;
+            let (outcome, _) = fit_with_progress(&offsets, &config, hull::Goal::Count)
+                .with_context(|| format!("cannot fit {}", offsets.source))?;
             let source = format!("{}, fitted by {}", offsets.source, method.name());
             let vs = section_parameters(&outcome.params);
             (outcome.surface, offsets.units, source, Some((offsets, vs)))

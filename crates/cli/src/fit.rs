@@ -74,16 +74,16 @@ pub struct MethodArgs {
     /// Method: `interp` passes through every offset; `approx` is a least-squares fit with the
     /// control-point counts of --ctrl; `ga`, `pso`, `gsa`, `lm` and `gsa+lm` then optimise the
     /// approximation's weights (Genetic Algorithm, Particle Swarm, Gravitational Search,
-    /// Levenberg-Marquardt, GSA then LM). Without --method, --ctrl or --tolerance the default
-    /// fit is made: the approximation with the fewest control points within the default
-    /// tolerance, 0.5 % of the beam (or, where no count reaches it, the closest surface found).
+    /// Levenberg-Marquardt, GSA then LM). Default: approx.
     #[arg(long, value_parser = parse_method)]
     pub method: Option<FitMethod>,
     /// Search the control-point counts for the fewest control points whose max error (true
     /// closest-point distance, in the input's units) is within T, for approx or an optimised
     /// method; report.json gets a "tolerance_search" block. A T no count reaches is an error.
-    #[arg(long, value_name = "T", conflicts_with = "ctrl")]
-    pub tolerance: Option<f64>,
+    /// `default`: 0.5 % of the beam by a quick search, refereed by the held-out error against
+    /// the default count (the closest valid surface where none reaches it).
+    #[arg(long, value_name = "T|default", conflicts_with = "ctrl", value_parser = parse_tolerance)]
+    pub tolerance: Option<Goal>,
     #[command(flatten)]
     pub optim: OptimArgs,
 }
@@ -94,10 +94,9 @@ impl MethodArgs {
         self.method.unwrap_or(FitMethod::Approx)
     }
 
-    /// What the fit aims at ([`hull::Goal::of`]): `--tolerance`, else the count of `--ctrl`
-    /// or of a given `--method`, else the default fit.
-    pub(crate) fn goal(&self, skin: &SkinArgs) -> Goal {
-        Goal::of(self.method.is_some(), skin.ctrl.is_some(), self.tolerance)
+    /// What the fit aims at: `--tolerance`, else the count (`--ctrl` or the default count).
+    pub(crate) fn goal(&self) -> Goal {
+        self.tolerance.unwrap_or_default()
     }
 
     /// Fit `offsets` with these flags and the skinning flags `skin`: see [`fit_with_progress`].
@@ -109,11 +108,15 @@ impl MethodArgs {
         skin: &SkinArgs,
         offsets: &Offsets,
     ) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
-        fit_with_progress(offsets, &skin.fit_config(self.method(), self.optim.settings()), self.goal(skin))
+        fit_with_progress(offsets, &skin.fit_config(self.method(), self.optim.settings()), self.goal())
     }
 }
 
 fn parse_method(s: &str) -> Result<FitMethod, String> {
+    s.parse()
+}
+
+fn parse_tolerance(s: &str) -> Result<Goal, String> {
     s.parse()
 }
 
@@ -313,21 +316,22 @@ mod tests {
         let offsets = hull::series60_sample();
         // The command line fairs by default.
         let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
-        // A method given: its count, no search.
-        let args = FitArgs {
-            fit: MethodArgs { method: Some(FitMethod::Approx), ..MethodArgs::default() },
-            ..FitArgs::default()
-        };
-        let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
-        let direct = hull::fit_offsets(&offsets, &config).expect("the sample fits");
-        // The same deterministic least-squares fit: bit-identical surfaces.
-        assert_eq!(outcome.surface, direct.surface);
-        assert!(search.is_none());
-        // No flags: the library's default fit.
-        let args = FitArgs::default();
+        // No flags (or a method): the default count, no search.
+        for method in [None, Some(FitMethod::Approx)] {
+            let args = FitArgs { fit: MethodArgs { method, ..MethodArgs::default() }, ..FitArgs::default() };
+            let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
+            let direct = hull::fit_offsets(&offsets, &config).expect("the sample fits");
+            // The same deterministic least-squares fit: bit-identical surfaces.
+            assert_eq!(outcome.surface, direct.surface);
+            assert!(search.is_none());
+        }
+        // `--tolerance default`: the library's search with the default tolerance.
+        let goal = parse_tolerance("default").expect("a goal");
+        let args = FitArgs { fit: MethodArgs { tolerance: Some(goal), ..MethodArgs::default() }, ..FitArgs::default() };
         let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
         let (direct, direct_search) =
-            hull::optimize::quiet(|c| hull::fit_offsets_within(&offsets, &config, Goal::Default, c)).expect("fits");
+            hull::optimize::quiet(|c| hull::fit_offsets_within(&offsets, &config, Goal::DefaultTolerance, c))
+                .expect("fits");
         assert_eq!(outcome.surface, direct.surface);
         let (a, b) = (search.expect("searched"), direct_search.expect("searched"));
         assert!(a.default && b.default);

@@ -36,8 +36,7 @@ pub enum Format {
 pub struct HydrostaticsArgs {
     #[command(flatten)]
     pub skin: SkinArgs,
-    /// Fit of an offsets input: interp or approx; without it (and --ctrl), the default fit of
-    /// `hullskin fit`.
+    /// Fit of an offsets input: interp or approx (default), as `hullskin fit` fits it.
     #[arg(long, value_parser = parse_skin_method)]
     pub method: Option<FitMethod>,
     /// Draft T (z of the waterplane above the baseline, in the surface's length unit); the
@@ -90,9 +89,8 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
         Input::Offsets(offsets) => {
             let method = args.method.unwrap_or(FitMethod::Approx);
             let config = args.skin.fit_config(method, OptimSettings::default());
-            let goal = hull::Goal::of(args.method.is_some(), args.skin.ctrl.is_some(), None);
-            let (outcome, _) =
-                fit_with_progress(&offsets, &config, goal).with_context(|| format!("cannot fit {}", offsets.source))?;
+            let (outcome, _) = fit_with_progress(&offsets, &config, hull::Goal::Count)
+                .with_context(|| format!("cannot fit {}", offsets.source))?;
             (
                 vec![outcome.surface],
                 offsets.units,

@@ -32,9 +32,10 @@ use crate::surface_arg::{read_input, Input};
            or offset table) fitted first with --method and the skinning flags. Without it the built-in \
            Series 60 Cb 0.60 sample is fitted")),
     mut_arg("method", |a| a.help("Fit of an offsets input, as `hullskin fit --method`: interp, approx, or approx \
-           with its weights optimised by ga, pso, gsa, lm or gsa+lm (the report then plots the convergence); without --method, --ctrl and --tolerance, the default fit of `hullskin fit`")),
+           with its weights optimised by ga, pso, gsa, lm or gsa+lm (the report then plots the convergence)")),
     mut_arg("tolerance", |a| a.help("As `hullskin fit --tolerance`: fit an offsets input with the fewest control \
-           points whose max error is within T (approx or an optimised method); the report notes the search")))]
+           points whose max error is within T (approx or an optimised method), or `default` (0.5 % of the beam); the report \
+           notes the search")))]
 pub struct ReportArgs {
     #[command(flatten)]
     pub skin: SkinArgs,
@@ -337,12 +338,12 @@ mod tests {
         assert_eq!(search.control_points, [fit.surface.n_u(), fit.surface.n_v()]);
         assert!(search.ratio < 1.0, "fewer control points than interpolation: {}", search.ratio);
         assert!(loaded.notes.iter().any(|n| n.contains(&search.summary("m"))), "{:?}", loaded.notes);
-        // A method given fits its count: no search.
-        let plain = load(&Wrap::try_parse_from(["x", "--method", "approx"]).expect("valid").args).expect("fits");
+        // No flags fits the default count: no search.
+        let plain = load(&Wrap::try_parse_from(["x"]).expect("no flags").args).expect("fits");
         assert!(plain.search.is_none() && plain.notes.is_empty());
-        // No flags: the default fit, whose search is noted with its default tolerance.
-        let default = load(&Wrap::try_parse_from(["x"]).expect("no flags").args).expect("the sample fits");
-        let search = default.search.as_ref().expect("the default fit searches");
+        // `--tolerance default`: the search, noted with its default tolerance.
+        let default = load(&Wrap::try_parse_from(["x", "--tolerance", "default"]).expect("valid").args).expect("fits");
+        let search = default.search.as_ref().expect("the default tolerance searches");
         assert!(search.default, "{search:?}");
         assert!(default.notes.iter().any(|n| n.contains("default tolerance")), "{:?}", default.notes);
         assert!(Wrap::try_parse_from(["x", "--tolerance", "0.2", "--ctrl", "5,9"]).is_err());

@@ -275,10 +275,10 @@ pub fn held_out_error_with(
 }
 
 /// Whether `outcome`'s held-out error must still be measured with `folds` folds (a caller
-/// fitting as the command line does then measures it with [`held_out_refit_config`]). The
-/// default fit ([`crate::Goal::Default`]) measured it with the default folds when it chose
-/// its count: that figure is kept for the default folds, and dropped for 0 folds (off), as
-/// any other.
+/// fitting as the command line does then measures it with [`held_out_refit_config`]).
+/// `--tolerance default` ([`crate::Goal::DefaultTolerance`]) measured it with the default
+/// folds when it chose its count: that figure is kept for the default folds, and dropped for
+/// 0 folds (off), as any other.
 pub fn held_out_wanted(outcome: &mut crate::FitOutcome, folds: usize) -> bool {
     if folds == 0 {
         outcome.error.held_out = None;

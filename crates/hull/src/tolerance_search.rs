@@ -58,7 +58,7 @@ use crate::{fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, Offse
 /// net as dense as interpolation's.
 pub const DEFAULT_TOLERANCE_OF_BEAM: f64 = 0.005;
 
-/// The default fit's tolerance: [`DEFAULT_TOLERANCE_OF_BEAM`] of the beam `2 max |y|` of the
+/// The default tolerance (`--tolerance default`): [`DEFAULT_TOLERANCE_OF_BEAM`] of the beam `2 max |y|` of the
 /// offsets (for free-form sections, twice their largest distance from the plane `y = 0`);
 /// `None` for offsets all in that plane (then there is no beam to take a fraction of).
 ///
@@ -76,27 +76,41 @@ pub fn default_tolerance(offsets: &Offsets) -> Option<f64> {
 /// What [`fit_offsets_within`] aims at.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Goal {
-    /// The default fit: the fewest control points within [`default_tolerance`], faired within
-    /// it; where no count reaches it, the closest surface found (the search record says so).
+    /// `config.ctrl` (or [`crate::default_ctrl`]) as given: no search. The default.
     #[default]
-    Default,
+    Count,
     /// The fewest control points within this max error (in the offsets' units); no count
     /// reaching it is an error ([`HullError::ToleranceNotReached`]).
     Tolerance(f64),
-    /// `config.ctrl` (or [`crate::default_ctrl`]) as given: no search.
-    Count,
+    /// The fewest control points within [`default_tolerance`] by a quick search, faired within
+    /// it; where no count reaches it, the closest valid surface found, and where none is
+    /// valid, the default count; refereed against the default count by the held-out error
+    /// (`hullskin fit --tolerance default`).
+    DefaultTolerance,
 }
 
-impl Goal {
-    /// The goal of a command line or a script that may give a method, a count and a
-    /// tolerance: the tolerance when given, the count when a method or a count is given, else
-    /// the default fit.
-    pub fn of(method_given: bool, ctrl_given: bool, tolerance: Option<f64>) -> Goal {
-        match tolerance {
-            Some(t) => Goal::Tolerance(t),
-            None if method_given || ctrl_given => Goal::Count,
-            None => Goal::Default,
+impl std::str::FromStr for Goal {
+    type Err = String;
+
+    /// `--tolerance`'s value: `default` ([`Goal::DefaultTolerance`]) or a length
+    /// ([`Goal::Tolerance`]; its sign and finiteness are checked by the search).
+    ///
+    /// ```
+    /// use hull::Goal;
+    /// assert_eq!("default".parse::<Goal>(), Ok(Goal::DefaultTolerance));
+    /// assert_eq!("0.05".parse::<Goal>(), Ok(Goal::Tolerance(0.05)));
+    /// assert!("5cm".parse::<Goal>().unwrap_err().contains("expected"));
+    /// ```
+    fn from_str(s: &str) -> Result<Goal, String> {
+        let s = s.trim();
+        if s.eq_ignore_ascii_case("default") {
+            return Ok(Goal::DefaultTolerance);
         }
+        s.parse::<f64>().map(Goal::Tolerance).map_err(|_| {
+            format!(
+                "`{s}` is not a tolerance (expected a max error in the input's units, or `default` for 0.5 % of the beam)"
+            )
+        })
     }
 }
 
@@ -105,9 +119,10 @@ impl Goal {
 /// the plain fits), then that count faired within the tolerance (an automatic fairing takes
 /// the tolerance as its bound), with the record of the search. The faired fit is kept when it
 /// stays within the tolerance and is no less sound than the searched fit; otherwise the
-/// searched fit is kept, the faired one noted in [`FitOutcome::rejected`]. The default goal
-/// searches with [`default_tolerance`] and takes the closest surface where none reaches it
-/// (offsets in one plane have no beam: they get [`crate::default_ctrl`]). What `hullskin fit`
+/// searched fit is kept, the faired one noted in [`FitOutcome::rejected`].
+/// [`Goal::DefaultTolerance`] searches with [`default_tolerance`] and takes the closest
+/// surface where none reaches it (offsets in one plane have no beam: they get
+/// [`crate::default_ctrl`]). What `hullskin fit`
 /// (and every caller that fits as the command line does) runs; a stop on `control` returns
 /// the best surface so far.
 ///
@@ -122,7 +137,7 @@ pub fn fit_offsets_within(
     let settings = match goal {
         Goal::Count => None,
         Goal::Tolerance(t) => Some(ToleranceSettings::new(t)),
-        Goal::Default => default_tolerance(offsets).map(|t| ToleranceSettings {
+        Goal::DefaultTolerance => default_tolerance(offsets).map(|t| ToleranceSettings {
             closest: true,
             diagonal: true,
             ..ToleranceSettings::new(t)
@@ -134,7 +149,7 @@ pub fn fit_offsets_within(
     let start = std::time::Instant::now();
     let (outcome, mut search) = refereed(offsets, config, goal, &settings, control)?;
     search.seconds = start.elapsed().as_secs_f64();
-    if goal == Goal::Default {
+    if goal == Goal::DefaultTolerance {
         search.default = true;
     }
     Ok((outcome, Some(search)))
@@ -149,14 +164,15 @@ fn refereed(
     settings: &ToleranceSettings,
     control: &Control<'_>,
 ) -> Result<(FitOutcome, ToleranceSearch), HullError> {
-    // The default fit replaces an unsound count found by the default count: no fairing for it.
-    let (searched, mut search) = searched_and_faired(offsets, config, settings, goal != Goal::Default, control)?;
-    if goal != Goal::Default || control.stopped() {
+    // `--tolerance default` replaces an unsound count found by the default count: no fairing for it.
+    let (searched, mut search) =
+        searched_and_faired(offsets, config, settings, goal != Goal::DefaultTolerance, control)?;
+    if goal != Goal::DefaultTolerance || control.stopped() {
         return Ok((searched, search));
     }
     if !search.valid {
         // No valid count was found: the default count is kept, as `--method approx` fits it
-        // (the default fit is never less sound than that).
+        // (so it is never less sound than that).
         let kept = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
         let (nu, nv) = (kept.surface.n_u(), kept.surface.n_v());
         let [n, k] = search.interp_control_points;
@@ -166,7 +182,7 @@ fn refereed(
         search.kept_default_count = true;
         return Ok((kept, search));
     }
-    // The default fit's referee: the count found against the default count, by their
+    // The referee of `--tolerance default`: the count found against the default count, by their
     // held-out max error (the error where there are no offsets).
     // The default count is fitted as `Goal::Count` fits it (faired within its own accuracy),
     // if its plain fit is within the tolerance: fairing only smooths within the plain fit's
@@ -206,7 +222,7 @@ fn refereed(
     Ok((chosen, search))
 }
 
-/// The default fit's second opinion: the count the tolerance search found and the default
+/// The second opinion of `--tolerance default`: the count the tolerance search found and the default
 /// count ([`crate::default_ctrl`]), each with its held-out max error (the default
 /// cross-validation), and which was kept: the default count when it is as sound, within the
 /// tolerance and closer to the held-out offsets; else the count found.
@@ -333,20 +349,20 @@ pub struct ToleranceSearch {
     /// Whether the chosen fit is within the tolerance: false only when the closest surface
     /// was asked for ([`ToleranceSettings::closest`]) and no count reached the tolerance.
     pub reached: bool,
-    /// Whether the tolerance was the default one ([`Goal::Default`]).
+    /// Whether the tolerance was the default one ([`Goal::DefaultTolerance`]).
     pub default: bool,
     /// Whether the quick search ran ([`ToleranceSettings::diagonal`]).
     pub quick: bool,
-    /// Whether the default fit found no valid count and kept the default count
+    /// Whether `--tolerance default` found no valid count and kept the default count
     /// ([`crate::default_ctrl`]) as `Goal::Count` fits it.
     pub kept_default_count: bool,
-    /// The default fit's comparison of the count found with the default count, by held-out
+    /// `--tolerance default`'s comparison of the count found with the default count, by held-out
     /// error (`None` when they are the same count, when the default count's plain fit is
     /// outside the tolerance (then it cannot be kept), or for an explicit tolerance).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub referee: Option<Referee>,
     /// Wall time of the whole [`fit_offsets_within`] call, seconds: the search, the fairing
-    /// of the count found and, for the default fit, the referee's fit and held-out refits
+    /// of the count found and, for `--tolerance default`, the referee's fit and held-out refits
     /// (0 when only [`fit_to_tolerance`] ran).
     pub seconds: f64,
     /// Every count fitted, in order.
@@ -836,12 +852,13 @@ mod tests {
     }
 
     #[test]
-    fn the_goal_follows_the_flags_given() {
-        assert_eq!(Goal::of(false, false, None), Goal::Default);
-        assert_eq!(Goal::of(true, false, None), Goal::Count);
-        assert_eq!(Goal::of(false, true, None), Goal::Count);
-        assert_eq!(Goal::of(true, false, Some(0.1)), Goal::Tolerance(0.1));
-        // Offsets in the plane y = 0 have no beam: the default fit is the default count.
+    fn the_goal_is_parsed_from_the_command_line() {
+        assert_eq!(Goal::default(), Goal::Count);
+        assert_eq!(" Default ".parse::<Goal>(), Ok(Goal::DefaultTolerance));
+        assert_eq!("1e-2".parse::<Goal>(), Ok(Goal::Tolerance(0.01)));
+        let e = "five".parse::<Goal>().expect_err("not a length");
+        assert!(e.contains("`five`") && e.contains("`default`"), "{e}");
+        // Offsets in the plane y = 0 have no beam: `--tolerance default` fits the default count.
         let flat = Offsets::new(
             "flat",
             Units::Metre,
@@ -854,7 +871,7 @@ mod tests {
         );
         assert_eq!(default_tolerance(&flat), None);
         let (out, search) =
-            quiet(|c| fit_offsets_within(&flat, &FitConfig::default(), Goal::Default, c)).expect("fits");
+            quiet(|c| fit_offsets_within(&flat, &FitConfig::default(), Goal::DefaultTolerance, c)).expect("fits");
         assert!(search.is_none());
         let (nu, nv) = crate::default_ctrl(&flat, (3, 3));
         assert_eq!((out.surface.n_u(), out.surface.n_v()), (nu, nv));
@@ -867,7 +884,7 @@ mod tests {
         // 0.5 % of the 16 m beam.
         assert!((t - 0.08).abs() < 1e-12, "{t}");
         let (out, search) =
-            quiet(|c| fit_offsets_within(&offsets, &FitConfig::default(), Goal::Default, c)).expect("fits");
+            quiet(|c| fit_offsets_within(&offsets, &FitConfig::default(), Goal::DefaultTolerance, c)).expect("fits");
         let search = search.expect("searched");
         assert!(search.default && search.reached && search.valid);
         assert!(out.error.overall.max <= t, "{} > {t}", out.error.overall.max);

@@ -74,9 +74,8 @@ fn run_fit(
 /// `units`, `lpp`, `beam`, `design_draft`, `outliers`), or None for the built-in Series 60
 /// Cb 0.60 parent. `method`: interp, approx, ga, pso, gsa, lm or gsa+lm. `ctrl`: control
 /// points (nu, nv) (default three quarters of the offsets); `tolerance`: the fewest control
-/// points whose max error is within it instead. With none of `method`, `ctrl` and
-/// `tolerance`, the default fit of `hullskin fit`: the approximation with the fewest control
-/// points within 0.5 % of the beam (or the closest surface found where none reaches it). `seed`, `iterations`, `population`,
+/// points whose max error is within it instead, or "default" for 0.5 % of the beam (as
+/// `hullskin fit --tolerance default`). `seed`, `iterations`, `population`,
 /// `weights` (full, rank1), `control_points` (resolved, fixed), `param_correction`,
 /// `fitted_params`: the weight optimisers'. `degree` (p, q), `param`, `fair` ("auto", 0 or
 /// a weight; None is "auto"), `knuckles` (auto, auto+flats, off), `corner_angle`, `envelope`
@@ -96,7 +95,7 @@ pub fn fit(
     offsets_or_path: Option<&Bound<'_, PyAny>>,
     method: Option<&str>,
     ctrl: Option<(i64, i64)>,
-    tolerance: Option<f64>,
+    tolerance: Option<&Bound<'_, PyAny>>,
     seed: u64,
     iterations: Option<usize>,
     population: Option<usize>,
@@ -119,7 +118,15 @@ pub fn fit(
 ) -> PyResult<PyFit> {
     let auto = pyo3::types::PyString::new(py, "auto").into_any();
     let fair = fair.unwrap_or(&auto);
-    let goal = hull::Goal::of(method.is_some(), ctrl.is_some(), tolerance);
+    let goal = match tolerance {
+        None => hull::Goal::Count,
+        Some(t) if t.is_instance_of::<pyo3::types::PyString>() => {
+            t.extract::<String>()?.parse::<hull::Goal>().map_err(|e| bad_arg(format!("tolerance: {e}")))?
+        }
+        Some(t) => hull::Goal::Tolerance(t.extract::<f64>().map_err(|_| {
+            PyTypeError::new_err("tolerance: expected a number (a max error in the input's units) or \"default\"")
+        })?),
+    };
     let args = FitArgs {
         method: method.unwrap_or("approx"),
         ctrl,
@@ -141,10 +148,12 @@ pub fn fit(
     if held_out == 1 {
         return Err(bad_arg("held_out: 1 fold would hold out every offset (expected 0 to turn it off, or at least 2)"));
     }
-    if let Some(t) = tolerance.filter(|t| !(t.is_finite() && *t > 0.0)) {
-        return Err(bad_arg(format!("tolerance {t}: expected a positive length")));
+    if let hull::Goal::Tolerance(t) = goal {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(bad_arg(format!("tolerance {t}: expected a positive length")));
+        }
     }
-    if tolerance.is_some() && ctrl.is_some() {
+    if goal != hull::Goal::Count && ctrl.is_some() {
         return Err(bad_arg("tolerance searches the control-point counts: give tolerance or ctrl, not both"));
     }
     let offsets = match offsets_or_path {

@@ -146,7 +146,7 @@ def fit(
     *,
     method: Optional[str] = None,
     ctrl: Optional[Tuple[int, int]] = None,
-    tolerance: Optional[float] = None,
+    tolerance: Union[float, str, None] = None,
     seed: int = 1,
     iterations: Optional[int] = None,
     population: Optional[int] = None,
