@@ -122,9 +122,8 @@ impl std::str::FromStr for Goal {
 /// searched fit is kept, the faired one noted in [`FitOutcome::rejected`].
 /// [`Goal::DefaultTolerance`] searches with [`default_tolerance`] and takes the closest
 /// surface where none reaches it (offsets in one plane have no beam: they get
-/// [`crate::default_ctrl`]). What `hullskin fit`
-/// (and every caller that fits as the command line does) runs; a stop on `control` returns
-/// the best surface so far.
+/// [`crate::default_ctrl`]). What `hullskin fit` (and every caller that fits as the command
+/// line does) runs; a stop on `control` returns the best surface so far.
 ///
 /// # Errors
 /// Those of [`crate::fit_offsets`], and of [`fit_to_tolerance`] with a tolerance.
@@ -155,8 +154,8 @@ pub fn fit_offsets_within(
     Ok((outcome, Some(search)))
 }
 
-/// [`fit_offsets_within`] with its settings: the search and fairing, and for the default
-/// fit the referee.
+/// [`fit_offsets_within`] with its settings: the search and fairing, and for
+/// [`Goal::DefaultTolerance`] the referee.
 fn refereed(
     offsets: &Offsets,
     config: &FitConfig,
@@ -182,9 +181,8 @@ fn refereed(
         search.kept_default_count = true;
         return Ok((kept, search));
     }
-    // The referee of `--tolerance default`: the count found against the default count, by their
-    // held-out max error (the error where there are no offsets).
-    // The default count is fitted as `Goal::Count` fits it (faired within its own accuracy),
+    // The referee: the count found against the default count, by their held-out max error
+    // (the error where there are no offsets). The default count is fitted as `Goal::Count` fits it (faired within its own accuracy),
     // if its plain fit is within the tolerance: fairing only smooths within the plain fit's
     // max error, and a count outside the tolerance cannot be kept.
     let t = if search.reached { settings.tolerance } else { searched.error.overall.max };
