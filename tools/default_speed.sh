@@ -10,18 +10,12 @@
 # approximation (`--method approx --fair 0 --envelope free --held-out 0`: the least squares alone, the
 # summary's `time`, i.e. report.json `seconds`, fit plus error measurement; best of 3,
 # interleaved), of the default fit without cross-validation (`--held-out 0`; best of 2) and
-# of the default fit (`hullskin fit T`: the search of the fewest control points within the
-# default tolerance, fairing search, envelope hold, validity, the referee against the default
-# count and the 4-fold cross-validation: report.json `tolerance_search.seconds`, which holds
-# the referee's cross-validation, or else `seconds` + `error.held_out.seconds`; best of 2),
-# and the ratios. Process start and file writing are left out of every column. Prints a Markdown
+# of the default fit (`hullskin fit T`: fairing search, envelope hold, validity and the
+# 4-fold cross-validation, report.json `seconds` + `error.held_out.seconds`; best of 2), and
+# the ratios. Process start and file writing are left out of every column. Prints a Markdown
 # table. Needs jq. Times depend on the machine and its load.
 source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
-secs() {
-  jq 'if .tolerance_search then .tolerance_search.seconds
-        + (if .tolerance_search.referee then 0 else (.error.held_out.seconds // 0) end)
-      else .seconds + (.error.held_out.seconds // 0) end' "$1/report.json"
-}
+secs() { jq '.seconds + (.error.held_out.seconds // 0)' "$1/report.json"; }
 
 echo "| table | ctrl | m | plain ms | default, no CV ms | ratio | default ms | ratio |"
 echo "|---|--:|--:|--:|--:|--:|--:|--:|"

@@ -50,9 +50,9 @@ impl ValueEnum for FormatArg {
 pub struct ExportArgs {
     #[command(flatten)]
     pub skin: SkinArgs,
-    /// Fit of an offsets input: interp or approx (default), as `hullskin fit` fits it.
-    #[arg(long, value_parser = parse_skin_method)]
-    pub method: Option<FitMethod>,
+    /// Fit of an offsets input: interp or approx.
+    #[arg(long, default_value = "approx", value_parser = parse_skin_method)]
+    pub method: FitMethod,
     /// Output format; by default from the extension of FILE (.stp/.step, .igs/.iges, .dxf,
     /// .stl, .obj, .glb).
     #[arg(long, value_enum)]
@@ -98,11 +98,10 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
     let (surface, units, source, fitted) = match read_input(&args.skin)? {
         Input::Surface { surface, units, source } => (surface, units, source, None),
         Input::Offsets(offsets) => {
-            let method = args.method.unwrap_or(FitMethod::Approx);
-            let config = args.skin.fit_config(method, OptimSettings::default());
+            let config = args.skin.fit_config(args.method, OptimSettings::default());
             let (outcome, _) = fit_with_progress(&offsets, &config, hull::Goal::Count)
                 .with_context(|| format!("cannot fit {}", offsets.source))?;
-            let source = format!("{}, fitted by {}", offsets.source, method.name());
+            let source = format!("{}, fitted by {}", offsets.source, args.method.name());
             let vs = section_parameters(&outcome.params);
             (outcome.surface, offsets.units, source, Some((offsets, vs)))
         }

@@ -69,14 +69,14 @@ pub(crate) fn parse_folds(s: &str) -> Result<usize, String> {
 
 /// How offsets are fitted: the method, `--tolerance` and the weight optimisers' flags (shared
 /// by `fit` and `report`).
-#[derive(Debug, Clone, Default, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct MethodArgs {
     /// Method: `interp` passes through every offset; `approx` is a least-squares fit with the
     /// control-point counts of --ctrl; `ga`, `pso`, `gsa`, `lm` and `gsa+lm` then optimise the
     /// approximation's weights (Genetic Algorithm, Particle Swarm, Gravitational Search,
-    /// Levenberg-Marquardt, GSA then LM). Default: approx.
-    #[arg(long, value_parser = parse_method)]
-    pub method: Option<FitMethod>,
+    /// Levenberg-Marquardt, GSA then LM).
+    #[arg(long, default_value = "approx", value_parser = parse_method)]
+    pub method: FitMethod,
     /// Search the control-point counts for the fewest control points whose max error (true
     /// closest-point distance, in the input's units) is within T, for approx or an optimised
     /// method; report.json gets a "tolerance_search" block. A T no count reaches is an error.
@@ -88,12 +88,13 @@ pub struct MethodArgs {
     pub optim: OptimArgs,
 }
 
-impl MethodArgs {
-    /// The method: `--method`, else the approximation.
-    pub(crate) fn method(&self) -> FitMethod {
-        self.method.unwrap_or(FitMethod::Approx)
+impl Default for MethodArgs {
+    fn default() -> Self {
+        MethodArgs { method: FitMethod::Approx, tolerance: None, optim: OptimArgs::default() }
     }
+}
 
+impl MethodArgs {
     /// What the fit aims at: `--tolerance`, else the count (`--ctrl` or the default count).
     pub(crate) fn goal(&self) -> Goal {
         self.tolerance.unwrap_or_default()
@@ -108,7 +109,7 @@ impl MethodArgs {
         skin: &SkinArgs,
         offsets: &Offsets,
     ) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
-        fit_with_progress(offsets, &skin.fit_config(self.method(), self.optim.settings()), self.goal())
+        fit_with_progress(offsets, &skin.fit_config(self.method, self.optim.settings()), self.goal())
     }
 }
 
@@ -316,15 +317,13 @@ mod tests {
         let offsets = hull::series60_sample();
         // The command line fairs by default.
         let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
-        // No flags (or a method): the default count, no search.
-        for method in [None, Some(FitMethod::Approx)] {
-            let args = FitArgs { fit: MethodArgs { method, ..MethodArgs::default() }, ..FitArgs::default() };
-            let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
-            let direct = hull::fit_offsets(&offsets, &config).expect("the sample fits");
-            // The same deterministic least-squares fit: bit-identical surfaces.
-            assert_eq!(outcome.surface, direct.surface);
-            assert!(search.is_none());
-        }
+        // No flags: the default count, no search.
+        let args = FitArgs::default();
+        let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
+        let direct = hull::fit_offsets(&offsets, &config).expect("the sample fits");
+        // The same deterministic least-squares fit: bit-identical surfaces.
+        assert_eq!(outcome.surface, direct.surface);
+        assert!(search.is_none());
         // `--tolerance default`: the library's search with the default tolerance.
         let goal = parse_tolerance("default").expect("a goal");
         let args = FitArgs { fit: MethodArgs { tolerance: Some(goal), ..MethodArgs::default() }, ..FitArgs::default() };

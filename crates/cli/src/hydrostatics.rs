@@ -36,9 +36,9 @@ pub enum Format {
 pub struct HydrostaticsArgs {
     #[command(flatten)]
     pub skin: SkinArgs,
-    /// Fit of an offsets input: interp or approx (default), as `hullskin fit` fits it.
-    #[arg(long, value_parser = parse_skin_method)]
-    pub method: Option<FitMethod>,
+    /// Fit of an offsets input: interp or approx.
+    #[arg(long, default_value = "approx", value_parser = parse_skin_method)]
+    pub method: FitMethod,
     /// Draft T (z of the waterplane above the baseline, in the surface's length unit); the
     /// first draft of a range with --to and --step.
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
@@ -87,14 +87,13 @@ pub fn run(args: &HydrostaticsArgs) -> anyhow::Result<ExitCode> {
             (surfaces, units, source, None)
         }
         Input::Offsets(offsets) => {
-            let method = args.method.unwrap_or(FitMethod::Approx);
-            let config = args.skin.fit_config(method, OptimSettings::default());
+            let config = args.skin.fit_config(args.method, OptimSettings::default());
             let (outcome, _) = fit_with_progress(&offsets, &config, hull::Goal::Count)
                 .with_context(|| format!("cannot fit {}", offsets.source))?;
             (
                 vec![outcome.surface],
                 offsets.units,
-                format!("{}, fitted by {}", offsets.source, method.name()),
+                format!("{}, fitted by {}", offsets.source, args.method.name()),
                 offsets.perpendiculars,
             )
         }

@@ -85,7 +85,7 @@ fn run_fit(
 /// `.timings`, `.warnings`. Runs without the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (
-    offsets_or_path = None, *, method = None, ctrl = None, tolerance = None, seed = 1, iterations = None,
+    offsets_or_path = None, *, method = "approx", ctrl = None, tolerance = None, seed = 1, iterations = None,
     population = None, degree = (3, 3), param = "centripetal,chord", fair = None, knuckles = "auto",
     corner_angle = 30.0, envelope = "hold", weights = "full", control_points = "resolved", param_correction = false,
     fitted_params = false, held_out = 4, units = "m", lpp = None, beam = None, design_draft = None, outliers = "warn"
@@ -93,7 +93,7 @@ fn run_fit(
 pub fn fit(
     py: Python<'_>,
     offsets_or_path: Option<&Bound<'_, PyAny>>,
-    method: Option<&str>,
+    method: &str,
     ctrl: Option<(i64, i64)>,
     tolerance: Option<&Bound<'_, PyAny>>,
     seed: u64,
@@ -128,7 +128,7 @@ pub fn fit(
         })?),
     };
     let args = FitArgs {
-        method: method.unwrap_or("approx"),
+        method,
         ctrl,
         degree,
         param,

@@ -144,7 +144,7 @@ def read_offsets(
 def fit(
     offsets_or_path: Union[Offsets, PathLike, None] = None,
     *,
-    method: Optional[str] = None,
+    method: str = "approx",
     ctrl: Optional[Tuple[int, int]] = None,
     tolerance: Union[float, str, None] = None,
     seed: int = 1,
