@@ -182,17 +182,18 @@ fn refereed(
         return Ok((kept, search));
     }
     // The referee: the count found against the default count, by their held-out max error
-    // (the error where there are no offsets). The default count is fitted as `Goal::Count` fits it (faired within its own accuracy),
-    // if its plain fit is within the tolerance: fairing only smooths within the plain fit's
-    // max error, and a count outside the tolerance cannot be kept.
+    // (the error where there are no offsets). The default count is fitted as `Goal::Count`
+    // fits it (faired within its own accuracy) if its plain fit, the quick search's first
+    // probe, is within the tolerance: fairing only smooths within the plain fit's max error,
+    // and a count outside the tolerance cannot be kept.
     let t = if search.reached { settings.tolerance } else { searched.error.overall.max };
     let counts = |o: &FitOutcome| [o.surface.n_u(), o.surface.n_v()];
-    let default_config = FitConfig { ctrl: None, ..*config };
-    let usual_plain = fit_offsets_with(offsets, &FitConfig { fair: crate::Fairing::Off, ..default_config }, control)?;
-    if counts(&usual_plain) == counts(&searched) || usual_plain.error.overall.max > t || control.stopped() {
+    let (du, dv) = crate::default_ctrl(offsets, config.degree);
+    let anchor = search.tried.iter().find(|c| c.control_points == [du, dv]).and_then(|c| c.max);
+    if [du, dv] == counts(&searched) || anchor.is_none_or(|m| m > t) || control.stopped() {
         return Ok((searched, search));
     }
-    let usual = fit_offsets_with(offsets, &default_config, control)?;
+    let usual = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
     let options = crate::HeldOutOptions::default();
     let held = |o: &FitOutcome| {
         crate::held_out_for_config_with(offsets, &crate::held_out_refit_config(o), &options, control).ok().flatten()
