@@ -164,7 +164,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         eprintln!("hullskin: {line}");
     }
     if let Some(s) = report.tolerance_search.as_ref().filter(|_| !args.json) {
-        outln!("{}", s.summary(offsets.units.symbol()));
+        outln!("{}", s.summary(offsets.units));
     }
     if let Some(mesh) = mesh.as_ref().filter(|_| !args.json) {
         print_mesh_distance(mesh, &offsets, &outcome.surface);

@@ -166,10 +166,9 @@ fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
     }
     let (outcome, search) =
         args.fit.fit(&args.skin, &offsets).with_context(|| format!("cannot fit {}", offsets.source))?;
-    let u = offsets.units.symbol();
     let notes = search
         .iter()
-        .map(|s| format!("Fitted with the fewest control points within --tolerance: {}.", s.summary(u)))
+        .map(|s| format!("Fitted with the fewest control points within --tolerance: {}.", s.summary(offsets.units)))
         .collect();
     Ok(Loaded {
         surface: outcome.surface.clone(),
@@ -241,7 +240,7 @@ fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, writt
             e.rms
         );
         if let Some(s) = &loaded.search {
-            outln!("{}", s.summary(u));
+            outln!("{}", s.summary(loaded.units));
         }
     } else if let Some(e) = &report.error {
         outln!("error of the offsets: max {:.3e} {u}, RMS {:.3e} {u}", e.overall.max, e.overall.rms);
@@ -340,7 +339,7 @@ mod tests {
         assert!(fit.error.overall.max <= 0.2, "max error {}", fit.error.overall.max);
         assert_eq!(search.control_points, [fit.surface.n_u(), fit.surface.n_v()]);
         assert!(search.ratio < 1.0, "fewer control points than interpolation: {}", search.ratio);
-        assert!(loaded.notes.iter().any(|n| n.contains(&search.summary("m"))), "{:?}", loaded.notes);
+        assert!(loaded.notes.iter().any(|n| n.contains(&search.summary(Units::Metre))), "{:?}", loaded.notes);
         // No flags fits the default count: no search.
         let plain = load(&Wrap::try_parse_from(["x"]).expect("no flags").args).expect("fits");
         assert!(plain.search.is_none() && plain.notes.is_empty());

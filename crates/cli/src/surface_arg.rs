@@ -173,7 +173,7 @@ mod tests {
         let path = dir.path().join("surface.json");
         // Leading blanks and a byte-order mark do not hide the JSON.
         let mut text = "\u{FEFF}\n  ".as_bytes().to_vec();
-        hull::export::write_surface_json(&mut text, &fitted.surface, "ft").expect("writes");
+        hull::export::write_surface_json(&mut text, &fitted.surface, Units::Foot).expect("writes");
         std::fs::write(&path, text).expect("write");
         match read_input(&skin(Some(path.clone()))).expect("reads") {
             Input::Surface { surface, units, source } => {

@@ -72,7 +72,7 @@ fn inputs() -> &'static (PathBuf, PathBuf) {
             .expect("valid");
         let rational = dir.join("rational_ft.json");
         let mut out = Vec::new();
-        write_surface_json(&mut out, &r, "ft").expect("writes");
+        write_surface_json(&mut out, &r, hull::Units::Foot).expect("writes");
         fs::write(&rational, out).expect("write");
         (plain, rational)
     })
@@ -106,7 +106,7 @@ fn samples(s: &NurbsSurface) -> Vec<[f64; 5]> {
 }
 
 fn expected(dir: &Path, name: &str, s: &NurbsSurface, units: &str, extra: Value) -> PathBuf {
-    let mut e = json!({"surface": SurfaceFile::from_surface(s, units), "units": units, "samples": samples(s)});
+    let mut e = json!({"surface": SurfaceFile::from_surface(s, units.parse().expect("units")), "units": units, "samples": samples(s)});
     if let (Some(e), Some(extra)) = (e.as_object_mut(), extra.as_object()) {
         e.extend(extra.clone());
     }

@@ -457,8 +457,8 @@ pub type OptimRunner<'r> = dyn FnMut(Algorithm, &mut dyn FnMut(&Control<'_>) -> 
 /// goes on.
 ///
 /// # Errors
-/// [`HullError::Input`] if the offsets are invalid for the degrees, [`HullError::Config`] for
-/// unusable settings, and any error of the plain approximation (e.g. [`HullError::Fit`] for
+/// [`HullError::Input`] if the offsets are invalid for the degrees, an error of the settings
+/// ([`HullError::is_setting`]) for unusable settings, and any error of the plain approximation (e.g. [`HullError::Fit`] for
 /// control-point counts out of range), on which all the optimised rows depend.
 pub fn compare_offsets_with(
     offsets: &Offsets,
@@ -497,7 +497,7 @@ pub fn compare_offsets_with(
                     quiet(|control| held_out(&mut out, control));
                     CompareRow::from_outcome(offsets, &out)
                 }
-                Err(e @ (HullError::Input { .. } | HullError::Config(_))) => return Err(e),
+                Err(e) if matches!(e, HullError::Input { .. }) || e.is_setting() => return Err(e),
                 Err(e) => {
                     // What interpolation would have used: one pole per offset of the largest
                     // section, one per section.
@@ -518,7 +518,7 @@ pub fn compare_offsets_with(
                 stopped = saw_stop;
                 match result {
                     Ok(out) => CompareRow::from_outcome(offsets, &out),
-                    Err(e @ HullError::Config(_)) => return Err(e),
+                    Err(e) if e.is_setting() => return Err(e),
                     Err(e) => CompareRow::failed(method, ctrl, Some(config.optim.seed), &e),
                 }
             }
@@ -554,7 +554,7 @@ pub fn compare_offsets_with(
         stopped = saw_stop;
         let mut row = match result {
             Ok(out) => CompareRow::from_outcome(offsets, &out),
-            Err(e @ HullError::Config(_)) => return Err(e),
+            Err(e) if e.is_setting() => return Err(e),
             Err(e) => CompareRow::failed(method, ctrl, method.algorithm().map(|_| config.optim.seed), &e),
         };
         row.method = name;

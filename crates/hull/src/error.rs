@@ -83,6 +83,7 @@ impl InputNames {
 
 /// Everything that can go wrong in the hull crate. Variants carry the offending values.
 #[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum HullError {
     /// A file could not be read (or written).
     #[error("{}: {error}", path.display())]
@@ -108,9 +109,130 @@ pub enum HullError {
         /// The kernel's reason (in the message; not a chained `source`, so it prints once).
         reason: nurbs::NurbsError,
     },
-    /// Settings that cannot work, whatever the data.
+    /// Settings of the presentation modules (drawings, rendering, viewer, HTML report) that
+    /// cannot work. TEMPORARY: only those modules use it; they move to their own crate with its
+    /// own error type, and this variant goes with them (issue 13).
     #[error("{0}")]
     Config(String),
+    /// A numeric setting out of its range: its name as the caller's user wrote it (`--density`,
+    /// `density`, `weld tolerance`), the value given, and what is accepted.
+    #[error("{name} {value}: expected {expected}")]
+    Setting {
+        /// The setting, e.g. `--density` or `hydrostatics order`.
+        name: String,
+        /// The value given (a count is given as a float).
+        value: f64,
+        /// What is accepted, e.g. `a positive density in t/m³`.
+        expected: &'static str,
+    },
+    /// A fitting or optimiser setting out of its range (fairness, weight smoothing,
+    /// regularization, search scale, the tolerance of a control-point search).
+    #[error("{name} {value} is not usable (expected {expected})")]
+    FitSetting {
+        /// The setting, e.g. `fairness`.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What is accepted, e.g. `a finite number >= 0`.
+        expected: &'static str,
+    },
+    /// A fitting degree outside what the kernel supports.
+    #[error("degree {degree} in {direction} is not supported (expected 1 to {max})")]
+    Degree {
+        /// The degree asked for.
+        degree: usize,
+        /// The direction, e.g. `u (along the sections)`.
+        direction: &'static str,
+        /// The highest supported degree ([`nurbs::MAX_DEGREE`]).
+        max: usize,
+    },
+    /// A range of drafts `from, from + step, ...` up to `to` that cannot be walked.
+    #[error("{}", draft_range_message(*.from, *.to, *.step, kind))]
+    DraftRange {
+        /// The first draft.
+        from: f64,
+        /// The last draft.
+        to: f64,
+        /// The step.
+        step: f64,
+        /// What is wrong with the range.
+        kind: DraftRangeKind,
+    },
+    /// A range end (`to`) without a step or a step without a range end.
+    #[error("{p}to and {p}step go together (a range of drafts from {p}draft to `{p}to` by `{p}step`)", p = names.prefix())]
+    DraftStepWithoutTo {
+        /// How the caller's user names them.
+        names: InputNames,
+    },
+    /// No hull surface to compute hydrostatics of.
+    #[error("hydrostatics of no surface: expected at least one patch")]
+    NoSurface,
+    /// The forward and aft perpendiculars cannot be placed.
+    #[error("perpendiculars: AP at x = {aft}, Lpp {lpp}: expected a finite AP and a positive Lpp")]
+    Perpendiculars {
+        /// x of the AP.
+        aft: f64,
+        /// Length between perpendiculars.
+        lpp: f64,
+    },
+    /// A main dimension (Lpp, B or T) that is missing (NaN) or not a finite positive length.
+    #[error("{}", main_dimension_message(name, *.value))]
+    MainDimension {
+        /// `Lpp`, `B` or `T`.
+        name: &'static str,
+        /// The value given; NaN when it was not given.
+        value: f64,
+    },
+    /// An export format that cannot be chosen or used as asked.
+    #[error("{0}")]
+    Format(FormatKind),
+    /// An export tolerance (tessellation chord height, polynomial approximation) that cannot
+    /// be met.
+    #[error("{}", export_tolerance_message(*.tolerance, kind))]
+    ExportTolerance {
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// Why it cannot be met.
+        kind: ExportToleranceKind,
+    },
+    /// A surface that cannot be mirrored into a whole hull (`--mirror`).
+    #[error("--mirror: {0}")]
+    Mirror(MirrorKind),
+    /// A control-point search to a tolerance with the interpolation method, whose count is
+    /// fixed.
+    #[error("a tolerance needs a method whose control points can vary (expected approx, ga, pso, gsa, lm or gsa+lm; interp always has one control point per offset)")]
+    ToleranceWithInterp,
+    /// A held-out error estimate that cannot be made.
+    #[error("{0}")]
+    HeldOut(HeldOutKind),
+    /// Weights (and control points) that cannot be optimised as asked.
+    #[error("{0}")]
+    Weights(WeightsKind),
+    /// A mesh that cannot be sliced into sections as asked.
+    #[error("{0}")]
+    Slice(SliceKind),
+    /// An axes mapping (`--axes`) other than a signed permutation of x, y, z.
+    #[error("axes \"{text}\": expected three comma-separated axes naming each of x, y, z once, each optionally negated, giving hullskin's x (forward), y (starboard) and z (up), e.g. x,y,z or z,x,y or -x,-y,z")]
+    UnknownAxes {
+        /// The mapping as given.
+        text: String,
+    },
+    /// A drawing that cannot be digitised with the settings given (scale, datum, station
+    /// positions).
+    #[error("{0}")]
+    Digitize(DigitizeKind),
+    /// An output directory that cannot be staged.
+    #[error("cannot write outputs into {}: expected a directory other than the filesystem's root", path.display())]
+    OutputDirectory {
+        /// The directory asked for.
+        path: PathBuf,
+    },
+    /// An output name that is not a plain file name (`../x`, `a/b`, empty).
+    #[error("output name {name:?}: expected a plain file name")]
+    OutputName {
+        /// The name asked for.
+        name: String,
+    },
     /// A units name that is none of `m`, `mm`, `ft`, `in`.
     #[error("unknown units \"{0}\" (expected m, mm, ft or in)")]
     UnknownUnits(String),
@@ -167,6 +289,38 @@ impl HullError {
         }
     }
 
+    /// Whether this is an error of the settings rather than of the data or the computation:
+    /// settings that cannot work whatever the data (a degree, a tolerance, a fairness, units
+    /// or a format that cannot be used), or a request that cannot be met as asked (a surface
+    /// that cannot be mirrored, offsets too few to hold any out, a mesh that gives too few
+    /// sections). False for input, fit, I/O, limit, draft and tolerance-search errors.
+    pub fn is_setting(&self) -> bool {
+        matches!(
+            self,
+            HullError::Setting { .. }
+                | HullError::FitSetting { .. }
+                | HullError::Degree { .. }
+                | HullError::DraftRange { .. }
+                | HullError::DraftStepWithoutTo { .. }
+                | HullError::NoSurface
+                | HullError::Perpendiculars { .. }
+                | HullError::MainDimension { .. }
+                | HullError::Format(_)
+                | HullError::ExportTolerance { .. }
+                | HullError::Mirror(_)
+                | HullError::ToleranceWithInterp
+                | HullError::HeldOut(_)
+                | HullError::Weights(_)
+                | HullError::Slice(_)
+                | HullError::UnknownAxes { .. }
+                | HullError::UnknownUnits(_)
+                | HullError::Digitize(_)
+                | HullError::OutputDirectory { .. }
+                | HullError::OutputName { .. }
+                | HullError::Config(_)
+        )
+    }
+
     /// The kind of an input error, if this is one.
     pub fn input_kind(&self) -> Option<&InputErrorKind> {
         match self {
@@ -178,6 +332,7 @@ impl HullError {
 
 /// What is wrong with the input data. Each message ends with what was expected instead.
 #[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
 pub enum InputErrorKind {
     // ----- the file as a whole -----
     /// NUL bytes or invalid UTF-8.
@@ -480,6 +635,436 @@ pub enum InputErrorKind {
     },
 }
 
+/// What is wrong with a range of drafts ([`HullError::DraftRange`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum DraftRangeKind {
+    /// `from`, `to` or `step` is not finite.
+    NotFinite,
+    /// A step of 0.
+    ZeroStep,
+    /// A step of the wrong sign: it goes away from `to`.
+    AwayFromTo,
+    /// More drafts than the cap.
+    TooMany {
+        /// The cap ([`crate::hydrostatics::MAX_DRAFTS`]).
+        max: usize,
+    },
+}
+
+fn draft_range_message(from: f64, to: f64, step: f64, kind: &DraftRangeKind) -> String {
+    match kind {
+        DraftRangeKind::NotFinite => format!("draft range from {from} to {to} step {step}: expected finite numbers"),
+        DraftRangeKind::ZeroStep => "draft step 0: expected a non-zero step".to_string(),
+        DraftRangeKind::AwayFromTo => {
+            format!("draft step {step} goes away from {to} (from {from}): expected a step of the sign of to - from")
+        }
+        DraftRangeKind::TooMany { max } => {
+            format!("draft range from {from} to {to} step {step} holds more than {max} drafts: expected a larger step")
+        }
+    }
+}
+
+fn main_dimension_message(name: &str, value: f64) -> String {
+    if value.is_nan() {
+        format!("{name} not given (expected Lpp, B and T to scale a Series 60 table: --lpp, --beam, --design-draft)")
+    } else {
+        format!("{name} = {value} (expected a finite positive length)")
+    }
+}
+
+/// Why an export format cannot be chosen or used ([`HullError::Format`]). Formats are named
+/// by [`crate::ExportFormat::name`] (`stl`, `iges-polynomial`) and families by
+/// [`crate::ExportFormat::family`] (`STEP`, `IGES`, `mesh`...).
+#[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum FormatKind {
+    /// No format given and the output's extension names none.
+    #[error("cannot tell the format from {} (expected an extension .stp, .step, .igs, .iges, .dxf, .stl, .obj or .glb, or {}format)", path.display(), names.prefix())]
+    Unknown {
+        /// The output path.
+        path: PathBuf,
+        /// How the caller's user names the inputs.
+        names: InputNames,
+    },
+    /// A format given whose family is not the one the output's extension names.
+    #[error("{p}format {format} writes a {family} file, but {} names a {named_family} file: name it {} or pass {p}format {named}", path.display(), path.with_extension(extension).display(), p = names.prefix())]
+    ExtensionMismatch {
+        /// The format given.
+        format: &'static str,
+        /// Its family.
+        family: &'static str,
+        /// Its file extension.
+        extension: &'static str,
+        /// The output path.
+        path: PathBuf,
+        /// The format the path's extension names.
+        named: &'static str,
+        /// Its family.
+        named_family: &'static str,
+        /// How the caller's user names the inputs.
+        names: InputNames,
+    },
+    /// A tolerance given for a format that takes none.
+    #[error("{}tolerance applies to stl, stl-ascii, obj, glb and iges-polynomial, not {format}", names.prefix())]
+    NoTolerance {
+        /// The format given.
+        format: &'static str,
+        /// How the caller's user names the inputs.
+        names: InputNames,
+    },
+}
+
+/// Why an export tolerance cannot be met ([`HullError::ExportTolerance`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ExportToleranceKind {
+    /// A tessellation tolerance below the floor (`relative` of the surface's size), or not a
+    /// positive finite length.
+    TessellationFloor {
+        /// The smallest accepted tolerance.
+        floor: f64,
+        /// The floor as a fraction of the surface's size.
+        relative: f64,
+    },
+    /// A tessellation that would need more grid lines than the cap.
+    GridLines {
+        /// The cap.
+        max: usize,
+    },
+    /// A tessellation tolerance at the rounding of double precision.
+    Rounding {
+        /// The largest chord deviation reached.
+        deviation: f64,
+    },
+    /// A polynomial approximation tolerance below the floor, or not a positive finite length.
+    ApproximationFloor {
+        /// The smallest accepted tolerance.
+        floor: f64,
+        /// The floor as a fraction of the surface's size.
+        relative: f64,
+    },
+    /// A polynomial approximation that would need more control points per direction than
+    /// the cap.
+    ControlPoints {
+        /// The cap.
+        max: usize,
+        /// Refinements done.
+        refinements: usize,
+        /// The deviation of the best approximation.
+        deviation: f64,
+    },
+}
+
+fn export_tolerance_message(tol: f64, kind: &ExportToleranceKind) -> String {
+    match *kind {
+        ExportToleranceKind::TessellationFloor { floor, relative } => format!(
+            "tessellation tolerance {tol}: expected a length of at least {floor:.3e} ({relative:e} of the surface's size)"
+        ),
+        ExportToleranceKind::GridLines { max } => format!(
+            "tessellation tolerance {tol} needs more than {max} grid lines (expected a tolerance nearer the surface's size)"
+        ),
+        ExportToleranceKind::Rounding { deviation } => format!(
+            "tessellation tolerance {tol} cannot be met in double precision (a chord deviates by {deviation:.3e}; \
+             expected a larger tolerance)"
+        ),
+        ExportToleranceKind::ApproximationFloor { floor, relative } => format!(
+            "approximation tolerance {tol}: expected a length of at least {floor:.3e} ({relative:e} of the surface's \
+             size; below that rounding dominates)"
+        ),
+        ExportToleranceKind::ControlPoints { max, refinements, deviation } => format!(
+            "a polynomial surface within {tol} needs more than {max} control points per direction (the best after \
+             {refinements} refinements deviates by {deviation}; expected a larger tolerance)"
+        ),
+    }
+}
+
+/// Why a surface cannot be mirrored into a whole hull ([`HullError::Mirror`]).
+#[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum MirrorKind {
+    /// No edge of the surface runs along the ship.
+    #[error("no edge of the surface runs along the ship (over half its x extent) to join the halves along (expected a hull surface, x along the ship; a mesh format mirrors any surface)")]
+    NoLongitudinalEdge,
+    /// The surface lies port of the centre plane.
+    #[error(
+        "the surface lies port of the centre plane (largest y {largest_y:.4e}; expected the starboard half, y >= 0)"
+    )]
+    PortSide {
+        /// The largest y of the control net.
+        largest_y: f64,
+    },
+    /// The kernel refused the mirrored surface.
+    #[error("{0}")]
+    Kernel(nurbs::NurbsError),
+}
+
+/// Why a held-out error cannot be estimated ([`HullError::HeldOut`]).
+#[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum HeldOutKind {
+    /// Fewer than 2 folds.
+    #[error("held-out error with {folds} folds (expected at least 2 folds, e.g. {default}; 0 turns it off)")]
+    Folds {
+        /// The folds asked for.
+        folds: usize,
+        /// The default number of folds.
+        default: usize,
+    },
+    /// Neither sections nor points to hold out.
+    #[error("held-out error with nothing to hold out (expected sections, points or both)")]
+    NothingAsked,
+    /// Offsets too few to hold any out for the degrees.
+    #[error("no offset of {offsets} can be held out: {sections} sections of at most {most} points leave too few for degrees {},{} (expected at least {} sections, or a section of at least {} points)", degree.0, degree.1, degree.1 + 2, degree.0 + 2)]
+    TooFewOffsets {
+        /// The offsets' source.
+        offsets: String,
+        /// Their sections.
+        sections: usize,
+        /// The points of the largest section.
+        most: usize,
+        /// The degrees `(p, q)` of the fit.
+        degree: (usize, usize),
+    },
+    /// A run that no stop can end was stopped.
+    #[error("held-out error stopped before its end")]
+    Stopped,
+}
+
+/// Why weights (and control points) cannot be optimised as asked ([`HullError::Weights`]).
+#[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum WeightsKind {
+    /// Weight bounds that do not hold 1, or not positive and finite.
+    #[error("weight bounds ({lo}, {hi}) are not usable (expected 0 < lo <= 1 <= hi, finite)")]
+    Bounds {
+        /// The lower bound.
+        lo: f64,
+        /// The upper bound.
+        hi: f64,
+    },
+    /// Not one parameter pair per offset, or no offset.
+    #[error("{offsets} offsets with {params} parameters (expected as many parameters as offsets, at least one)")]
+    ParameterCount {
+        /// Offsets given.
+        offsets: usize,
+        /// Parameter pairs given.
+        params: usize,
+    },
+    /// An offset with a non-finite coordinate.
+    #[error("offset {index} is not finite (expected finite coordinates)")]
+    NonFiniteOffset {
+        /// Its 0-based index.
+        index: usize,
+    },
+    /// An offset with non-finite parameters.
+    #[error("parameters of offset {index} are not finite (expected finite (u, v))")]
+    NonFiniteParameters {
+        /// Its 0-based index.
+        index: usize,
+    },
+    /// A fit whose parameters are not those of the offsets given.
+    #[error("the fit's parameters do not match the offsets (expected the fit of these offsets)")]
+    FitMismatch,
+    /// A vector of variables of the wrong length or with a non-finite entry.
+    #[error("{got} weight variables (expected {expected} finite numbers)")]
+    Variables {
+        /// Its length.
+        got: usize,
+        /// The problem's dimension.
+        expected: usize,
+    },
+    /// Control points held in a box while the control points are not re-solved.
+    #[error("control points held in a box need re-solved control points")]
+    BoxNeedsResolved,
+    /// A box with `lo > hi` in some coordinate.
+    #[error("control-point box {lo:?}..{hi:?} is empty (expected lo <= hi in each coordinate)")]
+    EmptyBox {
+        /// The low corner.
+        lo: [f64; 3],
+        /// The high corner.
+        hi: [f64; 3],
+    },
+}
+
+/// Why a mesh cannot be sliced into sections as asked ([`HullError::Slice`]).
+#[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum SliceKind {
+    /// A station count of 0 or above the cap.
+    #[error("{count} stations: expected 1 to {max}")]
+    StationCount {
+        /// The count asked for.
+        count: usize,
+        /// The cap ([`crate::mesh::slice::MAX_STATIONS`]).
+        max: usize,
+    },
+    /// A range for the stations that is not finite and increasing.
+    #[error("station range {min} .. {max}: expected a finite, increasing range")]
+    StationRange {
+        /// Its start.
+        min: f64,
+        /// Its end.
+        max: f64,
+    },
+    /// Station positions not strictly increasing.
+    #[error("stations at x = {previous} then {x}: expected strictly increasing positions")]
+    StationOrder {
+        /// The station before.
+        previous: f64,
+        /// The station not after it.
+        x: f64,
+    },
+    /// A station position that is not finite.
+    #[error("station at x = {x}: expected a finite position")]
+    StationNotFinite {
+        /// The position.
+        x: f64,
+    },
+    /// Points per section outside 2 and the cap.
+    #[error("{count} points per section: expected 2 to {max} (README, Limits)")]
+    Points {
+        /// The count asked for.
+        count: usize,
+        /// The cap ([`crate::limits::MAX_POINTS_PER_SECTION`]).
+        max: usize,
+    },
+    /// A deck angle outside `[0, 90)` degrees.
+    #[error("deck angle {degrees} degrees: expected 0 to 90 (excluded)")]
+    DeckAngle {
+        /// The angle asked for.
+        degrees: f64,
+    },
+    /// A height limit that is not finite.
+    #[error("max z: expected a finite height")]
+    MaxZ {
+        /// The height asked for.
+        z: f64,
+    },
+    /// A mesh without triangles.
+    #[error("{mesh}: the mesh has no triangles")]
+    EmptyMesh {
+        /// The mesh's source (its path as given).
+        mesh: String,
+    },
+    /// Fewer than 2 stations give a section.
+    #[error(
+        "{mesh}: {sections} of {stations} stations give a section (expected at least 2); {}",
+        dropped_list(dropped)
+    )]
+    TooFewSections {
+        /// The mesh's source (its path as given).
+        mesh: String,
+        /// Sections found.
+        sections: usize,
+        /// Stations tried.
+        stations: usize,
+        /// The stations dropped: x and why.
+        dropped: Vec<(f64, String)>,
+    },
+}
+
+fn dropped_list(dropped: &[(f64, String)]) -> String {
+    let why: Vec<String> =
+        dropped.iter().map(|(x, reason)| format!("x = {}: {reason}", crate::numfmt::format_short(*x))).collect();
+    why.join("; ")
+}
+
+/// Why a drawing cannot be digitised with the settings given ([`HullError::Digitize`]).
+#[derive(Clone, Debug, PartialEq, Error)]
+#[non_exhaustive]
+pub enum DigitizeKind {
+    /// A scale given as text that is neither `P:M` nor a positive number.
+    #[error("scale {text:?} (expected paper:model such as 1:50, or drawing units per output unit such as 20)")]
+    UnreadableScale {
+        /// The text given.
+        text: String,
+    },
+    /// A scale in drawing units per model unit that is not positive and finite.
+    #[error("scale {scale} drawing units per {units} (expected a number > 0)")]
+    ScalePerUnit {
+        /// The scale given.
+        scale: f64,
+        /// The model's unit symbol.
+        units: &'static str,
+    },
+    /// A ratio scale `paper:model` whose terms are not positive and finite.
+    #[error("scale {paper}:{model} (expected two numbers > 0 such as 1:50)")]
+    Ratio {
+        /// Paper term.
+        paper: f64,
+        /// Model term.
+        model: f64,
+    },
+    /// A ratio scale on a drawing that does not say its unit of length, none given.
+    #[error("{drawing}: the drawing does not say its unit of length, so the scale {paper}:{model} cannot be applied (expected the drawing units given, e.g. --drawing-units mm, or the scale as drawing units per {units})")]
+    NoDrawingUnit {
+        /// The drawing's source (its path as given).
+        drawing: String,
+        /// Paper term.
+        paper: f64,
+        /// Model term.
+        model: f64,
+        /// The model's unit symbol.
+        units: &'static str,
+    },
+    /// A drawing unit that is not a positive length.
+    #[error("drawing unit of {mm} mm (expected a length > 0)")]
+    DrawingUnit {
+        /// The unit in millimetres.
+        mm: f64,
+    },
+    /// A datum that is not two finite numbers.
+    #[error("datum {x},{y} (expected two finite numbers X,Y)")]
+    Datum {
+        /// Drawing x of the datum.
+        x: f64,
+        /// Drawing y of the datum.
+        y: f64,
+    },
+    /// Fewer than 2 points per station.
+    #[error("{count} points per station (expected at least 2)")]
+    Points {
+        /// The count asked for.
+        count: usize,
+    },
+    /// Not one station position per station curve.
+    #[error("{drawing}: {} station curves found ({}) and {given} station positions given (expected one position per station, in that order)", found.len(), found.join(", "))]
+    StationCount {
+        /// The drawing's source (its path as given).
+        drawing: String,
+        /// The names of the station curves found, in order.
+        found: Vec<String>,
+        /// The positions given.
+        given: usize,
+    },
+    /// A station position in a list that is not finite.
+    #[error("station position {x} (expected finite numbers)")]
+    StationPosition {
+        /// The position.
+        x: f64,
+    },
+    /// A named station position that is not finite.
+    #[error("station {name}={x} (expected a finite position)")]
+    NamedStation {
+        /// The station's name as given.
+        name: String,
+        /// The position.
+        x: f64,
+    },
+    /// Named positions for stations told apart by their order.
+    #[error("stations told apart by their order have no names: give their positions as a list x1,x2,... (expected no NAME=x entries)")]
+    NamesByOrder,
+    /// A station spacing that is not finite and non-zero.
+    #[error("station spacing {spacing} from {origin} (expected finite numbers, a spacing other than 0)")]
+    Spacing {
+        /// The first station's position.
+        origin: f64,
+        /// The spacing.
+        spacing: f64,
+    },
+}
+
 fn separator_name(c: char) -> String {
     match c {
         '\t' => "tabs".to_string(),
@@ -620,5 +1205,134 @@ mod tests {
             "section \"7\": point 3 (line 12) repeats point 2 (line 11) at (1, 2.5, 0) (expected distinct \
              consecutive points; only a pointed end may collapse to one point, all its points equal)"
         );
+    }
+
+    // ----- the settings errors carry the offending values and word the messages as before -----
+
+    #[test]
+    fn a_draft_range_going_away_from_its_end_carries_the_range() {
+        let e = crate::draft_range(1.0, 2.0, -0.5).expect_err("the step points away");
+        match &e {
+            HullError::DraftRange { from, to, step, kind: DraftRangeKind::AwayFromTo } => {
+                assert_eq!((*from, *to, *step), (1.0, 2.0, -0.5));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            e.to_string(),
+            "draft step -0.5 goes away from 2 (from 1): expected a step of the sign of to - from"
+        );
+        let e = crate::draft_range(0.0, 1.0, 1e-9).expect_err("too many drafts");
+        assert!(matches!(e, HullError::DraftRange { kind: DraftRangeKind::TooMany { max: 10_000 }, .. }), "{e:?}");
+        assert_eq!(
+            e.to_string(),
+            "draft range from 0 to 1 step 0.000000001 holds more than 10000 drafts: expected a larger step"
+        );
+        assert!(e.is_setting());
+    }
+
+    #[test]
+    fn a_setting_is_named_as_the_user_wrote_it() {
+        let e = crate::table_drafts(Some(-1.0), None, None, 1.025, InputNames::Flags).expect_err("negative");
+        match &e {
+            HullError::Setting { name, value, expected } => {
+                assert_eq!((name.as_str(), *value, *expected), ("--draft", -1.0, "a draft greater than 0"));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(e.to_string(), "--draft -1: expected a draft greater than 0");
+        let e = crate::table_drafts(Some(2.0), None, None, 0.0, InputNames::Keywords).expect_err("no density");
+        assert_eq!(e.to_string(), "density 0: expected a positive density in t/m³");
+        let e = crate::table_drafts(Some(2.0), Some(3.0), None, 1.025, InputNames::Flags).expect_err("no step");
+        assert!(matches!(e, HullError::DraftStepWithoutTo { names: InputNames::Flags }), "{e:?}");
+        assert_eq!(e.to_string(), "--to and --step go together (a range of drafts from --draft to `--to` by `--step`)");
+    }
+
+    #[test]
+    fn a_format_at_odds_with_the_extension_names_both() {
+        let e = crate::ExportFormat::for_file(
+            Some(crate::ExportFormat::Stl),
+            std::path::Path::new("out/x.stp"),
+            None,
+            InputNames::Flags,
+        )
+        .expect_err("an STL named .stp");
+        match &e {
+            HullError::Format(FormatKind::ExtensionMismatch { format, named, path, .. }) => {
+                assert_eq!((*format, *named, path.as_path()), ("stl", "step", std::path::Path::new("out/x.stp")));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            e.to_string(),
+            "--format stl writes a STL file, but out/x.stp names a STEP file: name it out/x.stl or pass --format step"
+        );
+        let e = crate::ExportFormat::for_file(None, std::path::Path::new("x.txt"), None, InputNames::Keywords)
+            .expect_err("no format");
+        assert!(matches!(&e, HullError::Format(FormatKind::Unknown { .. })), "{e:?}");
+        assert_eq!(
+            e.to_string(),
+            "cannot tell the format from x.txt (expected an extension .stp, .step, .igs, .iges, .dxf, .stl, .obj or \
+             .glb, or format)"
+        );
+    }
+
+    #[test]
+    fn a_missing_main_dimension_is_told_from_a_wrong_one() {
+        use crate::read::MainDimensions;
+        let missing = MainDimensions { lpp: f64::NAN, beam: 16.26, draft: 6.5 }.check().expect_err("no Lpp");
+        assert!(matches!(missing, HullError::MainDimension { name: "Lpp", value } if value.is_nan()), "{missing:?}");
+        assert_eq!(
+            missing.to_string(),
+            "Lpp not given (expected Lpp, B and T to scale a Series 60 table: --lpp, --beam, --design-draft)"
+        );
+        let wrong = MainDimensions { lpp: 121.92, beam: -1.0, draft: 6.5 }.check().expect_err("negative B");
+        assert!(matches!(wrong, HullError::MainDimension { name: "B", value: -1.0 }), "{wrong:?}");
+        assert_eq!(wrong.to_string(), "B = -1 (expected a finite positive length)");
+    }
+
+    #[test]
+    fn slice_and_digitize_errors_carry_their_values() {
+        let e = crate::mesh::station_positions(0.0, 1.0, 0, crate::mesh::Spacing::Uniform).expect_err("no station");
+        assert!(matches!(e, HullError::Slice(SliceKind::StationCount { count: 0, max: 100_000 })), "{e:?}");
+        assert_eq!(e.to_string(), "0 stations: expected 1 to 100000");
+        let few = HullError::Slice(SliceKind::TooFewSections {
+            mesh: "hull.stl".into(),
+            sections: 1,
+            stations: 2,
+            dropped: vec![(12.345678, "misses the mesh".into())],
+        });
+        assert_eq!(
+            few.to_string(),
+            "hull.stl: 1 of 2 stations give a section (expected at least 2); x = 12.35: misses the mesh"
+        );
+        let e = "1:x".parse::<crate::digitize::DrawingScale>().expect_err("not a scale");
+        assert!(matches!(&e, HullError::Digitize(DigitizeKind::UnreadableScale { text }) if text == "1:x"), "{e:?}");
+        assert_eq!(
+            e.to_string(),
+            "scale \"1:x\" (expected paper:model such as 1:50, or drawing units per output unit such as 20)"
+        );
+        let count = HullError::Digitize(DigitizeKind::StationCount {
+            drawing: "plan.dxf".into(),
+            found: vec!["1".into(), "2".into()],
+            given: 3,
+        });
+        assert_eq!(
+            count.to_string(),
+            "plan.dxf: 2 station curves found (1, 2) and 3 station positions given (expected one position per \
+             station, in that order)"
+        );
+    }
+
+    #[test]
+    fn only_settings_errors_are_settings() {
+        let setting = HullError::FitSetting { name: "fairness", value: -1.0, expected: "a finite number >= 0" };
+        assert_eq!(setting.to_string(), "fairness -1 is not usable (expected a finite number >= 0)");
+        assert!(setting.is_setting());
+        assert!(HullError::Weights(WeightsKind::Bounds { lo: 0.0, hi: 2.0 }).is_setting());
+        let io = HullError::Io { path: PathBuf::from("x"), error: std::io::Error::other("gone") };
+        assert!(!io.is_setting());
+        let input = HullError::input(Location::file("x.csv"), InputErrorKind::Empty);
+        assert!(!input.is_setting());
     }
 }

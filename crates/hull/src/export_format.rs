@@ -8,7 +8,7 @@ use std::str::FromStr;
 
 use nurbs::NurbsSurface;
 
-use crate::error::{HullError, InputNames};
+use crate::error::{FormatKind, HullError, InputNames};
 use crate::export::TessellationOptions;
 
 /// What an export writes.
@@ -171,9 +171,9 @@ impl ExportFormat {
     /// ```
     ///
     /// # Errors
-    /// [`HullError::Config`] when no format is given and the extension names none, when the
-    /// extension names another family than `format`, and for a tolerance that does not apply
-    /// or is not a positive length.
+    /// [`HullError::Format`] when no format is given and the extension names none, when the
+    /// extension names another family than `format`, and for a tolerance that does not apply;
+    /// [`HullError::Setting`] for a tolerance that is not a positive length.
     pub fn for_file(
         format: Option<Self>,
         out: &Path,
@@ -182,32 +182,29 @@ impl ExportFormat {
     ) -> Result<Self, HullError> {
         let p = names.prefix();
         let Some(format) = format.or_else(|| ExportFormat::from_path(out)) else {
-            return Err(HullError::Config(format!(
-                "cannot tell the format from {} (expected an extension .stp, .step, .igs, .iges, .dxf, .stl, .obj or \
-                 .glb, or {p}format)",
-                out.display()
-            )));
+            return Err(HullError::Format(FormatKind::Unknown { path: out.to_path_buf(), names }));
         };
         if let Some(named) = ExportFormat::from_path(out).filter(|n| n.family() != format.family()) {
-            return Err(HullError::Config(format!(
-                "{p}format {} writes a {} file, but {} names a {} file: name it {} or pass {p}format {}",
-                format.name(),
-                format.family(),
-                out.display(),
-                named.family(),
-                out.with_extension(format.extension()).display(),
-                named.name()
-            )));
+            return Err(HullError::Format(FormatKind::ExtensionMismatch {
+                format: format.name(),
+                family: format.family(),
+                extension: format.extension(),
+                path: out.to_path_buf(),
+                named: named.name(),
+                named_family: named.family(),
+                names,
+            }));
         }
         if let Some(t) = tolerance {
             if !format.takes_tolerance() {
-                return Err(HullError::Config(format!(
-                    "{p}tolerance applies to stl, stl-ascii, obj, glb and iges-polynomial, not {}",
-                    format.name()
-                )));
+                return Err(HullError::Format(FormatKind::NoTolerance { format: format.name(), names }));
             }
             if !(t.is_finite() && t > 0.0) {
-                return Err(HullError::Config(format!("{p}tolerance {t}: expected a positive length")));
+                return Err(HullError::Setting {
+                    name: format!("{p}tolerance"),
+                    value: t,
+                    expected: "a positive length",
+                });
             }
         }
         Ok(format)

@@ -71,18 +71,18 @@ fn extreme(f: &FairnessFigures) -> f64 {
 /// the plain fit is kept, and the report says so.
 ///
 /// # Errors
-/// [`HullError::Config`] for a negative or non-finite `λ` or tolerance; those of `skin` for
+/// [`HullError::FitSetting`] for a negative or non-finite `λ` or tolerance; those of `skin` for
 /// an explicit `λ`.
 pub fn fair(
     plain: &FitOutcome,
     fairing: Fairing,
     skin: impl Fn(f64) -> Result<FitOutcome, HullError> + Sync,
 ) -> Result<Option<(FitOutcome, FairReport)>, HullError> {
-    let check = |name: &str, v: f64| {
+    let check = |name: &'static str, v: f64| {
         if v >= 0.0 && v.is_finite() {
             Ok(())
         } else {
-            Err(HullError::Config(format!("{name} {v} is not usable (expected a finite number >= 0)")))
+            Err(HullError::FitSetting { name, value: v, expected: "a finite number >= 0" })
         }
     };
     let before = FairnessFigures::of(&plain.surface);
@@ -244,7 +244,11 @@ mod tests {
         assert!(report.tried[..k]
             .iter()
             .all(|t| t.findings > report.tried[k].findings || t.max > UNSOUND_SLACK * plain.error.overall.max));
-        assert!(report.summary("m").contains("validity finding(s) against the plain fit's"), "{}", report.summary("m"));
+        assert!(
+            report.summary(Units::Metre).contains("validity finding(s) against the plain fit's"),
+            "{}",
+            report.summary(Units::Metre)
+        );
     }
 
     #[test]
@@ -260,6 +264,6 @@ mod tests {
         assert_eq!(report.lambda, 0.0);
         assert_eq!(report.tried.len(), AUTO_LAMBDAS.len());
         assert!(report.tried.iter().all(|t| !t.accepted));
-        assert!(report.summary("m").contains("which is kept"), "{}", report.summary("m"));
+        assert!(report.summary(Units::Metre).contains("which is kept"), "{}", report.summary(Units::Metre));
     }
 }

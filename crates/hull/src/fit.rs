@@ -10,6 +10,7 @@ use std::str::FromStr;
 use nurbs::fit::{CornerOptions, KnuckleLine, SkinParameterization};
 
 use crate::flats::FlatLine;
+use crate::units::Units;
 use nurbs::NurbsSurface;
 use serde::Serialize;
 
@@ -286,7 +287,7 @@ pub struct FairReport {
 
 impl FairReport {
     /// One line for the summary table (`units`: the offsets' unit symbol).
-    pub fn summary(&self, units: &str) -> String {
+    pub fn summary(&self, units: Units) -> String {
         let figures = format!(
             "thin-plate energy {:.4} -> {:.4}, Gaussian curvature [{:.3e}, {:.3e}] -> [{:.3e}, {:.3e}] 1/{units}^2",
             self.before.thin_plate,

@@ -40,7 +40,7 @@ use serde::Serialize;
 use crate::fit_error::{project_offsets, ErrorStats, HeldOutError};
 use crate::optimize::{quiet, Control, Progress};
 use crate::pipeline::fit_surface_with;
-use crate::{default_ctrl, FitConfig, FitMethod, HullError, Offsets, Section};
+use crate::{default_ctrl, FitConfig, FitMethod, HeldOutKind, HullError, Offsets, Section};
 
 /// Settings of the cross-validation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -69,20 +69,14 @@ impl HeldOutOptions {
     /// Check the options.
     ///
     /// # Errors
-    /// [`HullError::Config`] for fewer than 2 folds (one fold would hold out everything), or
+    /// [`HullError::HeldOut`] for fewer than 2 folds (one fold would hold out everything), or
     /// neither kind of hold-out asked for.
     pub fn validate(&self) -> Result<(), HullError> {
         if self.folds < 2 {
-            return Err(HullError::Config(format!(
-                "held-out error with {} folds (expected at least 2 folds, e.g. {}; 0 turns it off)",
-                self.folds,
-                Self::DEFAULT_FOLDS
-            )));
+            return Err(HullError::HeldOut(HeldOutKind::Folds { folds: self.folds, default: Self::DEFAULT_FOLDS }));
         }
         if !(self.sections || self.points) {
-            return Err(HullError::Config(
-                "held-out error with nothing to hold out (expected sections, points or both)".into(),
-            ));
+            return Err(HullError::HeldOut(HeldOutKind::NothingAsked));
         }
         Ok(())
     }
@@ -177,7 +171,7 @@ fn splits(offsets: &Offsets, options: &HeldOutOptions) -> Vec<Split> {
 /// result not to depend on the thread count.
 ///
 /// # Errors
-/// [`HullError::Config`] for invalid `options` or offsets too few to hold any out for the
+/// [`HullError::HeldOut`] for invalid `options` or offsets too few to hold any out for the
 /// degrees, and the first error of a refit (in split order).
 pub fn held_out_error(
     offsets: &Offsets,
@@ -189,7 +183,7 @@ pub fn held_out_error(
 
 /// The result of a run that no stop can end ([`quiet`]): always `Some`.
 fn unstopped(result: Result<Option<HeldOutError>, HullError>) -> Result<HeldOutError, HullError> {
-    result?.ok_or_else(|| HullError::Config("held-out error stopped before its end".into()))
+    result?.ok_or(HullError::HeldOut(HeldOutKind::Stopped))
 }
 
 /// [`held_out_error`] with progress reports (`iteration` = refits done of `iterations`,
@@ -209,16 +203,12 @@ pub fn held_out_error_with(
     let splits = splits(offsets, options);
     if splits.is_empty() {
         let most = offsets.sections.iter().map(|s| s.points.len()).max().unwrap_or(0);
-        return Err(HullError::Config(format!(
-            "no offset of {} can be held out: {} sections of at most {most} points leave too few for degrees {},{} \
-             (expected at least {} sections, or a section of at least {} points)",
-            offsets.source,
-            offsets.sections.len(),
-            options.degree.0,
-            options.degree.1,
-            options.degree.1 + 2,
-            options.degree.0 + 2
-        )));
+        return Err(HullError::HeldOut(HeldOutKind::TooFewOffsets {
+            offsets: offsets.source.clone(),
+            sections: offsets.sections.len(),
+            most,
+            degree: options.degree,
+        }));
     }
     let done = AtomicUsize::new(0);
     // The largest distance so far, for the progress report: the bits of a non-negative float
@@ -539,9 +529,9 @@ mod tests {
         assert_near!(c.rms, combined, 1e-12 * c.rms);
         assert_eq!(c.max, c.sections.max.max(c.points.max));
         // A failing refit is the error.
-        let failing = |_: &Offsets| -> Result<NurbsSurface, HullError> { Err(HullError::Config("no".into())) };
+        let failing = |_: &Offsets| -> Result<NurbsSurface, HullError> { Err(HullError::NoSurface) };
         let e = held_out_error(&offsets, failing, &HeldOutOptions::default()).expect_err("fails");
-        assert_eq!(e.to_string(), "no");
+        assert!(matches!(e, HullError::NoSurface), "{e}");
     }
 
     #[test]

@@ -605,7 +605,7 @@ mod tests {
             use super::super::error::HullError;
             use crate::{optimize::{self, quiet}, FitOutcome as Outcome};
             use nurbs::NurbsSurface;
-            fn f<'a>(x: &'a str) -> char { let _ = crate::error::HullError::Config; 'x' }
+            fn f<'a>(x: &'a str) -> char { let _ = crate::error::HullError::NoSurface; 'x' }
             #[cfg(test)]
             mod tests { use crate::pipeline::fit_offsets; }
             mod inner { use super::super::pipeline::FitConfig; }

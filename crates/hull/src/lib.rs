@@ -73,7 +73,10 @@ pub use compare::{
     OptimRunner, RowError, RowStatus, RowValidity, COMPARE_METHODS, FAIR_ROWS, FLOOR_RELATIVE_TOLERANCE,
 };
 pub use curvature_range::{gaussian_curvature_range, CurvatureRange, CURVATURE_GRID};
-pub use error::{HullError, InputErrorKind, InputNames, Location};
+pub use error::{
+    DigitizeKind, DraftRangeKind, ExportToleranceKind, FormatKind, HeldOutKind, HullError, InputErrorKind, InputNames,
+    Location, MirrorKind, SliceKind, WeightsKind,
+};
 pub use export_format::{export_timestamp, ExportFormat};
 pub use fairing::{FairReport, Fairing};
 pub use fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles};

@@ -108,12 +108,10 @@ impl Perpendiculars {
     /// The perpendiculars `Lpp` apart, the AP at `aft`.
     ///
     /// # Errors
-    /// [`HullError::Config`] unless `aft` is finite and `lpp` a positive finite length.
+    /// [`HullError::Perpendiculars`] unless `aft` is finite and `lpp` a positive finite length.
     pub fn try_new(aft: f64, lpp: f64) -> Result<Self, HullError> {
         if !(aft.is_finite() && lpp.is_finite() && lpp > 0.0 && (aft + lpp).is_finite()) {
-            return Err(HullError::Config(format!(
-                "perpendiculars: AP at x = {aft}, Lpp {lpp}: expected a finite AP and a positive Lpp"
-            )));
+            return Err(HullError::Perpendiculars { aft, lpp });
         }
         Ok(Perpendiculars { aft, fore: aft + lpp })
     }

@@ -96,8 +96,8 @@ impl OutputDir {
     ///
     /// # Errors
     /// [`HullError::Io`] if `dir` exists and is not a directory, if its parent cannot be
-    /// created, or if the staging directory cannot be created; [`HullError::Config`] for a
-    /// path that names no directory (such as `/`).
+    /// created, or if the staging directory cannot be created;
+    /// [`HullError::OutputDirectory`] for a path that names no directory (such as `/`).
     pub fn stage(dir: &Path) -> Result<Self, HullError> {
         let io_err = |path: &Path| {
             let path = path.to_path_buf();
@@ -119,12 +119,7 @@ impl OutputDir {
                 let full = fs::canonicalize(dir).map_err(io_err(dir))?;
                 match (full.file_name(), full.parent()) {
                     (Some(name), Some(parent)) => (parent.to_path_buf(), name.to_string_lossy().into_owned()),
-                    _ => {
-                        return Err(HullError::Config(format!(
-                            "cannot write outputs into {}: expected a directory other than the filesystem's root",
-                            dir.display()
-                        )))
-                    }
+                    _ => return Err(HullError::OutputDirectory { path: dir.to_path_buf() }),
                 }
             }
         };
@@ -159,7 +154,7 @@ impl OutputDir {
     /// will have after the commit. Writing a name again replaces its staged content.
     ///
     /// # Errors
-    /// [`HullError::Config`] for a name that is not a plain file name; [`HullError::Io`] naming
+    /// [`HullError::OutputName`] for a name that is not a plain file name; [`HullError::Io`] naming
     /// the file's final path for an error of writing it or of `fill`.
     pub fn write<F>(&mut self, name: &str, fill: F) -> Result<PathBuf, HullError>
     where
@@ -167,7 +162,7 @@ impl OutputDir {
     {
         let mut parts = Path::new(name).components();
         if !matches!((parts.next(), parts.next()), (Some(Component::Normal(n)), None) if n == name) {
-            return Err(HullError::Config(format!("output name {name:?}: expected a plain file name")));
+            return Err(HullError::OutputName { name: name.to_string() });
         }
         let target = self.target.join(name);
         write_atomic(&self.staging.join(name), fill).map_err(|error| HullError::Io { path: target.clone(), error })?;
@@ -408,7 +403,10 @@ mod tests {
         let out = root.path().join("out");
         let mut staged = OutputDir::stage(&out).expect("stage");
         for name in ["../x", "a/b", "", ".", ".."] {
-            assert!(matches!(staged.write_bytes(name, b"x"), Err(HullError::Config(_))), "{name:?}");
+            match staged.write_bytes(name, b"x") {
+                Err(HullError::OutputName { name: refused }) => assert_eq!(refused, name),
+                other => panic!("{name:?}: {other:?}"),
+            }
         }
         // A file where the directory should be.
         let file = root.path().join("file");

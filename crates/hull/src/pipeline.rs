@@ -289,10 +289,7 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<F
     let (p, q) = config.degree;
     for (d, dir) in [(p, "u (along the sections)"), (q, "v (across the sections)")] {
         if d == 0 || d > nurbs::MAX_DEGREE {
-            return Err(HullError::Config(format!(
-                "degree {d} in {dir} is not supported (expected 1 to {})",
-                nurbs::MAX_DEGREE
-            )));
+            return Err(HullError::Degree { degree: d, direction: dir, max: nurbs::MAX_DEGREE });
         }
     }
     offsets.validate(p + 1)?;
@@ -581,7 +578,10 @@ mod tests {
         let e = fit_offsets(&offsets, &too_many).expect_err("9 > 8 points per section");
         assert!(matches!(e, HullError::Fit { .. }), "{e}");
         let bad_degree = FitConfig { degree: (0, 3), ..FitConfig::default() };
-        assert!(matches!(fit_offsets(&offsets, &bad_degree), Err(HullError::Config(_))));
+        assert!(matches!(
+            fit_offsets(&offsets, &bad_degree),
+            Err(HullError::Degree { degree: 0, max: nurbs::MAX_DEGREE, .. })
+        ));
         let high_degree = FitConfig { degree: (8, 3), method: FitMethod::Interp, ..FitConfig::default() };
         let e = fit_offsets(&offsets, &high_degree).expect_err("8 points cannot carry degree 8");
         assert!(e.to_string().contains("expected"), "{e}");

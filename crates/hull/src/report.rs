@@ -288,7 +288,7 @@ pub fn write_fit_outputs_with_report(
     write_iges(&mut iges, surface, &IgesMeta::new(units.into(), "surface.igs", &timestamp()))
         .map_err(io_err(&dir.join("surface.igs")))?;
     let mut json = Vec::new();
-    write_surface_json(&mut json, surface, units.symbol()).map_err(io_err(&dir.join("surface.json")))?;
+    write_surface_json(&mut json, surface, units).map_err(io_err(&dir.join("surface.json")))?;
     let mut report =
         serde_json::to_vec_pretty(report).map_err(|e| io_err(&dir.join("report.json"))(io::Error::other(e)))?;
     report.push(b'\n');
@@ -341,7 +341,7 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
         );
     }
     if let Some(f) = &outcome.fairing {
-        let _ = writeln!(t, "{}", f.summary(u));
+        let _ = writeln!(t, "{}", f.summary(offsets.units));
     }
     if outcome.envelope_held > 0 {
         let _ = writeln!(

@@ -115,7 +115,7 @@ mod tests {
         let fit = crate::fit_offsets(&crate::series60_sample(), &crate::FitConfig::default()).expect("fits");
         let good = dir.path().join("s.json");
         let mut text = "\u{FEFF}".as_bytes().to_vec();
-        crate::export::write_surface_json(&mut text, &fit.surface, "m").expect("writes");
+        crate::export::write_surface_json(&mut text, &fit.surface, crate::Units::Metre).expect("writes");
         std::fs::write(&good, text).expect("write");
         let broken = dir.path().join("b.json");
         std::fs::write(&broken, "{\"format\": \"hullskin-surface\"").expect("write");

@@ -47,7 +47,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::optimize::Control;
-use crate::{fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, Offsets};
+use crate::{fit_offsets_with, FitConfig, FitMethod, FitOutcome, HullError, Offsets, Units};
 
 /// The default tolerance as a fraction of the beam: 0.5 % (1 % of the largest half-breadth).
 ///
@@ -371,7 +371,7 @@ pub struct ToleranceSearch {
 impl ToleranceSearch {
     /// One line for the terminal: the count chosen against interpolation's, e.g.
     /// `tolerance 1.000e-2 m: 6x12 = 72 control points, 36.0 % of interpolation's 8x25 = 200 (14 fits)`.
-    pub fn summary(&self, units: &str) -> String {
+    pub fn summary(&self, units: Units) -> String {
         let [nu, nv] = self.control_points;
         let [n, k] = self.interp_control_points;
         let which = if self.default {
@@ -449,8 +449,8 @@ pub struct ToleranceFit {
 /// strategy and its assumption.
 ///
 /// # Errors
-/// [`HullError::Config`] for a tolerance that is not a positive finite number or the `interp`
-/// method (whose count is fixed); [`HullError::ToleranceNotReached`] when no count fitted
+/// [`HullError::FitSetting`] for a tolerance that is not a positive finite number,
+/// [`HullError::ToleranceWithInterp`] for the `interp` method (whose count is fixed); [`HullError::ToleranceNotReached`] when no count fitted
 /// reaches the tolerance (naming the best max error found); and the errors of
 /// [`fit_offsets`](crate::fit_offsets) other than a refused count (invalid offsets, bad
 /// degrees).
@@ -462,14 +462,10 @@ pub fn fit_to_tolerance(
 ) -> Result<ToleranceFit, HullError> {
     let t = settings.tolerance;
     if !(t > 0.0 && t.is_finite()) {
-        return Err(HullError::Config(format!("tolerance {t} is not usable (expected a positive number)")));
+        return Err(HullError::FitSetting { name: "tolerance", value: t, expected: "a positive number" });
     }
     if config.method == FitMethod::Interp {
-        return Err(HullError::Config(
-            "a tolerance needs a method whose control points can vary (expected approx, ga, pso, gsa, lm or gsa+lm; \
-             interp always has one control point per offset)"
-                .into(),
-        ));
+        return Err(HullError::ToleranceWithInterp);
     }
     let (big_n, k) = counts(offsets);
     let nu_lo = config.degree.0.min(big_n.saturating_sub(1)) + 1;
@@ -761,7 +757,7 @@ mod tests {
             // The chosen surface is the plain fit at that count, measured the same way.
             let [nu, nv] = r.search.control_points;
             assert_eq!(e(nu, nv), r.outcome.error.overall.max);
-            let line = r.search.summary("m");
+            let line = r.search.summary(Units::Metre);
             assert!(line.contains(&format!("{nu}x{nv} = {}", nu * nv)) && line.contains("7x9 = 63"), "{line}");
         }
         // The loosest tolerance is met by the smallest count.
@@ -790,7 +786,11 @@ mod tests {
         // Not held, every fit of the sample crosses the centre plane: the smallest within T is
         // taken with its findings, and the record says so.
         assert!(!r.search.valid && !r.outcome.validity.is_empty());
-        assert!(r.search.summary("m").contains("no count within it is valid"), "{}", r.search.summary("m"));
+        assert!(
+            r.search.summary(Units::Metre).contains("no count within it is valid"),
+            "{}",
+            r.search.summary(Units::Metre)
+        );
         // Held within the envelope (the default) the fits are valid, and the one chosen is.
         let held = search(&offsets, &FitConfig::default(), 0.2).expect("reachable");
         assert!(held.search.valid && held.outcome.validity.is_empty(), "{:?}", held.outcome.validity);
@@ -828,7 +828,13 @@ mod tests {
         }
         assert!(e.to_string().contains("best max error"), "{e}");
         for t in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-            assert!(matches!(search(&offsets, &FitConfig::default(), t), Err(HullError::Config(_))), "{t}");
+            assert!(
+                matches!(
+                    search(&offsets, &FitConfig::default(), t),
+                    Err(HullError::FitSetting { name: "tolerance", .. })
+                ),
+                "{t}"
+            );
         }
         let interp = FitConfig { method: FitMethod::Interp, ..FitConfig::default() };
         let e = search(&offsets, &interp, 0.01).expect_err("interp has one count");
@@ -846,7 +852,7 @@ mod tests {
         let least = r.search.tried.iter().filter_map(|c| c.max).fold(f64::INFINITY, f64::min);
         assert_eq!(r.outcome.error.overall.max, least);
         assert!(r.search.valid && r.outcome.validity.is_empty());
-        let line = r.search.summary("m");
+        let line = r.search.summary(Units::Metre);
         assert!(line.contains("not reached by any count: the closest surface found, 7x9"), "{line}");
     }
 
@@ -912,7 +918,11 @@ mod tests {
                 if r.chose_default_count {
                     assert!(r.default_count_max <= t && r.default_count_held_out_max < r.searched_held_out_max);
                 }
-                assert!(search.summary("m").contains("held-out max error"), "{}", search.summary("m"));
+                assert!(
+                    search.summary(Units::Metre).contains("held-out max error"),
+                    "{}",
+                    search.summary(Units::Metre)
+                );
             }
         }
         // The searched count is the least within T: no count with fewer control points is.
@@ -935,7 +945,7 @@ mod tests {
         assert_eq!(r.search.fits, 3);
         assert!(!r.search.complete);
         assert!(r.outcome.error.overall.max <= t);
-        assert!(r.search.summary("m").contains("cut short"));
+        assert!(r.search.summary(Units::Metre).contains("cut short"));
         // Stopped before the first fit: nothing was fitted, so nothing reached T.
         let stop = AtomicBool::new(true);
         let control = Control { stop: &stop, progress: &|_| {} };

@@ -238,7 +238,7 @@ fn wigley_hydrostatics_from_iges_and_step_equal_those_from_surface_json() {
     let dir = tempfile::tempdir().expect("temp dir");
     let json_path = dir.path().join("wigley.json");
     let mut json = Vec::new();
-    write_surface_json(&mut json, &wigley, "m").expect("writes");
+    write_surface_json(&mut json, &wigley, hull::Units::Metre).expect("writes");
     std::fs::write(&json_path, &json).expect("write");
     let (from_json, _) = hull::export::read_surface_json(std::str::from_utf8(&json).expect("UTF-8")).expect("reads");
     let drafts = [6.25, 4.0, 1.5];

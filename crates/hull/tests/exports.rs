@@ -152,7 +152,7 @@ fn curve_json(c: &NurbsCurve) -> Value {
 
 fn write_expected(path: &Path, s: &NurbsSurface, units: Units, curves: Option<&[NurbsCurve]>) {
     let mut expected = json!({
-        "surface": SurfaceFile::from_surface(s, units.symbol()),
+        "surface": SurfaceFile::from_surface(s, units),
         "units": units.symbol(),
         "samples": samples(s),
     });

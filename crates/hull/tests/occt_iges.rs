@@ -46,8 +46,10 @@ fn write_case_with(
     let mut out = Vec::new();
     write_iges(&mut out, s, &meta(units, &format!("{name}.igs"))).expect("writes to memory");
     std::fs::write(&igs, out).expect("write IGES");
+    let surface_units =
+        hull::Units::ALL.into_iter().find(|u| u.iges_flag() == units.flag).expect("an IGES unit of hullskin's");
     let mut expected = json!({
-        "surface": SurfaceFile::from_surface(s, &units.name.to_lowercase()),
+        "surface": SurfaceFile::from_surface(s, surface_units),
         "iges_units": {"flag": units.flag, "name": units.name},
         "samples": samples,
     });

@@ -4,6 +4,7 @@ use thiserror::Error;
 
 /// Everything that can go wrong in the NURBS kernel. Variants carry the offending values.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum NurbsError {
     #[error("degree {degree} is not supported (1 to {max})")]
     BadDegree { degree: usize, max: usize },

@@ -316,7 +316,7 @@ impl PySurface {
     /// surface's products w·P are rounded once more; pickling keeps them exactly).
     fn to_json(&self) -> PyResult<String> {
         let mut out = Vec::new();
-        hull::export::write_surface_json(&mut out, &self.surface, self.units.symbol())
+        hull::export::write_surface_json(&mut out, &self.surface, self.units)
             .map_err(|e| bad_arg(format!("cannot write the surface JSON: {e}")))?;
         String::from_utf8(out).map_err(|e| bad_arg(e.to_string()))
     }

@@ -34,7 +34,7 @@ use super::join::{join, Chain};
 use super::options::{DigitizeOptions, Digitized, DrawingScale, Side, StationIds, StationInfo};
 use super::stations::{by_labels, order_chains, station_xs};
 use super::{drawing_error, glob_match, Curve, Sketch};
-use crate::error::{HullError, Location};
+use crate::error::{DigitizeKind, HullError, Location};
 use crate::offsets::{Offsets, Section, COINCIDENT_REL};
 
 /// Model length per drawing unit.
@@ -42,29 +42,24 @@ fn model_per_unit(sketch: &Sketch, o: &DigitizeOptions) -> Result<f64, HullError
     let s = match o.scale {
         DrawingScale::UnitsPerModelUnit(k) => {
             if !(k.is_finite() && k > 0.0) {
-                return Err(HullError::Config(format!(
-                    "scale {k} drawing units per {} (expected a number > 0)",
-                    o.units.symbol()
-                )));
+                return Err(HullError::Digitize(DigitizeKind::ScalePerUnit { scale: k, units: o.units.symbol() }));
             }
             1.0 / k
         }
         DrawingScale::Ratio { paper, model } => {
             if !(paper.is_finite() && paper > 0.0 && model.is_finite() && model > 0.0) {
-                return Err(HullError::Config(format!(
-                    "scale {paper}:{model} (expected two numbers > 0 such as 1:50)"
-                )));
+                return Err(HullError::Digitize(DigitizeKind::Ratio { paper, model }));
             }
             let Some(u) = o.drawing_unit_mm.or(sketch.unit_mm) else {
-                return Err(HullError::Config(format!(
-                    "{}: the drawing does not say its unit of length, so the scale {paper}:{model} cannot be applied \
-                     (expected the drawing units given, e.g. --drawing-units mm, or the scale as drawing units per {})",
-                    sketch.source,
-                    o.units.symbol()
-                )));
+                return Err(HullError::Digitize(DigitizeKind::NoDrawingUnit {
+                    drawing: sketch.source.clone(),
+                    paper,
+                    model,
+                    units: o.units.symbol(),
+                }));
             };
             if !(u.is_finite() && u > 0.0) {
-                return Err(HullError::Config(format!("drawing unit of {u} mm (expected a length > 0)")));
+                return Err(HullError::Digitize(DigitizeKind::DrawingUnit { mm: u }));
             }
             u / 1000.0 / o.units.metres_per_unit() * model / paper
         }
@@ -81,7 +76,7 @@ pub(super) struct Found {
 /// Digitise the station curves of `sketch` into offsets (see the module docs).
 ///
 /// # Errors
-/// [`HullError::Config`] for a scale or datum that cannot work (a ratio scale on a drawing
+/// [`HullError::Digitize`] for a scale or datum that cannot work (a ratio scale on a drawing
 /// that does not say its units and none given, non-positive values), a station count other
 /// than the list of positions, station names with [`StationX::Map`](super::StationX::Map) for
 /// [`StationIds::Order`], or a resampling count below 2. [`HullError::Input`] with
@@ -95,11 +90,11 @@ pub fn digitize(sketch: &Sketch, o: &DigitizeOptions) -> Result<Digitized, HullE
     let s = model_per_unit(sketch, o)?;
     let [x0, y0] = o.datum;
     if !(x0.is_finite() && y0.is_finite()) {
-        return Err(HullError::Config(format!("datum {x0},{y0} (expected two finite numbers X,Y)")));
+        return Err(HullError::Digitize(DigitizeKind::Datum { x: x0, y: y0 }));
     }
     if let Some(n) = o.points {
         if n < 2 {
-            return Err(HullError::Config(format!("{n} points per station (expected at least 2)")));
+            return Err(HullError::Digitize(DigitizeKind::Points { count: n }));
         }
     }
     let mut notes = sketch.notes.clone();

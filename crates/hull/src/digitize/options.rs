@@ -3,7 +3,7 @@
 use std::str::FromStr;
 
 use super::geom::P2;
-use crate::error::{HullError, Location};
+use crate::error::{DigitizeKind, HullError, Location};
 use crate::offsets::Offsets;
 use crate::units::Units;
 
@@ -23,11 +23,7 @@ impl FromStr for DrawingScale {
 
     /// `P:M` (e.g. `1:50`, `2:1`) or a plain number of drawing units per output unit.
     fn from_str(s: &str) -> Result<Self, HullError> {
-        let bad = || {
-            HullError::Config(format!(
-                "scale {s:?} (expected paper:model such as 1:50, or drawing units per output unit such as 20)"
-            ))
-        };
+        let bad = || HullError::Digitize(DigitizeKind::UnreadableScale { text: s.to_string() });
         let num = |t: &str| t.trim().parse::<f64>().ok().filter(|v| v.is_finite() && *v > 0.0).ok_or_else(bad);
         match s.split_once(':') {
             Some((p, m)) => Ok(DrawingScale::Ratio { paper: num(p)?, model: num(m)? }),

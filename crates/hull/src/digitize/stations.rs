@@ -5,7 +5,7 @@ use std::cmp::Ordering;
 
 use super::geom::polyline_dist;
 use super::{drawing_error, Sketch};
-use crate::error::{HullError, Location};
+use crate::error::{DigitizeKind, HullError, Location};
 
 use super::join::{join, Chain};
 use super::map::Found;
@@ -194,32 +194,27 @@ pub(super) fn station_xs(
                 found.sort_by(|a, b| name_order(&a.label, &b.label));
             }
             if xs.len() != found.len() {
-                let names: Vec<&str> = found.iter().map(|f| f.label.as_str()).collect();
-                return Err(HullError::Config(format!(
-                    "{}: {} station curves found ({}) and {} station positions given (expected one position per station, in that order)",
-                    sketch.source,
-                    found.len(),
-                    names.join(", "),
-                    xs.len()
-                )));
+                return Err(HullError::Digitize(DigitizeKind::StationCount {
+                    drawing: sketch.source.clone(),
+                    found: found.iter().map(|f| f.label.clone()).collect(),
+                    given: xs.len(),
+                }));
             }
             if let Some(x) = xs.iter().find(|x| !x.is_finite()) {
-                return Err(HullError::Config(format!("station position {x} (expected finite numbers)")));
+                return Err(HullError::Digitize(DigitizeKind::StationPosition { x: *x }));
             }
             Ok(xs.clone())
         }
         StationX::Map(map) => {
             if by_order {
-                return Err(HullError::Config(
-                    "stations told apart by their order have no names: give their positions as a list x1,x2,... (expected no NAME=x entries)".into(),
-                ));
+                return Err(HullError::Digitize(DigitizeKind::NamesByOrder));
             }
             let mut out = Vec::with_capacity(found.len());
             for f in found.iter() {
                 match map.iter().find(|(k, _)| k.trim().eq_ignore_ascii_case(f.label.trim())) {
                     Some((_, x)) if x.is_finite() => out.push(*x),
                     Some((k, x)) => {
-                        return Err(HullError::Config(format!("station {k}={x} (expected a finite position)")))
+                        return Err(HullError::Digitize(DigitizeKind::NamedStation { name: k.clone(), x: *x }))
                     }
                     None => {
                         let names: Vec<&str> = map.iter().map(|(k, _)| k.as_str()).collect();
@@ -244,9 +239,7 @@ pub(super) fn station_xs(
         }
         StationX::Spacing { origin, spacing } => {
             if !(origin.is_finite() && spacing.is_finite() && *spacing != 0.0) {
-                return Err(HullError::Config(format!(
-                    "station spacing {spacing} from {origin} (expected finite numbers, a spacing other than 0)"
-                )));
+                return Err(HullError::Digitize(DigitizeKind::Spacing { origin: *origin, spacing: *spacing }));
             }
             found
                 .iter()

@@ -19,7 +19,7 @@
 
 use nurbs::{KnotVector, NurbsSurface, Vec3};
 
-use crate::error::HullError;
+use crate::error::{HullError, MirrorKind};
 
 /// How far from the centre plane, relative to the control net's diagonal, the control points
 /// of the edge to join along may lie: a fitted keel line sits on y = 0 to round-off.
@@ -28,7 +28,7 @@ pub const ON_CENTRE_PLANE_REL: f64 = 1e-9;
 /// The full hull of the starboard half `surface`: one surface, port and starboard.
 ///
 /// # Errors
-/// [`HullError::Config`] when no edge of the surface runs along the ship, or the surface lies
+/// [`HullError::Mirror`] when no edge of the surface runs along the ship, or the surface lies
 /// port of the centre plane.
 pub fn mirrored_full_hull(surface: &NurbsSurface) -> Result<NurbsSurface, HullError> {
     let (lo, hi) = surface.control_bounds();
@@ -51,20 +51,11 @@ pub fn mirrored_full_hull(surface: &NurbsSurface) -> Result<NurbsSurface, HullEr
         .iter()
         .filter(|e| e.2 .2 - e.2 .1 >= 0.5 * (hi.x - lo.x))
         .min_by(|a, b| a.2 .0.total_cmp(&b.2 .0))
-        .ok_or_else(|| {
-            HullError::Config(
-                "--mirror: no edge of the surface runs along the ship (over half its x extent) to join the halves \
-                 along (expected a hull surface, x along the ship; a mesh format mirrors any surface)"
-                    .into(),
-            )
-        })?;
+        .ok_or(HullError::Mirror(MirrorKind::NoLongitudinalEdge))?;
     // A fitted half may dip a little port of the centre plane (the validity check says so);
     // a surface wholly port of it is no starboard half.
     if !(hi.y > tol) {
-        return Err(HullError::Config(format!(
-            "--mirror: the surface lies port of the centre plane (largest y {:.4e}; expected the starboard half, y >= 0)",
-            hi.y
-        )));
+        return Err(HullError::Mirror(MirrorKind::PortSide { largest_y: hi.y }));
     }
     // Work across u with the edge at the start; transpose or reverse to get there and back.
     let mut s = if across_u { surface.clone() } else { surface.transposed() };
@@ -91,7 +82,7 @@ fn join_mirror_u(s: &NurbsSurface, bridge: bool) -> Result<NurbsSurface, HullErr
     let mut knots: Vec<f64> = k.iter().rev().map(|&t| 2.0 * c - t).collect();
     knots.truncate(knots.len() - if bridge { 1 } else { p + 1 });
     knots.extend_from_slice(&k[1..]);
-    let ku = KnotVector::try_new(p, knots).map_err(|e| HullError::Config(format!("--mirror: {e}")))?;
+    let ku = KnotVector::try_new(p, knots).map_err(|e| HullError::Mirror(MirrorKind::Kernel(e)))?;
     let strip = if bridge { p - 1 } else { 0 };
     let mut pts = Vec::with_capacity((2 * nu + strip) * nv);
     let mut w = Vec::with_capacity((2 * nu + strip) * nv);
@@ -115,8 +106,7 @@ fn join_mirror_u(s: &NurbsSurface, bridge: bool) -> Result<NurbsSurface, HullErr
             w.push(s.weight(i, j));
         }
     }
-    NurbsSurface::try_new(ku, s.knots_v().clone(), &pts, Some(&w))
-        .map_err(|e| HullError::Config(format!("--mirror: {e}")))
+    NurbsSurface::try_new(ku, s.knots_v().clone(), &pts, Some(&w)).map_err(|e| HullError::Mirror(MirrorKind::Kernel(e)))
 }
 
 #[cfg(test)]

@@ -27,7 +27,7 @@ use nurbs::fit::LeastSquaresSolver;
 use nurbs::{KnotVector, NurbsSurface};
 use rayon::prelude::*;
 
-use crate::HullError;
+use crate::{ExportToleranceKind, HullError};
 
 /// Smallest tolerance accepted, relative to the diagonal of the control-net box: ten thousand
 /// times the rounding of a coordinate.
@@ -166,7 +166,7 @@ fn directional_errors(
 /// module docs).
 ///
 /// # Errors
-/// [`HullError::Config`] if `tolerance` is not a positive finite number or would need more
+/// [`HullError::ExportTolerance`] if `tolerance` is not a positive finite number or would need more
 /// than [`MAX_CONTROL_POINTS`] control points in a direction; [`HullError::Fit`] if a
 /// least-squares system fails (cannot happen with the samples used, which satisfy the
 /// Schoenberg-Whitney condition).
@@ -174,10 +174,10 @@ pub fn polynomial_approximation(s: &NurbsSurface, tolerance: f64) -> Result<Poly
     let (lo, hi) = s.control_bounds();
     let floor = MIN_TOLERANCE_REL * (hi - lo).norm();
     if !(tolerance.is_finite() && tolerance > 0.0 && tolerance >= floor) {
-        return Err(HullError::Config(format!(
-            "approximation tolerance {tolerance}: expected a length of at least {floor:.3e} ({MIN_TOLERANCE_REL:e} of \
-             the surface's size; below that rounding dominates)"
-        )));
+        return Err(HullError::ExportTolerance {
+            tolerance,
+            kind: ExportToleranceKind::ApproximationFloor { floor, relative: MIN_TOLERANCE_REL },
+        });
     }
     let w = s.weights();
     if w.iter().all(|&x| x == w[0]) {
@@ -243,11 +243,14 @@ pub fn polynomial_approximation(s: &NurbsSurface, tolerance: f64) -> Result<Poly
         kv = insert(&kv, &bv, &split_v)?;
         refinements += 1;
         if ku.num_basis() > MAX_CONTROL_POINTS || kv.num_basis() > MAX_CONTROL_POINTS {
-            return Err(HullError::Config(format!(
-                "a polynomial surface within {tolerance} needs more than {MAX_CONTROL_POINTS} control points \
-                 per direction (the best after {refinements} refinements deviates by {max_deviation}; expected a \
-                 larger tolerance)"
-            )));
+            return Err(HullError::ExportTolerance {
+                tolerance,
+                kind: ExportToleranceKind::ControlPoints {
+                    max: MAX_CONTROL_POINTS,
+                    refinements,
+                    deviation: max_deviation,
+                },
+            });
         }
     }
 }
@@ -324,7 +327,15 @@ mod tests {
     fn bad_tolerances_are_refused() {
         let s = quarter_cylinder(1.0);
         for t in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-300] {
-            assert!(matches!(polynomial_approximation(&s, t), Err(HullError::Config(_))), "{t}");
+            let e = polynomial_approximation(&s, t).expect_err("refused");
+            assert!(
+                matches!(
+                    e,
+                    HullError::ExportTolerance { kind: crate::ExportToleranceKind::ApproximationFloor { .. }, .. }
+                ),
+                "{t}: {e}"
+            );
+            assert!(e.to_string().starts_with("approximation tolerance "), "{e}");
         }
     }
 }

@@ -37,6 +37,8 @@
 use std::io::{self, Write};
 
 use nurbs::{KnotVector, NurbsError, NurbsSurface, Vec3};
+
+use crate::Units;
 use serde::{Deserialize, Serialize};
 
 /// The value of the `"format"` key.
@@ -61,11 +63,11 @@ pub struct SurfaceFile {
 
 impl SurfaceFile {
     /// The document describing `surface` (always with explicit weights).
-    pub fn from_surface(surface: &NurbsSurface, units: &str) -> Self {
+    pub fn from_surface(surface: &NurbsSurface, units: Units) -> Self {
         SurfaceFile {
             format: FORMAT_NAME.to_string(),
             version: FORMAT_VERSION,
-            units: units.to_string(),
+            units: units.symbol().to_string(),
             degree: [surface.degree_u(), surface.degree_v()],
             control_points_count: [surface.n_u(), surface.n_v()],
             knots_u: surface.knots_u().as_slice().to_vec(),
@@ -110,6 +112,7 @@ impl SurfaceFile {
 
 /// Why a surface JSON document was refused.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SurfaceJsonError {
     #[error("surface JSON, line {line}, column {column}: {message}")]
     Syntax { line: usize, column: usize, message: String },
@@ -135,7 +138,7 @@ pub enum SurfaceJsonError {
 ///
 /// # Errors
 /// Whatever `w` returns.
-pub fn write_surface_json<W: Write>(w: &mut W, surface: &NurbsSurface, units: &str) -> io::Result<()> {
+pub fn write_surface_json<W: Write>(w: &mut W, surface: &NurbsSurface, units: Units) -> io::Result<()> {
     let doc = SurfaceFile::from_surface(surface, units);
     writeln!(w, "{{")?;
     writeln!(w, "  \"format\": {},", json(&doc.format)?)?;
@@ -200,7 +203,7 @@ mod tests {
         NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
     }
 
-    fn to_text(s: &NurbsSurface, units: &str) -> String {
+    fn to_text(s: &NurbsSurface, units: Units) -> String {
         let mut out = Vec::new();
         write_surface_json(&mut out, s, units).expect("writes to memory");
         String::from_utf8(out).expect("JSON is UTF-8")
@@ -209,7 +212,7 @@ mod tests {
     #[test]
     fn round_trip_keeps_every_number() {
         let s = sample();
-        let text = to_text(&s, "mm");
+        let text = to_text(&s, Units::Millimetre);
         let (back, units) = read_surface_json(&text).expect("reads back");
         assert_eq!(units, "mm");
         // Knots, weights and the Euclidean points written are exactly what is read.
@@ -217,7 +220,7 @@ mod tests {
         assert_eq!(back.knots_v(), s.knots_v());
         assert_eq!(back.weights(), s.weights());
         let doc: SurfaceFile = serde_json::from_str(&text).expect("parses");
-        assert_eq!(doc, SurfaceFile::from_surface(&s, "mm"));
+        assert_eq!(doc, SurfaceFile::from_surface(&s, Units::Millimetre));
         // The kernel stores w P, so P comes back through (P w) / w: equal to within one
         // rounding of each operation (2 ulp), and the surface evaluates to the same points.
         for (a, b) in back.control_points().iter().zip(s.control_points()) {
@@ -241,16 +244,16 @@ mod tests {
         let pts: Vec<Vec3> =
             (0..12).map(|k| Vec3::new((k as f64).sqrt(), 0.1 * k as f64, -1.0 / (k as f64 + 3.0))).collect();
         let s = NurbsSurface::try_new(ku, kv, &pts, None).expect("valid");
-        let (back, _) = read_surface_json(&to_text(&s, "m")).expect("reads back");
+        let (back, _) = read_surface_json(&to_text(&s, Units::Metre)).expect("reads back");
         assert_eq!(back, s);
         // Writing again gives the same text.
-        assert_eq!(to_text(&back, "m"), to_text(&s, "m"));
+        assert_eq!(to_text(&back, Units::Metre), to_text(&s, Units::Metre));
     }
 
     #[test]
     fn layout_is_the_documented_one() {
         let s = sample();
-        let text = to_text(&s, "m");
+        let text = to_text(&s, Units::Metre);
         let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
         assert_eq!(v["format"], "hullskin-surface");
         assert_eq!(v["version"], 1);
@@ -273,7 +276,7 @@ mod tests {
     #[test]
     fn missing_weights_mean_polynomial() {
         let s = sample();
-        let mut doc = SurfaceFile::from_surface(&s, "m");
+        let mut doc = SurfaceFile::from_surface(&s, Units::Metre);
         doc.weights = None;
         let text = serde_json::to_string(&doc).expect("serializes");
         let (back, _) = read_surface_json(&text).expect("reads");
@@ -283,7 +286,7 @@ mod tests {
 
     #[test]
     fn bad_documents_are_refused_with_the_reason() {
-        let good = serde_json::to_value(SurfaceFile::from_surface(&sample(), "m")).expect("serializes");
+        let good = serde_json::to_value(SurfaceFile::from_surface(&sample(), Units::Metre)).expect("serializes");
         let bad = |edit: &dyn Fn(&mut serde_json::Value)| {
             let mut v = good.clone();
             edit(&mut v);

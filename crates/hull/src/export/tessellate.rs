@@ -37,7 +37,7 @@ use nurbs::{NurbsSurface, Vec3};
 use rayon::prelude::*;
 
 use crate::mesh::TriMesh;
-use crate::HullError;
+use crate::{ExportToleranceKind, HullError};
 
 /// Factor on the tolerance for the edge-midpoint deviation (see the module docs).
 pub const MIDPOINT_FACTOR: f64 = 0.75;
@@ -259,18 +259,19 @@ fn nudged(s: &NurbsSurface, u: f64, v: f64) -> (f64, f64) {
 /// the module docs for the grid, the bound and the orientation).
 ///
 /// # Errors
-/// [`HullError::Config`] if the tolerance is not a positive finite number, or if meeting it
-/// would take more than [`MAX_GRID_LINES`] grid lines in a direction (a tolerance far below
-/// the surface's size).
+/// [`HullError::ExportTolerance`] if the tolerance is not a positive finite number above
+/// [`MIN_TOLERANCE_REL`] of the surface's size, or if meeting it would take more than
+/// [`MAX_GRID_LINES`] grid lines in a direction (a tolerance far below the surface's size) or
+/// is below the rounding of double precision.
 pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Result<Tessellation, HullError> {
     let tol = options.tolerance;
     let (lo, hi) = surface.control_bounds();
     let floor = MIN_TOLERANCE_REL * (hi - lo).norm();
     if !(tol.is_finite() && tol > 0.0 && tol >= floor) {
-        return Err(HullError::Config(format!(
-            "tessellation tolerance {tol}: expected a length of at least {floor:.3e} ({MIN_TOLERANCE_REL:e} of the \
-             surface's size)"
-        )));
+        return Err(HullError::ExportTolerance {
+            tolerance: tol,
+            kind: ExportToleranceKind::TessellationFloor { floor, relative: MIN_TOLERANCE_REL },
+        });
     }
     let mut gu = initial_params(surface.knots_u().as_slice(), surface.domain_u());
     let mut gv = initial_params(surface.knots_v().as_slice(), surface.domain_v());
@@ -284,19 +285,19 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
             break e;
         }
         if gu.len() > MAX_GRID_LINES || gv.len() > MAX_GRID_LINES {
-            return Err(HullError::Config(format!(
-                "tessellation tolerance {tol} needs more than {MAX_GRID_LINES} grid lines (expected a tolerance \
-                 nearer the surface's size)"
-            )));
+            return Err(HullError::ExportTolerance {
+                tolerance: tol,
+                kind: ExportToleranceKind::GridLines { max: MAX_GRID_LINES },
+            });
         }
     };
     let max_midpoint_deviation = errors.max;
     if max_midpoint_deviation > limit {
         // Only when a bisection rounded onto an end point: the tolerance is at the rounding.
-        return Err(HullError::Config(format!(
-            "tessellation tolerance {tol} cannot be met in double precision (a chord deviates by \
-             {max_midpoint_deviation:.3e}; expected a larger tolerance)"
-        )));
+        return Err(HullError::ExportTolerance {
+            tolerance: tol,
+            kind: ExportToleranceKind::Rounding { deviation: max_midpoint_deviation },
+        });
     }
     let (m, n) = (gu.len(), gv.len());
 
@@ -554,7 +555,16 @@ mod tests {
     fn bad_tolerances_are_refused() {
         let s = quarter_cylinder(2.0, 3.0);
         for t in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-300] {
-            assert!(matches!(tessellate(&s, &opts(t)), Err(HullError::Config(_))), "{t}");
+            match tessellate(&s, &opts(t)) {
+                Err(HullError::ExportTolerance {
+                    tolerance,
+                    kind: ExportToleranceKind::TessellationFloor { floor, relative },
+                }) => {
+                    assert!(tolerance.to_bits() == t.to_bits(), "{tolerance} {t}");
+                    assert!(floor > 0.0 && relative == MIN_TOLERANCE_REL, "{floor}");
+                }
+                other => panic!("{t}: {other:?}"),
+            }
         }
     }
 }

@@ -150,7 +150,7 @@ use serde::{Deserialize, Serialize};
 
 use nurbs::{NurbsSurface, Vec3};
 
-use crate::error::{HullError, InputNames};
+use crate::error::{DraftRangeKind, HullError, InputNames};
 use crate::offsets::Perpendiculars;
 use crate::units::Units;
 
@@ -287,25 +287,21 @@ pub fn density_per_cubic_unit(t_per_m3: f64, units: Units) -> f64 {
 /// the last one is then `to` exactly).
 ///
 /// # Errors
-/// [`HullError::Config`] if a value is not finite, `step` is 0 or points away from `to`, or
+/// [`HullError::DraftRange`] if a value is not finite, `step` is 0 or points away from `to`, or
 /// the range holds more than [`MAX_DRAFTS`] drafts.
 pub fn draft_range(from: f64, to: f64, step: f64) -> Result<Vec<f64>, HullError> {
     if !(from.is_finite() && to.is_finite() && step.is_finite()) {
-        return Err(HullError::Config(format!("draft range from {from} to {to} step {step}: expected finite numbers")));
+        return Err(HullError::DraftRange { from, to, step, kind: DraftRangeKind::NotFinite });
     }
     if step == 0.0 {
-        return Err(HullError::Config("draft step 0: expected a non-zero step".into()));
+        return Err(HullError::DraftRange { from, to, step, kind: DraftRangeKind::ZeroStep });
     }
     if (to - from) * step < 0.0 {
-        return Err(HullError::Config(format!(
-            "draft step {step} goes away from {to} (from {from}): expected a step of the sign of to - from"
-        )));
+        return Err(HullError::DraftRange { from, to, step, kind: DraftRangeKind::AwayFromTo });
     }
     let steps = ((to - from) / step + 1e-9).floor();
     if !(steps < MAX_DRAFTS as f64) {
-        return Err(HullError::Config(format!(
-            "draft range from {from} to {to} step {step} holds more than {MAX_DRAFTS} drafts: expected a larger step"
-        )));
+        return Err(HullError::DraftRange { from, to, step, kind: DraftRangeKind::TooMany { max: MAX_DRAFTS } });
     }
     let n = steps as usize + 1;
     Ok((0..n)
@@ -337,9 +333,9 @@ pub fn draft_range(from: f64, to: f64, step: f64) -> Result<Vec<f64>, HullError>
 /// ```
 ///
 /// # Errors
-/// [`HullError::Config`] naming the input: a draft or `to` not above 0 (or not finite), a
-/// density not positive, `to` without `step` or the other way round, and those of
-/// [`draft_range`].
+/// [`HullError::Setting`] naming the input: a draft or `to` not above 0 (or not finite), a
+/// density not positive; [`HullError::DraftStepWithoutTo`] for `to` without `step` or the
+/// other way round; and those of [`draft_range`].
 pub fn table_drafts(
     draft: Option<f64>,
     to: Option<f64>,
@@ -350,18 +346,24 @@ pub fn table_drafts(
     let p = names.prefix();
     for (name, value) in [("draft", draft), ("to", to)] {
         if let Some(t) = value.filter(|t| !(t.is_finite() && *t > 0.0)) {
-            return Err(HullError::Config(format!("{p}{name} {t}: expected a draft greater than 0")));
+            return Err(HullError::Setting {
+                name: format!("{p}{name}"),
+                value: t,
+                expected: "a draft greater than 0",
+            });
         }
     }
     if !(density.is_finite() && density > 0.0) {
-        return Err(HullError::Config(format!("{p}density {density}: expected a positive density in t/m³")));
+        return Err(HullError::Setting {
+            name: format!("{p}density"),
+            value: density,
+            expected: "a positive density in t/m³",
+        });
     }
     match (draft, to, step) {
         (Some(from), Some(to), Some(step)) => draft_range(from, to, step),
         (_, None, None) => Ok(draft.into_iter().collect()),
-        _ => Err(HullError::Config(format!(
-            "{p}to and {p}step go together (a range of drafts from {p}draft to `{p}to` by `{p}step`)"
-        ))),
+        _ => Err(HullError::DraftStepWithoutTo { names }),
     }
 }
 
@@ -377,8 +379,9 @@ impl<'a> Hydrostatics<'a> {
     /// Prepare `surface` (the starboard half hull, axes of the module docs).
     ///
     /// # Errors
-    /// [`HullError::Config`] if the density is not a positive finite number, the order or
-    /// split is outside 1..=64, or the perpendiculars are not a positive length apart.
+    /// [`HullError::Setting`] if the density is not a positive finite number or the order or
+    /// split is outside 1..=64; [`HullError::Perpendiculars`] if the perpendiculars are not a
+    /// positive length apart.
     pub fn new(surface: &'a NurbsSurface, options: &HydrostaticsOptions) -> Result<Self, HullError> {
         Hydrostatics::patches(std::slice::from_ref(surface), options)
     }
@@ -391,21 +394,29 @@ impl<'a> Hydrostatics<'a> {
     /// the sum of their sections. The patches should not overlap (an overlap counts twice).
     ///
     /// # Errors
-    /// As [`Hydrostatics::new`], and [`HullError::Config`] for no patch at all.
+    /// As [`Hydrostatics::new`], and [`HullError::NoSurface`] for no patch at all.
     pub fn patches(surfaces: &'a [NurbsSurface], options: &HydrostaticsOptions) -> Result<Self, HullError> {
         if !(options.density.is_finite() && options.density > 0.0) {
-            return Err(HullError::Config(format!("density {}: expected a positive number (t/m³)", options.density)));
+            return Err(HullError::Setting {
+                name: "density".to_string(),
+                value: options.density,
+                expected: "a positive number (t/m³)",
+            });
         }
         if let Some(p) = options.perpendiculars {
             Perpendiculars::try_new(p.aft, p.lpp())?;
         }
         for (name, n) in [("order", options.order), ("split", options.split)] {
             if !(1..=64).contains(&n) {
-                return Err(HullError::Config(format!("hydrostatics {name} {n}: expected 1 to 64")));
+                return Err(HullError::Setting {
+                    name: format!("hydrostatics {name}"),
+                    value: n as f64,
+                    expected: "1 to 64",
+                });
             }
         }
         if surfaces.is_empty() {
-            return Err(HullError::Config("hydrostatics of no surface: expected at least one patch".into()));
+            return Err(HullError::NoSurface);
         }
         let patches = surfaces.iter().map(|s| Integrator::new(s, options.order, options.split)).collect();
         Ok(Hydrostatics { patches, options: *options })
@@ -829,7 +840,7 @@ mod tests {
             HydrostaticsOptions { order: 0, ..Default::default() },
             HydrostaticsOptions { split: 65, ..Default::default() },
         ] {
-            assert!(matches!(Hydrostatics::new(&s, &bad), Err(HullError::Config(_))), "{bad:?}");
+            assert!(matches!(Hydrostatics::new(&s, &bad), Err(HullError::Setting { .. })), "{bad:?}");
         }
     }
 
@@ -847,7 +858,7 @@ mod tests {
         for (from, to, step) in
             [(1.0, 2.0, 0.0), (1.0, 2.0, -0.5), (2.0, 1.0, 0.5), (1.0, f64::NAN, 0.1), (0.0, 1.0, 1e-9)]
         {
-            assert!(matches!(draft_range(from, to, step), Err(HullError::Config(_))), "{from} {to} {step}");
+            assert!(matches!(draft_range(from, to, step), Err(HullError::DraftRange { .. })), "{from} {to} {step}");
         }
     }
 

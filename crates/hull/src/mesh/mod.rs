@@ -214,12 +214,7 @@ impl FromStr for Axes {
 
     /// Parses `x,y,z`, `-z,x,y`, ... (case and spaces ignored).
     fn from_str(s: &str) -> Result<Self, HullError> {
-        let bad = || {
-            HullError::Config(format!(
-                "axes \"{s}\": expected three comma-separated axes naming each of x, y, z once, each optionally \
-                 negated, giving hullskin's x (forward), y (starboard) and z (up), e.g. x,y,z or z,x,y or -x,-y,z"
-            ))
-        };
+        let bad = || HullError::UnknownAxes { text: s.to_string() };
         let parts: Vec<&str> = s.split(',').map(str::trim).collect();
         if parts.len() != 3 {
             return Err(bad());
@@ -430,10 +425,11 @@ pub fn parse_mesh(
     }
     crate::limits::check_mesh_triangles(source, soup.triangles.len() as u64)?;
     if !(options.weld_tolerance >= 0.0 && options.weld_tolerance.is_finite()) {
-        return Err(HullError::Config(format!(
-            "weld tolerance {}: expected a finite distance >= 0",
-            options.weld_tolerance
-        )));
+        return Err(HullError::Setting {
+            name: "weld tolerance".to_string(),
+            value: options.weld_tolerance,
+            expected: "a finite distance >= 0",
+        });
     }
     let points: Vec<Vec3> = soup.vertices.iter().map(|&p| options.axes.apply(p) + options.shift).collect();
     let (vertices, remap) = weld(&points, options.weld_tolerance);

@@ -58,7 +58,7 @@ use nurbs::Vec3;
 use rayon::prelude::*;
 
 use super::TriMesh;
-use crate::error::HullError;
+use crate::error::{HullError, SliceKind};
 use crate::offsets::{Offsets, Section};
 use crate::units::Units;
 
@@ -259,16 +259,14 @@ impl SliceOutcome {
 /// (see the module docs); one station is put in the middle.
 ///
 /// # Errors
-/// [`HullError::Config`] for `n == 0` or above [`MAX_STATIONS`], or a range that is not finite
+/// [`HullError::Slice`] for `n == 0` or above [`MAX_STATIONS`], or a range that is not finite
 /// and increasing.
 pub fn station_positions(x_min: f64, x_max: f64, n: usize, spacing: Spacing) -> Result<Vec<f64>, HullError> {
     if n == 0 || n > MAX_STATIONS {
-        return Err(HullError::Config(format!("{n} stations: expected 1 to {MAX_STATIONS}")));
+        return Err(HullError::Slice(SliceKind::StationCount { count: n, max: MAX_STATIONS }));
     }
     if !(x_min.is_finite() && x_max.is_finite() && x_max > x_min) {
-        return Err(HullError::Config(format!(
-            "station range {x_min} .. {x_max}: expected a finite, increasing range"
-        )));
+        return Err(HullError::Slice(SliceKind::StationRange { min: x_min, max: x_max }));
     }
     let inset = END_INSET * (x_max - x_min);
     let (a, b) = (x_min + inset, x_max - inset);
@@ -297,42 +295,35 @@ pub fn station_positions(x_min: f64, x_max: f64, n: usize, spacing: Spacing) -> 
 /// Slices `mesh` into sections, keel to deck edge on the starboard side (see the module docs).
 ///
 /// # Errors
-/// [`HullError::Config`] for fewer than 2 points per section or more than
+/// [`HullError::Slice`] for fewer than 2 points per section or more than
 /// [`crate::limits::MAX_POINTS_PER_SECTION`], a deck angle outside 0..90
 /// degrees, a non-finite `max_z`, station positions that are not finite and strictly
 /// increasing, or a station count of [`station_positions`]; and when fewer than 2 stations
 /// give a section (the message lists why each was dropped).
 pub fn slice_mesh(mesh: &TriMesh, options: &SliceOptions) -> Result<SliceOutcome, HullError> {
     if options.points < 2 || options.points > crate::limits::MAX_POINTS_PER_SECTION {
-        return Err(HullError::Config(format!(
-            "{} points per section: expected 2 to {} (README, Limits)",
-            options.points,
-            crate::limits::MAX_POINTS_PER_SECTION
-        )));
+        return Err(HullError::Slice(SliceKind::Points {
+            count: options.points,
+            max: crate::limits::MAX_POINTS_PER_SECTION,
+        }));
     }
     if !(options.deck_angle >= 0.0 && options.deck_angle < 90.0) {
-        return Err(HullError::Config(format!(
-            "deck angle {} degrees: expected 0 to 90 (excluded)",
-            options.deck_angle
-        )));
+        return Err(HullError::Slice(SliceKind::DeckAngle { degrees: options.deck_angle }));
     }
-    if options.max_z.is_some_and(|z| !z.is_finite()) {
-        return Err(HullError::Config("max z: expected a finite height".into()));
+    if let Some(z) = options.max_z.filter(|z| !z.is_finite()) {
+        return Err(HullError::Slice(SliceKind::MaxZ { z }));
     }
     let Some((lo, hi)) = mesh.bounds() else {
-        return Err(HullError::Config(format!("{}: the mesh has no triangles", mesh.source)));
+        return Err(HullError::Slice(SliceKind::EmptyMesh { mesh: mesh.source.clone() }));
     };
     let xs = match &options.stations {
         Stations::Count { n, spacing } => station_positions(lo.x, hi.x, *n, *spacing)?,
         Stations::At(xs) => {
             if let Some(w) = xs.windows(2).find(|w| !(w[1] > w[0])) {
-                return Err(HullError::Config(format!(
-                    "stations at x = {} then {}: expected strictly increasing positions",
-                    w[0], w[1]
-                )));
+                return Err(HullError::Slice(SliceKind::StationOrder { previous: w[0], x: w[1] }));
             }
             if let Some(x) = xs.iter().find(|x| !x.is_finite()) {
-                return Err(HullError::Config(format!("station at x = {x}: expected a finite position")));
+                return Err(HullError::Slice(SliceKind::StationNotFinite { x: *x }));
             }
             xs.clone()
         }
@@ -358,15 +349,12 @@ pub fn slice_mesh(mesh: &TriMesh, options: &SliceOptions) -> Result<SliceOutcome
         }
     }
     if sections.len() < 2 {
-        let why: Vec<String> =
-            dropped.iter().map(|d| format!("x = {}: {}", crate::numfmt::format_short(d.x), d.reason)).collect();
-        return Err(HullError::Config(format!(
-            "{}: {} of {} stations give a section (expected at least 2); {}",
-            mesh.source,
-            sections.len(),
-            xs.len(),
-            why.join("; ")
-        )));
+        return Err(HullError::Slice(SliceKind::TooFewSections {
+            mesh: mesh.source.clone(),
+            sections: sections.len(),
+            stations: xs.len(),
+            dropped: dropped.into_iter().map(|d| (d.x, d.reason)).collect(),
+        }));
     }
     let offsets = Offsets::new(mesh.source.clone(), options.units, sections);
     Ok(SliceOutcome { offsets, stations, dropped })

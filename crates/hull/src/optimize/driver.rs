@@ -176,7 +176,8 @@ fn settings_json<T: Serialize>(t: &T) -> serde_json::Value {
 /// Optimise the weights of the plain approximation `base` of `offsets`.
 ///
 /// # Errors
-/// [`HullError::Config`] if the problem cannot be built (mismatched parameters, bad bounds),
+/// [`HullError::Weights`] or [`HullError::FitSetting`] if the problem cannot be built
+/// (mismatched parameters, bad bounds, a negative fairness),
 /// [`HullError::Fit`] if the resulting surface is not finite.
 pub fn optimize_weights(
     offsets: &Offsets,

@@ -47,7 +47,7 @@ use super::net_energy::NetEnergy;
 
 use super::FittedSurface;
 use super::Objective;
-use crate::{HullError, Offsets};
+use crate::{HullError, Offsets, WeightsKind};
 
 mod basis;
 mod gauge;
@@ -219,9 +219,10 @@ impl WeightProblem {
     /// data points `points[k]` at parameters `params[k]` (clamped to the domain).
     ///
     /// # Errors
-    /// [`HullError::Config`] if `points` and `params` differ in length, are empty, hold a
-    /// non-finite value, or the options are out of range (`0 < lo <= 1 <= hi` finite,
-    /// `regularization >= 0` finite).
+    /// [`HullError::Weights`] if `points` and `params` differ in length, are empty, hold a
+    /// non-finite value, or the bounds are not `0 < lo <= 1 <= hi` finite;
+    /// [`HullError::FitSetting`] if another option is out of range (`regularization >= 0`
+    /// finite).
     pub fn new(
         surface: &NurbsSurface,
         points: &[Vec3],
@@ -230,40 +231,40 @@ impl WeightProblem {
     ) -> Result<Self, HullError> {
         let (lo, hi) = options.bounds;
         if !(lo > 0.0 && lo <= 1.0 && hi >= 1.0 && hi.is_finite()) {
-            return Err(HullError::Config(format!(
-                "weight bounds ({lo}, {hi}) are not usable (expected 0 < lo <= 1 <= hi, finite)"
-            )));
+            return Err(HullError::Weights(WeightsKind::Bounds { lo, hi }));
         }
         if !(options.regularization >= 0.0 && options.regularization.is_finite()) {
-            return Err(HullError::Config(format!(
-                "weight regularization {} is not usable (expected a finite number >= 0)",
-                options.regularization
-            )));
+            return Err(HullError::FitSetting {
+                name: "weight regularization",
+                value: options.regularization,
+                expected: "a finite number >= 0",
+            });
         }
         for (name, v) in [("fairness", options.fair), ("weight smoothing", options.weight_smoothing)] {
             if !(v >= 0.0 && v.is_finite()) {
-                return Err(HullError::Config(format!("{name} {v} is not usable (expected a finite number >= 0)")));
+                return Err(HullError::FitSetting { name, value: v, expected: "a finite number >= 0" });
             }
         }
         if let Some(k) = options.search_scale {
             if !(k > 0.0 && k.is_finite()) {
-                return Err(HullError::Config(format!(
-                    "weight search scale {k} is not usable (expected a finite number > 0)"
-                )));
+                return Err(HullError::FitSetting {
+                    name: "weight search scale",
+                    value: k,
+                    expected: "a finite number > 0",
+                });
             }
         }
         if points.len() != params.len() || points.is_empty() {
-            return Err(HullError::Config(format!(
-                "{} offsets with {} parameters (expected as many parameters as offsets, at least one)",
-                points.len(),
-                params.len()
-            )));
+            return Err(HullError::Weights(WeightsKind::ParameterCount {
+                offsets: points.len(),
+                params: params.len(),
+            }));
         }
         if let Some(k) = points.iter().position(|q| !q.is_finite()) {
-            return Err(HullError::Config(format!("offset {k} is not finite (expected finite coordinates)")));
+            return Err(HullError::Weights(WeightsKind::NonFiniteOffset { index: k }));
         }
         if let Some(k) = params.iter().position(|(u, v)| !(u.is_finite() && v.is_finite())) {
-            return Err(HullError::Config(format!("parameters of offset {k} are not finite (expected finite (u, v))")));
+            return Err(HullError::Weights(WeightsKind::NonFiniteParameters { index: k }));
         }
         let (ku, kv) = (surface.knots_u().clone(), surface.knots_v().clone());
         let (n_u, n_v) = (surface.n_u(), surface.n_v());
@@ -326,15 +327,13 @@ impl WeightProblem {
     /// with its fitted parameters, section by section.
     ///
     /// # Errors
-    /// [`HullError::Config`] if `fit.params()` does not match the offsets point for point, and as
+    /// [`HullError::Weights`] if `fit.params()` does not match the offsets point for point, and as
     /// [`WeightProblem::new`].
     pub fn from_fit(fit: &impl FittedSurface, offsets: &Offsets, options: WeightOptions) -> Result<Self, HullError> {
         let shapes_match = fit.params().len() == offsets.sections.len()
             && fit.params().iter().zip(&offsets.sections).all(|(t, s)| t.len() == s.points.len());
         if !shapes_match {
-            return Err(HullError::Config(
-                "the fit's parameters do not match the offsets (expected the fit of these offsets)".into(),
-            ));
+            return Err(HullError::Weights(WeightsKind::FitMismatch));
         }
         let points: Vec<Vec3> = offsets.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
         let params: Vec<(f64, f64)> = fit.params().iter().flatten().copied().collect();
@@ -344,17 +343,16 @@ impl WeightProblem {
     /// The same problem at other data parameters (clamped to the domain).
     ///
     /// # Errors
-    /// [`HullError::Config`] if `params` does not hold one finite pair per offset.
+    /// [`HullError::Weights`] if `params` does not hold one finite pair per offset.
     pub fn with_params(&self, params: &[(f64, f64)]) -> Result<Self, HullError> {
         if params.len() != self.points.len() {
-            return Err(HullError::Config(format!(
-                "{} parameters for {} offsets (expected one pair per offset)",
-                params.len(),
-                self.points.len()
-            )));
+            return Err(HullError::Weights(WeightsKind::ParameterCount {
+                offsets: self.points.len(),
+                params: params.len(),
+            }));
         }
         if let Some(k) = params.iter().position(|(u, v)| !(u.is_finite() && v.is_finite())) {
-            return Err(HullError::Config(format!("parameters of offset {k} are not finite (expected finite (u, v))")));
+            return Err(HullError::Weights(WeightsKind::NonFiniteParameters { index: k }));
         }
         let params: Vec<(f64, f64)> = params.iter().map(|&(u, v)| (self.ku.clamp(u), self.kv.clamp(v))).collect();
         let mut out = self.clone();
@@ -367,11 +365,11 @@ impl WeightProblem {
     /// [`WeightOptions::weight_smoothing`]); the basis products are kept.
     ///
     /// # Errors
-    /// [`HullError::Config`] if either is negative or not finite.
+    /// [`HullError::FitSetting`] if either is negative or not finite.
     pub fn with_fairness(&self, fair: f64, weight_smoothing: f64) -> Result<Self, HullError> {
         for (name, v) in [("fairness", fair), ("weight smoothing", weight_smoothing)] {
             if !(v >= 0.0 && v.is_finite()) {
-                return Err(HullError::Config(format!("{name} {v} is not usable (expected a finite number >= 0)")));
+                return Err(HullError::FitSetting { name, value: v, expected: "a finite number >= 0" });
             }
         }
         let mut out = self.clone();

@@ -79,16 +79,11 @@ impl MainDimensions {
     ///
     /// # Errors
     ///
-    /// [`HullError::Config`] naming the first bad dimension.
+    /// [`HullError::MainDimension`] naming the first bad dimension (NaN for one not given).
     pub fn check(&self) -> Result<(), HullError> {
         for (name, v) in [("Lpp", self.lpp), ("B", self.beam), ("T", self.draft)] {
-            if v.is_nan() {
-                return Err(HullError::Config(format!(
-                    "{name} not given (expected Lpp, B and T to scale a Series 60 table: --lpp, --beam, --design-draft)"
-                )));
-            }
             if !(v.is_finite() && v > 0.0) {
-                return Err(HullError::Config(format!("{name} = {v} (expected a finite positive length)")));
+                return Err(HullError::MainDimension { name, value: v });
             }
         }
         Ok(())
@@ -115,7 +110,7 @@ pub(crate) fn looks_like_series60(recs: &[Record<'_>]) -> bool {
 ///
 /// # Errors
 ///
-/// [`HullError::Config`] for dimensions that are not finite and positive; [`HullError::Input`]
+/// [`HullError::MainDimension`] for dimensions that are not finite and positive; [`HullError::Input`]
 /// at `source:line:column` for: an empty text, a header without waterlines, a waterline z/T or
 /// station number that is not a number, stations outside 0..20 or repeated, no `MaxBm` row or
 /// more than one, a `MaxBm` value outside (0, 1], a negative cell, fewer than two stations,

@@ -6,7 +6,7 @@ use std::cell::RefCell;
 
 use nurbs::{NurbsError, NurbsSurface};
 
-use super::{band_cholesky, band_solve, BasisTable, HullError, WeightLayout, WeightMode, WeightProblem};
+use super::{band_cholesky, band_solve, BasisTable, HullError, WeightLayout, WeightMode, WeightProblem, WeightsKind};
 use crate::optimize::Objective;
 
 /// Per-thread scratch of one evaluation.
@@ -54,16 +54,12 @@ impl WeightProblem {
     /// ([`WeightMode::Resolved`]).
     ///
     /// # Errors
-    /// [`HullError::Config`] if `x` has the wrong length or a non-finite entry;
+    /// [`HullError::Weights`] if `x` has the wrong length or a non-finite entry;
     /// [`HullError::Fit`] with [`NurbsError::SingularSystem`] if the least-squares system is
     /// singular or too ill-conditioned, or another kernel error if the result is not finite.
     pub fn surface(&self, x: &[f64]) -> Result<NurbsSurface, HullError> {
         if x.len() != self.dim() || !x.iter().all(|t| t.is_finite()) {
-            return Err(HullError::Config(format!(
-                "{} weight variables (expected {} finite numbers)",
-                x.len(),
-                self.dim()
-            )));
+            return Err(HullError::Weights(WeightsKind::Variables { got: x.len(), expected: self.dim() }));
         }
         let mut sc = Scratch::default();
         if !self.solve(&self.table, x, &mut sc) {

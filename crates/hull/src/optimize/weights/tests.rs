@@ -303,7 +303,12 @@ fn bad_settings_are_errors() {
     let (fit, offsets) = sample_fit((6, 12));
     for (bounds, reg) in [((0.0, 10.0), 0.0), ((2.0, 10.0), 0.0), ((0.1, f64::INFINITY), 0.0), ((0.1, 10.0), -1.0)] {
         let o = WeightOptions { bounds, regularization: reg, ..Default::default() };
-        assert!(matches!(WeightProblem::from_fit(&fit, &offsets, o), Err(HullError::Config(_))), "{bounds:?}");
+        let e = WeightProblem::from_fit(&fit, &offsets, o).expect_err("refused");
+        if reg < 0.0 {
+            assert!(matches!(e, HullError::FitSetting { name: "weight regularization", .. }), "{e}");
+        } else {
+            assert!(matches!(e, HullError::Weights(WeightsKind::Bounds { lo, hi }) if (lo, hi) == bounds), "{e}");
+        }
     }
     let (pts, params) = points_and_params(&fit, &offsets);
     assert!(WeightProblem::new(&fit.surface, &pts[1..], &params, WeightOptions::default()).is_err());
@@ -469,7 +474,10 @@ fn the_search_box_scales_with_kappa_inside_the_bounds() {
     // On this sample the useful moves are far smaller than the bounds for some weights.
     assert!(hi1.iter().any(|&h| h < 0.1 * p.upper()[0]));
     let bad = WeightOptions { search_scale: Some(0.0), ..WeightOptions::default() };
-    assert!(matches!(WeightProblem::from_fit(&fit, &offsets, bad), Err(HullError::Config(_))));
+    assert!(matches!(
+        WeightProblem::from_fit(&fit, &offsets, bad),
+        Err(HullError::FitSetting { name: "weight search scale", value: 0.0, .. })
+    ));
 }
 
 /// The Wigley table's plain approximation is a sharp minimum along most log-weight

@@ -22,7 +22,7 @@ use nurbs::{NurbsError, NurbsSurface};
 
 use crate::optimize::Objective;
 
-use super::{band_cholesky, band_solve, HullError, Scratch, WeightMode, WeightProblem};
+use super::{band_cholesky, band_solve, HullError, Scratch, WeightMode, WeightProblem, WeightsKind};
 
 /// The lower-triangle band entry `(i, j)`, `j <= i`, of the layout in `linalg`.
 #[inline]
@@ -36,24 +36,17 @@ impl WeightProblem {
     /// a bound. Without an active bound it is [`WeightProblem::surface`].
     ///
     /// # Errors
-    /// [`HullError::Config`] in `Fixed` mode (the control points do not move), for a wrong `x`
+    /// [`HullError::Weights`] in `Fixed` mode (the control points do not move), for a wrong `x`
     /// or an empty box (`lo > hi`); [`HullError::Fit`] if a system is singular.
     pub fn surface_within(&self, x: &[f64], bounds: &ControlBox) -> Result<(NurbsSurface, usize), HullError> {
         if self.options.mode != WeightMode::Resolved {
-            return Err(HullError::Config("control points held in a box need re-solved control points".into()));
+            return Err(HullError::Weights(WeightsKind::BoxNeedsResolved));
         }
         if (0..3).any(|t| !(bounds.lo[t] <= bounds.hi[t])) {
-            return Err(HullError::Config(format!(
-                "control-point box {:?}..{:?} is empty (expected lo <= hi in each coordinate)",
-                bounds.lo, bounds.hi
-            )));
+            return Err(HullError::Weights(WeightsKind::EmptyBox { lo: bounds.lo, hi: bounds.hi }));
         }
         if x.len() != self.dim() || !x.iter().all(|t| t.is_finite()) {
-            return Err(HullError::Config(format!(
-                "{} weight variables (expected {} finite numbers)",
-                x.len(),
-                self.dim()
-            )));
+            return Err(HullError::Weights(WeightsKind::Variables { got: x.len(), expected: self.dim() }));
         }
         let singular = || HullError::Fit {
             method: "weights",
