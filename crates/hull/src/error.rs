@@ -109,11 +109,6 @@ pub enum HullError {
         /// The kernel's reason (in the message; not a chained `source`, so it prints once).
         reason: nurbs::NurbsError,
     },
-    /// Settings of the presentation modules (drawings, rendering, viewer, HTML report) that
-    /// cannot work. TEMPORARY: only those modules use it; they move to their own crate with its
-    /// own error type, and this variant goes with them (issue 13).
-    #[error("{0}")]
-    Config(String),
     /// A numeric setting out of its range: its name as the caller's user wrote it (`--density`,
     /// `density`, `weld tolerance`), the value given, and what is accepted.
     #[error("{name} {value}: expected {expected}")]
@@ -317,7 +312,6 @@ impl HullError {
                 | HullError::Digitize(_)
                 | HullError::OutputDirectory { .. }
                 | HullError::OutputName { .. }
-                | HullError::Config(_)
         )
     }
 
