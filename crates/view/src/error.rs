@@ -54,7 +54,7 @@ pub enum ViewError {
         width: f64,
         /// Height in pixels.
         height: f64,
-        /// The limit, [`crate::MAX_PIXELS`].
+        /// The limit, `MAX_PIXELS` (10^8).
         max: u64,
     },
 
@@ -65,7 +65,7 @@ pub enum ViewError {
         width: u32,
         /// Height in pixels.
         height: u32,
-        /// The limit, [`crate::MAX_PIXELS`].
+        /// The limit, `MAX_PIXELS` (10^8).
         max: u64,
     },
 
