@@ -20,7 +20,7 @@ doc.audit(). The summary printed as JSON on stdout holds:
 Exit status 0 if the file was read and the audit found no error, 1 if the audit found
 errors, 2 if the file could not be read.
 
-Used by crates/hull/tests/lines_plan.rs, which compares the summary with the drawing it
+Used by crates/view/tests/lines_plan.rs, which compares the summary with the drawing it
 wrote.
 """
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Rebuild vendor/three/three.min.js, the three.js bundle inlined into the 3-D viewer
-# (crates/hull/src/viewer/), from the npm registry, and check it against the sha256 recorded in
-# vendor/three/README.md.
+# Rebuild crates/view/assets/three/three.min.js, the three.js bundle inlined into the 3-D viewer
+# (crates/view/src/viewer/), from the npm registry, and check it against the sha256 recorded in
+# crates/view/assets/three/README.md.
 #
 # The bundle is made by esbuild from the npm package `three` (both versions pinned below):
 # only what the viewer uses (the entry point below) is bundled, minified, as one IIFE that
@@ -16,8 +16,8 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 THREE_VERSION=0.187.0
 ESBUILD_VERSION=0.28.2
-out=vendor/three/three.min.js
-readme=vendor/three/README.md
+out=crates/view/assets/three/three.min.js
+readme=crates/view/assets/three/README.md
 
 update=0
 case "${1:-}" in
@@ -34,7 +34,7 @@ cat >"$work/package.json" <<JSON
   "dependencies": { "three": "$THREE_VERSION", "esbuild": "$ESBUILD_VERSION" } }
 JSON
 
-# Every name the viewer's JavaScript (crates/hull/src/viewer/viewer.js) takes from THREE.
+# Every name the viewer's JavaScript (crates/view/src/viewer/viewer.js) takes from THREE.
 cat >"$work/entry.js" <<'JS'
 export {
     Box3,
@@ -66,7 +66,7 @@ echo "==> esbuild: one minified IIFE defining the global THREE" >&2
 "$work/node_modules/.bin/esbuild" "$work/entry.js" --bundle --minify --format=iife --global-name=THREE \
     --target=es2020 --legal-comments=inline --charset=utf8 --log-level=warning --outfile="$work/three.min.js"
 
-cp "$work/node_modules/three/LICENSE" vendor/three/LICENSE
+cp "$work/node_modules/three/LICENSE" crates/view/assets/three/LICENSE
 sum="$(sha256sum "$work/three.min.js" | cut -d' ' -f1)"
 if [ "$update" = 1 ]; then
     cp "$work/three.min.js" "$out"

@@ -9,7 +9,6 @@ use std::sync::LazyLock;
 use anyhow::Context;
 use clap::builder::PossibleValue;
 use clap::{Args, ValueEnum};
-use hull::drawing::{lines_3d, write_dxf_3d_lines, LinesPlanOptions};
 use hull::export::{
     greville_v, mesh_name, obj_comments, polynomial_approximation, section_curves, section_parameters, stl_header,
     tessellate, write_glb, write_iges, write_iges_model, write_step, IgesMeta, StepMeta, TessellationOptions,
@@ -19,6 +18,7 @@ use hull::optimize::OptimSettings;
 use hull::{ExportFormat, FitMethod, InputNames, Offsets};
 use nurbs::Vec3;
 use serde_json::json;
+use view::{lines_3d, write_dxf_3d_lines, LinesPlanOptions};
 
 use crate::fit::fit_with_progress;
 use crate::parse::parse_skin_method;

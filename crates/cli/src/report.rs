@@ -4,7 +4,7 @@
 //! The input is a `surface.json` (used as it is; offsets for the fit error from `--offsets`)
 //! or offsets, fitted first with the flags of `fit` (the built-in sample without input).
 //! Everything is written into `DIR` all or nothing (staged beside it and moved in when the
-//! whole report is built); see [`hull::report_html::write_report`]. A SIGINT or SIGTERM during
+//! whole report is built); see [`view::write_report`]. A SIGINT or SIGTERM during
 //! an optimised fit stops it and reports on the best surface so far (exit status 130 or 143).
 
 use std::path::{Path, PathBuf};
@@ -13,10 +13,10 @@ use std::time::Instant;
 
 use anyhow::{bail, Context};
 use clap::Args;
-use hull::drawing::Sheet;
-use hull::report_html::{build_report, write_report, DraftChoice, ReportInputs, ReportOptions};
 use hull::{CompareConfig, Comparison, FitOutcome, Offsets, ToleranceSearch, Units, SEA_WATER_DENSITY};
 use nurbs::NurbsSurface;
+use view::Sheet;
+use view::{build_report, write_report, DraftChoice, ReportInputs, ReportOptions};
 
 use crate::fit::MethodArgs;
 use crate::progress;
@@ -226,7 +226,7 @@ fn compare(args: &ReportArgs, offsets: &Offsets) -> anyhow::Result<Comparison> {
     Ok(comparison)
 }
 
-fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, written: &[PathBuf], seconds: f64) {
+fn print_summary(loaded: &Loaded, report: &view::ReportFiles, written: &[PathBuf], seconds: f64) {
     let u = loaded.units.symbol();
     outln!("report of {}", loaded.source);
     if let Some(f) = &loaded.fit {
@@ -268,7 +268,7 @@ fn print_summary(loaded: &Loaded, report: &hull::report_html::ReportFiles, writt
 /// `--json`: the summary as one JSON object on standard output.
 fn print_json_summary(
     loaded: &Loaded,
-    report: &hull::report_html::ReportFiles,
+    report: &view::ReportFiles,
     written: &[PathBuf],
     seconds: f64,
 ) -> anyhow::Result<()> {

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use hull::drawing::{lines_plan, write_dxf, Item, LinesPlanOptions, Rgb};
 use hull::{fit_offsets, read_offsets, series60_sample, FitConfig, Offsets, Units};
+use view::{lines_plan, write_dxf, Item, LinesPlanOptions, Rgb};
 
 mod common;
 use common::*;

@@ -8,7 +8,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use hull::render::Image;
+use view::Image;
 mod common;
 use common::*;
 

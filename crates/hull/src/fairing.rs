@@ -9,7 +9,8 @@
 //! the offsets unless the plain fit has validity findings (a fold, the surface leaving the
 //! offsets' envelope, ...: then the fit with fewer is worth up to twice the tolerance,
 //! [`UNSOUND_SLACK`]); "fairer" is measured as a naval architect would,
-//! by the thin-plate energy `∫ (k1^2 + k2^2) dA` and the largest Gaussian curvature, both no
+//! by the thin-plate energy `∫ (k1^2 + k2^2) dA`, the largest Gaussian curvature and the
+//! inflections of the stations and waterlines ([`FairnessFigures`]), all no
 //! worse than the plain fit's.
 //!
 //! Measured (release, `ν` = 1e-4 .. 1 on the tables in `testdata/`): the 116 m cargo ship's
@@ -52,18 +53,14 @@ pub const NET_FAIR: f64 = 1e-4;
 /// tries, smallest first.
 pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.0];
 
-/// The largest absolute Gaussian curvature of `f`.
-fn extreme(f: &FairnessFigures) -> f64 {
-    f.gaussian[0].abs().max(f.gaussian[1].abs())
-}
-
 /// Fair the plain approximation `plain` as `fairing` says, refitting with
 /// `skin(ν)` (the skinning approximation of the same settings with smoothing `ν`): the fair
 /// outcome and the report, or `None` for [`Fairing::Off`] (and `λ = 0`).
 ///
 /// [`Fairing::Auto`] (module docs): when the plain fit is sound (no fold), the largest `ν` of
-/// [`AUTO_LAMBDAS`] whose fit is sound, within the tolerance, with no more thin-plate energy and
-/// no larger curvature extreme `max |K|`; when the plain fit has validity findings (a fold, the
+/// [`AUTO_LAMBDAS`] whose fit is sound, within the tolerance, with no more thin-plate energy,
+/// no larger curvature extreme `max |K|` and no more inflections
+/// ([`FairnessFigures::no_less_fair_than`]); when the plain fit has validity findings (a fold, the
 /// surface leaving the offsets' envelope, ...), the smallest `ν` with the fewest defects (folds
 /// first, then findings of any kind), fewer than the plain fit's, that misses the offsets by at
 /// most [`UNSOUND_SLACK`] times the tolerance (its max error is reported against the
@@ -122,7 +119,7 @@ pub fn fair(
                     let mut after = None;
                     if accepted {
                         let a = FairnessFigures::of(&out.surface);
-                        accepted = a.thin_plate <= before.thin_plate && extreme(&a) <= extreme(&before);
+                        accepted = a.no_less_fair_than(&before);
                         after = Some(a);
                     }
                     tried.push(FairTry { lambda: l, max, findings, accepted });
@@ -214,7 +211,8 @@ mod tests {
         let (before, after) = (FairnessFigures::of(&plain.surface), FairnessFigures::of(&out.surface));
         assert_eq!((report.before, report.after), (before, after));
         assert!(after.thin_plate < before.thin_plate, "{before:?} -> {after:?}");
-        assert!(extreme(&after) <= extreme(&before));
+        assert!(after.curvature_extreme() <= before.curvature_extreme());
+        assert!(after.inflections() <= before.inflections(), "{before:?} -> {after:?}");
         // The smoothest acceptable: every larger weight tried was refused.
         let chosen = report.tried.iter().position(|t| t.accepted).expect("one accepted");
         assert_eq!(chosen, report.tried.len() - 1);

@@ -14,7 +14,7 @@ use crate::units::Units;
 use nurbs::NurbsSurface;
 use serde::Serialize;
 
-use crate::analysis::{bending_energy, default_quadrature};
+use crate::analysis::{fairness_report, FairnessOptions, PlaneFairness};
 use crate::curvature_range::{gaussian_curvature_range, CURVATURE_GRID};
 use crate::fit_error::FitError;
 use crate::optimize::{Algorithm, OptimReport, OptimSettings};
@@ -249,21 +249,51 @@ pub struct FairTry {
     pub accepted: bool,
 }
 
-/// Thin-plate energy and Gaussian-curvature range of a surface.
+/// What a naval architect checks of a surface's fairness: its thin-plate energy, its
+/// Gaussian-curvature range and the inflections of its stations and waterlines.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct FairnessFigures {
     /// `∫ (k1^2 + k2^2) dA`, dimensionless ([`crate::analysis::BendingEnergy::thin_plate`]).
     pub thin_plate: f64,
     /// Smallest and largest Gaussian curvature on the comparison grid, 1/units^2.
     pub gaussian: [f64; 2],
+    /// Inflections of the 21 stations evenly spaced along the surface's length
+    /// ([`crate::analysis::fairness_report`] with its default options).
+    pub station_inflections: usize,
+    /// Inflections of the 10 waterlines evenly spaced up its height, as the stations'.
+    pub waterline_inflections: usize,
 }
 
 impl FairnessFigures {
     /// The figures of `surface`.
     pub fn of(surface: &nurbs::NurbsSurface) -> Self {
-        let thin_plate = bending_energy(surface, default_quadrature(surface)).thin_plate;
+        let report = fairness_report(surface, &FairnessOptions::default());
         let gaussian = gaussian_curvature_range(surface, CURVATURE_GRID).map_or([f64::NAN; 2], |k| [k.min, k.max]);
-        FairnessFigures { thin_plate, gaussian }
+        let count = |planes: &[PlaneFairness]| planes.iter().map(|p| p.inflections).sum();
+        FairnessFigures {
+            thin_plate: report.energy.thin_plate,
+            gaussian,
+            station_inflections: count(&report.stations),
+            waterline_inflections: count(&report.waterlines),
+        }
+    }
+
+    /// Inflections of the stations and waterlines together.
+    pub fn inflections(&self) -> usize {
+        self.station_inflections + self.waterline_inflections
+    }
+
+    /// The largest `|K|`.
+    pub fn curvature_extreme(&self) -> f64 {
+        self.gaussian[0].abs().max(self.gaussian[1].abs())
+    }
+
+    /// No less fair than `other` by every figure: thin-plate energy, curvature extreme and
+    /// inflections.
+    pub fn no_less_fair_than(&self, other: &FairnessFigures) -> bool {
+        self.thin_plate <= other.thin_plate
+            && self.curvature_extreme() <= other.curvature_extreme()
+            && self.inflections() <= other.inflections()
     }
 }
 
@@ -296,7 +326,7 @@ impl FairReport {
             self.before.gaussian[1],
             self.after.gaussian[0],
             self.after.gaussian[1]
-        );
+        ) + &format!(", inflections {} -> {}", self.before.inflections(), self.after.inflections());
         let limit = self.tolerance.map(|t| format!(" within max error {t:.3e} {units}")).unwrap_or_default();
         let chosen = self.tried.iter().find(|t| t.accepted);
         if let (Some(c), Some(t)) = (chosen, self.tolerance) {
@@ -311,7 +341,7 @@ impl FairReport {
         if self.lambda == 0.0 {
             format!(
                 "fairing ({}): none of {} smoothed fits{limit} was sound and fairer (thin-plate energy, curvature \
-                 extreme) than the plain least squares, which is kept",
+                 extreme, inflections) than the plain least squares, which is kept",
                 self.setting,
                 self.tried.len()
             )

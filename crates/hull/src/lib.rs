@@ -34,7 +34,6 @@ pub mod colormap;
 mod compare;
 mod curvature_range;
 pub mod digitize;
-pub mod drawing;
 mod error;
 pub mod export;
 mod export_format;
@@ -48,7 +47,6 @@ pub mod hydrostatics;
 #[cfg(test)]
 mod layering;
 pub mod limits;
-mod markup;
 pub mod mesh;
 mod mesh_comparison;
 mod numfmt;
@@ -57,14 +55,11 @@ pub mod optimize;
 mod output;
 mod pipeline;
 pub mod read;
-pub mod render;
 mod report;
-pub mod report_html;
 mod sample;
 mod surface_input;
 mod tolerance_search;
 mod units;
-pub mod viewer;
 
 pub use analysis::{check_fit_validity, check_validity, Envelope, Finding, FindingKind};
 pub use compare::{
@@ -91,7 +86,7 @@ pub use hydrostatics::{
     HydrostaticsOptions, HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
 };
 pub use mesh_comparison::{compare_mesh_and_surface, MeshComparison};
-pub use numfmt::{format_figure, format_short};
+pub use numfmt::{format_figure, format_short, format_sig};
 pub use offsets::{Offsets, Perpendiculars, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
 pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, HOLD_SHARE};

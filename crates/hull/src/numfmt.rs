@@ -14,7 +14,7 @@ fn exponent(a: f64, sig: usize) -> i32 {
 
 /// `v` to `sig` significant digits: decimal for `1e-3 <= |v| < 1e5`, else scientific
 /// (`1.23e-5`); `0` as `0`.
-pub(crate) fn format_sig(v: f64, sig: usize) -> String {
+pub fn format_sig(v: f64, sig: usize) -> String {
     let sig = sig.max(1);
     if v == 0.0 || !v.is_finite() {
         return if v == 0.0 { "0".into() } else { format!("{v}") };

@@ -19,16 +19,18 @@
 //!                   "weights_at_bounds": n, "iterations": .., "evaluations": .., "stop": "iterations",
 //!                   "start_value": .., "final_value": .., "history": [..],
 //!                   "parameter_correction": false, "settings": {..}, "seconds": ..},
+//!  "fairness": {"thin_plate": .., "gaussian": [min, max], "station_inflections": n,
+//!               "waterline_inflections": n},
 //!  "folds": [{"x": [x0, x1], "v": [v0, v1], "samples": n, "of": n}],
 //!  "validity": [{"kind": "below_centre_plane", "place": {"x": .., "y": .., "z": .., "u": .., "v": ..},
 //!                "size": .., "limit": .., "reference": .., "x_band": [x0, x1], "flat": "bottom"}]}
 //! ```
 //!
 //! `optimization` is present for the weight-optimised methods only; its `history` is the best
-//! objective (parametric RMS of the offsets) after each iteration. `tolerance_search` is
-//! `fairing` is present when the fit was faired ([`crate::FairReport`]: `setting`, `lambda`
+//! objective (parametric RMS of the offsets) after each iteration. `fairness` is the final
+//! surface's ([`crate::fairing::FairnessFigures`]), always present. `fairing` is present when the fit was faired ([`crate::FairReport`]: `setting`, `lambda`
 //! (0: the plain fit was kept), `tolerance`, `tried` (`lambda`, `max`, `folds`, `accepted`),
-//! `before` and `after` (`thin_plate`, `gaussian` [min, max])); `rejected`
+//! `before` and `after`, each as `fairness`); `rejected`
 //! lists results not taken as the answer, and why; `overfitting` (from `hullskin fit` with an
 //! optimised method) says when its held-out error shows over-fitting. `tolerance_search` is
 //! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
@@ -120,6 +122,9 @@ pub struct Report {
     pub overfitting: Option<String>,
     /// Every defect of the surface (always present; empty when valid).
     pub validity: Vec<crate::analysis::Finding>,
+    /// The surface's fairness: thin-plate energy, Gaussian-curvature range, inflections of its
+    /// stations and waterlines (always present).
+    pub fairness: crate::fairing::FairnessFigures,
     /// Control-point coordinates held on the offsets' envelope by `--envelope hold`
     /// ([`FitOutcome::envelope_held`]; left out when none was).
     #[serde(skip_serializing_if = "is_zero")]
@@ -183,6 +188,7 @@ impl Report {
             rejected: outcome.rejected.clone(),
             overfitting: None,
             validity: outcome.validity.clone(),
+            fairness: crate::fairing::FairnessFigures::of(s),
             envelope_held: outcome.envelope_held,
             surface_source: None,
         }
@@ -209,6 +215,7 @@ impl Report {
             rejected: Vec::new(),
             overfitting: None,
             validity: m.validity.clone(),
+            fairness: crate::fairing::FairnessFigures::of(s),
             envelope_held: 0,
             surface_source: Some(m.source.to_string()),
         }

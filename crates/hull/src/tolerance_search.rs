@@ -481,6 +481,7 @@ pub fn fit_to_tolerance(
         best: None,
         unsound: None,
         closest: None,
+        keep_closest: settings.closest,
         cut: false,
     };
     if settings.diagonal {
@@ -548,8 +549,7 @@ pub fn fit_to_tolerance(
     }
     let fits = s.tried.len();
     let reached = s.best.is_some() || s.unsound.is_some();
-    let closest = if settings.closest { s.closest.take() } else { None };
-    let outcome = s.best.or(s.unsound).or(closest);
+    let outcome = s.best.or(s.unsound).or(s.closest);
     let valid = outcome.as_ref().is_some_and(|o| o.validity.is_empty());
     let Some(outcome) = outcome else {
         let (best, at) = s
@@ -606,8 +606,10 @@ struct Searcher<'a, 'c> {
     best: Option<FitOutcome>,
     /// The smallest surface within the tolerance that has validity findings.
     unsound: Option<FitOutcome>,
-    /// The closest surface: valid before not, then the smallest max error.
+    /// The closest surface: valid before not, then the smallest max error (kept only when
+    /// [`ToleranceSettings::closest`] asks for it).
     closest: Option<FitOutcome>,
+    keep_closest: bool,
     /// The cap or a stop ended the search.
     cut: bool,
 }
@@ -640,7 +642,7 @@ impl Searcher<'_, '_> {
         let within = close && valid;
         self.tried.push(TriedCount { control_points: [nu, nv], max, within, valid });
         self.memo.insert((nu, nv), within);
-        if let Some(out) = &outcome {
+        if let (true, Some(out)) = (self.keep_closest, &outcome) {
             let rank = |o: &FitOutcome| (!o.validity.is_empty(), o.error.overall.max);
             let closer = |c: &FitOutcome| rank(out).0.cmp(&rank(c).0).then(rank(out).1.total_cmp(&rank(c).1)).is_lt();
             if self.closest.as_ref().is_none_or(closer) {

@@ -20,7 +20,7 @@
 //! statistics, so nothing is NaN.
 //!
 //! This is the one sampling of curvature over a surface: the report's tables read its
-//! statistics, and the curvature picture ([`crate::render::curvature_map`]) paints its nodes.
+//! statistics, and the curvature picture (`view::curvature_map`, in the crate above) paints its nodes.
 
 use nurbs::{NurbsSurface, Vec3};
 use rayon::prelude::*;
@@ -383,7 +383,7 @@ impl CurvatureMap {
 }
 
 /// The bounding box `(min, max)` of the points.
-pub(crate) fn point_bounds(points: &[Vec3]) -> (Vec3, Vec3) {
+pub fn point_bounds(points: &[Vec3]) -> (Vec3, Vec3) {
     let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let mut hi = -lo;
     for p in points {

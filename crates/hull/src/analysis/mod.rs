@@ -19,8 +19,8 @@ pub mod fold;
 pub mod validity;
 
 pub use curvature_map::{
-    curvature_map, CurvatureField, CurvatureMap, CurvatureMapOptions, CurvatureSample, CurvatureSummary, Degeneracy,
-    Extreme, FieldStats, GridLines,
+    curvature_map, point_bounds, CurvatureField, CurvatureMap, CurvatureMapOptions, CurvatureSample, CurvatureSummary,
+    Degeneracy, Extreme, FieldStats, GridLines,
 };
 pub use cuts::{cut_surface, cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
 pub use fairness::{
@@ -63,7 +63,7 @@ pub(crate) fn param_grid(knots: &KnotVector, intervals: usize, refine_at_knots: 
 
 /// Parameter values with a line at every distinct knot and each knot span split in proportion
 /// to its length into at least 2 equal parts, about `target` lines in all (the grid of the
-/// curvature picture, [`crate::render::curvature_map`]).
+/// curvature picture, `view::curvature_map`).
 pub(crate) fn span_grid(knots: &KnotVector, target: usize) -> Vec<f64> {
     let (a, b) = knots.domain();
     let mut breaks = vec![a];

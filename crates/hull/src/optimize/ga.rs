@@ -388,151 +388,10 @@ impl Record {
     }
 }
 
-/// Tests shared by the three algorithms' test modules.
-#[cfg(test)]
-pub(super) mod shared_tests {
-    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-
-    use super::super::{quiet, Control, Objective, OptimResult, StopReason};
-
-    /// A runner: objective, seed, control -> result.
-    pub type Runner<'a> = &'a (dyn Fn(&dyn Objective, u64, &Control<'_>) -> OptimResult + Sync);
-
-    /// `f(x) = sum (x_k - s_k)^2` with `s` = the start, on `[-1, 2]^n`: the start is the
-    /// global optimum (value 0), so no run may return anything else.
-    pub struct StartIsOptimum(pub Vec<f64>, pub Vec<f64>, pub Vec<f64>);
-
-    impl StartIsOptimum {
-        pub fn new(n: usize) -> Self {
-            StartIsOptimum(vec![-1.0; n], vec![2.0; n], (0..n).map(|k| 0.1 + 0.37 * k as f64).collect())
-        }
-    }
-
-    impl Objective for StartIsOptimum {
-        fn dim(&self) -> usize {
-            self.0.len()
-        }
-        fn lower(&self) -> &[f64] {
-            &self.0
-        }
-        fn upper(&self) -> &[f64] {
-            &self.1
-        }
-        fn value(&self, x: &[f64]) -> f64 {
-            x.iter().zip(&self.2).map(|(a, s)| (a - s).powi(2)).sum()
-        }
-        fn start(&self) -> Vec<f64> {
-            self.2.clone()
-        }
-    }
-
-    /// The sphere `sum (x_k - 1)^2` on `[-2, 2]^n`, NaN wherever `x_0 > 0.5` (an infeasible
-    /// region next to the optimum, which is therefore at `x_0 = 0.5`, value 0.25).
-    pub struct NanRegion(pub Vec<f64>, pub Vec<f64>);
-
-    impl Objective for NanRegion {
-        fn dim(&self) -> usize {
-            self.0.len()
-        }
-        fn lower(&self) -> &[f64] {
-            &self.0
-        }
-        fn upper(&self) -> &[f64] {
-            &self.1
-        }
-        fn value(&self, x: &[f64]) -> f64 {
-            if x[0] > 0.5 {
-                f64::NAN
-            } else {
-                x.iter().map(|a| (a - 1.0).powi(2)).sum()
-            }
-        }
-        fn start(&self) -> Vec<f64> {
-            vec![0.0; self.dim()]
-        }
-    }
-
-    /// A run's remaining gap on the sphere, `(f - f*) / (f(start) - f*)`, with `f*` the minimum
-    /// on its box, `sum c_k (clamp(s_k) - s_k)^2`; checks the run's invariants first.
-    pub fn sphere_gap(s: &super::super::testfns::Sphere, r: &OptimResult) -> f64 {
-        check_invariants(s, r);
-        let clamped: Vec<f64> =
-            s.shift.iter().zip(s.lo.iter().zip(&s.hi)).map(|(&v, (&l, &h))| v.clamp(l, h)).collect();
-        let fmin = s.value(&clamped);
-        (r.value - fmin) / (r.history[0] - fmin)
-    }
-
-    /// The result's own invariants: the history starts at the start's value, never increases,
-    /// ends at the returned value, and the returned value is the objective at the returned x.
-    pub fn check_invariants(obj: &dyn Objective, r: &OptimResult) {
-        let f0 = obj.value(&obj.start());
-        assert_eq!(r.history[0], f0, "history[0] is the start's value");
-        assert_eq!(r.history.len(), r.iterations + 1);
-        assert!(r.history.windows(2).all(|w| w[1] <= w[0]), "history increased: {:?}", r.history);
-        assert_eq!(*r.history.last().expect("history is never empty"), r.value);
-        assert_eq!(obj.value(&r.x), r.value, "value is f(x)");
-        assert!(r.x.iter().zip(obj.lower().iter().zip(obj.upper())).all(|(x, (l, h))| l <= x && x <= h));
-    }
-
-    /// The start is the optimum: the result is exactly the start.
-    pub fn never_worse_than_start(run: Runner<'_>) {
-        let obj = StartIsOptimum::new(6);
-        let r = quiet(|c| run(&obj, 3, c));
-        check_invariants(&obj, &r);
-        assert_eq!(r.value, 0.0);
-        assert_eq!(r.x, obj.start());
-    }
-
-    /// Stop raised from the progress callback after iteration 3: the run ends there, keeping
-    /// its best.
-    pub fn interrupt_after_three(run: Runner<'_>) {
-        let obj = super::super::testfns::Sphere::new(5);
-        let stop = AtomicBool::new(false);
-        let calls = AtomicUsize::new(0);
-        let progress = |p: super::super::Progress| {
-            calls.fetch_add(1, Ordering::Relaxed);
-            if p.iteration == 3 {
-                stop.store(true, Ordering::Relaxed);
-            }
-        };
-        let control = Control { stop: &stop, progress: &progress };
-        let r = run(&obj, 11, &control);
-        assert_eq!(r.stop, StopReason::Interrupted);
-        assert_eq!(r.iterations, 3);
-        assert_eq!(calls.load(Ordering::Relaxed), 3);
-        check_invariants(&obj, &r);
-        assert!(r.value < r.history[0], "three iterations near the start improve the sphere");
-    }
-
-    /// Same seed: bit-identical results on 1 and 2 threads; another seed: a different result.
-    pub fn reproducible(run: Runner<'_>) {
-        let obj = super::super::testfns::Rastrigin::new(4);
-        let on = |threads: usize, seed: u64| {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a rayon pool");
-            pool.install(|| quiet(|c| run(&obj, seed, c)))
-        };
-        let a = on(1, 42);
-        let b = on(2, 42);
-        assert_eq!(a, b, "same seed, different thread counts");
-        let c = on(2, 43);
-        assert_ne!(a.history, c.history, "different seeds");
-    }
-
-    /// NaN in part of the box is +inf: no panic, the result is feasible and improves.
-    pub fn nan_region(run: Runner<'_>) {
-        let obj = NanRegion(vec![-2.0; 3], vec![2.0; 3]);
-        let r = quiet(|c| run(&obj, 5, c));
-        check_invariants(&obj, &r);
-        assert!(r.value.is_finite() && r.x[0] <= 0.5);
-        assert!(r.value < 1.1 * 0.25 + 0.01 && r.value >= 0.25, "value {}", r.value);
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    use super::super::testfns::{Rastrigin, Sphere};
+    use super::super::testfns::*;
     use super::super::{quiet, Control, Objective};
-    use super::shared_tests::*;
     use super::*;
 
     fn ga(obj: &dyn Objective, seed: u64, c: &Control<'_>) -> OptimResult {
@@ -544,26 +403,14 @@ mod tests {
         // Gap (f - f*) / (f(start) - f*) after the default 200 generations, measured over seeds
         // 0-5: d = 5 at most 1.7e-6, d = 20 at most 7.6e-5 (f* is the box-constrained minimum:
         // 3 of the 20 shifts lie beyond the bound). Bounds with about 10x margin.
-        for (d, bound) in [(5, 2e-5), (20, 1e-3)] {
-            let obj = Sphere::new(d);
-            for seed in 0..2 {
-                let r = quiet(|c| ga(&obj, seed, c));
-                let gap = sphere_gap(&obj, &r);
-                assert!(gap < bound, "d={d} seed {seed}: gap {gap:e}");
-            }
-        }
+        sphere_gaps_below("ga", &ga, &[(5, 2e-5), (20, 1e-3)], 2);
     }
 
     #[test]
     fn rastrigin_reaches_the_global_basin() {
         // Start 111.25; every local minimum other than the global one is >= 0.99 (one
         // coordinate off by one). Measured over seeds 0-5: 0.000-0.011, always the global basin.
-        let obj = Rastrigin::new(5);
-        for seed in 0..2 {
-            let r = quiet(|c| ga(&obj, seed, c));
-            check_invariants(&obj, &r);
-            assert!(r.value < 0.5, "seed {seed}: {}", r.value);
-        }
+        rastrigin_below("ga", &ga, 0.5);
     }
 
     #[test]
@@ -605,7 +452,7 @@ mod tests {
 
     #[test]
     fn evaluation_count() {
-        let obj = Sphere::new(3);
+        let obj = TestFn::sphere(3);
         let opts = GaOptions { population: 11, iterations: 7, elites: 3, ..GaOptions::default() };
         let r = quiet(|c| run(&obj, &opts, 0, c));
         assert_eq!(r.evaluations, 11 + 7 * (11 - 3));

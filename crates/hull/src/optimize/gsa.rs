@@ -278,8 +278,7 @@ fn masses(fit: &[f64], mass: &mut [f64]) {
 
 #[cfg(test)]
 mod tests {
-    use super::super::ga::shared_tests::*;
-    use super::super::testfns::{Rastrigin, Sphere};
+    use super::super::testfns::*;
     use super::super::{quiet, Control, Objective};
     use super::*;
 
@@ -325,24 +324,14 @@ mod tests {
         // Gap (f - f*) / (f(start) - f*) after the default 500 iterations, seeds 0-3 measured:
         // d = 5 at most 1e-21, d = 20 below round-off of f* = 17.125 (gap 0). Bounds with wide
         // margin, tight enough to fail on a stalled or collapsed swarm (gap ~1e-1, G0 = 0.5).
-        for (d, bound) in [(5, 1e-12), (20, 1e-6)] {
-            let obj = Sphere::new(d);
-            let r = quiet(|c| gsa(&obj, 0, c));
-            let gap = sphere_gap(&obj, &r);
-            assert!(gap < bound, "d={d}: gap {gap:e}");
-        }
+        sphere_gaps_below("gsa", &gsa, &[(5, 1e-12), (20, 1e-6)], 1);
     }
 
     #[test]
     fn rastrigin_below_start() {
         // Start 111.25; each coordinate left in a neighbouring basin costs about 1. Measured
         // over seeds 0-3: 0.000-1.99. Bound: at most two coordinates off.
-        let obj = Rastrigin::new(5);
-        for seed in 0..2 {
-            let r = quiet(|c| gsa(&obj, seed, c));
-            check_invariants(&obj, &r);
-            assert!(r.value < 2.5, "seed {seed}: {}", r.value);
-        }
+        rastrigin_below("gsa", &gsa, 2.5);
     }
 
     #[test]
@@ -380,7 +369,7 @@ mod tests {
         // 20-variable sphere: 1.8-4.2x the initial spread at iteration 1, 0.12-0.27x at
         // iteration 50); then G decays as exp(-20 t / T) and the swarm contracts (1e-10x at
         // the end).
-        let obj = Rastrigin::new(5);
+        let obj = TestFn::rastrigin(5);
         let d = obj.dim();
         let mut spreads = vec![];
         let opts = GsaOptions::default();
@@ -412,7 +401,7 @@ mod tests {
 
     #[test]
     fn evaluation_count() {
-        let obj = Sphere::new(3);
+        let obj = TestFn::sphere(3);
         let opts = GsaOptions { agents: 9, iterations: 7, ..GsaOptions::default() };
         let r = quiet(|c| run(&obj, &opts, 0, c));
         assert_eq!(r.evaluations, 1 + 9 * (7 + 1));

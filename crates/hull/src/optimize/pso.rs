@@ -207,8 +207,7 @@ fn bounce(t: &mut f64, vel: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::ga::shared_tests::*;
-    use super::super::testfns::{Rastrigin, Sphere};
+    use super::super::testfns::*;
     use super::super::{quiet, Control, Objective};
     use super::*;
 
@@ -228,15 +227,8 @@ mod tests {
         // d = 5: inertia <= 1e-12, constriction <= 1e-15; d = 20: inertia <= 5e-6,
         // constriction <= 2e-7. The bounds leave 30x margin over the worst seed (inertia
         // keeps w high, i.e. exploring, for most of the run, so it converges later).
-        for (d, bound) in [(5, 1e-10), (20, 1e-4)] {
-            let obj = Sphere::new(d);
-            for (name, f) in BOTH {
-                for seed in 0..2 {
-                    let r = quiet(|c| f(&obj, seed, c));
-                    let gap = sphere_gap(&obj, &r);
-                    assert!(gap < bound, "{name} d={d} seed {seed}: gap {gap:e}");
-                }
-            }
+        for (name, f) in BOTH {
+            sphere_gaps_below(name, f, &[(5, 1e-10), (20, 1e-4)], 2);
         }
     }
 
@@ -246,13 +238,8 @@ mod tests {
         // cosine). Every other local minimum costs about 1 per coordinate off by one; measured
         // over seeds 0-5: inertia 0.99-1.99, constriction 0.99-5.97. Bounds: inertia at most
         // two coordinates off (< 2.5), constriction (faster, more prone to stall) < 8.
-        let obj = Rastrigin::new(5);
         for ((name, f), bound) in BOTH.into_iter().zip([2.5, 8.0]) {
-            for seed in 0..2 {
-                let r = quiet(|c| f(&obj, seed, c));
-                check_invariants(&obj, &r);
-                assert!(r.value < bound, "{name} seed {seed}: {}", r.value);
-            }
+            rastrigin_below(name, f, bound);
         }
     }
 
@@ -284,7 +271,7 @@ mod tests {
 
     #[test]
     fn evaluation_count() {
-        let obj = Sphere::new(3);
+        let obj = TestFn::sphere(3);
         let opts = PsoOptions { particles: 9, iterations: 7, ..PsoOptions::default() };
         let r = quiet(|c| run(&obj, &opts, 0, c));
         assert_eq!(r.evaluations, 9 * (7 + 1));
