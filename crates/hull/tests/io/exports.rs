@@ -9,15 +9,13 @@
 //! tests fail (a check cannot vanish silently) unless `HULLSKIN_SKIP_OCCT=1` (STEP, IGES) or
 //! `HULLSKIN_SKIP_MESH=1` (STL, OBJ, glTF) or `HULLSKIN_SKIP_DXF=1` is set.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use common::browser::workspace_root;
-use common::python::tools_python;
-use common::surfaces::samples;
+use crate::common::browser::workspace_root;
+use crate::common::python::tools_python;
+use crate::common::surfaces::samples;
 
 use hull::export::mesh_out::{curvature_colors, srgb_to_linear};
 use hull::export::{

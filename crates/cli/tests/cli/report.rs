@@ -8,9 +8,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
+use crate::common::*;
 use view::Image;
-mod common;
-use common::*;
 
 /// The floor on the size of one hull's report.
 const MAX_REPORT_BYTES: u64 = 5_000_000;

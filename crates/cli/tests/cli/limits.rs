@@ -5,13 +5,12 @@
 use std::fs;
 use std::time::Instant;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 /// Run `args` in a fresh directory; assert a refusal whose message contains `needle`, and that
 /// no output directory was made.
 fn refused(args: &[&str], setup: impl FnOnce(&std::path::Path), needle: &str) {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     setup(dir.path());
     let o = hullskin(dir.path(), args);
     let (out, err) = text(&o);
@@ -52,7 +51,7 @@ fn control_points_and_optimiser_sizes_above_the_caps_are_refused() {
 fn a_binary_stl_claiming_billions_of_triangles_is_refused_from_its_header() {
     // 84 bytes claiming 4,000,000,000 triangles (200 GB of records): refused by the size check
     // before any triangle is allocated.
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let mut stl = vec![0u8; 80];
     stl.extend_from_slice(&4_000_000_000u32.to_le_bytes());
     fs::write(dir.path().join("hull.stl"), &stl).expect("write");

@@ -6,7 +6,6 @@ use hull::analysis::{
     bending_energy, curvature_map, cut_surface, cut_surface_many, default_quadrature, fairness_report, gauss_legendre,
     CurvatureField, CurvatureMapOptions, CutCurve, CutOptions, CutPlane, FairnessOptions, PlaneSelection,
 };
-mod common;
 
 use hull::{fit_offsets, series60_sample, FitConfig};
 use nurbs::{KnotVector, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
@@ -28,7 +27,7 @@ const T: f64 = 6.25;
 /// `x = L v`, `z = T u` (equally spaced control points of a linear function), and `y` the
 /// tensor product of the Bernstein coefficients of `g`, `(0, 2, 0)`, and of `h`, `(0, 1, 1)`.
 fn wigley() -> NurbsSurface {
-    common::surfaces::wigley_patch(L, B, T)
+    crate::common::surfaces::wigley_patch(L, B, T)
 }
 
 /// Wigley half-breadth `F(x, z)` and its partial derivatives
