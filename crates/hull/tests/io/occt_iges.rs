@@ -10,7 +10,8 @@ use std::process::Command;
 
 use crate::common::browser::workspace_root;
 use crate::common::python::tools_python;
-use crate::common::surfaces::{polynomial, quarter_cylinder, rational_bicubic, samples};
+use crate::common::surfaces::{polynomial, rational_bicubic, samples};
+use nurbs::fixtures::quarter_cylinder;
 
 use hull::export::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
 use nurbs::NurbsSurface;
