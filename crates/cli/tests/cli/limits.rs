@@ -3,7 +3,6 @@
 //! no output written.
 
 use std::fs;
-use std::time::Instant;
 
 use crate::common::*;
 
@@ -21,16 +20,15 @@ fn refused(args: &[&str], setup: impl FnOnce(&std::path::Path), needle: &str) {
 }
 
 #[test]
-fn an_offsets_file_above_the_size_cap_is_refused_without_reading_it() {
-    // A sparse 300 MiB file: refused from its length, in well under a second (reading and
-    // parsing it would take far longer in a debug build).
-    let start = Instant::now();
+fn an_offsets_file_above_the_size_cap_is_refused() {
+    // A sparse 300 MiB file, refused from its length (that the length alone refuses it, before
+    // any read, is `hull::limits`' unit test `large_files_are_refused_before_reading`; a wall
+    // time asserted here failed on a loaded machine, 6.7 s against 5).
     refused(
         &["fit", "big.csv", "-o", "out"],
         |d| fs::File::create(d.join("big.csv")).expect("create").set_len(300 << 20).expect("sparse"),
         "big.csv: 314,572,800 bytes exceed the cap of 268,435,456 (expected an offsets file of at most 256 MiB",
     );
-    assert!(start.elapsed().as_secs_f64() < 5.0, "took {:?}", start.elapsed());
 }
 
 #[test]

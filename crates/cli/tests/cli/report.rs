@@ -28,9 +28,11 @@ const FILES: [&str; 10] = [
     "hydrostatics.json",
 ];
 
-/// A fresh directory under Cargo's temporary directory for integration tests.
+/// A fresh directory under Cargo's temporary directory for integration tests, one per process
+/// (nextest runs each test in a process of its own: a directory shared between them was
+/// wiped by one while another wrote into it).
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report").join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("report-{}", std::process::id())).join(name);
     let _ = fs::remove_dir_all(&dir);
     fs::create_dir_all(&dir).expect("scratch dir");
     dir
