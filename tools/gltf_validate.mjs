@@ -4,7 +4,7 @@
 //
 // NODE_PREFIX is a directory whose node_modules holds gltf-validator (made by
 // `npm install --prefix NODE_PREFIX gltf-validator@2.0.0-dev.3.10`, as
-// crates/hull/tests/exports.rs does). Prints one JSON object {"ok", "validator", "files":
+// crates/hull/tests/io/exports.rs does). Prints one JSON object {"ok", "validator", "files":
 // [{"file", "issues": {numErrors, numWarnings, numInfos, numHints, messages}}]}; exit status 0
 // when no file has an error or a warning, 1 otherwise, 2 if the validator cannot be loaded.
 import { createRequire } from 'module';

@@ -4,7 +4,7 @@
 Usage: occt_check.py FILE.igs|FILE.stp EXPECTED.json
 
 The format is taken from the extension (.igs/.iges: IGESControl_Reader, .stp/.step:
-STEPControl_Reader). EXPECTED.json (written by crates/hull/tests/occt_iges.rs and exports.rs)
+STEPControl_Reader). EXPECTED.json (written by crates/hull/tests/io/occt_iges.rs and exports.rs)
 holds
   {"surface": <a hullskin-surface JSON document, see crates/hull/src/export/surface_json.rs>,
    "iges_units": {"flag": 6, "name": "M"},     # IGES: the global section's unit

@@ -2,7 +2,7 @@
 //! `fuzz_targets/` are one-line wrappers around these).
 //!
 //! The same functions run the regression inputs of `testdata/fuzz/<target>/` in
-//! `crates/hull/tests/fuzz_regressions.rs` (which includes this file by path), so a crash the
+//! `crates/hull/tests/io/fuzz_regressions.rs` (which includes this file by path), so a crash the
 //! fuzzer found is replayed exactly as it was found, on stable Rust, in every `cargo test`.
 //!
 //! Each function parses its input through a public entry point of `hull` and, when the input

@@ -7,7 +7,7 @@ no clock, a fixed random seed, gzip with mtime 0).
 
     python3 testdata/bad/gen.py
 
-manifest.csv columns, read by crates/cli/tests/bad_input.rs:
+manifest.csv columns, read by crates/cli/tests/cli/bad_input.rs:
 
 - file: the path under testdata/bad/;
 - command: the subcommand run on it (fit, hydrostatics, export, report, digitize, slice);
@@ -540,7 +540,7 @@ def write_readme():
         "# testdata/bad: the bad-input corpus (issue 6)",
         "",
         "Hostile and broken inputs for every format the CLI reads, run by",
-        "`crates/cli/tests/bad_input.rs` (`cargo test -p hullskin --test bad_input`): on each file the",
+        "`crates/cli/tests/cli/bad_input.rs` (`cargo test -p hullskin --test cli bad_input::`): on each file the",
         "CLI must exit non-zero without a panic, a signal, a hang (60 s) or more than 1 GiB of address",
         "space, and its message must name the file, the place (line, or line and column, for text",
         "inputs) and say what is wrong. The few files marked TOLERATED are hostile but valid: they",

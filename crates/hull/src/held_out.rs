@@ -23,7 +23,7 @@
 //! A refit sees the data with gaps twice the spacing where the held-out offsets were: the
 //! figure is the error of a slightly coarser table's fit, so it tends to overstate the error of
 //! the full fit between its offsets (a conservative estimate; the Wigley test of
-//! `tests/held_out.rs` measures by how much on an exact surface).
+//! `tests/fit/held_out.rs` measures by how much on an exact surface).
 //!
 //! The refits are independent and run in parallel (rayon); each is a pure function of its data,
 //! and the distances are gathered in a fixed order, so the result is bit for bit the same
@@ -324,7 +324,7 @@ pub fn overfitting_warning(offsets: &Offsets, outcome: &crate::FitOutcome) -> Op
 /// fit the sparser table with about one control point per offset, where least squares rings
 /// between unevenly spaced data: on the Wigley hull the held-out error of the sections was 100
 /// times the true error between them that way, 4.1 times with the scaled counts
-/// (`tests/held_out.rs`). Interpolation has one pole per offset whatever it is given.
+/// (`tests/fit/held_out.rs`). Interpolation has one pole per offset whatever it is given.
 ///
 /// # Errors
 /// As [`held_out_error`].

@@ -10,7 +10,7 @@ use nurbs::fit::{
 };
 use nurbs::{NurbsError, NurbsSurface};
 
-use crate::analysis::Envelope;
+use crate::analysis::{Envelope, FindingKind};
 use crate::fairing::Fairing;
 use crate::fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles};
 use crate::fit_error::{measure_fit_error, FitError};
@@ -190,25 +190,37 @@ fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Resul
     })
 }
 
-/// `out` (an optimised fit) unless it has validity findings and one of `candidates` has none:
-/// then the first such, named `approx`, with `out`'s rejection in `rejected` and the time
-/// spent on both.
+/// `out` (an optimised fit) unless it has validity findings and one of `candidates` has
+/// fewer defects (folds first, then findings of any kind, as [`crate::fairing::fair`] ranks
+/// them): then the first with the fewest, a sound one where there is one, named `approx`,
+/// with `out`'s rejection in `rejected` and the time spent on both.
 fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>) -> FitOutcome {
     if out.validity.is_empty() {
         return out;
     }
-    let Some(kept) = candidates.into_iter().find(|c| c.validity.is_empty()) else {
+    let defects =
+        |o: &FitOutcome| (o.validity.iter().filter(|f| f.kind == FindingKind::Fold).count(), o.validity.len());
+    let Some(kept) = candidates.into_iter().min_by_key(defects).filter(|c| defects(c) < defects(&out)) else {
         return out;
     };
-    let kinds: Vec<&str> = out.validity.iter().map(|f| f.kind.name()).collect();
+    let names = |o: &FitOutcome| o.validity.iter().map(|f| f.kind.name()).collect::<Vec<&str>>().join(", ");
+    let instead = if kept.validity.is_empty() {
+        "the sound approximation is kept".to_string()
+    } else {
+        let (folds, findings) = defects(&kept);
+        format!(
+            "the approximation, with fewer defects ({folds} fold(s), {findings} finding(s): {}), is kept",
+            names(&kept)
+        )
+    };
     let why = format!(
-        "the {} surface (true RMS {:.3e}, max {:.3e} at the offsets) has {} validity finding(s) ({}); the sound \
-         approximation is kept (expected fewer control points or a larger --fair)",
+        "the {} surface (true RMS {:.3e}, max {:.3e} at the offsets) has {} validity finding(s) ({}); {instead} \
+         (expected fewer control points or a larger --fair)",
         config.method.name(),
         out.error.overall.rms,
         out.error.overall.max,
         out.validity.len(),
-        kinds.join(", ")
+        names(&out)
     );
     give_way(config, kept, &out, why)
 }
@@ -538,9 +550,19 @@ mod tests {
         assert_eq!(kept.rejected.len(), 1);
         assert!(kept.rejected[0].starts_with("the lm surface") && kept.rejected[0].contains("below_centre_plane"));
         assert!(kept.fit_seconds >= out.fit_seconds);
-        // No sound candidate: the optimised fit stands, with its findings.
-        let same = prefer_sound(&lm, out.clone(), vec![plain]);
+        // No candidate with fewer defects: the optimised fit stands, with its findings.
+        let worse_copy =
+            |c: &FitOutcome| FitOutcome { validity: [c.validity.clone(), out.validity.clone()].concat(), ..c.clone() };
+        let same = prefer_sound(&lm, out.clone(), vec![worse_copy(&plain)]);
         assert_eq!((same.surface, same.rejected.len()), (out.surface.clone(), 0));
+        // A candidate with fewer findings, though not none, is kept (the optimised fit given one
+        // more finding than it), and the rejection says what it keeps.
+        let more =
+            FitOutcome { validity: [out.validity.clone(), vec![out.validity[0].clone()]].concat(), ..out.clone() };
+        let fewer = FitOutcome { validity: out.validity.clone(), ..plain.clone() };
+        let kept = prefer_sound(&lm, more, vec![worse_copy(&fewer), fewer.clone()]);
+        assert_eq!(kept.surface, fewer.surface);
+        assert!(kept.rejected[0].contains("the approximation, with fewer defects"), "{}", kept.rejected[0]);
         // A sound optimised fit is never replaced.
         let sound_lm = FitOutcome { validity: Vec::new(), ..out.clone() };
         assert_eq!(prefer_sound(&lm, sound_lm, vec![sound]).surface, out.surface);

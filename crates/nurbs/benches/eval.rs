@@ -4,8 +4,7 @@
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use nurbs::Vec3;
 
-mod common;
-use common::surface;
+use nurbs::fixtures::rational_surface as surface;
 
 fn grid(n: usize) -> Vec<(f64, f64)> {
     (0..n).flat_map(|i| (0..n).map(move |j| (i as f64 / (n - 1) as f64, j as f64 / (n - 1) as f64))).collect()

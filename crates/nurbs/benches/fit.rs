@@ -7,12 +7,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use nurbs::fit::{interpolate_curve_auto, skin_approximate, skin_interpolate, Parameterization, SkinOptions};
-use nurbs::Vec3;
-
-/// The kernel's test data (`nurbs::fixtures`, behind a feature there), included as a module.
-#[allow(dead_code)]
-#[path = "../src/fixtures.rs"]
-mod fixtures;
+use nurbs::{fixtures, Vec3};
 
 /// `k` sections of `n` points of a Wigley-like body, `y = B/2 (1 - (2x/L)^2) (1 - (1 - z/T)^4)`:
 /// zero width at both ends. `pointed` collapses the end sections to one point each; `ragged`

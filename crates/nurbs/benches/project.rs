@@ -6,8 +6,7 @@
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 
-mod common;
-use common::surface;
+use nurbs::fixtures::rational_surface as surface;
 
 /// `n` query points at `S(u, v) + offset * normal`, `(u, v)` on a scrambled grid, `offset` in
 /// `[-scale, scale]` (like offsets measured around a fitted hull).

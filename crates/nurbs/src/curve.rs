@@ -242,16 +242,7 @@ pub(crate) fn rational_derivatives(aw: &[[f64; 4]]) -> Vec<Vec3> {
 mod tests {
     use super::*;
     use crate::assert_near;
-
-    /// A full circle of radius r as 9-point rational quadratic (The NURBS Book Ex. 7.2).
-    pub(crate) fn circle(r: f64) -> NurbsCurve {
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        let pts = [(1., 0.), (1., 1.), (0., 1.), (-1., 1.), (-1., 0.), (-1., -1.), (0., -1.), (1., -1.), (1., 0.)]
-            .map(|(x, y)| Vec3::new(r * x, r * y, 0.0));
-        let w = [1., s, 1., s, 1., s, 1., s, 1.];
-        let k = vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.];
-        NurbsCurve::try_new(KnotVector::try_new(2, k).expect("valid"), &pts, Some(&w)).expect("valid")
-    }
+    use crate::fixtures::circle;
 
     #[test]
     fn circle_is_exact_rational_quadratic() {

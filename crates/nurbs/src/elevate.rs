@@ -166,7 +166,8 @@ impl NurbsSurface {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::refine::tests::{arb_curve, arb_surface, assert_same_curve, assert_same_surface, circle};
+    use crate::fixtures::{arb_curve, arb_surface, circle};
+    use crate::refine::tests::{assert_same_curve, assert_same_surface};
     use crate::Vec3;
     use proptest::prelude::*;
 

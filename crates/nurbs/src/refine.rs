@@ -409,70 +409,9 @@ impl NurbsSurface {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::fixtures::{arb_curve, arb_surface, circle, interior_knots};
     use crate::Vec3;
     use proptest::prelude::*;
-
-    /// A full circle of radius r as a 9-point rational quadratic (The NURBS Book Ex. 7.2).
-    pub(crate) fn circle(r: f64) -> NurbsCurve {
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        let pts = [(1., 0.), (1., 1.), (0., 1.), (-1., 1.), (-1., 0.), (-1., -1.), (0., -1.), (1., -1.), (1., 0.)]
-            .map(|(x, y)| Vec3::new(r * x, r * y, 0.0));
-        let w = [1., s, 1., s, 1., s, 1., s, 1.];
-        let k = vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.];
-        NurbsCurve::try_new(KnotVector::try_new(2, k).expect("valid"), &pts, Some(&w)).expect("valid")
-    }
-
-    /// Interior knots in (0, 1), sorted, each value at most `p` times. Values come partly from
-    /// a coarse grid so that repeated knots occur often.
-    fn interior_knots(p: usize, max: usize) -> impl Strategy<Value = Vec<f64>> {
-        prop::collection::vec(prop_oneof![(1u32..10).prop_map(|k| f64::from(k) / 10.0), 0.001f64..0.999], 0..max)
-            .prop_map(move |mut v| {
-                v.sort_by(f64::total_cmp);
-                let mut out: Vec<f64> = Vec::new();
-                for x in v {
-                    if out.iter().filter(|&&y| y == x).count() < p {
-                        out.push(x);
-                    }
-                }
-                out
-            })
-    }
-
-    fn clamped(p: usize, interior: &[f64]) -> KnotVector {
-        let mut k = vec![0.0; p + 1];
-        k.extend_from_slice(interior);
-        k.extend(std::iter::repeat_n(1.0, p + 1));
-        KnotVector::try_new(p, k).expect("clamped by construction")
-    }
-
-    fn homogeneous_points(n: usize) -> impl Strategy<Value = Vec<Homogeneous>> {
-        prop::collection::vec((-10.0f64..10.0, -10.0f64..10.0, -10.0f64..10.0, 0.2f64..5.0), n)
-            .prop_map(|v| v.into_iter().map(|(x, y, z, w)| [x * w, y * w, z * w, w]).collect())
-    }
-
-    /// Random rational curves of degree 1 to 5 with up to 8 interior knots, some repeated.
-    pub(crate) fn arb_curve() -> impl Strategy<Value = NurbsCurve> {
-        (1usize..=5)
-            .prop_flat_map(|p| (Just(p), interior_knots(p, 9)))
-            .prop_flat_map(|(p, interior)| {
-                let kv = clamped(p, &interior);
-                let n = kv.num_basis();
-                (Just(kv), homogeneous_points(n))
-            })
-            .prop_map(|(kv, cw)| NurbsCurve::try_from_homogeneous(kv, cw).expect("valid by construction"))
-    }
-
-    /// Random rational surfaces of degrees 1 to 4 with up to 5 interior knots per direction.
-    pub(crate) fn arb_surface() -> impl Strategy<Value = NurbsSurface> {
-        (1usize..=4, 1usize..=4)
-            .prop_flat_map(|(p, q)| (Just(p), Just(q), interior_knots(p, 6), interior_knots(q, 6)))
-            .prop_flat_map(|(p, q, iu, iv)| {
-                let (ku, kv) = (clamped(p, &iu), clamped(q, &iv));
-                let n = ku.num_basis() * kv.num_basis();
-                (Just(ku), Just(kv), homogeneous_points(n))
-            })
-            .prop_map(|(ku, kv, cw)| NurbsSurface::try_from_homogeneous(ku, kv, cw).expect("valid by construction"))
-    }
 
     /// Size of the control polygon, the scale of round-off in evaluations.
     pub(crate) fn scale_of(points: &[Vec3]) -> f64 {

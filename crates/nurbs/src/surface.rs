@@ -331,6 +331,7 @@ impl NurbsSurface {
 mod tests {
     use super::*;
     use crate::assert_near;
+    use crate::fixtures::quarter_cylinder;
 
     #[test]
     fn reversing_u_and_scaling_keep_the_geometry() {
@@ -357,22 +358,6 @@ mod tests {
             }
         }
         assert_eq!(big.weights(), s.weights());
-    }
-
-    /// A quarter cylinder of radius r and length h: rational quadratic in u, linear in v.
-    pub(crate) fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
-        let ku = KnotVector::try_new(2, vec![0., 0., 0., 1., 1., 1.]).expect("valid");
-        let kv = KnotVector::try_new(1, vec![0., 0., 1., 1.]).expect("valid");
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        let mut pts = Vec::new();
-        let mut w = Vec::new();
-        for (x, y, wi) in [(r, 0.0, 1.0), (r, r, s), (0.0, r, 1.0)] {
-            for z in [0.0, h] {
-                pts.push(Vec3::new(x, y, z));
-                w.push(wi);
-            }
-        }
-        NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
     }
 
     #[test]

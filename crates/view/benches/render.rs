@@ -7,28 +7,15 @@
 //! sphere octant whose edge collapses to the pole (a line of grid points with undefined
 //! curvature).
 
-use std::f64::consts::FRAC_1_SQRT_2;
-
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use hull::analysis::CurvatureField;
 use hull::{fit_offsets, series60_sample, FitConfig, FitMethod};
-use nurbs::{KnotVector, NurbsSurface, Vec3};
+use nurbs::NurbsSurface;
 use view::{convergence_plot, curvature_map_png, render_png, CurvatureMapOptions, RasterOptions};
 
+/// The unit sphere's octant, u from the equator to the pole (the edge u = 1 collapses to it).
 fn octant() -> NurbsSurface {
-    let c = FRAC_1_SQRT_2;
-    let meridian = [(1.0, 0.0, 1.0), (1.0, 1.0, c), (0.0, 1.0, 1.0)];
-    let longitude = [(1.0, 0.0, 1.0), (1.0, 1.0, c), (0.0, 1.0, 1.0)];
-    let mut pts = Vec::new();
-    let mut w = Vec::new();
-    for &(rho, z, wm) in &meridian {
-        for &(cx, cy, wl) in &longitude {
-            pts.push(Vec3::new(rho * cx, rho * cy, z));
-            w.push(wm * wl);
-        }
-    }
-    let k = || KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("quadratic knots");
-    NurbsSurface::try_new(k(), k(), &pts, Some(&w)).expect("valid octant")
+    nurbs::fixtures::sphere_octant(1.0).reversed_u()
 }
 
 fn bench(c: &mut Criterion) {

@@ -856,7 +856,7 @@ mod tests {
         for p in &c.points {
             let z = p.point.z;
             // y = a + b z^2 traversed with z increasing in (y, z): kappa = -y''/(1+y'^2)^1.5
-            // with y as a function of z (see tests/analysis.rs for the derivation).
+            // with y as a function of z (see tests/shape/analysis.rs for the derivation).
             let want = -(2.0 * b) / (1.0 + (2.0 * b * z).powi(2)).powf(1.5);
             assert!((p.curvature - want).abs() <= 1e-12, "z {z}: {} vs {want}", p.curvature);
             assert!((p.point.y - (a + b * z * z)).abs() <= 1e-12);

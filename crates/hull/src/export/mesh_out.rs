@@ -254,21 +254,9 @@ mod tests {
     use crate::export::tessellate::{tessellate, TessellationOptions};
     use crate::mesh::obj::write_obj;
     use crate::mesh::stl::{write_stl_ascii, write_stl_binary};
-    use nurbs::{KnotVector, NurbsSurface};
 
     fn cylinder_mesh(mirror: bool) -> Tessellation {
-        let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
-        let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        let mut pts = Vec::new();
-        let mut w = Vec::new();
-        for (y, z, wi) in [(0.0, -2.0, 1.0), (2.0, -2.0, s), (2.0, 0.0, 1.0)] {
-            for x in [0.0, 3.0] {
-                pts.push(Vec3::new(x, y, z));
-                w.push(wi);
-            }
-        }
-        let surface = NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid");
+        let surface = nurbs::fixtures::quarter_cylinder_along_x(2.0, 3.0);
         tessellate(&surface, &TessellationOptions { tolerance: 1e-2, mirror }).expect("tessellates")
     }
 

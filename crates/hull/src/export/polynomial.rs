@@ -258,23 +258,8 @@ pub fn polynomial_approximation(s: &NurbsSurface, tolerance: f64) -> Result<Poly
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nurbs::fixtures::quarter_cylinder_along_x;
     use nurbs::Vec3;
-
-    /// The exact quarter cylinder of radius `r`: rational quadratic in u, linear in v.
-    fn quarter_cylinder(r: f64) -> NurbsSurface {
-        let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
-        let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        let mut pts = Vec::new();
-        let mut w = Vec::new();
-        for (y, z, wi) in [(0.0, -r, 1.0), (r, -r, s), (r, 0.0, 1.0)] {
-            for x in [0.0, 4.0] {
-                pts.push(Vec3::new(x, y, z));
-                w.push(wi);
-            }
-        }
-        NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
-    }
 
     #[test]
     fn equal_weights_are_exact() {
@@ -294,7 +279,7 @@ mod tests {
     #[test]
     fn the_cylinder_is_approximated_to_the_tolerance() {
         let r = 2.0;
-        let s = quarter_cylinder(r);
+        let s = quarter_cylinder_along_x(r, 4.0);
         for tol in [1e-3, 1e-5, 1e-7] {
             let a = polynomial_approximation(&s, tol).expect("approximates");
             assert!(!a.exact && !a.surface.is_rational());
@@ -325,7 +310,7 @@ mod tests {
 
     #[test]
     fn bad_tolerances_are_refused() {
-        let s = quarter_cylinder(1.0);
+        let s = quarter_cylinder_along_x(1.0, 4.0);
         for t in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-300] {
             let e = polynomial_approximation(&s, t).expect_err("refused");
             assert!(

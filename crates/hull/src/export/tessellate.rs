@@ -412,23 +412,8 @@ fn mirror(tess: &mut Tessellation) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nurbs::fixtures::quarter_cylinder_along_x as quarter_cylinder;
     use nurbs::{KnotVector, ProjectionOptions, SurfaceProjector};
-
-    /// The exact quarter cylinder `y^2 + z^2 = r^2`, `y >= 0`, `z <= 0`, of length `h` along x.
-    fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
-        let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
-        let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        let mut pts = Vec::new();
-        let mut w = Vec::new();
-        for (y, z, wi) in [(0.0, -r, 1.0), (r, -r, s), (r, 0.0, 1.0)] {
-            for x in [0.0, h] {
-                pts.push(Vec3::new(x, y, z));
-                w.push(wi);
-            }
-        }
-        NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
-    }
 
     fn opts(tolerance: f64) -> TessellationOptions {
         TessellationOptions { tolerance, mirror: false }

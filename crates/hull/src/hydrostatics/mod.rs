@@ -60,7 +60,7 @@
 //! results are the same bits whatever the number of threads ([`Hydrostatics::range`] runs
 //! drafts in parallel).
 //!
-//! # Accuracy (measured, `crates/hull/tests/hydrostatics.rs`)
+//! # Accuracy (measured, `crates/hull/tests/shape/hydrostatics.rs`)
 //!
 //! * Exact Wigley hull (a degree (2,2) Bézier patch reproduces it exactly), at 0.1 T .. T
 //!   against the closed forms: every figure but S within 7e-14 relative (round-off: the

@@ -122,7 +122,7 @@ pub enum Stations {
 pub enum Resample {
     /// Equal steps in arc length (the default).
     ///
-    /// Measured on the DTC (41 cosine stations, `crates/hull/tests/mesh.rs`): interpolation and
+    /// Measured on the DTC (41 cosine stations, `crates/hull/tests/io/mesh.rs`): interpolation and
     /// every approximation tried keep the wetted surface within 0.6 % of the mesh's.
     #[default]
     ArcLength,

@@ -320,7 +320,7 @@ pub struct Outlier {
 }
 
 /// Share of the largest half-breadth a cell must stand out by in both directions to be an
-/// outlier. Measured on the 30 clean tables of `testdata/` (`crates/hull/tests/sense.rs`): at
+/// outlier. Measured on the 30 clean tables of `testdata/` (`crates/hull/tests/io/sense.rs`): at
 /// 0.08 the coarse hand-made `offsets_example.csv` (4 stations) already shows two false
 /// outliers at its bilge, at 0.12 no clean table shows one; 0.15 keeps a margin. A decimal
 /// point shifted or a digit lost in a large cell moves it by far more.

@@ -3,7 +3,7 @@
 //! per test binary). If that fails the checks fail (they cannot vanish silently) unless the
 //! check's skip variable is set to 1.
 //!
-//! One helper for the workspace: `crates/cli/tests/export.rs` includes this file too (`#[path]`),
+//! One helper for the workspace: `crates/cli/tests/cli/main.rs` includes this file too (`#[path]`),
 //! so it names nothing outside itself.
 
 use std::path::Path;

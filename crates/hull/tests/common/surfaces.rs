@@ -1,5 +1,6 @@
 //! Surfaces and sample points shared by the export checks (IGES, STEP), the CAD readers and
-//! the hydrostatics bench (which includes this file by path).
+//! the hydrostatics bench (which includes this file by path). The kernel's exact surfaces (the
+//! quarter cylinder, the sphere octant) are in `nurbs::fixtures`.
 
 use nurbs::{KnotVector, NurbsSurface, Vec3};
 
@@ -56,23 +57,6 @@ pub fn polynomial() -> NurbsSurface {
         }
     }
     NurbsSurface::try_new(ku, kv, &pts, None).expect("valid")
-}
-
-/// (c) The exact quarter cylinder of radius `r` and length `h`: rational quadratic in u
-/// (middle weight 1/sqrt 2), linear in v.
-pub fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
-    let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
-    let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
-    let s = std::f64::consts::FRAC_1_SQRT_2;
-    let mut pts = Vec::new();
-    let mut w = Vec::new();
-    for (x, y, wi) in [(r, 0.0, 1.0), (r, r, s), (0.0, r, 1.0)] {
-        for z in [0.0, h] {
-            pts.push(Vec3::new(x, y, z));
-            w.push(wi);
-        }
-    }
-    NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
 }
 
 /// The Wigley hull of length `l`, beam `b` and draft `t`, `y = (B/2)(1 - (2 xi/L)^2)(1 - ((T - z)/T)^2)`, `xi = x - L/2`, `z` up from

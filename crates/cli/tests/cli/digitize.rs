@@ -7,8 +7,7 @@ use std::path::Path;
 use hull::{fit_offsets, read_offsets, series60_sample, FitConfig, Offsets, Units};
 use view::{lines_plan, write_dxf, Item, LinesPlanOptions, Rgb};
 
-mod common;
-use common::*;
+use crate::common::*;
 
 fn run_ok(dir: &Path, args: &[&str]) -> (String, String) {
     let o = hullskin(dir, args);
@@ -41,7 +40,7 @@ fn check_barge(o: &Offsets) {
 
 #[test]
 fn hand_made_dxf_by_layers_to_a_sections_csv() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let dxf = testdata("digitize/barge.dxf");
     let args = [
         "digitize",
@@ -83,7 +82,7 @@ fn hand_made_dxf_by_layers_to_a_sections_csv() {
 
 #[test]
 fn hand_made_svg_by_labels_with_a_station_spacing() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let svg = testdata("digitize/barge.svg");
     let (_, err) = run_ok(
         dir.path(),
@@ -116,7 +115,7 @@ fn hand_made_svg_by_labels_with_a_station_spacing() {
 /// make a usable hull.
 #[test]
 fn sample_lines_plan_digitised_and_fitted_again() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let fit = fit_offsets(&series60_sample(), &FitConfig::default()).expect("fits");
     let n = 19;
     let (lo, hi) = (0.0f64, 121.92f64);
@@ -179,7 +178,7 @@ fn sample_lines_plan_digitised_and_fitted_again() {
 
 #[test]
 fn bad_input_is_refused_clearly() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let dxf = testdata("digitize/barge.dxf");
     let dxf = dxf.to_str().expect("UTF-8 path");
     let base = ["digitize", dxf, "--datum", "100,50", "--station-layer-pattern", "ST*"];

@@ -9,15 +9,13 @@
 //! tests fail (a check cannot vanish silently) unless `HULLSKIN_SKIP_OCCT=1` (STEP, IGES) or
 //! `HULLSKIN_SKIP_MESH=1` (STL, OBJ, glTF) or `HULLSKIN_SKIP_DXF=1` is set.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use common::browser::workspace_root;
-use common::python::tools_python;
-use common::surfaces::samples;
+use crate::common::browser::workspace_root;
+use crate::common::python::tools_python;
+use crate::common::surfaces::samples;
 
 use hull::export::mesh_out::{curvature_colors, srgb_to_linear};
 use hull::export::{
@@ -27,6 +25,7 @@ use hull::export::{
 };
 use hull::mesh::{write_obj, write_stl_ascii, write_stl_binary};
 use hull::Units;
+use nurbs::fixtures::quarter_cylinder_along_x as quarter_cylinder;
 use nurbs::{KnotVector, NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
 
@@ -79,23 +78,6 @@ fn rational_bicubic() -> NurbsSurface {
             let beam = 7.0 * (1.0 - (2.0 * b - 1.0).powi(4));
             pts.push(Vec3::new(110.0 * b, beam * (a * 1.4).sin().min(1.0) + 0.02 * j as f64, 6.0 * a - 0.3 * b));
             w.push(0.6 + 1.3 * ((i * 5 + j * 3) % 7) as f64 / 6.0);
-        }
-    }
-    NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
-}
-
-/// The exact quarter cylinder of radius `r` and length `h`: rational quadratic in u (middle
-/// weight 1/sqrt 2), linear in v.
-fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
-    let ku = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
-    let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
-    let s = std::f64::consts::FRAC_1_SQRT_2;
-    let mut pts = Vec::new();
-    let mut w = Vec::new();
-    for (y, z, wi) in [(0.0, -r, 1.0), (r, -r, s), (r, 0.0, 1.0)] {
-        for x in [0.0, h] {
-            pts.push(Vec3::new(x, y, z));
-            w.push(wi);
         }
     }
     NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")

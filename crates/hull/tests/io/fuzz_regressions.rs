@@ -13,7 +13,7 @@
 //!   copied and spliced runs), must each give `Ok` or `Err`, never a panic. This is the part
 //!   of the fuzzing that CI runs; `cargo fuzz` explores far more.
 
-#[path = "../../../fuzz/src/lib.rs"]
+#[path = "../../../../fuzz/src/lib.rs"]
 mod fuzz_targets;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};

@@ -35,7 +35,7 @@ fn overshoot(s: &NurbsSurface, o: &Offsets) -> (f64, f64) {
 }
 
 /// The least squares as they fit the features (not held within the offsets' envelope, whose
-/// refit `tests/validity.rs` checks).
+/// refit `tests/fit/validity.rs` checks).
 fn fit(o: &Offsets, method: FitMethod, knuckles: Knuckles) -> FitOutcome {
     let config = FitConfig { method, knuckles, envelope: hull::EnvelopeHold::Free, ..FitConfig::default() };
     fit_offsets(o, &config).expect("fits")

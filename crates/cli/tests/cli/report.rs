@@ -8,9 +8,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
+use crate::common::*;
 use view::Image;
-mod common;
-use common::*;
 
 /// The floor on the size of one hull's report.
 const MAX_REPORT_BYTES: u64 = 5_000_000;
@@ -29,9 +28,11 @@ const FILES: [&str; 10] = [
     "hydrostatics.json",
 ];
 
-/// A fresh directory under Cargo's temporary directory for integration tests.
+/// A fresh directory under Cargo's temporary directory for integration tests, one per process
+/// (nextest runs each test in a process of its own: a directory shared between them was
+/// wiped by one while another wrote into it).
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report").join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("report-{}", std::process::id())).join(name);
     let _ = fs::remove_dir_all(&dir);
     fs::create_dir_all(&dir).expect("scratch dir");
     dir

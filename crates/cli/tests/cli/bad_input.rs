@@ -7,14 +7,12 @@
 //! What each file holds and what the CLI must say is in `testdata/bad/manifest.csv` (and, for
 //! people, `testdata/bad/README.md`); `testdata/bad/gen.py` writes them all.
 
-mod common;
-
 use std::fs::{self, File};
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{read_json, testdata};
+use crate::common::{self, read_json, temp_dir, testdata};
 
 /// A run longer than this is a hang. The slowest file (a mesh sliced and fitted) takes about a
 /// second in a debug build; 60 s leaves room for a loaded two-core machine.
@@ -228,7 +226,7 @@ fn every_bad_input_is_refused_by_file_and_place_without_panic_hang_or_runaway_me
     }
 
     let prlimit = have_prlimit();
-    let tmp = tempfile::tempdir().expect("temp dir");
+    let tmp = temp_dir();
     let mut failures = Vec::new();
     let (mut slowest, mut peak) = ((0.0, String::new()), (0, String::new()));
     for (k, case) in cases.iter().enumerate() {
@@ -275,7 +273,7 @@ fn spreadsheet_exports_fit_exactly_like_the_clean_files() {
     let dir = bad_dir().join("accepted");
     let rows = manifest(&dir.join("manifest.csv"), 2);
     assert!(rows.len() >= 8, "{} accepted files, expected the eight kinds of the README", rows.len());
-    let tmp = tempfile::tempdir().expect("temp dir");
+    let tmp = temp_dir();
     let fit = |name: &str| {
         let out = tmp.path().join(name);
         let o = common::hullskin(
@@ -316,7 +314,7 @@ fn spreadsheet_exports_fit_exactly_like_the_clean_files() {
 /// no warning to the same surface as before the checks (they only read).
 #[test]
 fn a_typo_in_one_cell_is_named_at_its_place_and_refused_on_request() {
-    let tmp = tempfile::tempdir().expect("temp dir");
+    let tmp = temp_dir();
     let clean = fs::read_to_string(testdata("series60_cb060_offsets.csv")).expect("the sample table");
     // Line 6 (the 1.0 WL), field 14 (station x = 60.96): 8.13 m typed 81.3.
     let mut lines: Vec<String> = clean.lines().map(str::to_string).collect();

@@ -2,11 +2,9 @@
 //! same offsets as before, and plausible mistakes made in them (units, transposition, one
 //! cell typed wrong) are each caught at the right file, line and field.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::tables::TABLES;
+use crate::common::tables::TABLES;
 
 use hull::read::{parse_offsets_with, OutlierPolicy, ReadOptions, SenseKind, SenseWarning};
 use hull::Units;

@@ -11,8 +11,7 @@ use std::process::Command;
 
 use serde_json::Value;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 fn num(v: &Value) -> f64 {
     v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
@@ -77,7 +76,7 @@ fn assert_optimization_block(r: &Value, alg: &str, seed: u64, stop: &str) {
 
 #[test]
 fn same_seed_same_surface_whatever_the_thread_count_and_seeds_differ() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     for (alg, its) in SMALL {
         let (one, r1) = small_run(dir.path(), "t1", alg, its, "1", "1");
         let (two, r2) = small_run(dir.path(), "t2", alg, its, "1", "2");
@@ -106,7 +105,7 @@ fn same_seed_same_surface_whatever_the_thread_count_and_seeds_differ() {
 
 #[test]
 fn bad_thread_counts_are_clear_errors() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let o = hullskin(dir.path(), &["fit", "--threads", "0"]);
     let (_, err) = text(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
@@ -120,7 +119,7 @@ fn bad_thread_counts_are_clear_errors() {
 
 #[test]
 fn lm_beats_the_plain_approximation_and_reports_its_run() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let o = hullskin(dir.path(), &["fit", "--method", "approx", "-o", "approx"]);
     assert!(o.status.success(), "{:?}", text(&o));
     let o = hullskin(dir.path(), &["fit", "-o", "lm", "--method", "lm"]);
@@ -158,7 +157,7 @@ fn lm_beats_the_plain_approximation_and_reports_its_run() {
 #[test]
 fn ctrl_c_stops_the_search_and_writes_the_best_surface() {
     use std::time::{Duration, Instant};
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let mut child = Command::new(env!("CARGO_BIN_EXE_hullskin"))
         .args(["fit", "-o", "out", "--method", "gsa", "--iterations", "100000"])
         .current_dir(dir.path())
@@ -197,7 +196,7 @@ fn ctrl_c_stops_the_search_and_writes_the_best_surface() {
 
 #[test]
 fn bad_optimiser_flags_are_clear_errors() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     // (arguments, what the message must name)
     let cases: &[(&[&str], &[&str])] = &[
         (&["--method", "foo"], &["foo", "ga", "pso", "gsa", "lm", "gsa+lm"]),
@@ -225,7 +224,7 @@ fn bad_optimiser_flags_are_clear_errors() {
 
 #[test]
 fn tolerance_picks_a_count_within_it_and_reports_the_search() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let input = testdata("offsets_example.csv");
     let input = input.to_str().expect("utf-8 path");
     // Interpolation (5 x 4 here) then each count: the plain fit's max error at 4 x 4 is

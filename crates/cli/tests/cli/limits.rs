@@ -3,15 +3,13 @@
 //! no output written.
 
 use std::fs;
-use std::time::Instant;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 /// Run `args` in a fresh directory; assert a refusal whose message contains `needle`, and that
 /// no output directory was made.
 fn refused(args: &[&str], setup: impl FnOnce(&std::path::Path), needle: &str) {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     setup(dir.path());
     let o = hullskin(dir.path(), args);
     let (out, err) = text(&o);
@@ -22,16 +20,15 @@ fn refused(args: &[&str], setup: impl FnOnce(&std::path::Path), needle: &str) {
 }
 
 #[test]
-fn an_offsets_file_above_the_size_cap_is_refused_without_reading_it() {
-    // A sparse 300 MiB file: refused from its length, in well under a second (reading and
-    // parsing it would take far longer in a debug build).
-    let start = Instant::now();
+fn an_offsets_file_above_the_size_cap_is_refused() {
+    // A sparse 300 MiB file, refused from its length (that the length alone refuses it, before
+    // any read, is `hull::limits`' unit test `large_files_are_refused_before_reading`; a wall
+    // time asserted here failed on a loaded machine, 6.7 s against 5).
     refused(
         &["fit", "big.csv", "-o", "out"],
         |d| fs::File::create(d.join("big.csv")).expect("create").set_len(300 << 20).expect("sparse"),
         "big.csv: 314,572,800 bytes exceed the cap of 268,435,456 (expected an offsets file of at most 256 MiB",
     );
-    assert!(start.elapsed().as_secs_f64() < 5.0, "took {:?}", start.elapsed());
 }
 
 #[test]
@@ -52,7 +49,7 @@ fn control_points_and_optimiser_sizes_above_the_caps_are_refused() {
 fn a_binary_stl_claiming_billions_of_triangles_is_refused_from_its_header() {
     // 84 bytes claiming 4,000,000,000 triangles (200 GB of records): refused by the size check
     // before any triangle is allocated.
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let mut stl = vec![0u8; 80];
     stl.extend_from_slice(&4_000_000_000u32.to_le_bytes());
     fs::write(dir.path().join("hull.stl"), &stl).expect("write");

@@ -5,14 +5,13 @@
 //! else `.venv` made by `tools/setup-python.sh` (run by the test itself when needed). If that
 //! fails the tests fail (the check cannot vanish silently) unless `HULLSKIN_SKIP_OCCT=1`.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::browser::workspace_root;
-use common::python::tools_python;
-use common::surfaces::{polynomial, quarter_cylinder, rational_bicubic, samples};
+use crate::common::browser::workspace_root;
+use crate::common::python::tools_python;
+use crate::common::surfaces::{polynomial, rational_bicubic, samples};
+use nurbs::fixtures::quarter_cylinder;
 
 use hull::export::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
 use nurbs::NurbsSurface;

@@ -1,11 +1,16 @@
-//! Helpers shared by the CLI integration test binaries (each uses a subset of them).
-#![allow(dead_code)]
+//! Helpers shared by the CLI tests: run the binary, find `testdata/`, make a scratch directory.
 
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use serde_json::Value;
+
+/// A fresh scratch directory for one test, removed when dropped (`hullskin-test-` in the
+/// system's temporary directory).
+pub fn temp_dir() -> tempfile::TempDir {
+    tempfile::Builder::new().prefix("hullskin-test-").tempdir().expect("temp dir")
+}
 
 /// Run the `hullskin` binary in `dir` with extra environment variables.
 pub fn hullskin_env(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Output {

@@ -3,12 +3,11 @@
 
 use std::fs;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 #[test]
 fn no_arguments_fits_the_builtin_sample_and_prints_a_table() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let o = hullskin(dir.path(), &[]);
     let (out, err) = text(&o);
     assert!(o.status.success(), "stdout {out}\nstderr {err}");
@@ -21,7 +20,7 @@ fn no_arguments_fits_the_builtin_sample_and_prints_a_table() {
 
 #[test]
 fn report_json_has_the_stable_fields() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let input = testdata("sections_example.csv");
     let o = hullskin(dir.path(), &["fit", input.to_str().expect("utf-8 path"), "-o", "out", "--method", "interp"]);
     assert!(o.status.success(), "{:?}", text(&o));
@@ -43,7 +42,7 @@ fn report_json_has_the_stable_fields() {
 
 #[test]
 fn units_reach_the_exports() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let input = testdata("offsets_example.csv");
     let o = hullskin(dir.path(), &["fit", input.to_str().expect("utf-8"), "-o", "mm", "--units", "mm"]);
     assert!(o.status.success(), "{:?}", text(&o));
@@ -74,7 +73,7 @@ const BAD: &[(&str, &str, &[&str])] = &[
 
 #[test]
 fn bad_input_is_reported_with_its_place_and_a_nonzero_exit() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     for (name, content, needles) in BAD {
         let path = dir.path().join(format!("{name}.csv"));
         fs::write(&path, content).expect("write");
@@ -92,7 +91,7 @@ fn bad_input_is_reported_with_its_place_and_a_nonzero_exit() {
 
 #[test]
 fn missing_file_and_bad_flags_are_clear_errors() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let o = hullskin(dir.path(), &["fit", "no_such_file.csv"]);
     let (_, err) = text(&o);
     assert_eq!(o.status.code(), Some(2));
@@ -110,7 +109,7 @@ fn missing_file_and_bad_flags_are_clear_errors() {
 
 #[test]
 fn a_failed_run_leaves_earlier_results_intact() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let o = hullskin(dir.path(), &["fit", "-o", "out"]);
     assert!(o.status.success());
     let before: Vec<Vec<u8>> = ["surface.igs", "surface.json", "report.json"]
@@ -135,7 +134,7 @@ fn a_failed_run_leaves_earlier_results_intact() {
 /// within y <= B/2 and z >= the keel, where the plain fit's net rings past both.
 #[test]
 fn auto_flats_keeps_the_cargo_ship_inside_its_flats() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let input = testdata("cargo116_offsets.csv");
     let input = input.to_str().expect("utf-8 path");
     let table = fs::read_to_string(input).expect("read");
@@ -178,7 +177,7 @@ fn auto_flats_keeps_the_cargo_ship_inside_its_flats() {
 /// fold is gone.
 #[test]
 fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let input = testdata("gunnerus_offsets.csv");
     let input = input.to_str().expect("utf-8 path");
     let o = hullskin(dir.path(), &["fit", input, "--method", "approx", "--held-out", "0", "-o", "auto"]);
@@ -232,7 +231,7 @@ fn a_folded_surface_is_reported_with_its_band_and_the_cure() {
 
 #[test]
 fn fit_reports_the_held_out_error_beside_the_error_at_the_offsets() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let o = hullskin(dir.path(), &["fit", "-o", "out"]);
     let (out, err) = text(&o);
     assert!(o.status.success(), "stdout {out}\nstderr {err}");
@@ -275,7 +274,7 @@ fn fit_reports_the_held_out_error_beside_the_error_at_the_offsets() {
 /// `validity`; the Wigley hull's list is there and empty.
 #[test]
 fn every_validity_finding_is_warned_of_and_recorded() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let input = testdata("cargo116_offsets.csv");
     // The flats' refit as it was (not held within the rest of the envelope).
     let args = [
@@ -322,7 +321,7 @@ fn every_validity_finding_is_warned_of_and_recorded() {
 /// `--fair 0` is the plain least squares (no fairing block in report.json).
 #[test]
 fn fair_takes_auto_zero_or_a_positive_weight_and_refuses_the_rest() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     for bad in ["-1", "nan", "inf", "smooth"] {
         let out = format!("bad{bad}");
         let o = hullskin(dir.path(), &["fit", "--fair", bad, "--held-out", "0", "-o", &out]);
@@ -346,7 +345,7 @@ fn fair_takes_auto_zero_or_a_positive_weight_and_refuses_the_rest() {
 /// content, for scripts), and nothing else there; the table is the default.
 #[test]
 fn fit_json_prints_the_report_on_standard_output() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let o = hullskin(dir.path(), &["fit", "--json", "--held-out", "0", "-o", "j"]);
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}\n{err}");
@@ -359,7 +358,7 @@ fn fit_json_prints_the_report_on_standard_output() {
 /// is the one without it.
 #[test]
 fn flags_that_do_not_apply_to_the_input_say_so() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let input = testdata("sections_example.csv");
     let input = input.to_str().expect("utf-8 path");
     let o = hullskin(dir.path(), &["fit", input, "--lpp", "100", "--held-out", "0", "-o", "a"]);
@@ -382,7 +381,7 @@ fn flags_that_do_not_apply_to_the_input_say_so() {
 /// the fix.
 #[test]
 fn fit_measures_a_given_surface_against_offsets() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let d = dir.path();
     let o = hullskin(d, &["fit", "--held-out", "0", "-o", "F"]);
     assert!(o.status.success(), "{:?}", text(&o));

@@ -6,8 +6,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 const METHODS: [&str; 7] = ["interp", "approx", "ga", "pso", "gsa", "lm", "gsa+lm"];
 /// The rows of `--fair auto` after them (`hull::FAIR_ROWS`).
@@ -110,7 +109,7 @@ fn check_comparison(json: &Value, md: &str, stdout: &str) {
 
 #[test]
 fn compare_on_the_builtin_sample_has_every_method() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     // Fewer control points than the default 6x19 keep the LM polish of gsa+lm (its own
     // iteration cap) short in a debug build.
     let (json, md, out) = compare(dir.path(), None, &["--ctrl", "5,10"]);
@@ -143,7 +142,7 @@ fn compare_on_the_builtin_sample_has_every_method() {
 
 #[test]
 fn compare_on_a_small_offset_table() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let (json, md, out) = compare(dir.path(), Some(&testdata("offsets_example.csv")), &[]);
     assert_eq!(json["input"]["points"], 19);
     // The default control points: three quarters of 5 waterlines and of 4 stations, at least
@@ -154,7 +153,7 @@ fn compare_on_a_small_offset_table() {
 
 #[test]
 fn compare_with_impossible_control_points_writes_nothing() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let o = hullskin(dir.path(), &["compare", "-o", "cmp", "--ctrl", "9,10"]);
     let (out, err) = text(&o);
     assert_eq!(o.status.code(), Some(2), "stdout {out}\nstderr {err}");

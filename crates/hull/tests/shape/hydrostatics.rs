@@ -4,8 +4,6 @@
 
 use std::path::Path;
 
-mod common;
-
 use hull::{
     fit_offsets, read_offsets, FitConfig, FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsRow,
     Perpendiculars, Units, HYDROSTATICS_COLUMNS,
@@ -21,9 +19,9 @@ fn testdata(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
 }
 
-/// The Wigley hull as an exact degree (2, 2) Bezier patch ([`common::surfaces::wigley_patch`]).
+/// The Wigley hull as an exact degree (2, 2) Bezier patch ([`crate::common::surfaces::wigley_patch`]).
 fn wigley_patch() -> NurbsSurface {
-    common::surfaces::wigley_patch(L, B, T)
+    crate::common::surfaces::wigley_patch(L, B, T)
 }
 
 /// The Wigley hull's figures at draft `t <= T`, closed forms (derived in the comments). With

@@ -9,6 +9,7 @@
 
 use curvo::prelude::{NurbsCurve3D, NurbsSurface3D, UVDirection};
 use nalgebra::Point4;
+use nurbs::fixtures::{arb_curve, arb_surface, clamped, interior_knots};
 use nurbs::{Homogeneous, KnotVector, NurbsCurve, NurbsSurface, Vec3};
 use proptest::prelude::*;
 
@@ -47,57 +48,6 @@ fn curvo_surface(s: &NurbsSurface) -> NurbsSurface3D<f64> {
         s.knots_v().as_slice().to_vec(),
         net,
     )
-}
-
-/// Interior knots in (0, 1), sorted, each value at most `p` times; partly from a coarse grid
-/// so that repeated knots (and parameters exactly on them) occur often.
-fn interior_knots(p: usize, max: usize) -> impl Strategy<Value = Vec<f64>> {
-    prop::collection::vec(prop_oneof![(1u32..10).prop_map(|k| f64::from(k) / 10.0), 0.001f64..0.999], 0..max).prop_map(
-        move |mut v| {
-            v.sort_by(f64::total_cmp);
-            let mut out: Vec<f64> = Vec::new();
-            for x in v {
-                if out.iter().filter(|&&y| y == x).count() < p {
-                    out.push(x);
-                }
-            }
-            out
-        },
-    )
-}
-
-fn clamped(p: usize, interior: &[f64]) -> KnotVector {
-    let mut k = vec![0.0; p + 1];
-    k.extend_from_slice(interior);
-    k.extend(std::iter::repeat_n(1.0, p + 1));
-    KnotVector::try_new(p, k).expect("clamped by construction")
-}
-
-fn homogeneous_points(n: usize) -> impl Strategy<Value = Vec<Homogeneous>> {
-    prop::collection::vec((-10.0f64..10.0, -10.0f64..10.0, -10.0f64..10.0, 0.2f64..5.0), n)
-        .prop_map(|v| v.into_iter().map(|(x, y, z, w)| [x * w, y * w, z * w, w]).collect())
-}
-
-fn arb_curve() -> impl Strategy<Value = NurbsCurve> {
-    (1usize..=5)
-        .prop_flat_map(|p| (Just(p), interior_knots(p, 9)))
-        .prop_flat_map(|(p, interior)| {
-            let kv = clamped(p, &interior);
-            let n = kv.num_basis();
-            (Just(kv), homogeneous_points(n))
-        })
-        .prop_map(|(kv, cw)| NurbsCurve::try_from_homogeneous(kv, cw).expect("valid by construction"))
-}
-
-fn arb_surface() -> impl Strategy<Value = NurbsSurface> {
-    (1usize..=4, 1usize..=4)
-        .prop_flat_map(|(p, q)| (Just(p), Just(q), interior_knots(p, 6), interior_knots(q, 6)))
-        .prop_flat_map(|(p, q, iu, iv)| {
-            let (ku, kv) = (clamped(p, &iu), clamped(q, &iv));
-            let n = ku.num_basis() * kv.num_basis();
-            (Just(ku), Just(kv), homogeneous_points(n))
-        })
-        .prop_map(|(ku, kv, cw)| NurbsSurface::try_from_homogeneous(ku, kv, cw).expect("valid by construction"))
 }
 
 /// Parameters to compare at: a regular grid, the knots themselves and random values.

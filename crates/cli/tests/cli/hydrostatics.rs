@@ -7,8 +7,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 /// The column keys, in order, with the perpendiculars known (the sample's, or `--lpp`).
 const KEYS: [&str; 26] = [
@@ -74,7 +73,7 @@ fn csv_rows_of(csv: &str, keys: &[&str]) -> Vec<Vec<f64>> {
 
 #[test]
 fn sample_at_its_draft_has_todds_block_coefficient_in_json_and_csv() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let out = run_ok(dir.path(), &["hydrostatics", "--draft", "6.5", "--format", "json", "-o", "h.json"]);
     assert!(out.contains("wrote h.json"), "{out}");
     let doc = read_json(&dir.path().join("h.json"));
@@ -125,7 +124,7 @@ fn sample_at_its_draft_has_todds_block_coefficient_in_json_and_csv() {
 
 #[test]
 fn a_surface_json_from_fit_gives_the_same_figures_as_fitting_on_the_fly() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     run_ok(dir.path(), &["fit", "-o", "out"]);
     let range = ["--draft", "2", "--to", "6", "--step", "2", "--format", "csv"];
     let json_args = |extra: &[&'static str]| [&["hydrostatics", "out/surface.json"][..], &range, extra].concat();
@@ -165,7 +164,7 @@ fn a_surface_json_from_fit_gives_the_same_figures_as_fitting_on_the_fly() {
 /// their names, by `export` (one surface).
 #[test]
 fn iges_and_step_surfaces_give_the_figures_of_their_surface_json() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let d = dir.path();
     run_ok(d, &["fit", "-o", "out"]);
     let args =
@@ -217,7 +216,7 @@ fn iges_and_step_surfaces_give_the_figures_of_their_surface_json() {
 
 #[test]
 fn text_table_is_aligned_with_units_and_one_line_per_draft() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let out = run_ok(dir.path(), &["hydrostatics", "--draft", "1", "--to", "9", "--step", "1", "--method", "interp"]);
     let lines: Vec<&str> = out.lines().collect();
     assert!(lines[0].contains("Series 60") && lines[0].contains("interp"), "{out}");
@@ -250,7 +249,7 @@ fn text_table_is_aligned_with_units_and_one_line_per_draft() {
 
 #[test]
 fn wigley_offsets_in_feet_give_four_ninths_and_tonnes() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let input = testdata("wigley_offsets.csv");
     let out = run_ok(
         dir.path(),
@@ -275,7 +274,7 @@ fn wigley_offsets_in_feet_give_four_ninths_and_tonnes() {
 
 #[test]
 fn bad_input_is_refused_with_a_message_and_no_panic() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let bad_json = dir.path().join("bad.json");
     fs::write(&bad_json, "{\"format\": \"hullskin-surface\", \"version\": 1}").expect("write");
     let bad = bad_json.to_str().expect("utf-8");

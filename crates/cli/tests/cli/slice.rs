@@ -4,8 +4,7 @@
 
 use std::fs;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 /// The OpenFOAM Wigley mesh (testdata/mesh/wigley.stl.gz): L = 1 m, B = 0.1 m, T = 0.0625 m,
 /// x from -L/2, z = 0 at the waterline; shifted to x from the aft end and z from the keel.
@@ -29,7 +28,7 @@ fn percent_after(text: &str, label: &str) -> f64 {
 
 #[test]
 fn slice_writes_sections_that_fit_reads_and_the_fit_checks_against_the_mesh() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let mesh = testdata("mesh/wigley.stl.gz");
     let mesh = mesh.to_str().expect("utf-8 path");
     let args = ["slice", mesh, "--shift", SHIFT, "--stations", "21", "--points", "12", "--draft", "0.0625"];
@@ -98,7 +97,7 @@ fn slice_writes_sections_that_fit_reads_and_the_fit_checks_against_the_mesh() {
 
 #[test]
 fn bad_meshes_are_refused_naming_the_file_and_the_place() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let mut binary = b"binary hull".to_vec();
     binary.resize(80, b' ');
     binary.extend(1000u32.to_le_bytes());
@@ -122,7 +121,7 @@ fn bad_meshes_are_refused_naming_the_file_and_the_place() {
 
 #[test]
 fn fit_and_hydrostatics_slice_a_mesh_input_with_the_mesh_flags() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let mesh = testdata("mesh/wigley.stl.gz");
     let mesh = mesh.to_str().expect("utf-8 path");
     let flags = ["--shift", SHIFT, "--stations", "15", "--spacing", "uniform", "--points", "10"];
@@ -163,7 +162,7 @@ fn fit_and_hydrostatics_slice_a_mesh_input_with_the_mesh_flags() {
 /// argument parser), and hostile positions or point counts are refused with exit status 2.
 #[test]
 fn stations_at_given_positions_and_hostile_slicing_flags() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let mesh = testdata("mesh/wigley.stl.gz");
     let mesh = mesh.to_str().expect("utf-8 path");
     let o = hullskin(dir.path(), &["slice", mesh, "--shift", SHIFT, "--at", "0.2,0.5,0.8", "-o", "at.csv"]);

@@ -6,7 +6,6 @@ use hull::analysis::{
     bending_energy, curvature_map, cut_surface, cut_surface_many, default_quadrature, fairness_report, gauss_legendre,
     CurvatureField, CurvatureMapOptions, CutCurve, CutOptions, CutPlane, FairnessOptions, PlaneSelection,
 };
-mod common;
 
 use hull::{fit_offsets, series60_sample, FitConfig};
 use nurbs::{KnotVector, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
@@ -28,7 +27,7 @@ const T: f64 = 6.25;
 /// `x = L v`, `z = T u` (equally spaced control points of a linear function), and `y` the
 /// tensor product of the Bernstein coefficients of `g`, `(0, 2, 0)`, and of `h`, `(0, 1, 1)`.
 fn wigley() -> NurbsSurface {
-    common::surfaces::wigley_patch(L, B, T)
+    crate::common::surfaces::wigley_patch(L, B, T)
 }
 
 /// Wigley half-breadth `F(x, z)` and its partial derivatives
@@ -62,20 +61,10 @@ fn half_cylinder(r: f64, len: f64) -> NurbsSurface {
 /// The octant `x, y, z >= 0` of a sphere of radius `r` about the origin, as a surface of
 /// revolution: u along the meridian quarter circle from the equator `(r, 0, 0)` to the pole
 /// `(0, 0, r)` (the edge `u = 1` collapses to the pole), v around z from the xz-plane to the
-/// yz-plane. Rational biquadratic. `S_u x S_v` points into the sphere.
+/// yz-plane. Rational biquadratic. `S_u x S_v` points into the sphere. The kernel's octant
+/// (pole at u = 0) with u reversed: the same numbers, rows in the other order.
 fn sphere_octant(r: f64) -> NurbsSurface {
-    let k = || KnotVector::try_new(2, vec![0., 0., 0., 1., 1., 1.]).expect("valid");
-    let s = std::f64::consts::FRAC_1_SQRT_2;
-    let profile = [(r, 0.0, 1.0), (r, r, s), (0.0, r, 1.0)];
-    let circle = [(1.0, 0.0, 1.0), (1.0, 1.0, s), (0.0, 1.0, 1.0)];
-    let (mut pts, mut w) = (Vec::new(), Vec::new());
-    for (rad, z, wp) in profile {
-        for (cx, cy, wc) in circle {
-            pts.push(Vec3::new(rad * cx, rad * cy, z));
-            w.push(wp * wc);
-        }
-    }
-    NurbsSurface::try_new(k(), k(), &pts, Some(&w)).expect("valid")
+    nurbs::fixtures::sphere_octant(r).reversed_u()
 }
 
 /// A hull-like cubic patch whose first knot span in u is exactly flat at z = 0 (the flat of

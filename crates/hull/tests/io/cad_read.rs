@@ -5,17 +5,16 @@
 //! The Open CASCADE test needs the Python of `tools/requirements.txt` (see
 //! `common::python`); it fails without it unless `HULLSKIN_SKIP_OCCT=1`.
 
-mod common;
-
 use std::path::Path;
 use std::process::Command;
 
-use common::browser::workspace_root;
-use common::python::tools_python;
-use common::surfaces::{polynomial, quarter_cylinder, rational_bicubic, wigley_patch};
+use crate::common::browser::workspace_root;
+use crate::common::python::tools_python;
+use crate::common::surfaces::{polynomial, rational_bicubic, wigley_patch};
 use hull::export::{write_iges, write_step, write_surface_json, IgesMeta, StepMeta};
 use hull::read::cad::{parse_cad_surfaces, CadFormat};
 use hull::{read_cad_surfaces, CadSurfaces, Hydrostatics, HydrostaticsOptions, HydrostaticsRow, Units};
+use nurbs::fixtures::quarter_cylinder;
 use nurbs::{NurbsSurface, Vec3};
 use serde_json::Value;
 

@@ -16,8 +16,7 @@ use std::time::{Duration, Instant};
 
 use serde_json::Value;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 /// Every file of `dir` (not recursive) with its bytes.
 fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
@@ -50,7 +49,7 @@ fn assert_failed(o: &Output, what: &str) {
 
 #[test]
 fn a_failed_fit_or_report_leaves_the_previous_outputs_byte_identical() {
-    let root = tempfile::tempdir().expect("temp dir");
+    let root = temp_dir();
     let dir = root.path();
     let o = hullskin(dir, &["fit", "-o", "out"]);
     assert!(o.status.success(), "{:?}", text(&o));
@@ -141,7 +140,7 @@ fn stopped_run(dir: &Path, args: &[&str], sig: &str) -> Output {
 #[cfg(unix)]
 #[test]
 fn sigint_and_sigterm_stop_the_search_and_write_its_best_surface() {
-    let root = tempfile::tempdir().expect("temp dir");
+    let root = temp_dir();
     let dir = root.path();
     let o = hullskin(dir, &["fit", "--method", "approx", "-o", "approx"]);
     assert!(o.status.success(), "{:?}", text(&o));
@@ -184,7 +183,7 @@ fn sigint_and_sigterm_stop_the_search_and_write_its_best_surface() {
 #[cfg(unix)]
 #[test]
 fn a_second_signal_quits_at_once_leaving_the_old_files_or_the_new_never_a_mix() {
-    let root = tempfile::tempdir().expect("temp dir");
+    let root = temp_dir();
     let dir = root.path();
     let o = hullskin(dir, &["fit", "-o", "out"]);
     assert!(o.status.success(), "{:?}", text(&o));
@@ -222,7 +221,7 @@ fn a_second_signal_quits_at_once_leaving_the_old_files_or_the_new_never_a_mix() 
 #[cfg(unix)]
 #[test]
 fn sigterm_during_an_optimised_report_writes_the_whole_report_of_the_best_surface() {
-    let root = tempfile::tempdir().expect("temp dir");
+    let root = temp_dir();
     let dir = root.path();
     let o = stopped_run(dir, &["report", "-o", "rep", "--method", "ga", "--iterations", "100000"], "TERM");
     let (stdout, err) = text(&o);
@@ -246,7 +245,7 @@ fn sigterm_during_an_optimised_report_writes_the_whole_report_of_the_best_surfac
 #[cfg(unix)]
 #[test]
 fn sigint_during_compare_writes_the_methods_done_before_it() {
-    let root = tempfile::tempdir().expect("temp dir");
+    let root = temp_dir();
     let dir = root.path();
     let o = stopped_run(dir, &["compare", "-o", "cmp", "--iterations", "100000"], "INT");
     let (stdout, err) = text(&o);
@@ -264,7 +263,7 @@ fn sigint_during_compare_writes_the_methods_done_before_it() {
 
 #[test]
 fn a_surface_no_file_may_hold_is_refused_before_any_file_is_created() {
-    let root = tempfile::tempdir().expect("temp dir");
+    let root = temp_dir();
     let dir = root.path();
     let o = hullskin(dir, &["fit", "-o", "out"]);
     assert!(o.status.success(), "{:?}", text(&o));
@@ -296,7 +295,7 @@ fn a_surface_no_file_may_hold_is_refused_before_any_file_is_created() {
 /// exit 0, the files written and whole, no panic.
 #[test]
 fn a_reader_that_goes_away_ends_the_printing_not_the_run() {
-    let dir = tempfile::tempdir().expect("tempdir");
+    let dir = temp_dir();
     let mut child = spawn(dir.path(), &["fit", "--held-out", "0", "-o", "out"]);
     // Close the read end at once: every write to standard output fails with a broken pipe.
     drop(child.stdout.take());
@@ -313,7 +312,7 @@ fn a_reader_that_goes_away_ends_the_printing_not_the_run() {
 #[cfg(target_os = "linux")]
 #[test]
 fn a_full_disk_on_standard_output_is_an_error_not_a_panic() {
-    let dir = tempfile::tempdir().expect("tempdir");
+    let dir = temp_dir();
     let full = fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full on Linux");
     let o = Command::new(env!("CARGO_BIN_EXE_hullskin"))
         .args(["fit", "--held-out", "0", "-o", "out"])

@@ -18,12 +18,8 @@ use hull::export::{polynomial_approximation, read_surface_json, write_surface_js
 use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
 
-mod common;
-use common::*;
-/// The Python of `tools/requirements.txt`: the helper of hull's tests, one for the workspace.
-#[path = "../../hull/tests/common/python.rs"]
-mod python;
-use python::tools_python;
+use crate::common::*;
+use crate::python::tools_python;
 
 fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -119,7 +115,7 @@ fn expected(dir: &Path, name: &str, s: &NurbsSurface, units: &str, extra: Value)
 #[cfg_attr(skip_occt, ignore = "HULLSKIN_SKIP_OCCT=1")]
 fn step_and_iges_exports_are_read_by_occt() {
     let python = tools_python("HULLSKIN_SKIP_OCCT", "Open CASCADE check of the exported STEP and IGES");
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let d = dir.path();
     let (plain, rational) = inputs();
     let (s, _) = surface(plain);
@@ -202,7 +198,7 @@ fn step_and_iges_exports_are_read_by_occt() {
 #[cfg_attr(skip_occt, ignore = "HULLSKIN_SKIP_OCCT=1")]
 fn mirrored_and_converted_exports_are_read_by_occt() {
     let python = tools_python("HULLSKIN_SKIP_OCCT", "Open CASCADE check of the exported STEP and IGES");
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let d = dir.path();
     let (plain, _) = inputs();
     let (s, _) = surface(plain);
@@ -255,7 +251,7 @@ fn read_mesh(python: &str, path: &Path) -> (Vec<Vec3>, usize, Value) {
 #[cfg_attr(skip_mesh, ignore = "HULLSKIN_SKIP_MESH=1")]
 fn mesh_exports_are_read_by_trimesh_and_pygltflib() {
     let python = tools_python("HULLSKIN_SKIP_MESH", "trimesh/pygltflib check of the exported meshes");
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let d = dir.path();
     let (_, rational) = inputs();
     let (r, _) = surface(rational);
@@ -299,7 +295,7 @@ fn mesh_exports_are_read_by_trimesh_and_pygltflib() {
 #[cfg_attr(skip_dxf, ignore = "HULLSKIN_SKIP_DXF=1")]
 fn dxf_export_is_read_by_ezdxf() {
     let python = tools_python("HULLSKIN_SKIP_DXF", "ezdxf check of the exported DXF");
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let d = dir.path();
     let (plain, _) = inputs();
     let (s, _) = surface(plain);
@@ -345,7 +341,7 @@ fn dxf_export_is_read_by_ezdxf() {
 
 #[test]
 fn same_command_same_bytes() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let d = dir.path();
     let (plain, _) = inputs();
     let input = plain.to_str().expect("utf-8 path");
@@ -357,7 +353,7 @@ fn same_command_same_bytes() {
     }
     // The timestamp reaches the headers; SOURCE_DATE_EPOCH stands in for the flag.
     assert!(fs::read_to_string(d.join("a.stp")).expect("read").contains("'1970-01-02T00:00:00'"));
-    let other = tempfile::tempdir().expect("temp dir");
+    let other = temp_dir();
     let o = hullskin_env(other.path(), &["export", input, "-o", "a.stp"], &[("SOURCE_DATE_EPOCH", "86400")]);
     assert!(o.status.success());
     let same = fs::read(d.join("a.stp")).expect("a") == fs::read(other.path().join("a.stp")).expect("b");
@@ -367,7 +363,7 @@ fn same_command_same_bytes() {
 /// Issue 12, item 7: `export --json` says what was written, for scripts.
 #[test]
 fn json_summary_names_the_file_format_units_and_size() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let d = dir.path();
     let (plain, rational) = inputs();
     let (s, _) = surface(plain);
@@ -394,7 +390,7 @@ fn json_summary_names_the_file_format_units_and_size() {
 
 #[test]
 fn bad_requests_fail_with_a_message_and_write_nothing() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = temp_dir();
     let d = dir.path();
     let (plain, _) = inputs();
     let input = plain.to_str().expect("utf-8 path");
