@@ -40,10 +40,9 @@ use crate::render::{self, RasterOptions};
 use crate::viewer::{write_viewer_html, ViewerOptions};
 use crate::ViewError;
 use hull::{
-    check_fit_validity, check_validity, curvature_map, fairness_report, measure_fit_error, Comparison, CurvatureField,
-    CurvatureMap, CurvatureMapOptions, CurvatureSummary, Envelope, FairnessOptions, FairnessReport, Finding, FitError,
-    FitOutcome, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, Offsets, OptimReport, Perpendiculars, Units,
-    SEA_WATER_DENSITY,
+    check_fit_validity, check_validity, fairness_report, measure_fit_error, Comparison, CurvatureField, CurvatureMap,
+    CurvatureSummary, Envelope, FairnessOptions, FairnessReport, Finding, FitError, FitOutcome, Hydrostatics,
+    HydrostaticsOptions, HydrostaticsTable, Offsets, OptimReport, Perpendiculars, Units, SEA_WATER_DENSITY,
 };
 
 /// The files of a report, in the order [`ReportFiles::files`] lists them.
@@ -133,7 +132,7 @@ pub struct ReportOptions {
     /// Drafts of the range tabulated without a design draft (at least 1).
     pub range_drafts: usize,
     /// The grid of the curvature summary.
-    pub curvature: CurvatureMapOptions,
+    pub curvature: hull::CurvatureMapOptions,
     /// Stations and waterlines of the fairness measures.
     pub fairness: FairnessOptions,
     /// Width of the curvature pictures, pixels.
@@ -157,7 +156,7 @@ impl Default for ReportOptions {
         ReportOptions {
             density: SEA_WATER_DENSITY,
             range_drafts: 10,
-            curvature: CurvatureMapOptions::default(),
+            curvature: hull::CurvatureMapOptions::default(),
             fairness: FairnessOptions::default(),
             curvature_width_px: 1200,
             curvature_samples: 160,
@@ -292,7 +291,7 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
 
     // Figures.
     let (hydrostatics, drafts) = hydrostatics_table(inputs, options)?;
-    let map = curvature_map(surface, &options.curvature);
+    let map = hull::curvature_map(surface, &options.curvature);
     let convex_sign = convex_sign(&map);
     let curvature = map.summary();
     let fairness = fairness_report(surface, &options.fairness);
