@@ -11,10 +11,15 @@
 //! regression test can check the message names the source and a place. The contract fuzzed:
 //! any input gives `Ok` or `Err`; never a panic, a hang or an unbounded allocation.
 
-use hull::digitize::{self, CurveOrder, DigitizeOptions, DrawingScale, StationIds, StationX};
-use hull::mesh::{self, MeshReadOptions, SliceOptions, Spacing, Stations};
-use hull::read::{self, InputFormat, MainDimensions, ReadOptions, SuspiciousPolicy};
-use hull::{HullError, Offsets, Units};
+use hull::{
+    detect_format, digitize, is_freeship_header, is_offset_json, looks_like_binary_stl, mesh_hydrostatics,
+    parse_drawing, parse_dxf, parse_freeship_curves, parse_freeship_offsets, parse_iges, parse_json_table,
+    parse_long_csv, parse_mesh, parse_obj, parse_offset_table, parse_offsets_with, parse_point_cloud,
+    parse_sections_csv, parse_series60_table, parse_step, parse_stl, parse_svg, slice_mesh, starts_with_solid,
+    CadFormat, CadSurfaces, CurveOrder, DigitizeOptions, DrawingScale, HullError, InputFormat, MainDimensions,
+    MeshFormat, MeshReadOptions, Offsets, ReadOptions, Sketch, SliceOptions, Spacing, StationIds, StationX, Stations,
+    SuspiciousPolicy, Units,
+};
 use nurbs::{ProjectionOptions, SurfaceProjector, Vec3};
 
 /// A fuzz target: the input bytes and the name of the source for messages; the parse error,
@@ -73,14 +78,14 @@ pub fn decode(data: &[u8], source: &str) -> Result<(), String> {
     hull::decode(data, source).map(|_| ()).map_err(|e| message(&e))
 }
 
-/// `hull::read::parse_offsets_with` with format detection, as `hullskin fit` reads a file.
+/// `hull::parse_offsets_with` with format detection, as `hullskin fit` reads a file.
 pub fn read_detect(data: &[u8], source: &str) -> Result<(), String> {
     let text = hull::decode(data, source).map_err(|e| message(&e))?;
-    let _ = read::detect_format(text);
+    let _ = detect_format(text);
     let mut first = Ok(());
     for min_points in [0, 4] {
         let options = ReadOptions { min_points, ..ReadOptions::default() };
-        match read::parse_offsets_with(text, source, &options) {
+        match parse_offsets_with(text, source, &options) {
             Ok(o) => {
                 use_offsets(&o.offsets);
                 let _ = o.messages();
@@ -92,28 +97,28 @@ pub fn read_detect(data: &[u8], source: &str) -> Result<(), String> {
     first
 }
 
-/// `hull::read::parse_sections_csv`.
+/// `hull::parse_sections_csv`.
 pub fn read_sections_csv(data: &[u8], source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
-    let o = read::parse_sections_csv(text, source, Units::Metre).map_err(|e| message(&e))?;
+    let o = parse_sections_csv(text, source, Units::Metre).map_err(|e| message(&e))?;
     use_offsets(&o);
     Ok(())
 }
 
-/// `hull::read::parse_offset_table`.
+/// `hull::parse_offset_table`.
 pub fn read_offset_table(data: &[u8], source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
-    let o = read::parse_offset_table(text, source, Units::Foot).map_err(|e| message(&e))?;
+    let o = parse_offset_table(text, source, Units::Foot).map_err(|e| message(&e))?;
     use_offsets(&o);
     Ok(())
 }
 
-/// `hull::read::parse_series60_table`, with each policy for suspicious values.
+/// `hull::parse_series60_table`, with each policy for suspicious values.
 pub fn read_series60_table(data: &[u8], source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
     let mut first = Ok(());
     for policy in [SuspiciousPolicy::Interpolate, SuspiciousPolicy::Omit, SuspiciousPolicy::Refuse] {
-        match read::parse_series60_table(text, source, MainDimensions::SERIES60_CB060, Units::Metre, policy) {
+        match parse_series60_table(text, source, MainDimensions::SERIES60_CB060, Units::Metre, policy) {
             Ok(t) => use_offsets(&t.offsets),
             Err(e) if policy == SuspiciousPolicy::Interpolate => first = Err(message(&e)),
             Err(_) => {}
@@ -122,121 +127,121 @@ pub fn read_series60_table(data: &[u8], source: &str) -> Result<(), String> {
     first
 }
 
-/// `hull::read::long_csv::parse_long_csv`.
+/// `hull::parse_long_csv`.
 pub fn read_long_csv(data: &[u8], source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
-    let o = read::long_csv::parse_long_csv(text, source, &ReadOptions::default()).map_err(|e| message(&e))?;
+    let o = parse_long_csv(text, source, &ReadOptions::default()).map_err(|e| message(&e))?;
     use_offsets(&o.offsets);
     Ok(())
 }
 
-/// `hull::read::json_table::parse_json_table`, without and with main dimensions (an OpenHull
+/// `hull::parse_json_table`, without and with main dimensions (an OpenHull
 /// table needs them for its station spacing).
 pub fn read_json_table(data: &[u8], source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
-    let _ = read::json_table::is_offset_json(text);
+    let _ = is_offset_json(text);
     let with_dims = ReadOptions {
         dimensions: Some(MainDimensions { lpp: 100.0, beam: 10.0, draft: 5.0 }),
         ..ReadOptions::default()
     };
-    if let Ok(o) = read::json_table::parse_json_table(text, source, &with_dims, None) {
+    if let Ok(o) = parse_json_table(text, source, &with_dims, None) {
         use_offsets(&o.offsets);
     }
-    let o = read::json_table::parse_json_table(text, source, &ReadOptions::default(), None).map_err(|e| message(&e))?;
+    let o = parse_json_table(text, source, &ReadOptions::default(), None).map_err(|e| message(&e))?;
     use_offsets(&o.offsets);
     Ok(())
 }
 
-/// `hull::read::point_cloud::parse_point_cloud`.
+/// `hull::parse_point_cloud`.
 pub fn read_point_cloud(data: &[u8], source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
-    let o = read::point_cloud::parse_point_cloud(text, source, Units::Metre).map_err(|e| message(&e))?;
+    let o = parse_point_cloud(text, source, Units::Metre).map_err(|e| message(&e))?;
     use_offsets(&o.offsets);
     Ok(())
 }
 
-/// `hull::read::freeship::parse_freeship_offsets`, and the format's header test.
+/// `hull::parse_freeship_offsets`, and the format's header test.
 pub fn read_freeship_offsets(data: &[u8], source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
     for line in text.lines().take(4) {
-        let _ = read::freeship::is_header(line);
+        let _ = is_freeship_header(line);
     }
     let options = ReadOptions { format: Some(InputFormat::FreeshipOffsets), ..ReadOptions::default() };
-    let o = read::freeship::parse_freeship_offsets(text, source, &options).map_err(|e| message(&e))?;
+    let o = parse_freeship_offsets(text, source, &options).map_err(|e| message(&e))?;
     use_offsets(&o.offsets);
     Ok(())
 }
 
-/// `hull::read::freeship::parse_freeship_curves`.
+/// `hull::parse_freeship_curves`.
 pub fn read_freeship_curves(data: &[u8], source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
-    let o = read::freeship::parse_freeship_curves(text, source, Units::Metre).map_err(|e| message(&e))?;
+    let o = parse_freeship_curves(text, source, Units::Metre).map_err(|e| message(&e))?;
     use_offsets(&o.offsets);
     Ok(())
 }
 
-/// `hull::mesh::stl::parse_stl` (ASCII and binary).
+/// `hull::parse_stl` (ASCII and binary).
 pub fn mesh_stl(data: &[u8], source: &str) -> Result<(), String> {
-    let _ = (mesh::stl::looks_binary(data), mesh::stl::starts_with_solid(data));
-    mesh::stl::parse_stl(data, source).map(|_| ()).map_err(|e| message(&e))
+    let _ = (looks_like_binary_stl(data), starts_with_solid(data));
+    parse_stl(data, source).map(|_| ()).map_err(|e| message(&e))
 }
 
-/// `hull::mesh::obj::parse_obj`.
+/// `hull::parse_obj`.
 pub fn mesh_obj(data: &[u8], source: &str) -> Result<(), String> {
-    mesh::obj::parse_obj(data, source).map(|_| ()).map_err(|e| message(&e))
+    parse_obj(data, source).map(|_| ()).map_err(|e| message(&e))
 }
 
-/// `hull::mesh::parse_mesh` (format sniffed, gzip inflated), then what `hullskin slice` does
+/// `hull::parse_mesh` (format sniffed, gzip inflated), then what `hullskin slice` does
 /// with the mesh: slicing at a few stations, edge counts, hydrostatics at mid height.
 pub fn mesh_parse_slice(data: &[u8], source: &str) -> Result<(), String> {
-    let _ = mesh::MeshFormat::sniff(data);
-    let m = mesh::parse_mesh(data, source, None, &MeshReadOptions::default()).map_err(|e| message(&e))?;
+    let _ = MeshFormat::sniff(data);
+    let m = parse_mesh(data, source, None, &MeshReadOptions::default()).map_err(|e| message(&e))?;
     let _ = m.edge_counts();
     let options = SliceOptions {
         stations: Stations::Count { n: 5, spacing: Spacing::Cosine },
         points: 8,
         ..SliceOptions::default()
     };
-    if let Ok(out) = mesh::slice_mesh(&m, &options) {
+    if let Ok(out) = slice_mesh(&m, &options) {
         use_offsets(&out.offsets);
         let _ = out.warnings();
     }
     let options = SliceOptions { max_z: Some(0.5), points: 3, ..options };
-    let _ = mesh::slice_mesh(&m, &options);
+    let _ = slice_mesh(&m, &options);
     if let Some((lo, hi)) = m.bounds() {
-        let _ = mesh::mesh_hydrostatics(&m, 0.5 * (lo.z + hi.z));
+        let _ = mesh_hydrostatics(&m, 0.5 * (lo.z + hi.z));
     }
     Ok(())
 }
 
-/// `hull::digitize::parse_dxf` (text read lossily, as `parse_drawing` does).
+/// `hull::parse_dxf` (text read lossily, as `parse_drawing` does).
 pub fn drawing_dxf(data: &[u8], source: &str) -> Result<(), String> {
     let text = String::from_utf8_lossy(data);
-    let sketch = digitize::parse_dxf(&text, source).map_err(|e| message(&e))?;
+    let sketch = parse_dxf(&text, source).map_err(|e| message(&e))?;
     use_sketch(&sketch);
     Ok(())
 }
 
-/// `hull::digitize::parse_svg`.
+/// `hull::parse_svg`.
 pub fn drawing_svg(data: &[u8], source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
-    let sketch = digitize::parse_svg(text, source).map_err(|e| message(&e))?;
+    let sketch = parse_svg(text, source).map_err(|e| message(&e))?;
     use_sketch(&sketch);
     Ok(())
 }
 
-/// `hull::digitize::parse_drawing` (DXF or SVG by content), then `digitize` as
+/// `hull::parse_drawing` (DXF or SVG by content), then `digitize` as
 /// `hullskin digitize` runs it: stations by body-plan order, by label, and by layer.
 pub fn drawing_digitize(data: &[u8], source: &str) -> Result<(), String> {
-    let sketch = digitize::parse_drawing(data, source).map_err(|e| message(&e))?;
+    let sketch = parse_drawing(data, source).map_err(|e| message(&e))?;
     use_sketch(&sketch);
     let spacing = StationX::Spacing { origin: 0.0, spacing: 1.0 };
     let ids = [StationIds::Order(CurveOrder::BodyPlan), StationIds::Labels, StationIds::Layers("*".into())];
     for stations in ids {
         let mut o = DigitizeOptions::new(DrawingScale::UnitsPerModelUnit(10.0), [0.0, 0.0], stations, spacing.clone());
-        let _ = digitize::digitize(&sketch, &o);
+        let _ = digitize(&sketch, &o);
         o.points = Some(5);
-        let _ = digitize::digitize(&sketch, &o);
+        let _ = digitize(&sketch, &o);
     }
     let mut o = DigitizeOptions::new(
         DrawingScale::Ratio { paper: 1.0, model: 50.0 },
@@ -245,42 +250,42 @@ pub fn drawing_digitize(data: &[u8], source: &str) -> Result<(), String> {
         StationX::List(vec![0.0, 1.0, 2.0]),
     );
     o.drawing_unit_mm = Some(1.0);
-    let _ = digitize::digitize(&sketch, &o);
+    let _ = digitize(&sketch, &o);
     Ok(())
 }
 
 /// A drawing read: its curves flattened, as `digitize` does.
-fn use_sketch(sketch: &digitize::Sketch) {
+fn use_sketch(sketch: &Sketch) {
     for c in &sketch.curves {
         let _ = c.points(1e-3);
         let _ = c.describe();
     }
 }
 
-/// `hull::export::read_surface_json`, then the surface used as `hullskin hydrostatics` and
+/// `hull::read_surface_json`, then the surface used as `hullskin hydrostatics` and
 /// `report` use it ([`use_surface`]).
 pub fn surface_json(data: &[u8], _source: &str) -> Result<(), String> {
     let Some(text) = text(data) else { return Ok(()) };
-    let (s, units) = hull::export::read_surface_json(text).map_err(|e| e.to_string())?;
+    let (s, units) = hull::read_surface_json(text).map_err(|e| e.to_string())?;
     let _ = units.parse::<Units>();
     use_surface(&s);
     Ok(())
 }
 
-/// `hull::read::iges::parse_iges` in the file's unit and in metres, then each surface used as
+/// `hull::parse_iges` in the file's unit and in metres, then each surface used as
 /// [`surface_json`] uses it.
 pub fn read_iges(data: &[u8], source: &str) -> Result<(), String> {
-    let _ = read::cad::CadFormat::sniff(data);
-    cad(read::iges::parse_iges, data, source)
+    let _ = CadFormat::sniff(data);
+    cad(parse_iges, data, source)
 }
 
-/// `hull::read::step::parse_step`, as [`read_iges`].
+/// `hull::parse_step`, as [`read_iges`].
 pub fn read_step(data: &[u8], source: &str) -> Result<(), String> {
-    let _ = read::cad::CadFormat::sniff(data);
-    cad(read::step::parse_step, data, source)
+    let _ = CadFormat::sniff(data);
+    cad(parse_step, data, source)
 }
 
-type CadParser = fn(&[u8], &str, Option<Units>) -> Result<read::cad::CadSurfaces, HullError>;
+type CadParser = fn(&[u8], &str, Option<Units>) -> Result<CadSurfaces, HullError>;
 
 fn cad(parse: CadParser, data: &[u8], source: &str) -> Result<(), String> {
     let _ = parse(data, source, Some(Units::Metre));

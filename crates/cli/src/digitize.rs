@@ -6,9 +6,10 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
-use hull::digitize::{digitize, read_drawing, CurveOrder, DigitizeOptions, DrawingScale, Side, StationIds, StationX};
-use hull::float::Notation;
-use hull::{write_atomic, write_sections_csv, Units};
+use hull::{
+    digitize, read_drawing, write_atomic, write_sections_csv, CurveOrder, DigitizeOptions, DrawingScale, Notation,
+    Side, StationIds, StationX, Units,
+};
 
 use crate::parse::parse_units;
 use crate::stdout::outln;

@@ -9,13 +9,11 @@ use std::sync::LazyLock;
 use anyhow::Context;
 use clap::builder::PossibleValue;
 use clap::{Args, ValueEnum};
-use hull::export::{
+use hull::{
     greville_v, mesh_name, obj_comments, polynomial_approximation, section_curves, section_parameters, stl_header,
-    tessellate, write_glb, write_iges, write_iges_model, write_step, IgesMeta, StepMeta, TessellationOptions,
+    tessellate, write_glb, write_iges, write_iges_model, write_obj, write_step, write_stl_ascii, write_stl_binary,
+    ExportFormat, FitMethod, IgesMeta, InputNames, Offsets, OptimSettings, StepMeta, TessellationOptions,
 };
-use hull::mesh::{write_obj, write_stl_ascii, write_stl_binary};
-use hull::optimize::OptimSettings;
-use hull::{ExportFormat, FitMethod, InputNames, Offsets};
 use nurbs::Vec3;
 use serde_json::json;
 use view::{lines_3d, write_dxf_3d_lines, LinesPlanOptions};
@@ -114,7 +112,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
     };
     // --mirror: meshes and DXF mirror their own output; the exchange formats one surface.
     let surface = if args.mirror && matches!(format.family(), "STEP" | "IGES") {
-        hull::export::mirrored_full_hull(&surface).with_context(|| format!("cannot mirror {source}"))?
+        hull::mirrored_full_hull(&surface).with_context(|| format!("cannot mirror {source}"))?
     } else {
         surface
     };
@@ -124,7 +122,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
     let file_name = out.file_name().map_or_else(|| "hull".into(), |n| n.to_string_lossy().into_owned());
     let time = unix_time(args);
     let iges_meta = || {
-        let mut m = IgesMeta::new(units.into(), &file_name, &hull::export::iges_timestamp(time));
+        let mut m = IgesMeta::new(units.into(), &file_name, &hull::iges_timestamp(time));
         m.product_id = format!("hull surface ({source})");
         m
     };
@@ -134,7 +132,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<ExitCode> {
     let unit = units.symbol();
     let (note, details) = match format {
         ExportFormat::Step => {
-            let mut meta = StepMeta::new(units, &file_name, &hull::export::step_timestamp(time));
+            let mut meta = StepMeta::new(units, &file_name, &hull::step_timestamp(time));
             meta.description = format!("hull surface ({source})");
             write(&|mut w| write_step(&mut w, &surface, &meta))?;
             let poles = [surface.n_u(), surface.n_v()];

@@ -16,7 +16,7 @@ use crate::stdout::{out, outln};
 #[derive(Debug, Args)]
 #[command(mut_arg("input", |a| a
     .help("Offsets file: a sections CSV (header `section,x,y,z`) or an offset table CSV (first row station \
-           positions, first column waterline heights, cells half-breadths), or any format of `hull::read` (Series 60 \
+           positions, first column waterline heights, cells half-breadths), or any format of `hull::read_offsets` (Series 60 \
            table, long CSV, JSON table, point cloud, FREE!ship text), recognised by its content; or a hull mesh \
            (`.stl`, `.stl.gz`, `.obj`), sliced at stations first (`--stations`, `--spacing`, `--at`, ...); or, with \
            --offsets FILE, a surface (surface.json, IGES, STEP) to measure against them. Without it the built-in \
@@ -234,12 +234,11 @@ fn print_summary(json: bool, report: &hull::Report, table: impl FnOnce() -> Stri
 /// The distance of the mesh's starboard vertices to the fitted surface, over the sections'
 /// length and up to their highest point: how well the surface stands for the mesh between and
 /// across the stations, not only at the sliced points.
-fn print_mesh_distance(mesh: &hull::mesh::TriMesh, offsets: &Offsets, surface: &nurbs::NurbsSurface) {
-    let Some(filter) = offsets.bounds().and_then(|(_, hi)| hull::mesh::VertexFilter::for_sections(offsets, hi.z))
-    else {
+fn print_mesh_distance(mesh: &hull::TriMesh, offsets: &Offsets, surface: &nurbs::NurbsSurface) {
+    let Some(filter) = offsets.bounds().and_then(|(_, hi)| hull::VertexFilter::for_sections(offsets, hi.z)) else {
         return;
     };
-    let d = hull::mesh::mesh_distance(mesh, surface, &filter);
+    let d = hull::mesh_distance(mesh, surface, &filter);
     let u = offsets.units.symbol();
     let h = &d.over_hull;
     outln!(
@@ -275,10 +274,10 @@ pub(crate) fn fit_with_progress(
     config: &FitConfig,
     goal: Goal,
 ) -> Result<(FitOutcome, Option<ToleranceSearch>), HullError> {
-    let fit = |control: &hull::optimize::Control<'_>| hull::fit_offsets_within(offsets, config, goal, control);
+    let fit = |control: &hull::Control<'_>| hull::fit_offsets_within(offsets, config, goal, control);
     match config.method.algorithm() {
         Some(a) => progress::with_progress(a.name(), fit),
-        None => hull::optimize::quiet(fit),
+        None => hull::quiet(fit),
     }
 }
 
@@ -288,11 +287,10 @@ pub(crate) fn fit_with_progress(
 /// warning says why: the fit itself stands).
 pub(crate) fn held_out_with_progress(offsets: &Offsets, config: &FitConfig, folds: usize) -> Option<HeldOutError> {
     let options = hull::HeldOutOptions::with_folds(folds);
-    let run =
-        |control: &hull::optimize::Control<'_>| hull::held_out_for_config_with(offsets, config, &options, control);
+    let run = |control: &hull::Control<'_>| hull::held_out_for_config_with(offsets, config, &options, control);
     let result = match config.method.algorithm() {
         Some(_) => progress::with_progress("held out", run),
-        None => hull::optimize::quiet(run),
+        None => hull::quiet(run),
     };
     result.unwrap_or_else(|e| {
         eprintln!("hullskin: warning: no held-out error: {e}");
@@ -329,8 +327,7 @@ mod tests {
         let args = FitArgs { fit: MethodArgs { tolerance: Some(goal), ..MethodArgs::default() }, ..FitArgs::default() };
         let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
         let (direct, direct_search) =
-            hull::optimize::quiet(|c| hull::fit_offsets_within(&offsets, &config, Goal::DefaultTolerance, c))
-                .expect("fits");
+            hull::quiet(|c| hull::fit_offsets_within(&offsets, &config, Goal::DefaultTolerance, c)).expect("fits");
         assert_eq!(outcome.surface, direct.surface);
         let (a, b) = (search.expect("searched"), direct_search.expect("searched"));
         assert!(a.default && b.default);
@@ -343,8 +340,8 @@ mod tests {
         // the same 5 x 8 control points; its held-out figure is then set by hand on either
         // side of the approximation's, which `overfitting` computes itself.
         let offsets = hull::series60_sample();
-        let optim = hull::optimize::OptimSettings { iterations: Some(3), ..Default::default() };
-        let method = FitMethod::Optimized(hull::optimize::Algorithm::Lm);
+        let optim = hull::OptimSettings { iterations: Some(3), ..Default::default() };
+        let method = FitMethod::Optimized(hull::Algorithm::Lm);
         let config = FitConfig { method, ctrl: Some((5, 8)), optim, ..FitConfig::default() };
         let mut lm = hull::fit_offsets(&offsets, &config).expect("fits");
         let plain = FitConfig { method: FitMethod::Approx, ..config };

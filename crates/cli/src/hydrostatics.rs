@@ -6,8 +6,9 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Args, ValueEnum};
-use hull::optimize::OptimSettings;
-use hull::{FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, InputNames, SEA_WATER_DENSITY};
+use hull::{
+    FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, InputNames, OptimSettings, SEA_WATER_DENSITY,
+};
 
 use crate::fit::fit_with_progress;
 use crate::parse::parse_skin_method;

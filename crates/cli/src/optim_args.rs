@@ -1,7 +1,7 @@
 //! Flags of the weight optimisation, shared by `fit` and `compare`.
 
 use clap::Args;
-use hull::optimize::{OptimSettings, WeightLayout, WeightMode, WeightOptions};
+use hull::{OptimSettings, WeightLayout, WeightMode, WeightOptions};
 
 /// Settings of the weight optimisers (methods ga, pso, gsa, lm, gsa+lm).
 #[derive(Debug, Clone, Args)]

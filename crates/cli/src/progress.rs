@@ -15,7 +15,7 @@
 use std::sync::atomic::{AtomicBool, AtomicI32, AtomicUsize, Ordering};
 use std::time::Duration;
 
-use hull::optimize::{Control, Progress};
+use hull::{Control, Progress};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// Raised by the first SIGINT or SIGTERM during an optimisation.

@@ -319,7 +319,7 @@ mod tests {
         let a = &w.args;
         assert_eq!(a.skin.input, Some(PathBuf::from("in.csv")));
         assert_eq!((a.out.as_path(), a.draft, a.compare), (Path::new("R"), Some(6.5), true));
-        assert_eq!(a.fit.method, FitMethod::Optimized(hull::optimize::Algorithm::Ga));
+        assert_eq!(a.fit.method, FitMethod::Optimized(hull::Algorithm::Ga));
         assert_eq!((a.fit.optim.settings().iterations, a.skin.ctrl), (Some(5), Some((5, 9))));
         let d = Wrap::try_parse_from(["x"]).expect("no flags");
         assert_eq!(

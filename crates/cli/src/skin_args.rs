@@ -3,8 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use hull::optimize::OptimSettings;
-use hull::{Fairing, FitConfig, FitMethod, Knuckles, Offsets, Units};
+use hull::{Fairing, FitConfig, FitMethod, Knuckles, Offsets, OptimSettings, Units};
 use nurbs::fit::{CornerOptions, SkinParameterization};
 
 use crate::parse::{parse_fair, parse_pair, parse_param, parse_units};
@@ -14,7 +13,7 @@ use crate::parse::{parse_fair, parse_pair, parse_param, parse_units};
 pub struct SkinArgs {
     /// Offsets file: a sections CSV (header `section,x,y,z`) or an offset table CSV (first row
     /// station positions, first column waterline heights, cells half-breadths), or any format
-    /// of `hull::read` (Series 60 table, long CSV, JSON table, point cloud, FREE!ship text),
+    /// of `hull::read_offsets` (Series 60 table, long CSV, JSON table, point cloud, FREE!ship text),
     /// recognised by its content; or a hull mesh (`.stl`, `.stl.gz`, `.obj`), sliced at
     /// stations first (`--stations`, `--spacing`, `--at`, ...). Without it the
     /// built-in Series 60 Cb 0.60 parent hull is used.
@@ -49,7 +48,7 @@ pub struct SkinArgs {
     /// both its station and its waterline: a typo, a shifted decimal point): `warn` names each
     /// and fits the offsets as read, `refuse` stops at the first, `keep` fits them silently.
     #[arg(long, value_name = "POLICY", default_value = "warn", value_parser = parse_outliers)]
-    pub outliers: hull::read::OutlierPolicy,
+    pub outliers: hull::OutlierPolicy,
     /// x of the aft perpendicular (default 0), with `--lpp`: the FP is at AP + Lpp.
     #[arg(long, value_name = "X", requires = "lpp", allow_negative_numbers = true)]
     pub ap: Option<f64>,
@@ -133,7 +132,7 @@ impl Default for SkinArgs {
             units: None,
             lpp: None,
             ap: None,
-            outliers: hull::read::OutlierPolicy::Warn,
+            outliers: hull::OutlierPolicy::Warn,
             beam: None,
             design_draft: None,
             knuckles: KnuckleMode::Auto,
@@ -152,7 +151,7 @@ impl SkinArgs {
     }
 
     /// [`SkinArgs::offsets`] with the sense warnings of the reading (printed as they are found).
-    pub fn offsets_with_warnings(&self) -> anyhow::Result<(Offsets, Vec<hull::read::SenseWarning>)> {
+    pub fn offsets_with_warnings(&self) -> anyhow::Result<(Offsets, Vec<hull::SenseWarning>)> {
         Ok(match &self.input {
             Some(path) if crate::slice::is_mesh_path(path) => {
                 (crate::slice::mesh_offsets(path, &self.mesh, self.units())?, Vec::new())
@@ -253,7 +252,7 @@ impl SkinArgs {
     }
 }
 
-fn parse_outliers(s: &str) -> Result<hull::read::OutlierPolicy, String> {
+fn parse_outliers(s: &str) -> Result<hull::OutlierPolicy, String> {
     s.parse()
 }
 
@@ -267,7 +266,7 @@ pub fn read_offsets_for_surface(
     skin: &SkinArgs,
     path: &std::path::Path,
     units: Units,
-) -> Result<(Offsets, Vec<hull::read::SenseWarning>), hull::HullError> {
+) -> Result<(Offsets, Vec<hull::SenseWarning>), hull::HullError> {
     let options = hull::ReadOptions { units, ..skin.read_options() };
     Ok(read_with_warnings(hull::read_offsets_with(path, &options)?))
 }
@@ -280,7 +279,7 @@ pub fn report_reading(outcome: hull::ReadOutcome) -> Offsets {
 }
 
 /// [`report_reading`], keeping the sense warnings (for `report.json`).
-pub fn read_with_warnings(outcome: hull::ReadOutcome) -> (Offsets, Vec<hull::read::SenseWarning>) {
+pub fn read_with_warnings(outcome: hull::ReadOutcome) -> (Offsets, Vec<hull::SenseWarning>) {
     if outcome.format != hull::InputFormat::SectionsCsv && outcome.format != hull::InputFormat::OffsetTable
         || !outcome.notes.is_empty()
         || !outcome.suspicious.is_empty()

@@ -9,12 +9,10 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Args;
-use hull::float::Notation;
-use hull::mesh::{
-    mesh_hydrostatics, read_mesh, slice_mesh, Axes, MeshHydrostatics, MeshReadOptions, Resample, SliceOptions,
-    SliceOutcome, Spacing, Stations, TriMesh,
+use hull::{
+    mesh_hydrostatics, read_mesh, slice_mesh, Axes, MeshHydrostatics, MeshReadOptions, Notation, Offsets, Resample,
+    SliceOptions, SliceOutcome, Spacing, Stations, TriMesh, Units,
 };
-use hull::{Offsets, Units};
 use nurbs::Vec3;
 
 use crate::parse::parse_units;
@@ -279,10 +277,10 @@ fn check_surface(
     offsets: &Offsets,
     m: &MeshHydrostatics,
 ) -> anyhow::Result<(String, serde_json::Value)> {
-    hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface.json")?;
+    hull::check_file_size(path, hull::MAX_SURFACE_JSON_BYTES, "a surface.json")?;
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let (surface, _) = hull::export::read_surface_json(&text)
-        .with_context(|| format!("cannot read the surface {}", path.display()))?;
+    let (surface, _) =
+        hull::read_surface_json(&text).with_context(|| format!("cannot read the surface {}", path.display()))?;
     let c = hull::compare_mesh_and_surface(&surface, mesh, offsets, m)
         .with_context(|| format!("hydrostatics of {}", path.display()))?;
     let row = &c.surface;

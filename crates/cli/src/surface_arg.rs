@@ -48,7 +48,7 @@ pub(crate) fn patches_refused(names: &[String], source: &str) -> anyhow::Error {
 }
 
 /// Read `skin.input`: a surface JSON (recognised by its first non-blank character, `{`, unless
-/// it holds a JSON offset table, see `hull::read::json_table`), an IGES or STEP file (by its
+/// it holds a JSON offset table, see `hull::json_table`), an IGES or STEP file (by its
 /// content, else its extension, see `hull::CadFormat`) holding exactly one B-spline surface,
 /// or anything else as offsets in `skin.units`; without an input, the built-in sample's offsets.
 ///
@@ -64,12 +64,12 @@ pub(crate) fn read_input(skin: &SkinArgs) -> anyhow::Result<Input> {
         return Ok(Input::Offsets(crate::slice::mesh_offsets(path, &skin.mesh, skin.units())?));
     }
     let source = path.display().to_string();
-    hull::limits::check_file_size(path, hull::limits::MAX_SURFACE_JSON_BYTES, "a surface.json or offsets file")?;
+    hull::check_file_size(path, hull::MAX_SURFACE_JSON_BYTES, "a surface.json or offsets file")?;
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {source}"))?;
     match hull::detect_surface_input(path, &bytes)? {
         SurfaceInput::Cad(format) => return cad_surface(&bytes, &source, format),
         SurfaceInput::SurfaceJson(text) => {
-            let (surface, units) = hull::export::read_surface_json(text).map_err(|e| surface_json_error(e, &source))?;
+            let (surface, units) = hull::read_surface_json(text).map_err(|e| surface_json_error(e, &source))?;
             // Finite coordinates can still overflow every length, area and volume computed from
             // them (a control net of 1e308): refused here for every command, not only the writers.
             hull::check_finite(&surface).with_context(|| format!("cannot use the surface {source}"))?;
@@ -104,7 +104,7 @@ pub(crate) fn note_units_not_applied(skin: &SkinArgs, units: Units, source: &str
 /// The B-spline surfaces of an IGES or STEP file, in the file's length unit: one surface, or
 /// the patches of one hull; the reader's notes go to stderr.
 fn cad_surface(bytes: &[u8], source: &str, format: hull::CadFormat) -> anyhow::Result<Input> {
-    let read = hull::read::cad::parse_as(bytes, source, Some(format), None)?;
+    let read = hull::parse_cad_surfaces_as(bytes, source, Some(format), None)?;
     for note in &read.notes {
         eprintln!("hullskin: note: {source}: {note}");
     }
@@ -132,8 +132,8 @@ fn cad_surface(bytes: &[u8], source: &str, format: hull::CadFormat) -> anyhow::R
 
 /// A surface JSON error naming the file, and for a syntax error its line and column as
 /// `file:line:col:` (serde_json's " at line L column C" suffix dropped).
-fn surface_json_error(e: hull::export::surface_json::SurfaceJsonError, source: &str) -> anyhow::Error {
-    use hull::export::surface_json::SurfaceJsonError;
+fn surface_json_error(e: hull::SurfaceJsonError, source: &str) -> anyhow::Error {
+    use hull::SurfaceJsonError;
     match e {
         SurfaceJsonError::Syntax { line, column, message } => {
             let suffix = format!(" at line {line} column {column}");
@@ -173,7 +173,7 @@ mod tests {
         let path = dir.path().join("surface.json");
         // Leading blanks and a byte-order mark do not hide the JSON.
         let mut text = "\u{FEFF}\n  ".as_bytes().to_vec();
-        hull::export::write_surface_json(&mut text, &fitted.surface, Units::Foot).expect("writes");
+        hull::write_surface_json(&mut text, &fitted.surface, Units::Foot).expect("writes");
         std::fs::write(&path, text).expect("write");
         match read_input(&skin(Some(path.clone()))).expect("reads") {
             Input::Surface { surface, units, source } => {

@@ -5,11 +5,10 @@
 //! edge, the FP station on the stem edge: a whole grid line in the plane).
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
-use hull::analysis::{
-    curvature_map, cut_surface, cut_surface_many, fairness_report, CurvatureMapOptions, CutOptions, CutPlane,
-    FairnessOptions,
+use hull::{
+    curvature_map, cut_surface, cut_surface_many, fairness_report, fit_offsets, series60_sample, CurvatureMapOptions,
+    CutOptions, CutPlane, FairnessOptions, FitConfig, Offsets, Section, Units, SAMPLE_PARTICULARS,
 };
-use hull::{fit_offsets, series60_sample, FitConfig, Offsets, Section, Units, SAMPLE_PARTICULARS};
 use nurbs::{NurbsSurface, Vec3};
 
 /// 21 stations by 11 waterlines of a parabolic hull `y = b/2 (1 - 0.8 (2x/l)^2) (1 - (1 - z/t)^4)`.

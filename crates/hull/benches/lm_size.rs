@@ -15,8 +15,9 @@ use std::path::Path;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use hull::optimize::{lm, quiet, LmOptions, WeightLayout, WeightOptions, WeightProblem};
-use hull::{fit_offsets, read_offsets, FitConfig, Units};
+use hull::{
+    fit_offsets, quiet, read_offsets, run_lm, FitConfig, LmOptions, Units, WeightLayout, WeightOptions, WeightProblem,
+};
 
 /// The tables swept, by size: (name, file in testdata/).
 const TABLES: [(&str, &str); 5] = [
@@ -41,7 +42,7 @@ fn bench(c: &mut Criterion) {
         for &layout in layouts {
             let opts = WeightOptions { layout, ..WeightOptions::default() };
             let problem = WeightProblem::from_fit(&plain, &offsets, opts).expect("shapes match");
-            let id = format!("{name}_{}_d{}", layout.name(), hull::optimize::Objective::dim(&problem));
+            let id = format!("{name}_{}_d{}", layout.name(), hull::Objective::dim(&problem));
             g.bench_function(BenchmarkId::new("approx", &id), |b| {
                 b.iter(|| fit_offsets(&offsets, &cfg).expect("fits"))
             });
@@ -50,7 +51,7 @@ fn bench(c: &mut Criterion) {
                     continue;
                 }
                 let o = LmOptions { matrix_free: forced, ..LmOptions::default() };
-                g.bench_function(BenchmarkId::new(label, &id), |b| b.iter(|| quiet(|c| lm::run(&problem, &o, c))));
+                g.bench_function(BenchmarkId::new(label, &id), |b| b.iter(|| quiet(|c| run_lm(&problem, &o, c))));
             }
         }
     }

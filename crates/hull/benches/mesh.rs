@@ -9,9 +9,10 @@
 use std::path::Path;
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
-use hull::mesh::obj::write_obj;
-use hull::mesh::stl::write_stl_binary;
-use hull::mesh::{gunzip, mesh_hydrostatics, parse_mesh, slice_mesh, MeshReadOptions, SliceOptions, Spacing, Stations};
+use hull::{
+    gunzip, mesh_hydrostatics, parse_mesh, slice_mesh, write_obj, write_stl_binary, MeshReadOptions, SliceOptions,
+    Spacing, Stations,
+};
 
 fn bench(c: &mut Criterion) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata/mesh/DTC-scaled.stl.gz");

@@ -9,8 +9,10 @@
 //! (`elem/s`).
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use hull::optimize::{lm, quiet, LmOptions, Objective, WeightLayout, WeightMode, WeightOptions, WeightProblem};
-use hull::{fit_offsets, series60_sample, FitConfig, Offsets, Section, Units};
+use hull::{
+    fit_offsets, quiet, run_lm, series60_sample, FitConfig, LmOptions, Objective, Offsets, Section, Units,
+    WeightLayout, WeightMode, WeightOptions, WeightProblem,
+};
 use nurbs::Vec3;
 
 /// `k` stations of `n` waterlines of `y = b/2 (1 - (2x/l)^2 (0.8)) (1 - (1 - z/t)^4)`.
@@ -77,7 +79,7 @@ fn bench(c: &mut Criterion) {
     let offsets = series60_sample();
     for (name, layout) in [("full", WeightLayout::Full), ("rank_one", WeightLayout::RankOne)] {
         let p = problem(&offsets, (6, 12), WeightMode::Resolved, layout);
-        g.bench_function(name, |b| b.iter(|| quiet(|c| lm::run(black_box(&p), &LmOptions::default(), c))));
+        g.bench_function(name, |b| b.iter(|| quiet(|c| run_lm(black_box(&p), &LmOptions::default(), c))));
     }
     g.finish();
 }

@@ -37,8 +37,10 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use hull::optimize::{optimize_weights, quiet, Algorithm, Control, OptimSettings, Progress};
-use hull::{fit_offsets, series60_sample, FitConfig, FitOutcome, Offsets};
+use hull::{
+    fit_offsets, optimize_weights, quiet, series60_sample, Algorithm, Control, FitConfig, FitOutcome, Offsets,
+    OptimSettings, Progress,
+};
 
 /// First moment a run's best value was within the target.
 #[derive(Clone, Copy, Debug)]

@@ -10,8 +10,10 @@ use std::error::Error;
 use std::fs::File;
 use std::io::BufWriter;
 
-use hull::export::{iges_timestamp, write_iges, IgesMeta};
-use hull::{fit_offsets, read_offsets, series60_sample, FitConfig, Hydrostatics, HydrostaticsOptions, Units};
+use hull::{
+    fit_offsets, iges_timestamp, read_offsets, series60_sample, write_iges, FitConfig, Hydrostatics,
+    HydrostaticsOptions, IgesMeta, Units,
+};
 
 fn main() -> Result<(), Box<dyn Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();

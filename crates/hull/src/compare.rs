@@ -91,7 +91,7 @@ pub const COMPARE_METHODS: [FitMethod; 7] = [
 ];
 
 /// The rows after [`COMPARE_METHODS`]: the approximation and LM with `--fair auto`
-/// ([`crate::fairing`]), named so.
+/// ([`Fairing::Auto`](crate::Fairing::Auto)), named so.
 pub const FAIR_ROWS: [(&str, FitMethod); 2] =
     [("approx+fair", FitMethod::Approx), ("lm+fair", FitMethod::Optimized(Algorithm::Lm))];
 

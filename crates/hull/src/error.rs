@@ -239,7 +239,7 @@ pub enum HullError {
         /// Why it cannot be used, with what was expected.
         reason: String,
     },
-    /// An input above one of the documented caps of [`crate::limits`] (boxed to keep
+    /// An input above one of the documented caps (README, "Limits") (boxed to keep
     /// `Result<_, HullError>` small).
     #[error("{0}")]
     Limit(Box<LimitExceeded>),
@@ -536,7 +536,7 @@ pub enum InputErrorKind {
         /// The coordinates.
         point: [f64; 3],
     },
-    /// A model too large or too small for f64 arithmetic (see `hull::offsets::MIN_SIZE`).
+    /// A model too large or too small for f64 arithmetic (see `hull::MIN_SIZE`).
     #[error("the model's size (bounding-box diagonal) is {size:e} with coordinates up to {largest:e}{} (expected a size between 1e-50 and 1e50 in the file's units: check the units and the exponents)", model_size_at(.at))]
     ModelSize {
         /// The bounding-box diagonal (may be infinite).

@@ -127,12 +127,12 @@ pub struct FitConfig {
     pub optim: OptimSettings,
     /// Knuckles (chines) kept as tangent discontinuities; the default looks for them.
     pub knuckles: Knuckles,
-    /// The fairness term of `approx` and of the optimised methods ([`crate::fairing`]); the
+    /// The fairness term of `approx` and of the optimised methods (README, "Fairing"); the
     /// default is [`Fairing::Off`], the plain least squares (the command line's default is
     /// [`Fairing::Auto`]). Not applied to `interp` (it passes through every offset) nor to a
     /// fit refitted within flats (`auto+flats`).
     pub fair: Fairing,
-    /// [`SkinOptions::smoothing`](nurbs::fit::SkinOptions::smoothing) of the skinning approximation (set by [`crate::fairing`]).
+    /// [`SkinOptions::smoothing`](nurbs::fit::SkinOptions::smoothing) of the skinning approximation (set by the [`Fairing`] chosen).
     pub smoothing: f64,
     /// Whether an approximation (`approx`, and the start of the optimised methods) that leaves
     /// the offsets' envelope is held within it ([`EnvelopeHold`]; the default holds it in the
@@ -220,7 +220,7 @@ pub enum Fairing {
     /// ([`nurbs::fit::SkinOptions::smoothing`]) and, for the weight optimisers, the net's
     /// fairness [`WeightOptions::fair`](crate::optimize::WeightOptions::fair).
     Lambda(f64),
-    /// The fairest surface within `tolerance` ([`crate::fairing`]); `None`: the plain approximation's
+    /// The fairest surface within `tolerance` (README, "Fairing"); `None`: the plain approximation's
     /// own max error.
     Auto { tolerance: Option<f64> },
 }

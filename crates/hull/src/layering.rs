@@ -9,6 +9,9 @@
 //! `lib.rs`'s `pub use` to the module that defines it). The modules and these edges make a
 //! graph; a strongly connected component of more than one module is a cycle, reported as a
 //! path `a -> b -> a` with the line that makes each step.
+//!
+//! The same reading guards both crates' front door: `lib.rs` declares no `pub mod` and no glob
+//! re-export, so the public API is its list of `pub use`, one path per item.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -649,5 +652,48 @@ mod tests {
         let graph = acyclic_graph_of("view");
         assert!(graph.len() >= 6, "read {} modules", graph.len());
         assert!(graph["report_html"].contains_key("render"), "the reader sees report_html's imports");
+    }
+
+    /// `pub mod` and glob re-exports (`pub use x::*`) in a `lib.rs`, as `lib.rs:line: code`.
+    fn second_paths(lib: &str) -> Vec<String> {
+        let tokens = tokenize(lib);
+        let mut found = Vec::new();
+        for (i, t) in tokens.iter().enumerate() {
+            let next = tokens.get(i + 1).map(|n| n.text.as_str());
+            if t.text == "pub" && next == Some("mod") {
+                found.push(format!("lib.rs:{}: pub mod", t.line));
+            }
+            if t.text == "pub" && next == Some("use") {
+                let end = tokens[i..].iter().position(|t| t.text == ";").map_or(tokens.len(), |e| i + e);
+                if tokens[i..end].iter().any(|t| t.text == "*") {
+                    found.push(format!("lib.rs:{}: pub use with a glob", t.line));
+                }
+            }
+        }
+        found
+    }
+
+    #[test]
+    fn a_public_module_and_a_glob_re_export_are_found() {
+        let lib =
+            "//! `pub mod` in a comment.\nmod a;\npub(crate) mod b;\npub mod c;\npub use a::{x, Y};\npub use b::*;\n";
+        assert_eq!(second_paths(lib), ["lib.rs:4: pub mod", "lib.rs:6: pub use with a glob"]);
+    }
+
+    /// The front door (issue 13): `hull` and `view` keep their modules private and list their
+    /// public API as `pub use` in `lib.rs`, so every public item has exactly one path. A
+    /// `pub mod` (or a glob re-export) would give items a second path, or hide which are public.
+    #[test]
+    fn the_public_api_is_the_pub_use_list_of_lib_rs() {
+        for name in ["hull", "view"] {
+            let lib = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(name).join("src").join("lib.rs");
+            let text = std::fs::read_to_string(&lib).expect("lib.rs reads");
+            let found = second_paths(&text);
+            assert!(
+                found.is_empty(),
+                "crates/{name}/src: make the module private and re-export its items:\n{}",
+                found.join("\n")
+            );
+        }
     }
 }

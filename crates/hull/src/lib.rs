@@ -7,8 +7,7 @@
 //! Read offsets, fit one surface, measure it and write IGES (what `hullskin fit` does):
 //!
 //! ```
-//! use hull::export::{write_iges, IgesMeta};
-//! use hull::{fit_offsets, series60_sample, FitConfig, Hydrostatics, HydrostaticsOptions, Units};
+//! use hull::{fit_offsets, series60_sample, write_iges, FitConfig, Hydrostatics, HydrostaticsOptions, IgesMeta, Units};
 //!
 //! // The built-in Series 60 Cb 0.60 parent (Todd 1963): 25 stations by 8 waterlines, metres.
 //! // A file is read the same way: `hull::read_offsets(path, Units::Metre)?`.
@@ -29,84 +28,157 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-pub mod analysis;
-pub mod colormap;
+// Every type that appears in a public signature is in the `pub use` list below.
+#![warn(unnameable_types)]
+
+mod analysis;
+mod colormap;
 mod compare;
 mod curvature_range;
-pub mod digitize;
+mod digitize;
 mod error;
-pub mod export;
+mod export;
 mod export_format;
-pub mod fairing;
+mod fairing;
 mod fit;
-pub mod fit_error;
+mod fit_error;
 mod flats;
-pub mod float;
+mod float;
 mod held_out;
-pub mod hydrostatics;
+mod hydrostatics;
 #[cfg(test)]
 mod layering;
-pub mod limits;
-pub mod mesh;
+mod limits;
+mod mesh;
 mod mesh_comparison;
 mod numfmt;
 mod offsets;
-pub mod optimize;
+mod optimize;
 mod output;
 mod pipeline;
-pub mod read;
+mod read;
 mod report;
 mod sample;
 mod surface_input;
 mod tolerance_search;
 mod units;
 
-pub use analysis::{check_fit_validity, check_validity, Envelope, Finding, FindingKind};
+// Validity, curvature maps, planar cuts and fairness of a fitted surface.
+pub use analysis::{
+    bending_energy, check_fit_validity, check_validity, curvature_map, cut_surface, cut_surface_many,
+    default_quadrature, fairness_report, find_folds, gauss_legendre, point_bounds, BendingEnergy, CurvatureField,
+    CurvatureMap, CurvatureMapOptions, CurvatureSample, CurvatureSummary, CutCurve, CutFairness, CutOptions, CutPlane,
+    CutPoint, Degeneracy, Envelope, Extreme, FairnessOptions, FairnessReport, FieldStats, Finding, FindingKind, Flat,
+    Fold, GridLines, Place, PlaneFairness, PlaneSelection, ENVELOPE_REL, FOLD_RUN_REL,
+};
+// Colour maps shared by the pictures, the viewer and the coloured meshes.
+pub use colormap::{
+    abs_quantile, curvature_limit, diverging, diverging_stops, sequential, sequential_stops, Rgb, CURVATURE_QUANTILE,
+};
+// Fit methods compared side by side, with their floors.
 pub use compare::{
     check_floors, compare_offsets, compare_offsets_with, comparison_json, comparison_markdown, comparison_table,
     floors_markdown, CompareConfig, CompareOptimization, CompareRow, Comparison, CurvatureSampling, FloorCheck, Floors,
     OptimRunner, RowError, RowStatus, RowValidity, COMPARE_METHODS, FAIR_ROWS, FLOOR_RELATIVE_TOLERANCE,
 };
+// The range of Gaussian curvature over a surface.
 pub use curvature_range::{gaussian_curvature_range, CurvatureRange, CURVATURE_GRID};
+// Drawn body plans (DXF, SVG) read and digitised into offsets.
+pub use digitize::{
+    digitize, label_number, parse_drawing, parse_dxf, parse_svg, read_drawing, seg_dist, Affine, Curve, CurveOrder,
+    DigitizeOptions, Digitized, DrawingScale, Label, Segment, Side, Sketch, SketchFormat, Spline, StationIds,
+    StationInfo, StationX, P2,
+};
+// The one error type and the places it names.
 pub use error::{
     DigitizeKind, DraftRangeKind, ExportToleranceKind, FormatKind, HeldOutKind, HullError, InputErrorKind, InputNames,
-    Location, MirrorKind, SliceKind, WeightsKind,
+    LimitExceeded, Location, MirrorKind, SliceKind, WeightsKind,
 };
+// Surface exports (IGES, STEP, surface.json, tessellated meshes, glTF) and their parts.
+pub use export::{
+    curvature_colors, greville_v, iges_timestamp, mesh_name, mirrored_full_hull, obj_comments,
+    polynomial_approximation, read_surface_json, section_curves, section_parameters, srgb_to_linear, step_timestamp,
+    stl_header, tessellate, write_glb, write_iges, write_iges_model, write_step, write_surface_json, IgesMeta,
+    IgesUnits, PolynomialApproximation, StepMeta, SurfaceFile, SurfaceJsonError, Tessellation, TessellationOptions,
+    MAX_GRID_LINES, MAX_POLYNOMIAL_CONTROL_POINTS, MAX_STRING_LEN,
+};
+// Export formats chosen by name, and the timestamp written into exports.
 pub use export_format::{export_timestamp, ExportFormat};
-pub use fairing::{FairReport, Fairing};
-pub use fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles};
+// Fairing: the control net's energy and the weights' smoothness traded against the error.
+pub use fairing::{FairReport, Fairing, NET_FAIR, UNSOUND_SLACK, WEIGHT_SMOOTHING};
+// The offsets -> surface pipeline: its settings and outcome.
+pub use fit::{EnvelopeHold, FairTry, FairnessFigures, FitConfig, FitMethod, FitOutcome, Knuckles};
+// Fit error at the offsets and held out of the fit.
 pub use fit_error::{measure_fit_error, overfit, ErrorStats, FitError, HeldOutError, SectionError, WorstPoint};
+// Flats of bottom and side.
 pub use flats::{find_flat_lines, flat_bounds, refit_within_flats, FlatKind, FlatLine, FlatOptions};
+// Exact text of a real number for files.
+pub use float::{plain, real, Notation, MAX_REAL_LEN};
+// Held-out error: refits leaving sections out.
 pub use held_out::{
     held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, held_out_refit_config,
     held_out_wanted, overfitting_warning, HeldOutOptions,
 };
+// Hydrostatics of a surface, one draft or a table.
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, table_drafts, Hydrostatics,
-    HydrostaticsOptions, HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, SEA_WATER_DENSITY,
+    HydrostaticsOptions, HydrostaticsRow, HydrostaticsTable, HYDROSTATICS_COLUMNS, MAX_DRAFTS, SEA_WATER_DENSITY,
 };
+// Caps on inputs and settings (README "Limits").
+pub use limits::{
+    check_file_size, MAX_CAD_FILE_BYTES, MAX_CONTROL_POINTS, MAX_CONTROL_POINTS_PER_DIRECTION, MAX_DRAWING_ENTITIES,
+    MAX_DRAWING_FILE_BYTES, MAX_MESH_FILE_BYTES, MAX_MESH_TRIANGLES, MAX_OFFSETS_FILE_BYTES, MAX_OPTIM_EVALUATIONS,
+    MAX_OPTIM_ITERATIONS, MAX_OPTIM_POPULATION, MAX_OPTIM_VARIABLES, MAX_POINTS, MAX_POINTS_PER_SECTION, MAX_SECTIONS,
+    MAX_STEP_INSTANCES, MAX_SURFACE_JSON_BYTES,
+};
+// Triangle meshes: read (STL, OBJ, gzip), sliced into offsets, measured, written.
+pub use mesh::{
+    gunzip, looks_binary as looks_like_binary_stl, mesh_distance, mesh_hydrostatics, parse_mesh, parse_obj, parse_stl,
+    read_mesh, slice_mesh, starts_with_solid, station_positions, weld, write_obj, write_stl_ascii, write_stl_binary,
+    Axes, DroppedStation, EdgeCounts, MeshDistance, MeshFormat, MeshHydrostatics, MeshReadOptions, Resample,
+    SliceOptions, SliceOutcome, Spacing, StationInfo as KeptStation, Stations, TriMesh, TriangleSoup, VertexFilter,
+    END_INSET, MAX_DECOMPRESSED, MAX_STATIONS, STL_HEADER_LEN,
+};
+// A mesh compared with a surface fitted to its slices.
 pub use mesh_comparison::{compare_mesh_and_surface, MeshComparison};
+// Figures rounded for people.
 pub use numfmt::{format_figure, format_short, format_sig};
+// The offsets: sections of points, with the units and perpendiculars.
 pub use offsets::{Offsets, Perpendiculars, Section, COINCIDENT_REL, MAX_SIZE, MIN_SIZE, PLANAR_REL};
+// Weight optimisers (GA, PSO, GSA, Levenberg-Marquardt) over one objective.
+pub use optimize::{
+    optimize_weights, quiet, run_ga, run_gsa, run_lm, run_pso, Algorithm, Control, FittedSurface, GaOptions,
+    GsaOptions, GsaRandom, JacobianKind, Linearization, LmOptions, NormalEquations, Objective, OptimReport,
+    OptimResult, OptimSettings, Optimized, ParamFreedom, Progress, PsoOptions, PsoVariant, StopReason, WeightLayout,
+    WeightMode, WeightOptions, WeightProblem,
+};
+// Output directories written all or nothing.
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
+// The fit itself.
 pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, HOLD_SHARE};
+// Offsets readers (every format, detected by content), their options and sense checks.
 pub use read::{
-    decode, detect_format, parse_offset_table, parse_offsets, parse_sections_csv, read_offsets, write_sections_csv,
-    InputFormat,
+    decode, detect_format, is_header as is_freeship_header, is_offset_json, parse_as as parse_cad_surfaces_as,
+    parse_cad_surfaces, parse_freeship_curves, parse_freeship_offsets, parse_iges, parse_json_table, parse_long_csv,
+    parse_offset_table, parse_offsets, parse_offsets_with, parse_point_cloud, parse_sections_csv, parse_series60_table,
+    parse_step, read_cad_surfaces, read_offsets, read_offsets_with, write_sections_csv, CadFormat, CadSurface,
+    CadSurfaces, Disagreement, InputFormat, MainDimensions, MergeOptions, Merged, OutlierPolicy, ReadOptions,
+    ReadOutcome, SenseKind, SenseWarning, Series60Table, Station, SuspiciousPolicy, SuspiciousValue, ThreeViews, View,
+    ViewLine, DEFAULT_TOLERANCE_REL, OUTLIER_SHARE,
 };
-pub use read::{parse_cad_surfaces, read_cad_surfaces, CadFormat, CadSurface, CadSurfaces};
-pub use read::{
-    parse_offsets_with, read_offsets_with, Disagreement, MainDimensions, ReadOptions, ReadOutcome, SuspiciousPolicy,
-    SuspiciousValue, ThreeViews,
-};
+// The fit's report: summary, warnings, report.json and the output files.
 pub use report::{
     measured_summary_table, measured_warnings, summary_table, summary_warnings, write_fit_outputs,
     write_fit_outputs_with_report, write_report_json, InputSummary, Measured, Report, SurfaceSummary,
 };
+// The built-in Series 60 sample.
 pub use sample::{series60_sample, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
+// What an input file holds: offsets, a surface or a mesh.
 pub use surface_input::{detect_surface_input, holds_surface, is_mesh_path, strip_bom, SurfaceInput};
+// The search for the fewest control points within a tolerance.
 pub use tolerance_search::{
     default_tolerance, fit_offsets_within, fit_to_tolerance, Goal, Referee, ToleranceFit, ToleranceSearch,
     ToleranceSettings, TriedCount, DEFAULT_TOLERANCE_OF_BEAM,
 };
+// Length units.
 pub use units::Units;

@@ -53,7 +53,7 @@ pub const MAX_DRAWING_FILE_BYTES: u64 = 256 << 20;
 /// Bytes of a `surface.json`. [`MAX_CONTROL_POINTS`] poles at about 80 bytes a line, plus their
 /// weights, is under 400 MB.
 pub const MAX_SURFACE_JSON_BYTES: u64 = 1 << 30;
-/// Bytes of an IGES or STEP file read for its B-spline surfaces ([`crate::read::cad`]). A pole
+/// Bytes of an IGES or STEP file read for its B-spline surfaces ([`crate::read_cad_surfaces`]). A pole
 /// is four reals of at most 24 characters: in IGES about 110 bytes with the delimiters and the
 /// 16 columns of sequence numbers per 64 of data, in STEP a `CARTESIAN_POINT` line of about
 /// 90 bytes plus its reference and weight; [`MAX_CONTROL_POINTS`] poles stay under 500 MB.

@@ -192,7 +192,8 @@ impl Offsets {
     /// [`InputErrorKind::ModelSize`], [`InputErrorKind::RepeatedPoint`],
     /// [`InputErrorKind::PointSection`], [`InputErrorKind::SectionCrosses`] or
     /// [`InputErrorKind::SectionOrder`]; and
-    /// [`HullError::Limit`] above the caps of [`crate::limits::check_offsets`].
+    /// [`HullError::Limit`] above the caps [`crate::MAX_SECTIONS`], [`crate::MAX_POINTS_PER_SECTION`]
+    /// and [`crate::MAX_POINTS`].
     pub fn validate(&self, min_points_per_section: usize) -> Result<(), HullError> {
         crate::limits::check_offsets(self)?;
         let src = self.source.as_str();

@@ -37,8 +37,8 @@ pub fn default_ctrl(offsets: &Offsets, degree: (usize, usize)) -> (usize, usize)
 /// two sections, a section with fewer than `p + 1` points, repeated points, stations out of
 /// order), [`HullError::Fit`] when the kernel refuses the fit (control-point counts out of
 /// range, a singular or ill-conditioned system, a surface that is not finite), and
-/// [`HullError::Limit`] above a cap of [`crate::limits`] (points, sections, control points,
-/// optimisation sizes).
+/// [`HullError::Limit`] above a documented cap (points, sections, control points, optimisation
+/// sizes; README, "Limits").
 pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, HullError> {
     quiet(|control| fit_offsets_with(offsets, config, control))
 }
@@ -251,7 +251,7 @@ fn assembled(
     let error = finite(config, crate::fit_error::parametric_fit_error(&surface, offsets, &params))?;
     let error_seconds = start.elapsed().as_secs_f64();
     let (validity, folds) = if config.envelope == EnvelopeHold::Own {
-        crate::analysis::validity::fit_validity_and_folds(&surface, offsets)?
+        crate::analysis::fit_validity_and_folds(&surface, offsets)?
     } else {
         (Vec::new(), Vec::new())
     };
@@ -282,7 +282,7 @@ fn measured(offsets: &Offsets, config: &FitConfig, out: FitOutcome) -> Result<Fi
     let (validity, folds) = if config.envelope == EnvelopeHold::Own {
         (out.validity, out.folds)
     } else {
-        crate::analysis::validity::fit_validity_and_folds(&out.surface, offsets)?
+        crate::analysis::fit_validity_and_folds(&out.surface, offsets)?
     };
     Ok(FitOutcome { error, error_seconds, validity, folds, ..out })
 }

@@ -10,7 +10,7 @@ use crate::error::HullError;
 use crate::export::read_surface_json;
 use crate::limits::{check_file_size, MAX_SURFACE_JSON_BYTES};
 use crate::mesh::MeshFormat;
-use crate::read::{decode, json_table, CadFormat};
+use crate::read::{decode, is_offset_json, CadFormat};
 
 /// What the bytes of an input file hold, as [`detect_surface_input`] tells them apart.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -61,7 +61,7 @@ pub fn detect_surface_input<'a>(path: &Path, bytes: &'a [u8]) -> Result<SurfaceI
         return Ok(SurfaceInput::Cad(format));
     }
     let text = strip_bom(decode(bytes, &path.display().to_string())?);
-    Ok(if text.trim_start().starts_with('{') && !json_table::is_offset_json(text) {
+    Ok(if text.trim_start().starts_with('{') && !is_offset_json(text) {
         SurfaceInput::SurfaceJson(text)
     } else {
         SurfaceInput::Offsets

@@ -4,11 +4,10 @@
 
 use std::path::Path;
 
-use hull::export::{
-    mesh_name, mirrored_full_hull, stl_header, tessellate, write_iges, write_step, IgesMeta, StepMeta,
-    TessellationOptions,
+use hull::{
+    mesh_name, mirrored_full_hull, stl_header, tessellate, write_iges, write_step, write_stl_ascii, write_stl_binary,
+    IgesMeta, StepMeta, TessellationOptions, TriMesh,
 };
-use hull::mesh::{write_stl_ascii, write_stl_binary, TriMesh};
 use pyo3::prelude::*;
 
 use crate::errors::{bad_arg, io_error, to_py};
@@ -67,11 +66,11 @@ pub fn write(
             let surface = if mirror { mirrored_full_hull(&s.surface).map_err(to_py)? } else { s.surface.clone() };
             hull::check_finite(&surface).map_err(to_py)?;
             if format == Format::Iges {
-                let mut meta = IgesMeta::new(units.into(), &file_name, &hull::export::iges_timestamp(time));
+                let mut meta = IgesMeta::new(units.into(), &file_name, &hull::iges_timestamp(time));
                 meta.product_id = format!("hull surface ({source})");
                 Box::new(move |mut w| write_iges(&mut w, &surface, &meta))
             } else {
-                let mut meta = StepMeta::new(units, &file_name, &hull::export::step_timestamp(time));
+                let mut meta = StepMeta::new(units, &file_name, &hull::step_timestamp(time));
                 meta.description = format!("hull surface ({source})");
                 Box::new(move |mut w| write_step(&mut w, &surface, &meta))
             }

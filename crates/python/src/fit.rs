@@ -38,7 +38,7 @@ fn run_fit(
     config: &hull::FitConfig,
     goal: hull::Goal,
     folds: usize,
-    control: &hull::optimize::Control<'_>,
+    control: &hull::Control<'_>,
 ) -> Result<Outcome, hull::HullError> {
     let o = &offsets.offsets;
     let (mut outcome, search) = hull::fit_offsets_within(o, config, goal, control)?;

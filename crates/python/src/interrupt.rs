@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use hull::optimize::Control;
+use hull::Control;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 

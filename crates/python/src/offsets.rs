@@ -3,8 +3,7 @@
 
 use std::path::PathBuf;
 
-use hull::read::{SenseKind, SenseWarning};
-use hull::{Offsets, Perpendiculars, Section};
+use hull::{Offsets, Perpendiculars, Section, SenseKind, SenseWarning};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 
@@ -55,8 +54,7 @@ pub fn read_options(
     outliers: &str,
     degree_u: usize,
 ) -> PyResult<hull::ReadOptions> {
-    let outliers: hull::read::OutlierPolicy =
-        outliers.parse().map_err(|e: String| bad_arg(format!("outliers: {e}")))?;
+    let outliers: hull::OutlierPolicy = outliers.parse().map_err(|e: String| bad_arg(format!("outliers: {e}")))?;
     if (beam.is_some() || design_draft.is_some()) && !(lpp.is_some() && beam.is_some() && design_draft.is_some()) {
         return Err(bad_arg("beam and design_draft scale a Series 60 table with lpp: give all three"));
     }

@@ -3,8 +3,10 @@
 //! `hullskin fit ...` with the same values fit the same surface. Every bad value is a
 //! `ValueError` naming the argument and what was expected.
 
-use hull::optimize::{OptimSettings, WeightLayout, WeightMode, WeightOptions};
-use hull::{EnvelopeHold, Fairing, FitConfig, FitMethod, Knuckles, Units};
+use hull::{
+    EnvelopeHold, Fairing, FitConfig, FitMethod, Knuckles, OptimSettings, Units, WeightLayout, WeightMode,
+    WeightOptions,
+};
 use nurbs::fit::{CornerOptions, SkinParameterization};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;

@@ -316,7 +316,7 @@ impl PySurface {
     /// surface's products w·P are rounded once more; pickling keeps them exactly).
     fn to_json(&self) -> PyResult<String> {
         let mut out = Vec::new();
-        hull::export::write_surface_json(&mut out, &self.surface, self.units)
+        hull::write_surface_json(&mut out, &self.surface, self.units)
             .map_err(|e| bad_arg(format!("cannot write the surface JSON: {e}")))?;
         String::from_utf8(out).map_err(|e| bad_arg(e.to_string()))
     }
@@ -325,7 +325,7 @@ impl PySurface {
     #[staticmethod]
     #[pyo3(signature = (text, source = "surface.json"))]
     fn from_json(text: &str, source: &str) -> PyResult<Self> {
-        let (surface, units) = hull::export::read_surface_json(text.trim_start_matches('\u{FEFF}'))
+        let (surface, units) = hull::read_surface_json(text.trim_start_matches('\u{FEFF}'))
             .map_err(|e| crate::errors::HullskinError::new_err(format!("{source}: {e}")))?;
         hull::check_finite(&surface).map_err(to_py)?;
         Ok(PySurface { surface, units: options::units(&units)?, source: source.to_string(), perpendiculars: None })

@@ -8,8 +8,7 @@
 //! curvature).
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
-use hull::analysis::CurvatureField;
-use hull::{fit_offsets, series60_sample, FitConfig, FitMethod};
+use hull::{fit_offsets, series60_sample, CurvatureField, FitConfig, FitMethod};
 use nurbs::NurbsSurface;
 use view::{convergence_plot, curvature_map_png, render_png, CurvatureMapOptions, RasterOptions};
 

@@ -12,13 +12,11 @@
 use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
 
-use hull::analysis::cuts::{cut_surface, CutOptions, CutPlane};
-use hull::digitize::{
-    digitize, parse_drawing, read_drawing, CurveOrder, DigitizeOptions, Digitized, DrawingScale, Side, StationIds,
-    StationX,
+use hull::{
+    cut_surface, digitize, fit_offsets, parse_drawing, parse_sections_csv, read_drawing, series60_sample,
+    write_sections_csv, CurveOrder, CutOptions, CutPlane, DigitizeOptions, Digitized, DrawingScale, FitConfig,
+    Notation, Side, StationIds, StationX, Units,
 };
-use hull::float::Notation;
-use hull::{fit_offsets, parse_sections_csv, series60_sample, write_sections_csv, FitConfig, Units};
 use nurbs::{KnotVector, NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use view::{lines_plan, write_dxf, write_svg, Drawing, Item, LinesPlanOptions, Rgb};
 
@@ -413,7 +411,7 @@ fn barge() -> Vec<(&'static str, f64, Vec<Piece>)> {
 /// z <= centre).
 fn piece_dist(p: [f64; 2], piece: &Piece) -> f64 {
     match piece {
-        Piece::Line(a, b) => hull::digitize::geom::seg_dist(p, *a, *b),
+        Piece::Line(a, b) => hull::seg_dist(p, *a, *b),
         Piece::Arc(c, r) => {
             let (dy, dz) = (p[0] - c[0], p[1] - c[1]);
             let t = dz.atan2(dy).clamp(-FRAC_PI_2, 0.0);

@@ -247,8 +247,9 @@ fn ezdxf_reads_3d_lines() {
 // ---------------------------------------------------------------------------------------------
 // The lines plan
 
-use hull::analysis::cuts::{cut_surface_many, CutOptions, CutPlane};
-use hull::{fit_offsets, measure_fit_error, series60_sample, FitConfig, Offsets};
+use hull::{
+    cut_surface_many, fit_offsets, measure_fit_error, series60_sample, CutOptions, CutPlane, FitConfig, Offsets,
+};
 use nurbs::{KnotVector, NurbsSurface};
 use view::{lines_3d, lines_plan, write_svg, LinesPlanOptions, Sheet};
 

@@ -5,8 +5,7 @@
 
 use std::f64::consts::FRAC_1_SQRT_2;
 
-use hull::analysis::CurvatureField;
-use hull::{fit_offsets, series60_sample, FitConfig};
+use hull::{fit_offsets, series60_sample, CurvatureField, FitConfig};
 use nurbs::{KnotVector, NurbsSurface, Vec3};
 use view::{
     convergence_plot, curvature_map, curvature_map_png, render_png, render_rgba, CurvatureMap, CurvatureMapOptions,

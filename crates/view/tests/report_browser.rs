@@ -24,8 +24,7 @@ use std::sync::OnceLock;
 use std::time::Instant;
 
 use common::browser::{console_messages, decode_png, keep, page_requests, run_chromium, screenshot, Picture};
-use hull::colormap::diverging_stops;
-use hull::{FitOutcome, Hydrostatics, HydrostaticsOptions, Offsets};
+use hull::{diverging_stops, FitOutcome, Hydrostatics, HydrostaticsOptions, Offsets};
 use serde_json::Value;
 use view::{build_report, write_report, ReportFiles, ReportInputs, ReportOptions};
 

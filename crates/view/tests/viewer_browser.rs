@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use common::browser::{keep, run_chromium};
-use hull::colormap::diverging_stops;
+use hull::diverging_stops;
 use view::{write_viewer_html, ViewerOptions};
 
 /// Window size of every screenshot, CSS pixels (device scale factor 1).

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use hull::export::{polynomial_approximation, read_surface_json, write_surface_json, SurfaceFile};
+use hull::{polynomial_approximation, read_surface_json, write_surface_json, SurfaceFile};
 use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
 
@@ -144,7 +144,7 @@ fn step_and_iges_exports_are_read_by_occt() {
     let sample = hull::series60_sample();
     let fit = hull::fit_offsets(&sample, &hull::FitConfig { method: hull::FitMethod::Interp, ..Default::default() })
         .expect("fits");
-    let curves = hull::export::section_curves(&fit.surface, &hull::export::section_parameters(&fit.params));
+    let curves = hull::section_curves(&fit.surface, &hull::section_parameters(&fit.params));
     assert!(said.contains(&format!("{} section curves", curves.len())), "{said}");
     let curve_docs: Vec<Value> = curves
         .iter()
@@ -203,7 +203,7 @@ fn mirrored_and_converted_exports_are_read_by_occt() {
     let (plain, _) = inputs();
     let (s, _) = surface(plain);
     let plain = plain.to_str().expect("utf-8 path");
-    let full = hull::export::mirrored_full_hull(&s).expect("mirrors");
+    let full = hull::mirrored_full_hull(&s).expect("mirrors");
     // Both halves: the full hull spans -B/2 to B/2.
     let (lo, hi) = (full.control_bounds().0, full.control_bounds().1);
     assert!((lo.y + hi.y).abs() <= 1e-12 * hi.y && hi.y > 8.0, "{lo:?} {hi:?}");

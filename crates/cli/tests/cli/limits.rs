@@ -1,6 +1,6 @@
-//! The documented caps end to end (`hull::limits`, README "Limits"): inputs and settings above
-//! them are refused quickly with the count, the cap and what was expected, exit status 2, and
-//! no output written.
+//! The documented caps end to end (hull's `MAX_*` constants, README "Limits"): inputs and
+//! settings above them are refused quickly with the count, the cap and what was expected, exit
+//! status 2, and no output written.
 
 use std::fs;
 
@@ -22,7 +22,7 @@ fn refused(args: &[&str], setup: impl FnOnce(&std::path::Path), needle: &str) {
 #[test]
 fn an_offsets_file_above_the_size_cap_is_refused() {
     // A sparse 300 MiB file, refused from its length (that the length alone refuses it, before
-    // any read, is `hull::limits`' unit test `large_files_are_refused_before_reading`; a wall
+    // any read, is hull's unit test `large_files_are_refused_before_reading` in limits.rs; a wall
     // time asserted here failed on a loaded machine, 6.7 s against 5).
     refused(
         &["fit", "big.csv", "-o", "out"],

@@ -156,7 +156,7 @@ fn sigint_and_sigterm_stop_the_search_and_write_its_best_surface() {
         let out = dir.join(&out);
         // surface.json complete: it parses, and it is the surface report.json describes.
         let text = fs::read_to_string(out.join("surface.json")).expect("surface.json");
-        let (surface, units) = hull::export::read_surface_json(&text).expect("surface.json parses");
+        let (surface, units) = hull::read_surface_json(&text).expect("surface.json parses");
         assert_eq!(units, "m");
         let r = read_json(&out.join("report.json"));
         assert_eq!(r["surface"]["control_points"], serde_json::json!([surface.n_u(), surface.n_v()]));
@@ -210,7 +210,7 @@ fn a_second_signal_quits_at_once_leaving_the_old_files_or_the_new_never_a_mix() 
         let r = read_json(&dir.join("out/report.json"));
         assert_eq!(r["method"], "ga");
         let text = String::from_utf8(after["surface.json"].clone()).expect("UTF-8");
-        let (surface, _) = hull::export::read_surface_json(&text).expect("surface.json parses");
+        let (surface, _) = hull::read_surface_json(&text).expect("surface.json parses");
         assert_eq!(r["surface"]["rational"], surface.is_rational());
         assert!(surface.is_rational(), "the GA moved the weights within 2 s");
         assert!(after["surface.igs"] != before["surface.igs"]);

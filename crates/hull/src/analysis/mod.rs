@@ -12,11 +12,11 @@
 //!
 //! Axes as everywhere in hullskin: x forward, y to starboard, z up.
 
-pub mod curvature_map;
-pub mod cuts;
-pub mod fairness;
-pub mod fold;
-pub mod validity;
+mod curvature_map;
+mod cuts;
+mod fairness;
+mod fold;
+mod validity;
 
 pub use curvature_map::{
     curvature_map, point_bounds, CurvatureField, CurvatureMap, CurvatureMapOptions, CurvatureSample, CurvatureSummary,
@@ -24,13 +24,13 @@ pub use curvature_map::{
 };
 pub use cuts::{cut_surface, cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
 pub use fairness::{
-    bending_energy, cut_fairness, default_quadrature, fairness_report, gauss_legendre, BendingEnergy, CutFairness,
-    FairnessOptions, FairnessReport, PlaneFairness, PlaneSelection,
+    bending_energy, default_quadrature, fairness_report, gauss_legendre, BendingEnergy, CutFairness, FairnessOptions,
+    FairnessReport, PlaneFairness, PlaneSelection,
 };
 pub use fold::{find_folds, Fold};
+pub(crate) use validity::fit_validity_and_folds;
 pub use validity::{
-    check_fit_validity, check_validity, Envelope, Finding, FindingKind, Flat, Place, ENVELOPE_REL, FLAT_REL,
-    FOLD_RUN_REL, INWARD_SHARE,
+    check_fit_validity, check_validity, Envelope, Finding, FindingKind, Flat, Place, ENVELOPE_REL, FOLD_RUN_REL,
 };
 
 use nurbs::{KnotVector, NurbsSurface};

@@ -24,7 +24,7 @@
 //!    (`section,x,y,z`), which [`crate::read_offsets`] reads.
 
 mod dxf_in;
-pub mod geom;
+mod geom;
 mod join;
 mod map;
 mod options;
@@ -34,7 +34,7 @@ mod svg_in;
 use std::path::Path;
 
 pub use dxf_in::parse_dxf;
-pub use geom::{Affine, Segment, Spline, P2};
+pub use geom::{seg_dist, Affine, Segment, Spline, P2};
 pub use map::digitize;
 pub use options::{CurveOrder, DigitizeOptions, Digitized, DrawingScale, Side, StationIds, StationInfo, StationX};
 pub use stations::label_number;

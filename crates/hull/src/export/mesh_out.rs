@@ -252,8 +252,8 @@ pub fn write_glb<W: Write>(w: &mut W, tess: &Tessellation, name: &str, units: Un
 mod tests {
     use super::*;
     use crate::export::tessellate::{tessellate, TessellationOptions};
-    use crate::mesh::obj::write_obj;
-    use crate::mesh::stl::{write_stl_ascii, write_stl_binary};
+    use crate::mesh::write_obj;
+    use crate::mesh::{write_stl_ascii, write_stl_binary};
 
     fn cylinder_mesh(mirror: bool) -> Tessellation {
         let surface = nurbs::fixtures::quarter_cylinder_along_x(2.0, 3.0);

@@ -4,20 +4,23 @@
 //! hullskin surface JSON. Writers are generic over [`std::io::Write`] and format every real
 //! number of text formats through [`crate::float::real`].
 
-pub mod iges;
-pub mod mesh_out;
-pub mod mirror;
-pub mod polynomial;
-pub mod step;
-pub mod surface_json;
-pub mod tessellate;
+mod iges;
+mod mesh_out;
+mod mirror;
+mod polynomial;
+mod step;
+mod surface_json;
+mod tessellate;
 
 pub use iges::{
     greville_v, iges_timestamp, section_curves, section_parameters, write_iges, write_iges_model, IgesMeta, IgesUnits,
+    MAX_STRING_LEN,
 };
-pub use mesh_out::{mesh_name, obj_comments, stl_header, write_glb};
+pub use mesh_out::{curvature_colors, mesh_name, obj_comments, srgb_to_linear, stl_header, write_glb};
 pub use mirror::mirrored_full_hull;
-pub use polynomial::{polynomial_approximation, PolynomialApproximation};
+pub use polynomial::{
+    polynomial_approximation, PolynomialApproximation, MAX_CONTROL_POINTS as MAX_POLYNOMIAL_CONTROL_POINTS,
+};
 pub use step::{step_timestamp, write_step, StepMeta};
 pub use surface_json::{read_surface_json, write_surface_json, SurfaceFile, SurfaceJsonError};
-pub use tessellate::{tessellate, Tessellation, TessellationOptions};
+pub use tessellate::{tessellate, Tessellation, TessellationOptions, MAX_GRID_LINES};

@@ -155,7 +155,7 @@ use crate::offsets::Perpendiculars;
 use crate::units::Units;
 
 use integrate::{Integrator, Sums};
-pub use table::{HydrostaticsTable, HYDROSTATICS_COLUMNS, NUM_COLUMNS};
+pub use table::{HydrostaticsTable, HYDROSTATICS_COLUMNS};
 
 /// Density of sea water, t/m³ (ITTC standard 1.025 as in FREE!ship's default).
 pub const SEA_WATER_DENSITY: f64 = 1.025;

@@ -25,11 +25,11 @@
 //! Coordinates are not converted: as for offsets, the units (`--units`) are a label carried
 //! to the outputs ([`crate::Units`]).
 
-pub mod distance;
-pub mod hydrostatics;
-pub mod obj;
-pub mod slice;
-pub mod stl;
+mod distance;
+mod hydrostatics;
+mod obj;
+mod slice;
+mod stl;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -43,11 +43,12 @@ use crate::error::{HullError, InputErrorKind, Location};
 
 pub use distance::{mesh_distance, MeshDistance, VertexFilter};
 pub use hydrostatics::{mesh_hydrostatics, MeshHydrostatics};
-pub use obj::write_obj;
+pub use obj::{parse_obj, write_obj};
 pub use slice::{
-    slice_mesh, station_positions, DroppedStation, Resample, SliceOptions, SliceOutcome, Spacing, Stations,
+    slice_mesh, station_positions, DroppedStation, Resample, SliceOptions, SliceOutcome, Spacing, StationInfo,
+    Stations, END_INSET, MAX_STATIONS,
 };
-pub use stl::{write_stl_ascii, write_stl_binary, STL_HEADER_LEN};
+pub use stl::{looks_binary, parse_stl, starts_with_solid, write_stl_ascii, write_stl_binary, STL_HEADER_LEN};
 
 /// Largest decompressed size of a gzip-compressed mesh, bytes (1 GiB: a 20-million-triangle
 /// ASCII STL); a larger stream is refused rather than exhausting memory.

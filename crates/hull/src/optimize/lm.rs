@@ -62,7 +62,7 @@ mod model;
 
 use model::{forcing, step_path, Dense, MatrixFree, Model, StepPath};
 
-/// Settings of [`run`], [`polish`] and [`run_with_parameters`].
+/// Settings of [`run`] (and of the polish and the parameter correction of [`super::optimize_weights`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LmOptions {
     /// Trial steps at most.

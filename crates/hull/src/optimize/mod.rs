@@ -19,22 +19,21 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 mod driver;
-pub mod ga;
-pub mod gsa;
+mod ga;
+mod gsa;
 mod linalg;
-pub mod lm;
+mod lm;
 mod net_energy;
-pub mod pso;
-pub mod weights;
+mod pso;
+mod weights;
 
 pub use driver::{optimize_weights, Algorithm, OptimReport, OptimSettings, Optimized};
-pub use ga::GaOptions;
-pub use gsa::{GsaOptions, GsaRandom};
-pub use lm::{LmOptions, ParamFit};
-pub use pso::{PsoOptions, PsoVariant};
+pub use ga::{run as run_ga, GaOptions};
+pub use gsa::{run as run_gsa, GsaOptions, GsaRandom};
+pub use lm::{run as run_lm, LmOptions};
+pub use pso::{run as run_pso, PsoOptions, PsoVariant};
 pub use weights::{
-    ControlBox, JacobianKind, Linearization, NormalEquations, ParamFreedom, WeightLayout, WeightMode, WeightOptions,
-    WeightProblem,
+    JacobianKind, Linearization, NormalEquations, ParamFreedom, WeightLayout, WeightMode, WeightOptions, WeightProblem,
 };
 
 /// A fitted surface and the data parameters of its offsets: where a weight optimisation starts
@@ -155,13 +154,6 @@ pub fn evaluate_all(obj: &dyn Objective, xs: &[Vec<f64>]) -> Vec<f64> {
             }
         })
         .collect()
-}
-
-/// Clamp `x` into the objective's box.
-pub fn clamp_to_box(obj: &dyn Objective, x: &mut [f64]) {
-    for ((xi, &lo), &hi) in x.iter_mut().zip(obj.lower()).zip(obj.upper()) {
-        *xi = if xi.is_nan() { 0.5 * (lo + hi) } else { xi.clamp(lo, hi) };
-    }
 }
 
 /// The test problems and shared checks of the algorithms' tests.

@@ -68,7 +68,6 @@ pub(crate) use matvec::{Evaluation, JacobianOp};
 pub use normal::NormalEquations;
 pub use params::ParamFreedom;
 use solve::Scratch;
-pub use within::ControlBox;
 
 /// What happens to the control points when the weights move.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -3,9 +3,7 @@
 //! instance), behind one front: [`read_cad_surfaces`] and [`parse_cad_surfaces`].
 //!
 //! ```
-//! use hull::export::{write_iges, IgesMeta};
-//! use hull::read::cad::{parse_cad_surfaces, CadFormat};
-//! use hull::Units;
+//! use hull::{parse_cad_surfaces, write_iges, CadFormat, IgesMeta, Units};
 //! use nurbs::{KnotVector, NurbsSurface, Vec3};
 //!
 //! let k = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).unwrap();
@@ -136,7 +134,7 @@ pub fn read_cad_surfaces(path: &Path, target: Option<Units>) -> Result<CadSurfac
 ///
 /// # Errors
 /// [`HullError::Input`] with [`InputErrorKind::Cad`] when the content is neither format or
-/// breaks it, at `source:line`; [`HullError::Limit`] for counts above [`crate::limits`].
+/// breaks it, at `source:line`; [`HullError::Limit`] for counts above the documented caps.
 pub fn parse_cad_surfaces(bytes: &[u8], source: &str, target: Option<Units>) -> Result<CadSurfaces, HullError> {
     parse_as(bytes, source, CadFormat::sniff(bytes), target)
 }

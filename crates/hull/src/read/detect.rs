@@ -10,17 +10,17 @@ pub enum InputFormat {
     SectionsCsv,
     /// Stations across, waterlines down, half-breadths in the cells.
     OffsetTable,
-    /// Todd's dimensionless Series 60 table with its `MaxBm` row ([`super::series60_table`]).
+    /// Todd's dimensionless Series 60 table with its `MaxBm` row ([`super::parse_series60_table`]).
     Series60Table,
-    /// One point a row, columns found by name ([`super::long_csv`]).
+    /// One point a row, columns found by name ([`super::parse_long_csv`]).
     LongCsv,
-    /// A JSON offset table ([`super::json_table`]).
+    /// A JSON offset table ([`super::parse_json_table`]).
     JsonTable,
-    /// Whitespace-separated `x y z` (or `y z`) points in station blocks ([`super::point_cloud`]).
+    /// Whitespace-separated `x y z` (or `y z`) points in station blocks ([`super::parse_point_cloud`]).
     PointCloud,
-    /// FREE!ship's "Offsets as 3D points" export ([`super::freeship`]).
+    /// FREE!ship's "Offsets as 3D points" export ([`super::parse_freeship_offsets`]).
     FreeshipOffsets,
-    /// FREE!ship's curve-import text: a units line, then `x y z` curves ([`super::freeship`]).
+    /// FREE!ship's curve-import text: a units line, then `x y z` curves ([`super::parse_freeship_curves`]).
     FreeshipCurves,
 }
 

@@ -43,18 +43,18 @@
 //! The readers parse; they do not check the data can be skinned: call
 //! [`Offsets::validate`] with the fit's degree + 1 for that.
 
-pub mod cad;
-pub mod freeship;
-pub mod iges;
-pub mod json_table;
-pub mod long_csv;
-pub mod offset_table;
-pub mod point_cloud;
-pub mod sections_csv;
-pub mod sense;
-pub mod series60_table;
-pub mod step;
-pub mod views;
+mod cad;
+mod freeship;
+mod iges;
+mod json_table;
+mod long_csv;
+mod offset_table;
+mod point_cloud;
+mod sections_csv;
+mod sense;
+mod series60_table;
+mod step;
+mod views;
 
 mod detect;
 mod records;
@@ -68,15 +68,21 @@ use crate::error::{HullError, Location};
 use crate::offsets::Offsets;
 use crate::units::Units;
 
-pub use cad::{parse_cad_surfaces, read_cad_surfaces, CadFormat, CadSurface, CadSurfaces};
+pub use cad::{parse_as, parse_cad_surfaces, read_cad_surfaces, CadFormat, CadSurface, CadSurfaces};
 pub use detect::{detect_format, InputFormat};
+pub use freeship::{is_header, parse_freeship_curves, parse_freeship_offsets};
+pub use iges::parse_iges;
+pub use json_table::{is_offset_json, parse_json_table};
+pub use long_csv::parse_long_csv;
 pub use offset_table::parse_offset_table;
+pub use point_cloud::parse_point_cloud;
 pub(crate) use records::{parse_number, records, shown, split_lines, Record};
 pub use sections_csv::{parse_sections_csv, write_sections_csv};
-pub use sense::{find_outliers, Outlier, OutlierPolicy, SenseKind, SenseWarning};
+pub use sense::{OutlierPolicy, SenseKind, SenseWarning, OUTLIER_SHARE};
 pub use series60_table::{parse_series60_table, MainDimensions, Series60Table};
+pub use step::parse_step;
 pub use text::decode;
-pub use views::{Disagreement, MergeOptions, Merged, Station, ThreeViews, View, ViewLine};
+pub use views::{Disagreement, MergeOptions, Merged, Station, ThreeViews, View, ViewLine, DEFAULT_TOLERANCE_REL};
 
 /// What a reader does with a value it finds suspicious (a Series 60 fraction above 1).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -128,7 +134,7 @@ pub struct ReadOptions {
     pub dimensions: Option<MainDimensions>,
     /// What to do with suspicious values.
     pub suspicious: SuspiciousPolicy,
-    /// What to do with outlier cells ([`sense::find_outliers`]).
+    /// What to do with outlier cells (README, "Plausible mistakes (sense checks)").
     pub outliers: OutlierPolicy,
     /// The disagreement tolerance of the three-view merge ([`MergeOptions::tolerance`]).
     pub tolerance: Option<f64>,
@@ -155,7 +161,8 @@ pub struct ReadOutcome {
     pub suspicious: Vec<SuspiciousValue>,
     /// Places where the views of a lines plan disagree (left out of the sections).
     pub disagreements: Vec<Disagreement>,
-    /// Plausible mistakes found by the sense checks ([`sense`]): units, size, transposition,
+    /// Plausible mistakes found by the sense checks (README, "Plausible mistakes"): units, size,
+    /// transposition,
     /// outlier cells. The offsets are as read.
     pub warnings: Vec<SenseWarning>,
 }

@@ -29,7 +29,7 @@ use crate::units::Units;
 /// mistake in units.
 pub const LONGEST_SHIP_M: f64 = 500.0;
 
-/// What to do with outlier cells ([`find_outliers`]).
+/// What to do with outlier cells (README, "Plausible mistakes (sense checks)").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum OutlierPolicy {
     /// Keep them and warn at each (the default).

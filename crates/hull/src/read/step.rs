@@ -124,7 +124,7 @@ impl Entity {
 /// # Errors
 /// [`crate::InputErrorKind::Cad`] at the line and instance that break the format, reference a
 /// missing or wrong instance, or hold a surface the kernel refuses; [`HullError::Limit`] for
-/// a file or counts above [`crate::limits`].
+/// a file or counts above the documented caps.
 pub fn parse_step(bytes: &[u8], source: &str, target: Option<Units>) -> Result<CadSurfaces, HullError> {
     if bytes.len() as u64 > MAX_CAD_FILE_BYTES {
         let cap = MAX_CAD_FILE_BYTES;

@@ -157,10 +157,10 @@ fn the_held_out_error_does_not_depend_on_the_thread_count() {
     let approx = FitConfig::default();
     assert_eq!(timeless(run(1, &approx)), timeless(run(2, &approx)));
     // Through a weight optimiser too (seeded; a few iterations keep it short).
-    let mut optim = hull::optimize::OptimSettings { iterations: Some(3), ..Default::default() };
+    let mut optim = hull::OptimSettings { iterations: Some(3), ..Default::default() };
     optim.seed = 5;
     let lm = FitConfig {
-        method: FitMethod::Optimized(hull::optimize::Algorithm::Lm),
+        method: FitMethod::Optimized(hull::Algorithm::Lm),
         ctrl: Some((5, 8)),
         optim,
         ..FitConfig::default()

@@ -2,8 +2,7 @@
 //! uneven spacing, a pointed or zero-width end) fits by both methods; interpolation passes
 //! through its data; the error in the report is the error re-measured from the written file.
 
-use hull::optimize::{Algorithm, OptimSettings};
-use hull::{fit_offsets, measure_fit_error, FitConfig, FitMethod, Offsets, Section, Units};
+use hull::{fit_offsets, measure_fit_error, Algorithm, FitConfig, FitMethod, Offsets, OptimSettings, Section, Units};
 use nurbs::Vec3;
 use proptest::prelude::*;
 
@@ -71,7 +70,7 @@ proptest! {
         let dir = tempfile::tempdir().map_err(|e| TestCaseError::fail(e.to_string()))?;
         hull::write_fit_outputs(dir.path(), &offsets, &out).map_err(|e| TestCaseError::fail(e.to_string()))?;
         let text = std::fs::read_to_string(dir.path().join("surface.json")).map_err(|e| TestCaseError::fail(e.to_string()))?;
-        let (surface, _) = hull::export::read_surface_json(&text).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let (surface, _) = hull::read_surface_json(&text).map_err(|e| TestCaseError::fail(e.to_string()))?;
         prop_assert_eq!(&surface, &out.surface);
         let again = measure_fit_error(&surface, &offsets, Some(&out.params));
         prop_assert_eq!(again.overall, out.error.overall);

@@ -5,10 +5,10 @@
 
 use std::path::{Path, PathBuf};
 
-use hull::analysis::{cut_surface, CutOptions, CutPlane};
-use hull::mesh::{read_mesh, slice_mesh, MeshReadOptions, SliceOptions, Stations};
-use hull::{find_flat_lines, FlatKind, FlatOptions};
-use hull::{fit_offsets, read_offsets, FitConfig, FitMethod, FitOutcome, Knuckles, Offsets, Units};
+use hull::{
+    cut_surface, find_flat_lines, fit_offsets, read_mesh, read_offsets, slice_mesh, CutOptions, CutPlane, FitConfig,
+    FitMethod, FitOutcome, FlatKind, FlatOptions, Knuckles, MeshReadOptions, Offsets, SliceOptions, Stations, Units,
+};
 use nurbs::fit::CornerOptions;
 use nurbs::{NurbsSurface, Vec3};
 

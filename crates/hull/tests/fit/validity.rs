@@ -4,10 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use hull::analysis::{Finding, FindingKind, Flat};
 use hull::{
-    fit_offsets, read_offsets, series60_sample, summary_warnings, FitConfig, FitMethod, FitOutcome, Knuckles, Offsets,
-    Report, Units,
+    fit_offsets, read_offsets, series60_sample, summary_warnings, Finding, FindingKind, FitConfig, FitMethod,
+    FitOutcome, Flat, Knuckles, Offsets, Report, Units,
 };
 use nurbs::fit::CornerOptions;
 use nurbs::{NurbsSurface, Vec3};
@@ -215,7 +214,7 @@ fn the_cb080_parent_bulges_through_its_flat_side_unless_refitted_within_it() {
 /// length, half-beam or depth): an independent sampling of what the validity checks refine.
 fn past_envelope(o: &Offsets, s: &NurbsSurface) -> [f64; 6] {
     let env = hull::Envelope::of_offsets(o).expect("points");
-    let allow = [env.length(), env.half_beam(), env.depth()].map(|d| hull::analysis::ENVELOPE_REL * d);
+    let allow = [env.length(), env.half_beam(), env.depth()].map(|d| hull::ENVELOPE_REL * d);
     let (lo, hi) = ([env.x.0, env.y.0, env.z.0], [env.x.1, env.y.1, env.z.1]);
     let mut worst = [f64::NEG_INFINITY; 6];
     for (_, _, p) in dense(s, 600) {

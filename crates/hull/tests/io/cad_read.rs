@@ -11,9 +11,10 @@ use std::process::Command;
 use crate::common::browser::workspace_root;
 use crate::common::python::tools_python;
 use crate::common::surfaces::{polynomial, rational_bicubic, wigley_patch};
-use hull::export::{write_iges, write_step, write_surface_json, IgesMeta, StepMeta};
-use hull::read::cad::{parse_cad_surfaces, CadFormat};
-use hull::{read_cad_surfaces, CadSurfaces, Hydrostatics, HydrostaticsOptions, HydrostaticsRow, Units};
+use hull::{
+    parse_cad_surfaces, read_cad_surfaces, write_iges, write_step, write_surface_json, CadFormat, CadSurfaces,
+    Hydrostatics, HydrostaticsOptions, HydrostaticsRow, IgesMeta, StepMeta, Units,
+};
 use nurbs::fixtures::quarter_cylinder;
 use nurbs::{NurbsSurface, Vec3};
 use serde_json::Value;
@@ -239,7 +240,7 @@ fn wigley_hydrostatics_from_iges_and_step_equal_those_from_surface_json() {
     let mut json = Vec::new();
     write_surface_json(&mut json, &wigley, hull::Units::Metre).expect("writes");
     std::fs::write(&json_path, &json).expect("write");
-    let (from_json, _) = hull::export::read_surface_json(std::str::from_utf8(&json).expect("UTF-8")).expect("reads");
+    let (from_json, _) = hull::read_surface_json(std::str::from_utf8(&json).expect("UTF-8")).expect("reads");
     let drafts = [6.25, 4.0, 1.5];
     let want = wigley_rows(&from_json, &drafts);
     // Cb at T: 4/9 for the Wigley hull; the rational integrands are integrated to 1e-9.

@@ -17,14 +17,12 @@ use crate::common::browser::workspace_root;
 use crate::common::python::tools_python;
 use crate::common::surfaces::samples;
 
-use hull::export::mesh_out::{curvature_colors, srgb_to_linear};
-use hull::export::{
-    greville_v, mesh_name, obj_comments, polynomial_approximation, section_curves, section_parameters, stl_header,
-    tessellate, write_glb, write_iges, write_iges_model, write_step, IgesMeta, StepMeta, SurfaceFile, Tessellation,
-    TessellationOptions,
+use hull::{
+    curvature_colors, greville_v, mesh_name, obj_comments, polynomial_approximation, section_curves,
+    section_parameters, srgb_to_linear, stl_header, tessellate, write_glb, write_iges, write_iges_model, write_obj,
+    write_step, write_stl_ascii, write_stl_binary, IgesMeta, StepMeta, SurfaceFile, Tessellation, TessellationOptions,
+    Units,
 };
-use hull::mesh::{write_obj, write_stl_ascii, write_stl_binary};
-use hull::Units;
 use nurbs::fixtures::quarter_cylinder_along_x as quarter_cylinder;
 use nurbs::{KnotVector, NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};

@@ -20,7 +20,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
 use fuzz_targets::{target, Target, TARGETS};
-use hull::mesh::{parse_mesh, MeshReadOptions};
+use hull::{parse_mesh, MeshReadOptions};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -180,7 +180,7 @@ fn the_seed_mesh_reads_the_same_from_each_of_its_four_forms() {
     let gz = mesh("wigley_ascii.stl.gz");
     assert_eq!((&gz.vertices, &gz.triangles), (&ascii.vertices, &ascii.triangles), "gzip changes nothing");
     // The OBJ numbers its vertices in its own order: compare the triangles' corners.
-    let corners = |m: &hull::mesh::TriMesh| (0..m.triangles.len()).map(|t| m.corners(t)).collect::<Vec<_>>();
+    let corners = |m: &hull::TriMesh| (0..m.triangles.len()).map(|t| m.corners(t)).collect::<Vec<_>>();
     assert_eq!(corners(&mesh("wigley.obj")), corners(&ascii));
     let binary = mesh("wigley_binary.stl");
     assert_eq!(binary.triangles, ascii.triangles);

@@ -6,13 +6,11 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use hull::mesh::obj::write_obj;
-use hull::mesh::stl::{write_stl_ascii, write_stl_binary};
-use hull::mesh::{
-    mesh_distance, mesh_hydrostatics, parse_mesh, read_mesh, slice_mesh, weld, Axes, MeshFormat, MeshReadOptions,
-    SliceOptions, SliceOutcome, Spacing, Stations, TriMesh, VertexFilter,
+use hull::{
+    fit_offsets, mesh_distance, mesh_hydrostatics, parse_mesh, read_mesh, slice_mesh, weld, write_obj, write_stl_ascii,
+    write_stl_binary, Axes, FitConfig, FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsRow, MeshFormat,
+    MeshReadOptions, Offsets, SliceOptions, SliceOutcome, Spacing, Stations, TriMesh, VertexFilter,
 };
-use hull::{fit_offsets, FitConfig, FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsRow, Offsets};
 use nurbs::{assert_near, Vec3};
 
 fn testdata(name: &str) -> PathBuf {

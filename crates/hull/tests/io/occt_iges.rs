@@ -13,7 +13,7 @@ use crate::common::python::tools_python;
 use crate::common::surfaces::{polynomial, rational_bicubic, samples};
 use nurbs::fixtures::quarter_cylinder;
 
-use hull::export::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
+use hull::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
 use nurbs::NurbsSurface;
 use serde_json::{json, Value};
 
@@ -190,8 +190,8 @@ fn occt_finds_the_default_fit_within_the_offsets_envelope() {
         // hullskin's own check: the default fit has no envelope finding, the plain one has.
         assert_eq!(past.is_empty(), within, "{name}: {past:#?}");
         let s = fit.surface;
-        let e = hull::analysis::Envelope::of_offsets(&offsets).expect("a hull");
-        let rel = hull::analysis::ENVELOPE_REL;
+        let e = hull::Envelope::of_offsets(&offsets).expect("a hull");
+        let rel = hull::ENVELOPE_REL;
         let allowance = [rel * e.length(), rel * e.half_beam(), rel * e.depth()];
         let envelope = json!({
             "lo": [e.x.0, e.y.0, e.z.0],

@@ -1,11 +1,13 @@
-//! The readers of `hull::read` on the real data copied into `testdata/raw/` (provenance in
+//! The offsets readers of `hull` on the real data copied into `testdata/raw/` (provenance in
 //! `testdata/README.md`): each must reproduce the converted tables the generators in
 //! `testdata/` made from the same sources, point for point, and say what it left out.
 
 use std::path::{Path, PathBuf};
 
-use hull::read::{read_offsets_with, InputFormat, MainDimensions, ReadOptions, ReadOutcome, SuspiciousPolicy, View};
-use hull::{read_offsets, Offsets, Units};
+use hull::{
+    read_offsets, read_offsets_with, InputFormat, MainDimensions, Offsets, ReadOptions, ReadOutcome, SuspiciousPolicy,
+    Units, View,
+};
 use nurbs::Vec3;
 
 fn testdata(name: &str) -> PathBuf {
@@ -266,12 +268,9 @@ fn a_freeship_waterline_moved_off_the_body_plan_is_reported_point_by_point() {
     let bad_line = format!("        {:10.4} {:10.4} {:10.4}", 50.0, wigley(50.0, 2.5) + 0.2, 2.5);
     let at = text.rfind(&good).expect("the second segment's point");
     let bad = format!("{}{}{}", &text[..at], bad_line, &text[at + good.len()..]);
-    let o = hull::read::parse_offsets_with(
-        &bad,
-        "wigley.txt",
-        &ReadOptions { tolerance: Some(0.05), ..ReadOptions::default() },
-    )
-    .expect("valid");
+    let o =
+        hull::parse_offsets_with(&bad, "wigley.txt", &ReadOptions { tolerance: Some(0.05), ..ReadOptions::default() })
+            .expect("valid");
     assert_eq!(o.disagreements.len(), 1, "{:?}", o.disagreements);
     let d = &o.disagreements[0];
     assert_eq!((d.station.as_str(), d.view, d.z), ("50.000", View::Waterline, 2.5));

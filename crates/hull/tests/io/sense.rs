@@ -6,8 +6,7 @@ use std::path::{Path, PathBuf};
 
 use crate::common::tables::TABLES;
 
-use hull::read::{parse_offsets_with, OutlierPolicy, ReadOptions, SenseKind, SenseWarning};
-use hull::Units;
+use hull::{parse_offsets_with, OutlierPolicy, ReadOptions, SenseKind, SenseWarning, Units};
 
 fn testdata(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
@@ -80,7 +79,7 @@ fn one_cell_typed_wrong_is_named_at_its_line_and_field() {
                 // share on a clean table; a smaller slip is within the hull's own shape and
                 // is not claimed).
                 for typo in [cell * 10.0, cell / 10.0, (cell - 6.0).abs(), cell + 3.0] {
-                    if (typo - cell).abs() <= 2.0 * hull::read::sense::OUTLIER_SHARE * y_max(&text) {
+                    if (typo - cell).abs() <= 2.0 * hull::OUTLIER_SHARE * y_max(&text) {
                         continue;
                     }
                     let (bad, _) = with_cell(&text, line, column, &format!("{typo}"));

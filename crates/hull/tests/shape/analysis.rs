@@ -2,7 +2,7 @@
 //! curvature maps and fairness measures on the exact Wigley hull, a cylinder, a sphere, a
 //! flat-bottomed hull and the fitted Series 60 sample.
 
-use hull::analysis::{
+use hull::{
     bending_energy, curvature_map, cut_surface, cut_surface_many, default_quadrature, fairness_report, gauss_legendre,
     CurvatureField, CurvatureMapOptions, CutCurve, CutOptions, CutPlane, FairnessOptions, PlaneSelection,
 };
@@ -593,7 +593,7 @@ fn a_pushed_out_control_point_adds_inflections_and_energy() {
     let fair = fairness_report(&wigley_cubic(0.0), &opts);
     // One metre outboard, a fifth of the half-breadth.
     let bumped = fairness_report(&wigley_cubic(1.0), &opts);
-    let count = |r: &hull::analysis::FairnessReport| {
+    let count = |r: &hull::FairnessReport| {
         (
             r.stations.iter().map(|p| p.inflections).sum::<usize>(),
             r.waterlines.iter().map(|p| p.inflections).sum::<usize>(),

@@ -18,7 +18,7 @@
 //! (ACI) nearest to the colour of its first item, an entity whose colour maps to another ACI
 //! carries its own (group 62), and dash patterns become linetypes `DASH1`, `DASH2`, ... in the
 //! LTYPE table (paper millimetres, `$LTSCALE` 1). Widths are not written: CAD users set
-//! line weights by layer. Every real number goes through [`hull::float::real`]
+//! line weights by layer. Every real number goes through [`hull::real`]
 //! (shortest round trip), so coordinates read back bit for bit.
 
 use std::io::{self, Write};
@@ -27,8 +27,7 @@ use nurbs::Vec3;
 
 use super::model::{Anchor, Drawing, Item, Rgb};
 use super::svg::layers;
-use hull::float::real;
-use hull::Units;
+use hull::{real, Units};
 
 /// The longest layer name R12 accepts.
 pub const MAX_LAYER_NAME: usize = 31;

@@ -63,10 +63,7 @@ use rayon::prelude::*;
 
 use super::model::{Anchor, Drawing, Item, Rgb, Stroke};
 use super::sheet::Sheet;
-use hull::analysis::cuts::{cut_surface_many, CutCurve, CutOptions, CutPlane, CutPoint};
-use hull::colormap;
-use hull::Units;
-use hull::{Offsets, PLANAR_REL};
+use hull::{cut_surface_many, sequential, CutCurve, CutOptions, CutPlane, CutPoint, Offsets, Units, PLANAR_REL};
 
 /// Settings of [`lines_plan`]. `None` lists take the defaults described on each field;
 /// non-finite values in a given list are ignored.
@@ -158,7 +155,7 @@ impl fmt::Display for Scale {
 
 /// The lines plan of `surface` (a starboard half hull, axes x forward, y to starboard, z up,
 /// lengths in `units`), with `offsets`, when given, drawn in the body plan as markers coloured
-/// by their distance to the surface ([`colormap::sequential`] from the smallest to the largest
+/// by their distance to the surface ([`sequential`] from the smallest to the largest
 /// distance, with a legend in millimetres).
 ///
 /// Layers: `frame`, `title`, `grid`, `stations`, `waterlines`, `buttocks`, `outline`,
@@ -917,7 +914,7 @@ fn draw_offsets(d: &mut Drawing, l: &Layout, bx: Box3, o: &Offsets, errors: &[f6
         d.push(Item::Marker {
             at: l.body_pt(bx, p.y, p.z, side),
             size_mm: MARKER_MM,
-            fill: colormap::sequential(e, lo, hi),
+            fill: sequential(e, lo, hi),
             layer: "offsets".into(),
         });
     }
@@ -940,7 +937,7 @@ fn draw_legend(d: &mut Drawing, l: &Layout, errors: &[f64], units: Units) {
         let t = (i as f64 + 0.5) / STEPS as f64;
         d.push(Item::Polygon {
             points: vec![[a, bar_y], [b, bar_y], [b, bar_y + bar_h], [a, bar_y + bar_h]],
-            fill: colormap::sequential(t, 0.0, 1.0),
+            fill: sequential(t, 0.0, 1.0),
             layer: g.into(),
         });
     }

@@ -1,5 +1,5 @@
 //! Drawings: a format-independent model of a sheet ([`Drawing`]) and the figures built on it
-//! (their colours from [`hull::colormap`]).
+//! (their colours from hull's colour maps, [`hull::sequential`] and [`hull::diverging`]).
 
 mod dxf;
 mod lines_plan;

@@ -5,7 +5,7 @@
 //! Coordinates are paper millimetres, origin at the bottom-left corner of the sheet, y up (as
 //! in DXF and in the drawings' model space); the SVG writer flips y.
 
-pub use hull::colormap::Rgb;
+pub use hull::Rgb;
 
 /// How a line is drawn.
 #[derive(Clone, Debug, PartialEq)]

@@ -5,7 +5,7 @@
 //! title.
 //!
 //! How it is drawn:
-//! 1. The surface is sampled by [`analysis::curvature_map`] (the one sampling of curvature;
+//! 1. The surface is sampled by [`hull::curvature_map`] (the one sampling of curvature;
 //!    this module only paints it) on the grid [`GridLines::Spans`]: a line at every distinct
 //!    knot and each knot span split in proportion to its length, about `samples` lines per
 //!    direction. At each vertex: the point, and the curvature from the first and second
@@ -26,7 +26,7 @@
 //!    optionally shaded by `0.6 + 0.4 |n . d|` (`d` the viewing direction).
 //!
 //! Mean and principal curvatures are signed with the normal turned toward the inside of the
-//! hull ([`analysis::CurvatureMap::outward_flip`]: the side of the centre-plane axis
+//! hull ([`hull::CurvatureMap::outward_flip`]: the side of the centre-plane axis
 //! `y = y_min`, `z` = mid-depth), so `H > 0` where the hull is convex (bilge) and `H < 0`
 //! where it is hollow.
 
@@ -35,9 +35,7 @@ use tiny_skia::Pixmap;
 
 use crate::drawing::{Anchor, Item, Rgb, Stroke};
 use crate::ViewError;
-use hull::analysis::point_bounds;
-use hull::analysis::{self, CurvatureField, Degeneracy, GridLines};
-use hull::colormap::{abs_quantile, diverging};
+use hull::{abs_quantile, diverging, point_bounds, CurvatureField, Degeneracy, GridLines};
 
 use super::raster::{canvas, draw_items, pixels_per_metre, text_width_mm, Image, Mapping};
 use crate::drawing::{format_tick, nice_ticks};
@@ -266,17 +264,17 @@ fn check_options(o: &CurvatureMapOptions) -> Result<(), ViewError> {
     Ok(())
 }
 
-/// Points, values of `field` and normals on the grid of [`analysis::curvature_map`]
+/// Points, values of `field` and normals on the grid of [`hull::curvature_map`]
 /// (u-major), with the grid's size. Mean and principal curvatures are turned to the inward
 /// normal (see the module doc).
 fn evaluate(surface: &NurbsSurface, field: CurvatureField, lines: usize) -> (Vec<Sample>, usize, usize) {
-    let options = analysis::CurvatureMapOptions {
+    let options = hull::CurvatureMapOptions {
         grid: (lines, lines),
         lines: GridLines::Spans,
         degeneracy: Degeneracy::RoundOff,
-        ..analysis::CurvatureMapOptions::default()
+        ..hull::CurvatureMapOptions::default()
     };
-    let map = analysis::curvature_map(surface, &options);
+    let map = hull::curvature_map(surface, &options);
     let flip = field != CurvatureField::Gaussian && map.outward_flip();
     let samples = map
         .points

@@ -39,12 +39,10 @@ use crate::drawing::{lines_3d, lines_plan, write_dxf, write_dxf_3d_lines, write_
 use crate::render::{self, RasterOptions};
 use crate::viewer::{write_viewer_html, ViewerOptions};
 use crate::ViewError;
-use hull::analysis::{self, CurvatureMap, CurvatureSummary, FairnessOptions, FairnessReport, Finding};
-use hull::optimize::OptimReport;
-use hull::Perpendiculars;
 use hull::{
-    measure_fit_error, Comparison, FitError, FitOutcome, Hydrostatics, HydrostaticsOptions, HydrostaticsTable, Offsets,
-    Units, SEA_WATER_DENSITY,
+    check_fit_validity, check_validity, fairness_report, measure_fit_error, Comparison, CurvatureField, CurvatureMap,
+    CurvatureSummary, Envelope, FairnessOptions, FairnessReport, Finding, FitError, FitOutcome, Hydrostatics,
+    HydrostaticsOptions, HydrostaticsTable, Offsets, OptimReport, Perpendiculars, Units, SEA_WATER_DENSITY,
 };
 
 /// The files of a report, in the order [`ReportFiles::files`] lists them.
@@ -134,7 +132,7 @@ pub struct ReportOptions {
     /// Drafts of the range tabulated without a design draft (at least 1).
     pub range_drafts: usize,
     /// The grid of the curvature summary.
-    pub curvature: analysis::CurvatureMapOptions,
+    pub curvature: hull::CurvatureMapOptions,
     /// Stations and waterlines of the fairness measures.
     pub fairness: FairnessOptions,
     /// Width of the curvature pictures, pixels.
@@ -158,7 +156,7 @@ impl Default for ReportOptions {
         ReportOptions {
             density: SEA_WATER_DENSITY,
             range_drafts: 10,
-            curvature: analysis::CurvatureMapOptions::default(),
+            curvature: hull::CurvatureMapOptions::default(),
             fairness: FairnessOptions::default(),
             curvature_width_px: 1200,
             curvature_samples: 160,
@@ -293,10 +291,10 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
 
     // Figures.
     let (hydrostatics, drafts) = hydrostatics_table(inputs, options)?;
-    let map = analysis::curvature_map(surface, &options.curvature);
+    let map = hull::curvature_map(surface, &options.curvature);
     let convex_sign = convex_sign(&map);
     let curvature = map.summary();
-    let fairness = analysis::fairness_report(surface, &options.fairness);
+    let fairness = fairness_report(surface, &options.fairness);
     let error = match (inputs.fit, inputs.offsets) {
         (Some(fit), _) => Some(fit.error.clone()),
         (None, Some(o)) => Some(measure_fit_error(surface, o, None)),
@@ -305,8 +303,8 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
     let optimization = inputs.optimization.or_else(|| inputs.fit.and_then(|f| f.optimization.as_ref()));
     let validity = match (inputs.fit, inputs.offsets) {
         (Some(fit), _) => fit.validity.clone(),
-        (None, Some(o)) => analysis::check_fit_validity(surface, o)?,
-        (None, None) => analysis::check_validity(surface, &analysis::Envelope::unbounded(), &[]),
+        (None, Some(o)) => check_fit_validity(surface, o)?,
+        (None, None) => check_validity(surface, &Envelope::unbounded(), &[]),
     };
 
     // Pictures and drawings.
@@ -332,8 +330,8 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
         };
         render::curvature_map(surface, field, &o)
     };
-    let gaussian = picture(analysis::CurvatureField::Gaussian)?;
-    let mean = picture(analysis::CurvatureField::Mean)?;
+    let gaussian = picture(CurvatureField::Gaussian)?;
+    let mean = picture(CurvatureField::Mean)?;
     let convergence = match optimization {
         Some(o) => {
             let plot = render::convergence_plot(

@@ -12,10 +12,10 @@ use super::{
 };
 use crate::drawing::Sheet;
 use crate::render;
-use hull::analysis::{self, CurvatureSummary, FairnessReport, FieldStats, Finding};
-use hull::format_figure;
-use hull::optimize::OptimReport;
-use hull::{Comparison, FitError, HydrostaticsTable, RowStatus, HYDROSTATICS_COLUMNS};
+use hull::{
+    format_figure, Comparison, CurvatureField, CurvatureSummary, Extreme, FairnessReport, FieldStats, Finding,
+    FitError, HydrostaticsTable, OptimReport, RowStatus, HYDROSTATICS_COLUMNS,
+};
 
 const TEMPLATE: &str = include_str!("report.html");
 const STYLE: &str = include_str!("report.css");
@@ -490,7 +490,7 @@ impl Page<'_, '_> {
                 || "no regular point".to_string(),
                 |(a, b)| format!("values from {} to {} {unit}", num(a), num(b)),
             );
-            let id = format!("map-{}", if field == analysis::CurvatureField::Gaussian { "gaussian" } else { "mean" });
+            let id = format!("map-{}", if field == CurvatureField::Gaussian { "gaussian" } else { "mean" });
             let alt = format!("{} of the hull, profile and bottom view", field.name());
             s.push_str(&format!(
                 "<figure>\n{}\n<figcaption>{} {} (<code>{file}</code>): profile (x right, z up) and bottom view; \
@@ -560,7 +560,7 @@ pub(super) fn signed(st: &FieldStats, sign: f64) -> FieldStats {
     if sign >= 0.0 {
         return *st;
     }
-    let neg = |e: analysis::Extreme| analysis::Extreme { value: -e.value, ..e };
+    let neg = |e: Extreme| Extreme { value: -e.value, ..e };
     FieldStats {
         min: neg(st.max),
         max: neg(st.min),

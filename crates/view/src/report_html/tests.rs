@@ -2,8 +2,7 @@ use super::page::signed;
 use super::*;
 use crate::render::Image;
 use crate::viewer::Resolution;
-use hull::analysis::PlaneSelection;
-use hull::{HullError, HYDROSTATICS_COLUMNS};
+use hull::{HullError, PlaneSelection, HYDROSTATICS_COLUMNS};
 use nurbs::KnotVector;
 
 /// Wigley hull: length, beam, draft.
@@ -31,7 +30,7 @@ fn wigley() -> NurbsSurface {
 /// Small pictures and grids: the tests check structure, not looks (and run unoptimised).
 fn quick() -> ReportOptions {
     ReportOptions {
-        curvature: analysis::CurvatureMapOptions { grid: (16, 16), ..Default::default() },
+        curvature: hull::CurvatureMapOptions { grid: (16, 16), ..Default::default() },
         fairness: FairnessOptions {
             stations: PlaneSelection::Count(5),
             waterlines: PlaneSelection::Count(3),
@@ -205,8 +204,7 @@ fn mean_curvature_is_positive_on_a_convex_bilge_whatever_the_orientation() {
     let r = 2.0;
     let s = bilge(r);
     for (name, surface) in [("u along the arc", s.clone()), ("transposed", s.transposed())] {
-        let map =
-            analysis::curvature_map(&surface, &analysis::CurvatureMapOptions { grid: (8, 8), ..Default::default() });
+        let map = hull::curvature_map(&surface, &hull::CurvatureMapOptions { grid: (8, 8), ..Default::default() });
         let st = map.summary().mean.expect("regular nodes");
         let h = signed(&st, convex_sign(&map));
         // An exact rational circle: H = 1/(2r) to round-off of the rational derivatives.
@@ -228,8 +226,9 @@ fn the_same_inputs_give_the_same_bytes() {
 
 #[test]
 fn a_fitted_sample_shows_its_error_comparison_and_convergence() {
-    use hull::optimize::{Algorithm, OptimSettings};
-    use hull::{compare_offsets, fit_offsets, series60_sample, CompareConfig, FitConfig, FitMethod};
+    use hull::{
+        compare_offsets, fit_offsets, series60_sample, Algorithm, CompareConfig, FitConfig, FitMethod, OptimSettings,
+    };
     let offsets = series60_sample();
     // A few iterations: the test reads the tables, not the optimum.
     let optim = OptimSettings { iterations: Some(3), population: Some(6), ..OptimSettings::default() };

@@ -7,10 +7,11 @@
 //! starboard half (Float32 positions, Int16 unit normals), one Float32 value per vertex and
 //! field, the control net (Float32) and the offsets with their distances to the surface
 //! (Float32). The triangles of the grid and the mirrored half (`y -> -y`, a transform of the
-//! same geometry) are made by the page. The colours come from [`hull::colormap`]: the
-//! diverging map for curvature, symmetric about zero with its limit at the 98th percentile
-//! of `|value|` (a few extreme values at a degenerate stem would otherwise wash out the rest),
-//! the sequential map from zero to the largest distance for the error.
+//! same geometry) are made by the page. The colours come from hull's colour maps: the
+//! diverging map ([`hull::diverging`]) for curvature, symmetric about zero with its limit at
+//! the 98th percentile of `|value|` (a few extreme values at a degenerate stem would otherwise
+//! wash out the rest), the sequential map ([`hull::sequential`]) from zero to the largest
+//! distance for the error.
 //!
 //! Axes: x forward, y to starboard, z up, in the offsets' units.
 
@@ -23,8 +24,7 @@ use nurbs::{NurbsSurface, Vec3};
 use serde_json::{json, Value};
 
 use crate::markup::{base64, escape};
-use hull::colormap::{curvature_limit, diverging_stops, sequential_stops, CURVATURE_QUANTILE};
-use hull::{ErrorStats, Offsets, Units};
+use hull::{curvature_limit, diverging_stops, sequential_stops, ErrorStats, Offsets, Units, CURVATURE_QUANTILE};
 pub use mesh::Resolution;
 
 const TEMPLATE: &str = include_str!("viewer.html");
