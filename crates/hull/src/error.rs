@@ -890,7 +890,7 @@ pub enum SliceKind {
     StationCount {
         /// The count asked for.
         count: usize,
-        /// The cap ([`crate::mesh::slice::MAX_STATIONS`]).
+        /// The cap ([`crate::MAX_STATIONS`]).
         max: usize,
     },
     /// A range for the stations that is not finite and increasing.

@@ -100,7 +100,8 @@ pub use export::{
     polynomial_approximation, read_surface_json, section_curves, section_parameters, srgb_to_linear, step_timestamp,
     stl_header, tessellate, write_glb, write_iges, write_iges_model, write_step, write_surface_json, IgesMeta,
     IgesUnits, PolynomialApproximation, StepMeta, SurfaceFile, SurfaceJsonError, Tessellation, TessellationOptions,
-    MAX_GRID_LINES, MAX_POLYNOMIAL_CONTROL_POINTS, MAX_STRING_LEN,
+    MAX_GRID_LINES, MAX_POLYNOMIAL_CONTROL_POINTS, MAX_STRING_LEN, MIN_POLYNOMIAL_TOLERANCE_REL,
+    MIN_TESSELLATION_TOLERANCE_REL,
 };
 // Export formats chosen by name, and the timestamp written into exports.
 pub use export_format::{export_timestamp, ExportFormat};

@@ -20,7 +20,8 @@ pub use mesh_out::{curvature_colors, mesh_name, obj_comments, srgb_to_linear, st
 pub use mirror::mirrored_full_hull;
 pub use polynomial::{
     polynomial_approximation, PolynomialApproximation, MAX_CONTROL_POINTS as MAX_POLYNOMIAL_CONTROL_POINTS,
+    MIN_POLYNOMIAL_TOLERANCE_REL,
 };
 pub use step::{step_timestamp, write_step, StepMeta};
 pub use surface_json::{read_surface_json, write_surface_json, SurfaceFile, SurfaceJsonError};
-pub use tessellate::{tessellate, Tessellation, TessellationOptions, MAX_GRID_LINES};
+pub use tessellate::{tessellate, Tessellation, TessellationOptions, MAX_GRID_LINES, MIN_TESSELLATION_TOLERANCE_REL};

@@ -31,7 +31,7 @@ use crate::{ExportToleranceKind, HullError};
 
 /// Smallest tolerance accepted, relative to the diagonal of the control-net box: ten thousand
 /// times the rounding of a coordinate.
-pub const MIN_TOLERANCE_REL: f64 = 1e-12;
+pub const MIN_POLYNOMIAL_TOLERANCE_REL: f64 = 1e-12;
 
 /// The largest error measured on the check grid must be at most this times the tolerance:
 /// the error of a degree-`p` fit oscillates with at most `p + 1` extrema per span, which the
@@ -172,11 +172,11 @@ fn directional_errors(
 /// Schoenberg-Whitney condition).
 pub fn polynomial_approximation(s: &NurbsSurface, tolerance: f64) -> Result<PolynomialApproximation, HullError> {
     let (lo, hi) = s.control_bounds();
-    let floor = MIN_TOLERANCE_REL * (hi - lo).norm();
+    let floor = MIN_POLYNOMIAL_TOLERANCE_REL * (hi - lo).norm();
     if !(tolerance.is_finite() && tolerance > 0.0 && tolerance >= floor) {
         return Err(HullError::ExportTolerance {
             tolerance,
-            kind: ExportToleranceKind::ApproximationFloor { floor, relative: MIN_TOLERANCE_REL },
+            kind: ExportToleranceKind::ApproximationFloor { floor, relative: MIN_POLYNOMIAL_TOLERANCE_REL },
         });
     }
     let w = s.weights();

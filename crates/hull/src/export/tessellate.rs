@@ -44,7 +44,7 @@ pub const MIDPOINT_FACTOR: f64 = 0.75;
 
 /// Smallest tolerance accepted, relative to the diagonal of the control-net box: the mesh
 /// formats hold f32 coordinates (relative precision 6e-8), so a tighter chord is pointless.
-pub const MIN_TOLERANCE_REL: f64 = 1e-7;
+pub const MIN_TESSELLATION_TOLERANCE_REL: f64 = 1e-7;
 
 /// Largest number of grid lines per direction before the tessellation gives up.
 pub const MAX_GRID_LINES: usize = 8192;
@@ -260,17 +260,17 @@ fn nudged(s: &NurbsSurface, u: f64, v: f64) -> (f64, f64) {
 ///
 /// # Errors
 /// [`HullError::ExportTolerance`] if the tolerance is not a positive finite number above
-/// [`MIN_TOLERANCE_REL`] of the surface's size, or if meeting it would take more than
+/// [`MIN_TESSELLATION_TOLERANCE_REL`] of the surface's size, or if meeting it would take more than
 /// [`MAX_GRID_LINES`] grid lines in a direction (a tolerance far below the surface's size) or
 /// is below the rounding of double precision.
 pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Result<Tessellation, HullError> {
     let tol = options.tolerance;
     let (lo, hi) = surface.control_bounds();
-    let floor = MIN_TOLERANCE_REL * (hi - lo).norm();
+    let floor = MIN_TESSELLATION_TOLERANCE_REL * (hi - lo).norm();
     if !(tol.is_finite() && tol > 0.0 && tol >= floor) {
         return Err(HullError::ExportTolerance {
             tolerance: tol,
-            kind: ExportToleranceKind::TessellationFloor { floor, relative: MIN_TOLERANCE_REL },
+            kind: ExportToleranceKind::TessellationFloor { floor, relative: MIN_TESSELLATION_TOLERANCE_REL },
         });
     }
     let mut gu = initial_params(surface.knots_u().as_slice(), surface.domain_u());
@@ -546,7 +546,7 @@ mod tests {
                     kind: ExportToleranceKind::TessellationFloor { floor, relative },
                 }) => {
                     assert!(tolerance.to_bits() == t.to_bits(), "{tolerance} {t}");
-                    assert!(floor > 0.0 && relative == MIN_TOLERANCE_REL, "{floor}");
+                    assert!(floor > 0.0 && relative == MIN_TESSELLATION_TOLERANCE_REL, "{floor}");
                 }
                 other => panic!("{t}: {other:?}"),
             }
