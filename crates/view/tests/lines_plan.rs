@@ -11,8 +11,8 @@ use std::path::Path;
 use std::process::Command;
 use std::sync::OnceLock;
 
-use common::browser::workspace_root;
 use common::python::tools_python;
+use common::workspace_root;
 
 use hull::Units;
 use nurbs::Vec3;

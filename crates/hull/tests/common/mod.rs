@@ -1,7 +1,10 @@
 //! Helpers shared by the integration test binaries of `hull` (each uses a subset of them).
 #![allow(dead_code)]
 
-pub mod browser;
 pub mod python;
+mod root;
 pub mod surfaces;
 pub mod tables;
+
+#[allow(unused_imports)] // each test binary uses a subset of the helpers
+pub use root::workspace_root;

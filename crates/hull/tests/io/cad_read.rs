@@ -8,9 +8,9 @@
 use std::path::Path;
 use std::process::Command;
 
-use crate::common::browser::workspace_root;
 use crate::common::python::tools_python;
 use crate::common::surfaces::{polynomial, rational_bicubic, wigley_patch};
+use crate::common::workspace_root;
 use hull::{
     parse_cad_surfaces, read_cad_surfaces, write_iges, write_step, write_surface_json, CadFormat, CadSurfaces,
     Hydrostatics, HydrostaticsOptions, HydrostaticsRow, IgesMeta, StepMeta, Units,

@@ -13,9 +13,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use crate::common::browser::workspace_root;
 use crate::common::python::tools_python;
 use crate::common::surfaces::samples;
+use crate::common::workspace_root;
 
 use hull::{
     curvature_colors, greville_v, mesh_name, obj_comments, polynomial_approximation, section_curves,

@@ -8,9 +8,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::common::browser::workspace_root;
 use crate::common::python::tools_python;
 use crate::common::surfaces::{polynomial, rational_bicubic, samples};
+use crate::common::workspace_root;
 use nurbs::fixtures::quarter_cylinder;
 
 use hull::{write_iges, IgesMeta, IgesUnits, SurfaceFile};

@@ -19,11 +19,6 @@ use std::time::{Duration, Instant};
 /// How long one browser run may take before the test gives up on it.
 pub const BROWSER_TIMEOUT: Duration = Duration::from_secs(120);
 
-/// The repository's root.
-pub fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
 /// The Chromium to run (`HULLSKIN_CHROMIUM`, Debian's, else installed by
 /// `tools/setup-chromium.sh`); panics when there is none. The browser tests carry
 /// `#[cfg_attr(skip_browser, ignore = "HULLSKIN_SKIP_BROWSER=1")]`: skipped, they are reported
@@ -39,7 +34,7 @@ pub fn chromium() -> PathBuf {
         return PathBuf::from("/usr/bin/chromium");
     }
     let found = FOUND.get_or_init(|| {
-        let script = workspace_root().join("tools/setup-chromium.sh");
+        let script = super::workspace_root().join("tools/setup-chromium.sh");
         let out =
             Command::new("bash").arg(&script).output().map_err(|e| format!("cannot run {}: {e}", script.display()))?;
         let stdout = String::from_utf8_lossy(&out.stdout);
