@@ -12,7 +12,8 @@
 //! // The built-in Series 60 Cb 0.60 parent (Todd 1963): 25 stations by 8 waterlines, metres.
 //! // A file is read the same way: `hull::read_offsets(path, Units::Metre)?`.
 //! let offsets = series60_sample();
-//! // The default fit: skinning approximation, faired, held within the offsets' envelope.
+//! // The library's default fit: the skinning approximation held within the offsets' envelope
+//! // (the command line also fairs it: `fair: Fairing::Auto { tolerance: None }`).
 //! let fit = fit_offsets(&offsets, &FitConfig::default())?;
 //! // Every offset's true (closest-point) distance to the surface, and the validity checks.
 //! assert!(fit.error.overall.max < 0.2, "max error {} m", fit.error.overall.max);

@@ -137,20 +137,3 @@ proptest! {
         prop_assert!(out.validity.is_empty(), "findings {:?}: {:?}", kinds, out.validity);
     }
 }
-
-proptest! {
-    #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
-
-    /// Issue 11: the command line's default fit (fairing `auto`, held within the offsets'
-    /// envelope, the default control points) of any hull-like sections is valid: no fold, no
-    /// excursion past the envelope, no inward-facing patch, no flat bulging through its plane.
-    /// (The check has teeth: the plain least squares not held, `EnvelopeHold::Free`, fails it
-    /// within the first few cases.)
-    #[test]
-    fn the_default_fit_has_no_validity_finding(offsets in hull_sections()) {
-        let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
-        let out = fit_offsets(&offsets, &config).map_err(|e| TestCaseError::fail(e.to_string()))?;
-        let findings: Vec<String> = out.validity.iter().map(|f| f.message("m")).collect();
-        prop_assert!(findings.is_empty(), "{findings:#?}");
-    }
-}
