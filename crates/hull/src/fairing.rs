@@ -82,6 +82,21 @@ pub fn fair(
             Err(HullError::FitSetting { name, value: v, expected: "a finite number >= 0" })
         }
     };
+    // Settings checked, and nothing to fair, before the plain fit's figures are measured.
+    match fairing {
+        Fairing::Off => return Ok(None),
+        Fairing::Lambda(l) => {
+            check("fairness", l)?;
+            if l == 0.0 {
+                return Ok(None);
+            }
+        }
+        Fairing::Auto { tolerance } => {
+            if let Some(t) = tolerance {
+                check("tolerance", t)?;
+            }
+        }
+    }
     let before = FairnessFigures::of(&plain.surface);
     let report = |lambda: f64, tolerance: Option<f64>, tried: Vec<FairTry>, after: FairnessFigures| FairReport {
         setting: fairing.name(),
@@ -95,18 +110,11 @@ pub fn fair(
     match fairing {
         Fairing::Off => Ok(None),
         Fairing::Lambda(l) => {
-            check("fairness", l)?;
-            if l == 0.0 {
-                return Ok(None);
-            }
             let out = skin(l)?;
             let after = FairnessFigures::of(&out.surface);
             Ok(Some((out, report(l, None, Vec::new(), after))))
         }
         Fairing::Auto { tolerance } => {
-            if let Some(t) = tolerance {
-                check("tolerance", t)?;
-            }
             let limit = tolerance.unwrap_or(plain.error.overall.max);
             let sound = plain.validity.is_empty();
             let mut tried = Vec::new();
@@ -130,7 +138,6 @@ pub fn fair(
             } else {
                 // Validity first: the least smoothing with the fewest defects (folds first, then
                 // findings of any kind), fewer than the plain fit's, within the slack.
-                let defects = |o: &FitOutcome| (o.folds.len(), o.validity.len());
                 let mut best: Option<(usize, FitOutcome)> = None;
                 // Every weight is tried here: the fits run in parallel, the choice is made in
                 // their order, so it does not depend on the thread count.
@@ -138,7 +145,7 @@ pub fn fair(
                 for (&l, fit) in AUTO_LAMBDAS.iter().zip(fits) {
                     let Ok(out) = fit else { continue };
                     let (max, findings) = (out.error.overall.max, out.validity.len());
-                    let better = defects(&out) < best.as_ref().map_or(defects(plain), |(_, b)| defects(b));
+                    let better = out.defects() < best.as_ref().map_or(plain.defects(), |(_, b)| b.defects());
                     if better && max <= UNSOUND_SLACK * limit {
                         best = Some((tried.len(), out));
                     }

@@ -210,6 +210,14 @@ pub struct FitOutcome {
     pub envelope_held: usize,
 }
 
+impl FitOutcome {
+    /// How defective the surface is, for choosing between fits: `(folds, findings)`, folds
+    /// first, then validity findings of any kind (compared in that order).
+    pub fn defects(&self) -> (usize, usize) {
+        (self.folds.len(), self.validity.len())
+    }
+}
+
 /// The fairness term of a fit.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Fairing {

@@ -10,7 +10,7 @@ use nurbs::fit::{
 };
 use nurbs::{NurbsError, NurbsSurface};
 
-use crate::analysis::{Envelope, FindingKind};
+use crate::analysis::Envelope;
 use crate::fairing::Fairing;
 use crate::fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles};
 use crate::fit_error::{measure_fit_error, FitError};
@@ -191,23 +191,23 @@ fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Resul
 }
 
 /// `out` (an optimised fit) unless it has validity findings and one of `candidates` has
-/// fewer defects (folds first, then findings of any kind, as [`crate::fairing::fair`] ranks
-/// them): then the first with the fewest, a sound one where there is one, named `approx`,
+/// fewer defects ([`FitOutcome::defects`]: folds first, then findings of any kind, as
+/// [`crate::fairing::fair`] ranks them): then the first with the fewest, a sound one where
+/// there is one, named `approx`,
 /// with `out`'s rejection in `rejected` and the time spent on both.
 fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>) -> FitOutcome {
     if out.validity.is_empty() {
         return out;
     }
-    let defects =
-        |o: &FitOutcome| (o.validity.iter().filter(|f| f.kind == FindingKind::Fold).count(), o.validity.len());
-    let Some(kept) = candidates.into_iter().min_by_key(defects).filter(|c| defects(c) < defects(&out)) else {
+    let Some(kept) = candidates.into_iter().min_by_key(FitOutcome::defects).filter(|c| c.defects() < out.defects())
+    else {
         return out;
     };
     let names = |o: &FitOutcome| o.validity.iter().map(|f| f.kind.name()).collect::<Vec<&str>>().join(", ");
     let instead = if kept.validity.is_empty() {
         "the sound approximation is kept".to_string()
     } else {
-        let (folds, findings) = defects(&kept);
+        let (folds, findings) = kept.defects();
         format!(
             "the approximation, with fewer defects ({folds} fold(s), {findings} finding(s): {}), is kept",
             names(&kept)
