@@ -25,6 +25,15 @@ pub fn samples(s: &NurbsSurface) -> Vec<[f64; 5]> {
         .collect()
 }
 
+/// `s` with two of its weights (the third and fourth) changed to 0.9: a surface the export
+/// checks must tell from `s`.
+pub fn weights_changed(s: &NurbsSurface) -> NurbsSurface {
+    let mut w = s.weights();
+    w[2] = 0.9;
+    w[3] = 0.9;
+    NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &s.control_points(), Some(&w)).expect("valid")
+}
+
 /// (a) Rational bicubic, non-uniform knots with a double knot in v, v domain not [0, 1],
 /// weights from 0.55 to 1.85: a hull-like half section swept along x.
 pub fn rational_bicubic() -> NurbsSurface {

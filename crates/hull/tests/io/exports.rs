@@ -14,7 +14,7 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use crate::common::python::tools_python;
-use crate::common::surfaces::samples;
+use crate::common::surfaces::{samples, weights_changed};
 use crate::common::workspace_root;
 
 use hull::{
@@ -207,11 +207,7 @@ fn occt_step_check_detects_a_mismatch() {
     let python = occt_python();
     let dir = tempfile::tempdir().expect("temp dir");
     let s = quarter_cylinder(2.0, 3.0);
-    let mut w = s.weights();
-    w[2] = 0.9;
-    w[3] = 0.9;
-    let wrong =
-        NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &s.control_points(), Some(&w)).expect("valid");
+    let wrong = weights_changed(&s);
     let stp = dir.path().join("a.stp");
     std::fs::write(&stp, step_bytes(&s, Units::Metre, "a.stp")).expect("write");
     let exp = dir.path().join("wrong.json");

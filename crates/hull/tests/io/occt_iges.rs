@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::common::python::tools_python;
-use crate::common::surfaces::{polynomial, rational_bicubic, samples};
+use crate::common::surfaces::{polynomial, rational_bicubic, samples, weights_changed};
 use crate::common::workspace_root;
 use nurbs::fixtures::quarter_cylinder;
 
@@ -224,11 +224,7 @@ fn occt_check_detects_a_mismatch() {
     let python = occt_python();
     let dir = tempfile::tempdir().expect("temp dir");
     let s = quarter_cylinder(2.0, 3.0);
-    let mut w = s.weights();
-    w[2] = 0.9;
-    w[3] = 0.9;
-    let wrong =
-        NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &s.control_points(), Some(&w)).expect("valid");
+    let wrong = weights_changed(&s);
     let (igs, exp) = write_case(dir.path(), "wrong_weight", &s, IgesUnits::METRE, &samples(&wrong));
     let (code, summary) = run_check(&python, &igs, &exp);
     assert_eq!(code, 1, "{summary}");
