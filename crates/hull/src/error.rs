@@ -181,8 +181,8 @@ pub enum HullError {
     /// An export format that cannot be chosen or used as asked.
     #[error("{0}")]
     Format(FormatKind),
-    /// An export tolerance (tessellation chord height, polynomial approximation) that cannot
-    /// be met.
+    /// A polynomial approximation tolerance that cannot be met (a tessellation's is a
+    /// [`HullError::Kernel`] error).
     #[error("{}", export_tolerance_message(*.tolerance, kind))]
     ExportTolerance {
         /// The tolerance asked for.
@@ -190,6 +190,12 @@ pub enum HullError {
         /// Why it cannot be met.
         kind: ExportToleranceKind,
     },
+    /// An error of the kernel outside a fit, printed as the kernel words it: a tessellation
+    /// tolerance that cannot be met ([`nurbs::NurbsError::TessellationFloor`],
+    /// `TessellationGridLines`, `TessellationRounding`), a mesh with a non-finite vertex or a
+    /// triangle index out of range (`NonFiniteVertex`, `TriangleIndex`).
+    #[error("{0}")]
+    Kernel(nurbs::NurbsError),
     /// A surface that cannot be mirrored into a whole hull (`--mirror`).
     #[error("--mirror: {0}")]
     Mirror(MirrorKind),
@@ -302,6 +308,11 @@ impl HullError {
                 | HullError::MainDimension { .. }
                 | HullError::Format(_)
                 | HullError::ExportTolerance { .. }
+                | HullError::Kernel(
+                    nurbs::NurbsError::TessellationFloor { .. }
+                        | nurbs::NurbsError::TessellationGridLines { .. }
+                        | nurbs::NurbsError::TessellationRounding { .. }
+                )
                 | HullError::Mirror(_)
                 | HullError::ToleranceWithInterp
                 | HullError::HeldOut(_)
@@ -713,24 +724,6 @@ pub enum FormatKind {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum ExportToleranceKind {
-    /// A tessellation tolerance below the floor (`relative` of the surface's size), or not a
-    /// positive finite length.
-    TessellationFloor {
-        /// The smallest accepted tolerance.
-        floor: f64,
-        /// The floor as a fraction of the surface's size.
-        relative: f64,
-    },
-    /// A tessellation that would need more grid lines than the cap.
-    GridLines {
-        /// The cap.
-        max: usize,
-    },
-    /// A tessellation tolerance at the rounding of double precision.
-    Rounding {
-        /// The largest chord deviation reached.
-        deviation: f64,
-    },
     /// A polynomial approximation tolerance below the floor, or not a positive finite length.
     ApproximationFloor {
         /// The smallest accepted tolerance.
@@ -752,16 +745,6 @@ pub enum ExportToleranceKind {
 
 fn export_tolerance_message(tol: f64, kind: &ExportToleranceKind) -> String {
     match *kind {
-        ExportToleranceKind::TessellationFloor { floor, relative } => format!(
-            "tessellation tolerance {tol}: expected a length of at least {floor:.3e} ({relative:e} of the surface's size)"
-        ),
-        ExportToleranceKind::GridLines { max } => format!(
-            "tessellation tolerance {tol} needs more than {max} grid lines (expected a tolerance nearer the surface's size)"
-        ),
-        ExportToleranceKind::Rounding { deviation } => format!(
-            "tessellation tolerance {tol} cannot be met in double precision (a chord deviates by {deviation:.3e}; \
-             expected a larger tolerance)"
-        ),
         ExportToleranceKind::ApproximationFloor { floor, relative } => format!(
             "approximation tolerance {tol}: expected a length of at least {floor:.3e} ({relative:e} of the surface's \
              size; below that rounding dominates)"
@@ -1137,6 +1120,14 @@ impl fmt::Display for LimitExceeded {
 
 impl std::error::Error for LimitExceeded {}
 
+impl From<nurbs::NurbsError> for HullError {
+    /// [`HullError::Kernel`]: the kernel's error as it is (a fit's failure is
+    /// [`HullError::Fit`] instead, which names the method).
+    fn from(e: nurbs::NurbsError) -> Self {
+        HullError::Kernel(e)
+    }
+}
+
 impl From<LimitExceeded> for HullError {
     fn from(e: LimitExceeded) -> Self {
         HullError::Limit(Box::new(e))
@@ -1223,6 +1214,23 @@ mod tests {
             "draft range from 0 to 1 step 0.000000001 holds more than 10000 drafts: expected a larger step"
         );
         assert!(e.is_setting());
+    }
+
+    #[test]
+    fn a_kernel_tessellation_error_is_a_setting_with_the_kernel_message() {
+        let s = nurbs::fixtures::quarter_cylinder_along_x(2.0, 3.0);
+        let options = nurbs::TessellationOptions { tolerance: 1e-12, mirror: false };
+        let kernel = crate::tessellate(&s, &options).expect_err("below the floor");
+        let e = HullError::from(kernel.clone());
+        assert!(e.is_setting() && matches!(&e, HullError::Kernel(k) if *k == kernel), "{e:?}");
+        assert_eq!(e.to_string(), kernel.to_string());
+        assert_eq!(
+            e.to_string(),
+            "tessellation tolerance 0.000000000001: expected a length of at least 4.123e-7 (1e-7 of the surface's size)"
+        );
+        // A mesh error is the data's, not a setting.
+        let mesh = crate::TriMesh::try_new("m.obj", vec![], vec![[0, 0, 0]]).expect_err("no vertices");
+        assert!(!HullError::from(mesh).is_setting());
     }
 
     #[test]

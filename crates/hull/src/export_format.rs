@@ -6,10 +6,9 @@ use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
 
-use nurbs::NurbsSurface;
+use nurbs::{NurbsSurface, TessellationOptions};
 
 use crate::error::{FormatKind, HullError, InputNames};
-use crate::export::TessellationOptions;
 
 /// What an export writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -99,10 +99,9 @@ pub use error::{
 pub use export::{
     curvature_colors, greville_v, iges_timestamp, mesh_name, mirrored_full_hull, obj_comments,
     polynomial_approximation, read_surface_json, section_curves, section_parameters, srgb_to_linear, step_timestamp,
-    stl_header, tessellate, write_glb, write_iges, write_iges_model, write_step, write_surface_json, IgesMeta,
-    IgesUnits, PolynomialApproximation, StepMeta, SurfaceFile, SurfaceJsonError, Tessellation, TessellationOptions,
-    MAX_GRID_LINES, MAX_POLYNOMIAL_CONTROL_POINTS, MAX_STRING_LEN, MIN_POLYNOMIAL_TOLERANCE_REL,
-    MIN_TESSELLATION_TOLERANCE_REL,
+    stl_header, write_glb, write_iges, write_iges_model, write_step, write_surface_json, IgesMeta, IgesUnits,
+    PolynomialApproximation, StepMeta, SurfaceFile, SurfaceJsonError, MAX_POLYNOMIAL_CONTROL_POINTS, MAX_STRING_LEN,
+    MIN_POLYNOMIAL_TOLERANCE_REL,
 };
 // Export formats chosen by name, and the timestamp written into exports.
 pub use export_format::{export_timestamp, ExportFormat};
@@ -137,9 +136,13 @@ pub use limits::{
 pub use mesh::{
     gunzip, looks_binary as looks_like_binary_stl, mesh_distance, mesh_hydrostatics, parse_mesh, parse_obj, parse_stl,
     read_mesh, slice_mesh, starts_with_solid, station_positions, weld, write_obj, write_stl_ascii, write_stl_binary,
-    Axes, DroppedStation, EdgeCounts, MeshDistance, MeshFormat, MeshHydrostatics, MeshReadOptions, Resample,
-    SliceOptions, SliceOutcome, Spacing, StationInfo as KeptStation, Stations, TriMesh, TriangleSoup, VertexFilter,
-    END_INSET, MAX_DECOMPRESSED, MAX_STATIONS, STL_HEADER_LEN,
+    Axes, DroppedStation, MeshDistance, MeshFormat, MeshHydrostatics, MeshReadOptions, Resample, SliceOptions,
+    SliceOutcome, Spacing, StationInfo as KeptStation, Stations, TriangleSoup, VertexFilter, END_INSET,
+    MAX_DECOMPRESSED, MAX_STATIONS, STL_HEADER_LEN,
+};
+// The kernel's triangle mesh and tessellation, under the paths hull has always given them.
+pub use nurbs::{
+    tessellate, EdgeCounts, Tessellation, TessellationOptions, TriMesh, MAX_GRID_LINES, MIN_TESSELLATION_TOLERANCE_REL,
 };
 // A mesh compared with a surface fitted to its slices.
 pub use mesh_comparison::{compare_mesh_and_surface, MeshComparison};

@@ -2,11 +2,11 @@
 //! `hullskin slice --check` prints): the surface's hydrostatics beside the mesh's, and the
 //! distance of the mesh's wetted starboard vertices to the surface.
 
-use nurbs::NurbsSurface;
+use nurbs::{NurbsSurface, TriMesh};
 
 use crate::error::HullError;
 use crate::hydrostatics::{Hydrostatics, HydrostaticsOptions, HydrostaticsRow};
-use crate::mesh::{mesh_distance, MeshDistance, MeshHydrostatics, TriMesh, VertexFilter};
+use crate::mesh::{mesh_distance, MeshDistance, MeshHydrostatics, VertexFilter};
 use crate::offsets::Offsets;
 
 /// A surface against a mesh at the mesh's draft ([`compare_mesh_and_surface`]).

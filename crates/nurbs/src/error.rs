@@ -2,6 +2,8 @@
 
 use thiserror::Error;
 
+use crate::Vec3;
+
 /// Everything that can go wrong in the NURBS kernel. Variants carry the offending values.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
@@ -52,4 +54,34 @@ pub enum NurbsError {
     NonFiniteResult { what: String },
     #[error("{what}: parameters decrease at index {index}: {prev} then {value}")]
     DecreasingParameters { what: String, index: usize, prev: f64, value: f64 },
+    /// A tessellation tolerance that is not a positive finite length of at least `floor`,
+    /// `relative` of the surface's size ([`crate::MIN_TESSELLATION_TOLERANCE_REL`]).
+    #[error(
+        "tessellation tolerance {tolerance}: expected a length of at least {floor:.3e} ({relative:e} of the surface's size)"
+    )]
+    TessellationFloor { tolerance: f64, floor: f64, relative: f64 },
+    /// A tessellation tolerance that would need more than `max` grid lines in a direction
+    /// ([`crate::MAX_GRID_LINES`]).
+    #[error(
+        "tessellation tolerance {tolerance} needs more than {max} grid lines (expected a tolerance nearer the surface's size)"
+    )]
+    TessellationGridLines { tolerance: f64, max: usize },
+    /// A tessellation tolerance at the rounding of double precision: a chord still deviates
+    /// by `deviation` where no interval can be halved any more.
+    #[error(
+        "tessellation tolerance {tolerance} cannot be met in double precision (a chord deviates by {deviation:.3e}; \
+         expected a larger tolerance)"
+    )]
+    TessellationRounding { tolerance: f64, deviation: f64 },
+    /// A vertex of the mesh named `mesh` with a coordinate that is not finite; `index` counts
+    /// from 0, the message from 1 (as mesh files number their vertices).
+    #[error("{mesh}: vertex {} is ({}, {}, {}) (expected finite coordinates)", index + 1, vertex.x, vertex.y, vertex.z)]
+    NonFiniteVertex { mesh: String, index: usize, vertex: Vec3 },
+    /// A triangle of the mesh named `mesh` that refers to a vertex beyond the `vertices`
+    /// there are; `index` counts from 0, the message from 1.
+    #[error(
+        "{mesh}: triangle {} refers to vertex indices {indices:?} (expected indices below the vertex count {vertices})",
+        index + 1
+    )]
+    TriangleIndex { mesh: String, index: usize, indices: [u32; 3], vertices: usize },
 }

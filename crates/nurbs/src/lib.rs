@@ -1,7 +1,8 @@
 //! The NURBS kernel: knot vectors, B-spline basis functions, rational curves and
 //! surfaces with derivatives and curvature, knot insertion and refinement, degree elevation,
-//! closest-point projection, and fitting (parameterization, interpolation, least squares,
-//! skinning). `f64` and 3-D only; no I/O; every fallible call returns [`NurbsError`].
+//! closest-point projection, iso-curves and their level sets, tessellation into a triangle
+//! mesh, and fitting (parameterization, interpolation, least squares, skinning). `f64` and 3-D
+//! only; no I/O; every fallible call returns [`NurbsError`].
 //!
 //! Skin a surface through a family of sections, then measure how far a point lies from it:
 //!
@@ -30,11 +31,14 @@
 //!
 //! The modules: `knots`, `basis`, `curve`, `surface` (evaluation, derivatives, curvature),
 //! `refine` and `elevate` (knot insertion, degree elevation), `project` (closest points),
-//! `fit` (parameterization, knots, interpolation, least squares, skinning, corner lines,
-//! bounded refits), `linalg` (band and dense factorizations), `quadrature` (Gauss-Legendre)
-//! and `tolerance` (named tolerances).
+//! `iso` (iso-curves over a span, with the roots of a level set along them), `brent` (Brent's
+//! root finder and maximiser), `tessellate` and `mesh` (a surface triangulated to a chord
+//! tolerance, the triangle mesh), `fit` (parameterization, knots, interpolation, least squares,
+//! skinning, corner lines, bounded refits), `linalg` (band and dense factorizations),
+//! `quadrature` (Gauss-Legendre) and `tolerance` (named tolerances).
 
 pub mod basis;
+mod brent;
 mod curve;
 mod elevate;
 mod error;
@@ -43,25 +47,34 @@ pub mod fit;
 #[doc(hidden)]
 pub mod fixtures;
 mod grid;
+mod iso;
 mod knots;
 mod linalg;
+mod mesh;
 mod project;
 mod quadrature;
 mod refine;
 mod scattered;
 mod surface;
+mod tessellate;
 #[macro_use]
 pub mod tolerance;
 mod vec3;
 
+pub use brent::{brent_max, brent_root};
 pub use curve::{Homogeneous, NurbsCurve};
 pub use error::NurbsError;
 pub use grid::FirstDerivatives;
+pub use iso::{Direction, IsoCurve};
 pub use knots::{KnotVector, MAX_DEGREE};
 pub use linalg::{band_cholesky, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu};
+pub use mesh::{EdgeCounts, TriMesh};
 pub use quadrature::GaussLegendre;
 pub use scattered::PointEvaluator;
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
+pub use tessellate::{
+    tessellate, Tessellation, TessellationOptions, MAX_GRID_LINES, MIDPOINT_FACTOR, MIN_TESSELLATION_TOLERANCE_REL,
+};
 pub use vec3::Vec3;
 // refine / elevate / project: their helpers add `pub use` lines below.
 pub use project::{

@@ -33,7 +33,7 @@ pub fn mesh(py: Python<'_>, s: &PySurface, tolerance: Option<f64>, mirror: bool)
         }
         options.tolerance = t;
     }
-    py.detach(|| tessellate(&s.surface, &options)).map(|t| t.mesh).map_err(to_py)
+    py.detach(|| tessellate(&s.surface, &options)).map(|t| t.mesh).map_err(|e| to_py(e.into()))
 }
 
 /// The header date: `timestamp`, else SOURCE_DATE_EPOCH, else now (the command line's rule).

@@ -35,9 +35,8 @@
 
 use std::io::{self, Write};
 
-use nurbs::Vec3;
+use nurbs::{Tessellation, Vec3};
 
-use super::tessellate::Tessellation;
 use crate::colormap::{curvature_limit, diverging};
 use crate::float::real;
 use crate::Units;
@@ -251,9 +250,9 @@ pub fn write_glb<W: Write>(w: &mut W, tess: &Tessellation, name: &str, units: Un
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::export::tessellate::{tessellate, TessellationOptions};
     use crate::mesh::write_obj;
     use crate::mesh::{write_stl_ascii, write_stl_binary};
+    use nurbs::{tessellate, TessellationOptions};
 
     fn cylinder_mesh(mirror: bool) -> Tessellation {
         let surface = nurbs::fixtures::quarter_cylinder_along_x(2.0, 3.0);

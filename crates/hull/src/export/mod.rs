@@ -1,6 +1,7 @@
 //! Exports of the fitted surface to exchange formats: IGES 5.3 (surface entity 128, section
 //! curves entity 126, and a polynomial approximation for systems that drop weights), STEP
-//! AP214, triangle meshes to a chordal tolerance (STL, OBJ, binary glTF) and the lossless
+//! AP214, triangle meshes to a chordal tolerance (STL, OBJ, binary glTF, from the kernel's
+//! [`nurbs::tessellate()`]) and the lossless
 //! hullskin surface JSON. Writers are generic over [`std::io::Write`] and format every real
 //! number of text formats through [`crate::float::real`].
 
@@ -10,7 +11,6 @@ mod mirror;
 mod polynomial;
 mod step;
 mod surface_json;
-mod tessellate;
 
 pub use iges::{
     greville_v, iges_timestamp, section_curves, section_parameters, write_iges, write_iges_model, IgesMeta, IgesUnits,
@@ -24,4 +24,3 @@ pub use polynomial::{
 };
 pub use step::{step_timestamp, write_step, StepMeta};
 pub use surface_json::{read_surface_json, write_surface_json, SurfaceFile, SurfaceJsonError};
-pub use tessellate::{tessellate, Tessellation, TessellationOptions, MAX_GRID_LINES, MIN_TESSELLATION_TOLERANCE_REL};

@@ -10,12 +10,14 @@
 //! side. The outer integrand is then smooth (analytic inside a span), so the rule converges as
 //! fast as on an uncut cell. A cell monotone in neither direction is split in four, down to
 //! [`MAX_DEPTH`] levels.
+//!
+//! The surface along the inner parameter at an outer node, with its derivatives, the roots of
+//! the level set and the cut's tangent, is the kernel's [`nurbs::IsoCurve`].
 
-use nurbs::basis::{basis_funs, ders_basis_funs, BasisRow};
-use nurbs::{NurbsSurface, Vec3, MAX_DEGREE};
-
-use super::gauss::{brent_max, brent_root};
-use nurbs::GaussLegendre;
+use nurbs::basis::{ders_basis_funs, BasisRow};
+use nurbs::{
+    brent_max, brent_root, Direction, FirstDerivatives, GaussLegendre, IsoCurve, NurbsSurface, Vec3, MAX_DEGREE,
+};
 
 /// Subdivision levels of a cell where the level set is monotone in neither parameter.
 const MAX_DEPTH: usize = 6;
@@ -36,45 +38,10 @@ const SIGN_SAMPLES: usize = 4;
 /// are joined to the keel line. 2e-3 keeps Gunnerus's skeg out by a third.
 pub(crate) const WEB_REL: f64 = 2e-3;
 
-/// Which coordinate a level set is taken of.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Coord {
-    X,
-    Z,
-}
-
-impl Coord {
-    fn of(self, p: Vec3) -> f64 {
-        match self {
-            Coord::X => p.x,
-            Coord::Z => p.z,
-        }
-    }
-}
-
-/// A parameter direction.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Dir {
-    U,
-    V,
-}
-
-impl Dir {
-    fn other(self) -> Dir {
-        match self {
-            Dir::U => Dir::V,
-            Dir::V => Dir::U,
-        }
-    }
-}
-
-/// A point with its first partial derivatives.
-#[derive(Clone, Copy, Debug)]
-struct D1 {
-    point: Vec3,
-    su: Vec3,
-    sv: Vec3,
-}
+/// The coordinates the level sets are taken of, as indices of a point: `x` (the midship
+/// section `x = x_m`) and `z` (the waterline `z = T`).
+const X: usize = 0;
+const Z: usize = 2;
 
 /// A rectangle of the parameter domain.
 #[derive(Clone, Copy, Debug)]
@@ -84,10 +51,10 @@ struct Rect {
 }
 
 impl Rect {
-    fn range(&self, d: Dir) -> (f64, f64) {
+    fn range(&self, d: Direction) -> (f64, f64) {
         match d {
-            Dir::U => self.u,
-            Dir::V => self.v,
+            Direction::U => self.u,
+            Direction::V => self.v,
         }
     }
 
@@ -104,10 +71,10 @@ impl Rect {
 }
 
 /// `(u, v)` from an inner and an outer parameter value.
-fn uv(inner: Dir, i: f64, o: f64) -> (f64, f64) {
+fn uv(inner: Direction, i: f64, o: f64) -> (f64, f64) {
     match inner {
-        Dir::U => (i, o),
-        Dir::V => (o, i),
+        Direction::U => (i, o),
+        Direction::V => (o, i),
     }
 }
 
@@ -115,11 +82,20 @@ fn uv(inner: Dir, i: f64, o: f64) -> (f64, f64) {
 /// counter-clockwise boundary (u to the right, v up) of the wet region: the wet region
 /// `{u < r(v)}` lies left of a cut traversed upward (+1), `{v < r(u)}` left of a cut
 /// traversed toward -u (-1).
-fn orientation(inner: Dir, wet_low: bool) -> f64 {
+fn orientation(inner: Direction, wet_low: bool) -> f64 {
     match (inner, wet_low) {
-        (Dir::U, true) | (Dir::V, false) => 1.0,
-        (Dir::U, false) | (Dir::V, true) => -1.0,
+        (Direction::U, true) | (Direction::V, false) => 1.0,
+        (Direction::U, false) | (Direction::V, true) => -1.0,
     }
+}
+
+/// An outer interval `(s0, s1)` of a cell between two breaks of a level set, with whether the
+/// level set's low side holds at the cell's two inner ends ([`Integrator::strips`]).
+#[derive(Clone, Copy, Debug)]
+struct Strip {
+    s0: f64,
+    s1: f64,
+    low: (bool, bool),
 }
 
 /// A knot-span cell (or a part of one) with the bounding box of the span's control points,
@@ -143,7 +119,7 @@ struct Cell {
 #[derive(Clone, Copy, Debug)]
 struct EdgeSeg {
     /// The parameter held fixed, and its value.
-    fixed: Dir,
+    fixed: Direction,
     value: f64,
     /// The range of the other parameter.
     range: (f64, f64),
@@ -183,9 +159,9 @@ pub(crate) struct Sums {
 #[derive(Clone, Debug)]
 enum Piece {
     /// The cut across a cell: `inner = r(outer)`, sampled at increasing outer values.
-    Cut { rect: Rect, inner: Dir, samples: Vec<(f64, Vec3)>, web: bool },
+    Cut { rect: Rect, inner: Direction, samples: Vec<(f64, Vec3)>, web: bool },
     /// A domain edge lying on the waterline.
-    Edge { fixed: Dir, value: f64, samples: Vec<(f64, Vec3)>, web: bool },
+    Edge { fixed: Direction, value: f64, samples: Vec<(f64, Vec3)>, web: bool },
 }
 
 impl Piece {
@@ -284,7 +260,7 @@ impl<'a> Integrator<'a> {
                 let (lo, hi) = bounds(i - p..=i, jj..=jj);
                 let web = webs[a * nsv + b];
                 for &range in &pieces(ku[i], ku[i + 1]) {
-                    edges.push(EdgeSeg { fixed: Dir::V, value, range, orient, zlo: lo.z, zhi: hi.z, web });
+                    edges.push(EdgeSeg { fixed: Direction::V, value, range, orient, zlo: lo.z, zhi: hi.z, web });
                 }
             }
         }
@@ -293,7 +269,7 @@ impl<'a> Integrator<'a> {
                 let (lo, hi) = bounds(ii..=ii, j - q..=j);
                 let web = webs[a * nsv + b];
                 for &range in &pieces(kv[j], kv[j + 1]) {
-                    edges.push(EdgeSeg { fixed: Dir::U, value, range, orient, zlo: lo.z, zhi: hi.z, web });
+                    edges.push(EdgeSeg { fixed: Direction::U, value, range, orient, zlo: lo.z, zhi: hi.z, web });
                 }
             }
         }
@@ -340,10 +316,10 @@ impl<'a> Integrator<'a> {
     /// The point and first partial derivatives at `(u, v)`: The NURBS Book A3.6 on the
     /// homogeneous net to first order, then A4.4, `S_u = (A_u - w_u S) / w` (as
     /// [`NurbsSurface::derivatives`], without the second derivatives this module never uses).
-    fn d1(&self, u: f64, v: f64) -> D1 {
+    fn d1(&self, u: f64, v: f64) -> FirstDerivatives {
         let (ku, kv) = (self.s.knots_u(), self.s.knots_v());
         let (u, v) = (ku.clamp(u), kv.clamp(v));
-        self.iso(Dir::V, u, (ku.find_span(u), kv.find_span(v))).d1(v)
+        self.iso(Direction::V, u, (ku.find_span(u), kv.find_span(v))).derivatives(v)
     }
 
     /// The knot spans `(i, j)` holding the rectangle `r` (which lies in one span).
@@ -351,49 +327,14 @@ impl<'a> Integrator<'a> {
         (self.s.knots_u().find_span(0.5 * (r.u.0 + r.u.1)), self.s.knots_v().find_span(0.5 * (r.v.0 + r.v.1)))
     }
 
-    /// The surface along `inner` at the outer parameter `s`, over the knot spans `(su, sv)`:
-    /// the homogeneous net contracted with the outer basis functions and their derivatives.
-    fn iso(&self, inner: Dir, s: f64, (su, sv): (usize, usize)) -> Iso<'a> {
-        let surf = self.s;
-        let (p, q) = (surf.degree_u(), surf.degree_v());
-        let nvn = surf.n_v();
-        let cw = surf.homogeneous();
-        let mut ob: [BasisRow; 2] = [[0.0; MAX_DEGREE + 1]; 2];
-        let mut c0 = [[0.0f64; 4]; MAX_DEGREE + 1];
-        let mut c1 = [[0.0f64; 4]; MAX_DEGREE + 1];
-        match inner {
-            Dir::U => {
-                ders_basis_funs(surf.knots_v().as_slice(), sv, s, q, 1, &mut ob);
-                for r in 0..=p {
-                    let row = &cw[(su - p + r) * nvn + sv - q..][..=q];
-                    for (l, h) in row.iter().enumerate() {
-                        for k in 0..4 {
-                            c0[r][k] += ob[0][l] * h[k];
-                            c1[r][k] += ob[1][l] * h[k];
-                        }
-                    }
-                }
-                Iso { knots: surf.knots_u().as_slice(), deg: p, span: su, inner, c0, c1 }
-            }
-            Dir::V => {
-                ders_basis_funs(surf.knots_u().as_slice(), su, s, p, 1, &mut ob);
-                for r in 0..=p {
-                    let row = &cw[(su - p + r) * nvn + sv - q..][..=q];
-                    for (l, h) in row.iter().enumerate() {
-                        for k in 0..4 {
-                            c0[l][k] += ob[0][r] * h[k];
-                            c1[l][k] += ob[1][r] * h[k];
-                        }
-                    }
-                }
-                Iso { knots: surf.knots_v().as_slice(), deg: q, span: sv, inner, c0, c1 }
-            }
-        }
+    /// The surface along `inner` at the outer parameter `s`, over the knot spans `(su, sv)`.
+    fn iso(&self, inner: Direction, s: f64, spans: (usize, usize)) -> IsoCurve<'a> {
+        IsoCurve::new(self.s, inner, s, spans)
     }
 
-    /// `coord(S(u, v)) - c`.
-    fn f(&self, coord: Coord, c: f64, (u, v): (f64, f64)) -> f64 {
-        coord.of(self.s.point(u, v)) - c
+    /// `S(u, v)[coord] - c`.
+    fn f(&self, coord: usize, c: f64, (u, v): (f64, f64)) -> f64 {
+        self.s.point(u, v)[coord] - c
     }
 
     /// The wet part of the surface below the level `level` (`z <= level`): the surface
@@ -433,14 +374,14 @@ impl<'a> Integrator<'a> {
             })
             .collect();
         for (u, wu) in self.gl.on(r.u.0, r.u.1) {
-            let iso = self.iso(Dir::V, u, spans);
+            let iso = self.iso(Direction::V, u, spans);
             for (wv, b) in &bv {
-                self.area_node(iso.d1_with(b), wu * wv, web, sums);
+                self.area_node(iso.derivatives_with_basis(b), wu * wv, web, sums);
             }
         }
     }
 
-    fn area_node(&self, d: D1, w: f64, web: bool, sums: &mut Sums) {
+    fn area_node(&self, d: FirstDerivatives, w: f64, web: bool, sums: &mut Sums) {
         let n = d.su.cross(d.sv);
         let p = d.point;
         let yn = w * p.y * n.y;
@@ -467,7 +408,7 @@ impl<'a> Integrator<'a> {
     /// larger smallest `|df| * width` on a grid of interior samples), with the outer breaks:
     /// the outer range split at the level set's crossings of the two inner ends. `None` if `f`
     /// is monotone along neither parameter (unless `force`).
-    fn plan(&self, r: Rect, coord: Coord, c: f64, force: bool) -> Option<(Dir, Vec<f64>)> {
+    fn plan(&self, r: Rect, coord: usize, c: f64, force: bool) -> Option<(Direction, Vec<f64>)> {
         let mut pos = [0usize; 2];
         let mut neg = [0usize; 2];
         let mut min = [f64::INFINITY; 2];
@@ -476,11 +417,11 @@ impl<'a> Integrator<'a> {
         let spans = self.spans(&r);
         for a in 0..SIGN_SAMPLES {
             let u = r.u.0 + wu * (a as f64 + 0.5) / SIGN_SAMPLES as f64;
-            let iso = self.iso(Dir::V, u, spans);
+            let iso = self.iso(Direction::V, u, spans);
             for b in 0..SIGN_SAMPLES {
                 let v = r.v.0 + wv * (b as f64 + 0.5) / SIGN_SAMPLES as f64;
-                let d = iso.d1(v);
-                for (k, g) in [coord.of(d.su) * wu, coord.of(d.sv) * wv].into_iter().enumerate() {
+                let d = iso.derivatives(v);
+                for (k, g) in [d.su[coord] * wu, d.sv[coord] * wv].into_iter().enumerate() {
                     if g > 0.0 {
                         pos[k] += 1;
                     } else if g < 0.0 {
@@ -496,18 +437,18 @@ impl<'a> Integrator<'a> {
         let inner = match (monotone(0), monotone(1)) {
             (true, true) => {
                 if min[0] >= min[1] {
-                    Dir::U
+                    Direction::U
                 } else {
-                    Dir::V
+                    Direction::V
                 }
             }
-            (true, false) => Dir::U,
-            (false, true) => Dir::V,
+            (true, false) => Direction::U,
+            (false, true) => Direction::V,
             (false, false) if force => {
                 if sum[0] >= sum[1] {
-                    Dir::U
+                    Direction::U
                 } else {
-                    Dir::V
+                    Direction::V
                 }
             }
             (false, false) => return None,
@@ -517,7 +458,7 @@ impl<'a> Integrator<'a> {
         let mut breaks = vec![sa, sb];
         for i in [ia, ib] {
             let edge = self.iso(inner.other(), i, spans);
-            breaks.extend(segment_roots(|s| coord.of(edge.point(s)) - c, sa, sb));
+            breaks.extend(segment_roots(|s| edge.point(s)[coord] - c, sa, sb));
         }
         breaks.sort_by(f64::total_cmp);
         let tiny = 1e-14 * (sb - sa);
@@ -528,9 +469,27 @@ impl<'a> Integrator<'a> {
         Some((inner, breaks))
     }
 
+    /// [`Integrator::plan`] as strips: the outer intervals `(s0, s1)` between the breaks, each
+    /// with whether the level set's low side `S[coord] <= c` holds at the two inner ends at its
+    /// middle, `(low at the first end, low at the second)`. `None` as `plan`.
+    fn strips(&self, r: Rect, coord: usize, c: f64, force: bool) -> Option<(Direction, Vec<Strip>)> {
+        let (inner, breaks) = self.plan(r, coord, c, force)?;
+        let (ia, ib) = r.range(inner);
+        let strips = breaks
+            .windows(2)
+            .filter(|w| w[1] > w[0])
+            .map(|w| {
+                let mid = 0.5 * (w[0] + w[1]);
+                let low = |i: f64| self.f(coord, c, uv(inner, i, mid)) <= 0.0;
+                Strip { s0: w[0], s1: w[1], low: (low(ia), low(ib)) }
+            })
+            .collect();
+        Some((inner, strips))
+    }
+
     /// A cell cut by the waterline `z = level` (in a web span if `web`).
     fn cut(&self, r: Rect, web: bool, level: f64, depth: usize, wet: &mut Wet) {
-        let Some((inner, breaks)) = self.plan(r, Coord::Z, level, depth >= MAX_DEPTH) else {
+        let Some((inner, strips)) = self.strips(r, Z, level, depth >= MAX_DEPTH) else {
             for q in r.quarters() {
                 self.cut(q, web, level, depth + 1, wet);
             }
@@ -541,18 +500,11 @@ impl<'a> Integrator<'a> {
         }
         let spans = self.spans(&r);
         let (ia, ib) = r.range(inner);
-        for w in breaks.windows(2) {
-            let (s0, s1) = (w[0], w[1]);
-            if s1 <= s0 {
-                continue;
-            }
-            let mid = 0.5 * (s0 + s1);
-            let wet_a = self.f(Coord::Z, level, uv(inner, ia, mid)) <= 0.0;
-            let wet_b = self.f(Coord::Z, level, uv(inner, ib, mid)) <= 0.0;
+        for Strip { s0, s1, low: (wet_a, wet_b) } in strips {
             if wet_a && wet_b {
                 let sub = match inner {
-                    Dir::U => Rect { u: (ia, ib), v: (s0, s1) },
-                    Dir::V => Rect { u: (s0, s1), v: (ia, ib) },
+                    Direction::U => Rect { u: (ia, ib), v: (s0, s1) },
+                    Direction::V => Rect { u: (s0, s1), v: (ia, ib) },
                 };
                 self.full(sub, web, &mut wet.sums);
                 continue;
@@ -563,22 +515,22 @@ impl<'a> Integrator<'a> {
             let omega = orientation(inner, wet_a);
             let mut samples = Vec::with_capacity(self.gl.len() + 2);
             let iso0 = self.iso(inner, s0, spans);
-            if let Some(rr) = iso0.root(Coord::Z, level, ia, ib) {
+            if let Some(rr) = iso0.root(Z, level, ia, ib) {
                 samples.push((s0, iso0.point(rr)));
             }
             for (s, ws) in self.gl.on(s0, s1) {
                 let iso = self.iso(inner, s, spans);
-                let rr = iso.root_or_end(Coord::Z, level, ia, ib);
+                let rr = iso.root_or_end(Z, level, ia, ib);
                 let (lo, hi) = if wet_a { (ia, rr) } else { (rr, ib) };
                 for (i, wi) in self.gl.on(lo, hi) {
-                    self.area_node(iso.d1(i), ws * wi, web, &mut wet.sums);
+                    self.area_node(iso.derivatives(i), ws * wi, web, &mut wet.sums);
                 }
-                let (p, t) = iso.cut_point(Coord::Z, rr);
+                let (p, t) = iso.cut_point(Z, rr);
                 self.line_node(p, t.x, ws * omega, &mut wet.sums);
                 samples.push((s, p));
             }
             let iso1 = self.iso(inner, s1, spans);
-            if let Some(rr) = iso1.root(Coord::Z, level, ia, ib) {
+            if let Some(rr) = iso1.root(Z, level, ia, ib) {
                 samples.push((s1, iso1.point(rr)));
             }
             wet.pieces.push(Piece::Cut { rect: r, inner, samples, web });
@@ -588,8 +540,8 @@ impl<'a> Integrator<'a> {
     /// A domain edge lying on the waterline: its line integrals, counter-clockwise.
     fn edge_waterline(&self, e: &EdgeSeg, wet: &mut Wet) {
         let at = |s: f64| match e.fixed {
-            Dir::U => (e.value, s),
-            Dir::V => (s, e.value),
+            Direction::U => (e.value, s),
+            Direction::V => (s, e.value),
         };
         let point = |s: f64| {
             let (u, v) = at(s);
@@ -600,8 +552,8 @@ impl<'a> Integrator<'a> {
             let (u, v) = at(s);
             let d = self.d1(u, v);
             let t = match e.fixed {
-                Dir::U => d.sv,
-                Dir::V => d.su,
+                Direction::U => d.sv,
+                Direction::V => d.su,
             };
             self.line_node(d.point, t.x, ws * e.orient, &mut wet.sums);
             samples.push((s, d.point));
@@ -616,11 +568,11 @@ impl<'a> Integrator<'a> {
             Piece::Cut { rect, inner, .. } => {
                 let (ia, ib) = rect.range(*inner);
                 let iso = self.iso(*inner, s, self.spans(rect));
-                iso.root(Coord::Z, level, ia, ib).map(|r| iso.point(r))
+                iso.root(Z, level, ia, ib).map(|r| iso.point(r))
             }
             Piece::Edge { fixed, value, .. } => Some(match fixed {
-                Dir::U => self.s.point(*value, s),
-                Dir::V => self.s.point(s, *value),
+                Direction::U => self.s.point(*value, s),
+                Direction::V => self.s.point(s, *value),
             }),
         }
     }
@@ -673,7 +625,7 @@ impl<'a> Integrator<'a> {
     }
 
     fn section_cell(&self, r: Rect, xm: f64, level: f64, depth: usize, sum: &mut f64) {
-        let Some((inner, breaks)) = self.plan(r, Coord::X, xm, depth >= MAX_DEPTH) else {
+        let Some((inner, strips)) = self.strips(r, X, xm, depth >= MAX_DEPTH) else {
             for q in r.quarters() {
                 self.section_cell(q, xm, level, depth + 1, sum);
             }
@@ -681,21 +633,14 @@ impl<'a> Integrator<'a> {
         };
         let spans = self.spans(&r);
         let (ia, ib) = r.range(inner);
-        for w in breaks.windows(2) {
-            let (s0, s1) = (w[0], w[1]);
-            if s1 <= s0 {
-                continue;
-            }
-            let mid = 0.5 * (s0 + s1);
-            let aft_a = self.f(Coord::X, xm, uv(inner, ia, mid)) <= 0.0;
-            let aft_b = self.f(Coord::X, xm, uv(inner, ib, mid)) <= 0.0;
+        for Strip { s0, s1, low: (aft_a, aft_b) } in strips {
             if aft_a == aft_b {
                 continue;
             }
             let omega = orientation(inner, aft_a);
             let z = |s: f64| {
                 let iso = self.iso(inner, s, spans);
-                iso.point(iso.root_or_end(Coord::X, xm, ia, ib)).z
+                iso.point(iso.root_or_end(X, xm, ia, ib)).z
             };
             // The section curve clipped at the waterline: the parts where z <= level.
             let mut cuts = vec![s0, s1];
@@ -708,106 +653,11 @@ impl<'a> Integrator<'a> {
                 }
                 for (s, ws) in self.gl.on(a, b) {
                     let iso = self.iso(inner, s, spans);
-                    let (p, t) = iso.cut_point(Coord::X, iso.root_or_end(Coord::X, xm, ia, ib));
+                    let (p, t) = iso.cut_point(X, iso.root_or_end(X, xm, ia, ib));
                     *sum += ws * omega * p.y * t.z;
                 }
             }
         }
-    }
-}
-
-/// The surface along one parameter (`inner`) over one knot span, at a fixed value of the other
-/// (outer) parameter: homogeneous control points `c0` (the net contracted with the outer
-/// basis functions) and `c1` (with their derivatives, for `dS/d outer`).
-struct Iso<'s> {
-    knots: &'s [f64],
-    deg: usize,
-    span: usize,
-    inner: Dir,
-    c0: [[f64; 4]; MAX_DEGREE + 1],
-    c1: [[f64; 4]; MAX_DEGREE + 1],
-}
-
-impl Iso<'_> {
-    /// `S(t)` (A4.1 on the iso-curve).
-    fn point(&self, t: f64) -> Vec3 {
-        let mut n: BasisRow = [0.0; MAX_DEGREE + 1];
-        basis_funs(self.knots, self.span, t, self.deg, &mut n);
-        let mut a = [0.0f64; 4];
-        for (b, c) in n.iter().zip(&self.c0).take(self.deg + 1) {
-            for k in 0..4 {
-                a[k] += b * c[k];
-            }
-        }
-        Vec3::new(a[0] / a[3], a[1] / a[3], a[2] / a[3])
-    }
-
-    /// The point and both first partial derivatives at `t`.
-    fn d1(&self, t: f64) -> D1 {
-        let mut b: [BasisRow; 2] = [[0.0; MAX_DEGREE + 1]; 2];
-        ders_basis_funs(self.knots, self.span, t, self.deg, 1, &mut b);
-        self.d1_with(&b)
-    }
-
-    /// As [`Iso::d1`] with the inner basis functions and derivatives given.
-    fn d1_with(&self, b: &[BasisRow; 2]) -> D1 {
-        let (mut a, mut ai, mut ao) = ([0.0f64; 4], [0.0f64; 4], [0.0f64; 4]);
-        for j in 0..=self.deg {
-            let (n0, n1) = (b[0][j], b[1][j]);
-            let (c0, c1) = (&self.c0[j], &self.c1[j]);
-            for k in 0..4 {
-                a[k] += n0 * c0[k];
-                ai[k] += n1 * c0[k];
-                ao[k] += n0 * c1[k];
-            }
-        }
-        let w = a[3];
-        let point = Vec3::new(a[0] / w, a[1] / w, a[2] / w);
-        // A4.4 to first order: S' = (A' - w' S) / w.
-        let d = |h: [f64; 4]| (Vec3::new(h[0], h[1], h[2]) - point * h[3]) / w;
-        let (s_in, s_out) = (d(ai), d(ao));
-        match self.inner {
-            Dir::U => D1 { point, su: s_in, sv: s_out },
-            Dir::V => D1 { point, su: s_out, sv: s_in },
-        }
-    }
-
-    /// The root of `coord(S(t)) = c` in `[a, b]` if `f` changes sign there ("wet" meaning
-    /// `f <= 0`), by Brent's method to round-off.
-    fn root(&self, coord: Coord, c: f64, a: f64, b: f64) -> Option<f64> {
-        let g = |t: f64| coord.of(self.point(t)) - c;
-        let (ga, gb) = (g(a), g(b));
-        if (ga <= 0.0) == (gb <= 0.0) {
-            return None;
-        }
-        Some(brent_root(g, a, b, ga, gb, 0.0))
-    }
-
-    /// As [`Iso::root`], or without a sign change (round-off next to a break, where the cut
-    /// meets an end) the end where `|f|` is smaller.
-    fn root_or_end(&self, coord: Coord, c: f64, a: f64, b: f64) -> f64 {
-        let g = |t: f64| coord.of(self.point(t)) - c;
-        let (ga, gb) = (g(a), g(b));
-        if (ga <= 0.0) != (gb <= 0.0) {
-            brent_root(g, a, b, ga, gb, 0.0)
-        } else if ga.abs() <= gb.abs() {
-            a
-        } else {
-            b
-        }
-    }
-
-    /// The point and the tangent `dS/ds` (s the outer parameter) of the level set of `coord`
-    /// through the inner parameter `r`: `r' = -f_outer / f_inner`.
-    fn cut_point(&self, coord: Coord, r: f64) -> (Vec3, Vec3) {
-        let d = self.d1(r);
-        let (s_in, s_out) = match self.inner {
-            Dir::U => (d.su, d.sv),
-            Dir::V => (d.sv, d.su),
-        };
-        let f_in = coord.of(s_in);
-        let rp = if f_in != 0.0 { -coord.of(s_out) / f_in } else { 0.0 };
-        (d.point, s_in * rp + s_out)
     }
 }
 

@@ -141,7 +141,6 @@
 //! x = 6.123 m, where the mesh's waterline has ended at 6.077 m). `Lwl` there stays 6.218 m
 //! (approx) and 6.176 m (interp) against the mesh's 6.091 m.
 
-mod gauss;
 mod integrate;
 mod table;
 
@@ -900,7 +899,7 @@ mod tests {
                     let (a, b) = (w[0], w[1]);
                     let mut pieces = vec![(a, b)];
                     if (z(a) <= 0.0) != (z(b) <= 0.0) {
-                        let r = gauss::brent_root(z, a, b, z(a), z(b), 0.0);
+                        let r = nurbs::brent_root(z, a, b, z(a), z(b), 0.0);
                         pieces = vec![(a, r), (r, b)];
                     }
                     for (p, q) in pieces {

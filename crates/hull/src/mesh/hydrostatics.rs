@@ -40,9 +40,8 @@
 
 use std::collections::HashMap;
 
-use nurbs::Vec3;
+use nurbs::{TriMesh, Vec3};
 
-use super::{edge_key, TriMesh};
 use crate::mesh::slice::CENTRE_REL;
 
 /// Hydrostatic figures of a mesh at one draft, for the whole ship (both sides).
@@ -163,7 +162,7 @@ fn open_edges_below(mesh: &TriMesh, t: f64, centre: f64) -> usize {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
             let (pa, pb) = (mesh.vertices[a as usize], mesh.vertices[b as usize]);
             if pa.z.min(pb.z) < t && !(pa.y.abs() <= centre && pb.y.abs() <= centre) {
-                *count.entry(edge_key(a, b)).or_insert(0) += 1;
+                *count.entry(TriMesh::edge_key(a, b)).or_insert(0) += 1;
             }
         }
     }

@@ -4,7 +4,8 @@
 //! - [`read_mesh`] / [`parse_mesh`]: ASCII and binary STL ([`stl`]), Wavefront OBJ ([`obj`]),
 //!   either gzip-compressed (recognised by the gzip magic bytes, whatever the file name), the
 //!   text forms with or without a UTF-8 byte-order mark; the triangles are welded into an
-//!   indexed [`TriMesh`].
+//!   indexed [`TriMesh`] (the kernel's one mesh type, which a tessellated surface is too,
+//!   written by [`stl::write_stl_ascii`], [`stl::write_stl_binary`] and [`obj::write_obj`]).
 //! - [`slice::slice_mesh`]: cuts at stations `x = const`, each chained into one polyline on
 //!   the starboard side from the keel to the deck edge, resampled, as [`crate::Offsets`].
 //! - [`hydrostatics::mesh_hydrostatics`]: volume, centres, wetted surface and waterplane of the
@@ -37,7 +38,7 @@ use std::io::Read;
 use std::path::Path;
 use std::str::FromStr;
 
-use nurbs::Vec3;
+use nurbs::{TriMesh, Vec3};
 
 use crate::error::{HullError, InputErrorKind, Location};
 
@@ -53,132 +54,6 @@ pub use stl::{looks_binary, parse_stl, starts_with_solid, write_stl_ascii, write
 /// Largest decompressed size of a gzip-compressed mesh, bytes (1 GiB: a 20-million-triangle
 /// ASCII STL); a larger stream is refused rather than exhausting memory.
 pub const MAX_DECOMPRESSED: u64 = 1 << 30;
-
-/// An indexed triangle mesh: shared vertices and triangles as triples of vertex indices, with
-/// unit normals at the vertices where the mesh has them. The one mesh type of the crate: a
-/// mesh read from STL or OBJ ([`read_mesh`]) and a surface triangulated for export
-/// ([`crate::export::tessellate()`]) alike, written by [`stl::write_stl_ascii`],
-/// [`stl::write_stl_binary`] and [`obj::write_obj`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct TriMesh {
-    /// Where the mesh came from (a file path or a name), for messages.
-    pub source: String,
-    /// The vertices, in hullskin's axes (after [`MeshReadOptions::axes`] and `shift`).
-    pub vertices: Vec<Vec3>,
-    /// The triangles, counter-clockwise seen from outside for a well-oriented mesh (nothing
-    /// here depends on the orientation).
-    pub triangles: Vec<[u32; 3]>,
-    /// Triangles of the file dropped because two of their corners are the same vertex after
-    /// welding (zero area: they cut no plane and bound no volume).
-    pub degenerate: usize,
-    /// Unit normals at the vertices, one per vertex, outward; empty when the mesh carries
-    /// none (a mesh read from a file: facet normals of STL and `vn` of OBJ are not read).
-    pub normals: Vec<Vec3>,
-}
-
-/// How the edges of a mesh are shared (see [`TriMesh::edge_counts`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct EdgeCounts {
-    /// Distinct edges.
-    pub edges: usize,
-    /// Edges of exactly one triangle: the mesh is open there.
-    pub open: usize,
-    /// Edges of three or more triangles.
-    pub non_manifold: usize,
-}
-
-impl TriMesh {
-    /// A mesh from vertices and triangles.
-    ///
-    /// # Errors
-    /// [`InputErrorKind::Mesh`] (located at the file `source`) for a non-finite vertex or a
-    /// triangle index out of range.
-    pub fn try_new(source: &str, vertices: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Result<Self, HullError> {
-        if let Some(i) = vertices.iter().position(|v| !v.is_finite()) {
-            return Err(mesh_error(
-                Location::file(source),
-                format!("vertex {} is ({}, {}, {})", i + 1, vertices[i].x, vertices[i].y, vertices[i].z),
-                "finite coordinates",
-            ));
-        }
-        let n = vertices.len();
-        if let Some((t, tri)) = triangles.iter().enumerate().find(|(_, t)| t.iter().any(|&i| i as usize >= n)) {
-            return Err(mesh_error(
-                Location::file(source),
-                format!("triangle {} refers to vertex indices {:?}", t + 1, tri),
-                &format!("indices below the vertex count {n}"),
-            ));
-        }
-        Ok(TriMesh { source: source.to_string(), vertices, triangles, degenerate: 0, normals: Vec::new() })
-    }
-
-    /// The three corners of triangle `t`.
-    pub fn corners(&self, t: usize) -> [Vec3; 3] {
-        let [a, b, c] = self.triangles[t];
-        [self.vertices[a as usize], self.vertices[b as usize], self.vertices[c as usize]]
-    }
-
-    /// The unit normal of triangle `t` by the right-hand rule (outward for a triangle
-    /// counter-clockwise seen from outside), `(0, 0, 0)` if it has no area.
-    pub fn face_normal(&self, t: usize) -> Vec3 {
-        let [a, b, c] = self.corners(t);
-        (b - a).cross(c - a).normalized().unwrap_or(Vec3::new(0.0, 0.0, 0.0))
-    }
-
-    /// The axis-aligned bounding box `(min, max)` of the vertices used by triangles, `None`
-    /// for a mesh without triangles.
-    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
-        let mut it = self.triangles.iter().flatten().map(|&i| self.vertices[i as usize]);
-        let first = it.next()?;
-        Some(it.fold((first, first), |(lo, hi), p| {
-            (
-                Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
-                Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
-            )
-        }))
-    }
-
-    /// The model size: the diagonal of [`TriMesh::bounds`], 0 without triangles.
-    pub fn size(&self) -> f64 {
-        self.bounds().map_or(0.0, |(lo, hi)| (hi - lo).norm())
-    }
-
-    /// Counts the distinct edges and how many triangles share each: a closed (watertight)
-    /// 2-manifold mesh has `open == 0` and `non_manifold == 0`.
-    pub fn edge_counts(&self) -> EdgeCounts {
-        let mut count: HashMap<u64, u32> = HashMap::with_capacity(self.triangles.len() * 3 / 2);
-        for tri in &self.triangles {
-            for k in 0..3 {
-                *count.entry(edge_key(tri[k], tri[(k + 1) % 3])).or_insert(0) += 1;
-            }
-        }
-        let mut out = EdgeCounts { edges: count.len(), ..EdgeCounts::default() };
-        for &c in count.values() {
-            match c {
-                1 => out.open += 1,
-                2 => {}
-                _ => out.non_manifold += 1,
-            }
-        }
-        out
-    }
-
-    /// The mesh with every vertex moved by `f` (the triangles unchanged; the vertex normals,
-    /// which `f` need not carry along, dropped).
-    pub fn map_vertices(mut self, f: impl Fn(Vec3) -> Vec3) -> Self {
-        for v in &mut self.vertices {
-            *v = f(*v);
-        }
-        self.normals.clear();
-        self
-    }
-}
-
-/// The key of the undirected edge `{a, b}`: the smaller index in the high 32 bits.
-pub(crate) fn edge_key(a: u32, b: u32) -> u64 {
-    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-    (u64::from(lo) << 32) | u64::from(hi)
-}
 
 /// A signed permutation of the axes: which coordinate of the file (and with which sign) gives
 /// hullskin's x, y and z. Written `x,y,z` (the identity), `z,x,y`, `-x,-y,z`, ...; it must
@@ -608,21 +483,5 @@ mod tests {
             .expect_err("corrupt");
         let s = e.to_string();
         assert!(s.starts_with("hull.stl.gz: corrupt gzip stream"), "{s}");
-    }
-
-    #[test]
-    fn edge_counts_of_a_tetrahedron_and_of_an_open_one() {
-        let v = vec![
-            Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(1.0, 0.0, 0.0),
-            Vec3::new(0.0, 1.0, 0.0),
-            Vec3::new(0.0, 0.0, 1.0),
-        ];
-        let closed = TriMesh::try_new("t", v.clone(), vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]).expect("ok");
-        assert_eq!(closed.edge_counts(), EdgeCounts { edges: 6, open: 0, non_manifold: 0 });
-        let open = TriMesh::try_new("t", v.clone(), vec![[0, 2, 1], [0, 1, 3]]).expect("ok");
-        assert_eq!(open.edge_counts(), EdgeCounts { edges: 5, open: 4, non_manifold: 0 });
-        let e = TriMesh::try_new("t", v, vec![[0, 1, 4]]).expect_err("index 4 of 4 vertices");
-        assert!(e.to_string().contains("below the vertex count 4"), "{e}");
     }
 }

@@ -412,7 +412,7 @@ fn cut_triangle(mesh: &TriMesh, t: u32, c: f64) -> Option<Segment> {
         let mut q = vi + (vj - vi) * s;
         q.x = c;
         p[n] = q;
-        key[n] = super::edge_key(i, j);
+        key[n] = TriMesh::edge_key(i, j);
         n += 1;
     }
     if n != 2 {

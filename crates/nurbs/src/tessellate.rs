@@ -1,5 +1,5 @@
-//! Triangulation of a NURBS surface to a chordal tolerance, for the mesh exports (STL, OBJ,
-//! glTF).
+//! Triangulation of a NURBS surface to a chordal tolerance: the mesh that the mesh formats
+//! (STL, OBJ, glTF) are written from.
 //!
 //! **Grid.** The surface is sampled on a tensor grid of parameters `u_0 < .. < u_m`,
 //! `v_0 < .. < v_n` that contains every distinct knot (so no triangle straddles a knot, where
@@ -25,19 +25,19 @@
 //! since `l2 l3 + l1 l3 + l1 l2 <= 1/3`, `|e| <= 4/3 max(edge deviations) <= T`.
 //!
 //! **Orientation.** Normals are `S_u x S_v` turned so that the area-weighted mean of their y
-//! component is positive: for a starboard half hull (y >= 0) closed by the centre plane
-//! (outward normal -y) and the deck, `sum n dA = 0` over the closed surface, so the hull's
-//! `integral n_y dA` equals the centre-plane area and is positive for the outward side.
-//! Triangles are wound counter-clockwise seen from that side. The mirrored port half
-//! (`y -> -y`) has its winding reversed so that it too faces outward.
+//! component is positive: the mesh faces +y on the whole. That is the outward side of a
+//! surface on the side `y >= 0` of the plane `y = 0` that, closed by that plane (outward
+//! normal -y) and by caps whose normals have no y component, bounds a solid: `sum n dA = 0`
+//! over the closed surface, so the surface's `integral n_y dA` equals the area it closes off
+//! in the plane and is positive for the outward side. Triangles are wound counter-clockwise
+//! seen from that side. The mirror image (`y -> -y`, [`TessellationOptions::mirror`]) has its
+//! winding reversed so that it too faces outward.
 
 use std::collections::HashMap;
 
-use nurbs::{NurbsSurface, Vec3};
 use rayon::prelude::*;
 
-use crate::mesh::TriMesh;
-use crate::{ExportToleranceKind, HullError};
+use crate::{NurbsError, NurbsSurface, TriMesh, Vec3};
 
 /// Factor on the tolerance for the edge-midpoint deviation (see the module docs).
 pub const MIDPOINT_FACTOR: f64 = 0.75;
@@ -54,13 +54,15 @@ pub const MAX_GRID_LINES: usize = 8192;
 pub struct TessellationOptions {
     /// Largest distance between the triangles and the surface, in the surface's length unit.
     pub tolerance: f64,
-    /// Add the mirrored port half (`y -> -y`): the full hull.
+    /// Add the mirror image in the plane `y = 0` (every vertex with `y -> -y`, every triangle
+    /// with its winding reversed so that it faces outward too): the whole of a solid whose
+    /// half on `y >= 0` the surface bounds.
     pub mirror: bool,
 }
 
 impl TessellationOptions {
     /// The default tolerance of a surface: `1e-4` of the diagonal of its control-net box
-    /// (12 mm on a 122 m hull).
+    /// (0.012 for a box of diagonal 120), without the mirror image.
     pub fn for_surface(surface: &NurbsSurface) -> Self {
         let (lo, hi) = surface.control_bounds();
         TessellationOptions { tolerance: 1e-4 * (hi - lo).norm(), mirror: false }
@@ -79,8 +81,8 @@ pub struct Tessellation {
     /// Gaussian curvature `K` at every vertex (orientation-free; at a collapsed boundary the
     /// limit from inside the domain); NaN where it is undefined.
     pub gaussian: Vec<f64>,
-    /// The surface parameters `(u, v)` of every vertex (a mirrored vertex has those of its
-    /// starboard twin).
+    /// The surface parameters `(u, v)` of every vertex (a mirrored vertex has those of the
+    /// vertex it mirrors).
     pub params: Vec<(f64, f64)>,
     /// The grid parameters along u and v.
     pub grid_u: Vec<f64>,
@@ -248,30 +250,60 @@ fn refine(grid: &mut Vec<f64>, errors: &[f64], limit: f64) -> bool {
 }
 
 /// A point slightly inside the domain, toward its middle, where the normal and curvature of a
-/// degenerate point (a collapsed stem or keel edge) are taken as limits.
+/// degenerate point (on a boundary collapsed to a point) are taken as limits.
 fn nudged(s: &NurbsSurface, u: f64, v: f64) -> (f64, f64) {
     let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
     let (eu, ev) = (1e-6 * (u1 - u0), 1e-6 * (v1 - v0));
     (u.clamp(u0 + eu, u1 - eu), v.clamp(v0 + ev, v1 - ev))
 }
 
-/// Triangulate `surface` so that no triangle is farther than `options.tolerance` from it (see
-/// the module docs for the grid, the bound and the orientation).
+/// Triangulate `surface` so that no triangle is farther than `options.tolerance` from it: a
+/// tensor grid of parameters through every knot, refined until every chord's sagitta is
+/// within `3/4` of the tolerance, so that the triangles are within it; normals and winding
+/// facing +y on the whole (see the source's module docs for the grid, the bound and the
+/// orientation).
+///
+/// A quarter cylinder of radius 2 meshed to 1e-3: its vertices lie on the cylinder, the
+/// middles of its triangles' edges within the tolerance inside it, and the mesh is one open
+/// strip (only its border is open).
+///
+/// ```
+/// use nurbs::{tessellate, TessellationOptions};
+///
+/// let (r, tol) = (2.0, 1e-3);
+/// // y^2 + z^2 = r^2 for y >= 0, z <= 0, along x from 0 to 3.
+/// let surface = nurbs::fixtures::quarter_cylinder_along_x(r, 3.0);
+/// let tess = tessellate(&surface, &TessellationOptions { tolerance: tol, mirror: false })?;
+/// let mesh = &tess.mesh;
+/// let radius = |p: nurbs::Vec3| (p.y * p.y + p.z * p.z).sqrt();
+/// assert!(mesh.vertices.iter().all(|&p| (radius(p) - r).abs() < 1e-12));
+/// for t in 0..mesh.triangles.len() {
+///     let [a, b, c] = mesh.corners(t);
+///     for m in [(a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5] {
+///         assert!(radius(m) <= r && r - radius(m) <= tol);
+///     }
+/// }
+/// // A strip of m x n grid points: every interior edge shared by two triangles, the
+/// // 2 (m - 1) + 2 (n - 1) edges of the border by one.
+/// let (m, n) = (tess.grid_u.len(), tess.grid_v.len());
+/// let edges = mesh.edge_counts();
+/// assert_eq!((edges.open, edges.non_manifold), (2 * (m - 1) + 2 * (n - 1), 0));
+/// assert_eq!(mesh.triangles.len(), 2 * (m - 1) * (n - 1));
+/// # Ok::<(), nurbs::NurbsError>(())
+/// ```
 ///
 /// # Errors
-/// [`HullError::ExportTolerance`] if the tolerance is not a positive finite number above
-/// [`MIN_TESSELLATION_TOLERANCE_REL`] of the surface's size, or if meeting it would take more than
-/// [`MAX_GRID_LINES`] grid lines in a direction (a tolerance far below the surface's size) or
-/// is below the rounding of double precision.
-pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Result<Tessellation, HullError> {
+/// [`NurbsError::TessellationFloor`] if the tolerance is not a positive finite number of at
+/// least [`MIN_TESSELLATION_TOLERANCE_REL`] of the surface's size;
+/// [`NurbsError::TessellationGridLines`] if meeting it would take more than
+/// [`MAX_GRID_LINES`] grid lines in a direction (a tolerance far below the surface's size);
+/// [`NurbsError::TessellationRounding`] if it is below the rounding of double precision.
+pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Result<Tessellation, NurbsError> {
     let tol = options.tolerance;
     let (lo, hi) = surface.control_bounds();
     let floor = MIN_TESSELLATION_TOLERANCE_REL * (hi - lo).norm();
     if !(tol.is_finite() && tol > 0.0 && tol >= floor) {
-        return Err(HullError::ExportTolerance {
-            tolerance: tol,
-            kind: ExportToleranceKind::TessellationFloor { floor, relative: MIN_TESSELLATION_TOLERANCE_REL },
-        });
+        return Err(NurbsError::TessellationFloor { tolerance: tol, floor, relative: MIN_TESSELLATION_TOLERANCE_REL });
     }
     let mut gu = initial_params(surface.knots_u().as_slice(), surface.domain_u());
     let mut gv = initial_params(surface.knots_v().as_slice(), surface.domain_v());
@@ -285,23 +317,18 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
             break e;
         }
         if gu.len() > MAX_GRID_LINES || gv.len() > MAX_GRID_LINES {
-            return Err(HullError::ExportTolerance {
-                tolerance: tol,
-                kind: ExportToleranceKind::GridLines { max: MAX_GRID_LINES },
-            });
+            return Err(NurbsError::TessellationGridLines { tolerance: tol, max: MAX_GRID_LINES });
         }
     };
     let max_midpoint_deviation = errors.max;
     if max_midpoint_deviation > limit {
         // Only when a bisection rounded onto an end point: the tolerance is at the rounding.
-        return Err(HullError::ExportTolerance {
-            tolerance: tol,
-            kind: ExportToleranceKind::Rounding { deviation: max_midpoint_deviation },
-        });
+        return Err(NurbsError::TessellationRounding { tolerance: tol, deviation: max_midpoint_deviation });
     }
     let (m, n) = (gu.len(), gv.len());
 
-    // Vertices of the starboard half: points, raw normals S_u x S_v and curvature.
+    // Vertices of the surface (its mirror image comes after): points, raw normals S_u x S_v
+    // and curvature.
     struct Vertex {
         n: Vec3,
         k: f64,
@@ -392,7 +419,7 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
     Ok(tess)
 }
 
-/// Append the port half: every vertex with `y -> -y`, every triangle with its winding
+/// Append the mirror image: every vertex with `y -> -y`, every triangle with its winding
 /// reversed (a reflection turns counter-clockwise into clockwise).
 fn mirror(tess: &mut Tessellation) {
     let mesh = &mut tess.mesh;
@@ -405,15 +432,15 @@ fn mirror(tess: &mut Tessellation) {
     mesh.normals.extend(normals);
     tess.gaussian.extend_from_within(..count);
     tess.params.extend_from_within(..count);
-    let port: Vec<[u32; 3]> = mesh.triangles.iter().map(|&[a, b, c]| [a + offset, c + offset, b + offset]).collect();
-    mesh.triangles.extend(port);
+    let image: Vec<[u32; 3]> = mesh.triangles.iter().map(|&[a, b, c]| [a + offset, c + offset, b + offset]).collect();
+    mesh.triangles.extend(image);
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nurbs::fixtures::quarter_cylinder_along_x as quarter_cylinder;
-    use nurbs::{KnotVector, ProjectionOptions, SurfaceProjector};
+    use crate::fixtures::quarter_cylinder_along_x as quarter_cylinder;
+    use crate::{KnotVector, ProjectionOptions, SurfaceProjector};
 
     fn opts(tolerance: f64) -> TessellationOptions {
         TessellationOptions { tolerance, mirror: false }
@@ -541,10 +568,7 @@ mod tests {
         let s = quarter_cylinder(2.0, 3.0);
         for t in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-300] {
             match tessellate(&s, &opts(t)) {
-                Err(HullError::ExportTolerance {
-                    tolerance,
-                    kind: ExportToleranceKind::TessellationFloor { floor, relative },
-                }) => {
+                Err(NurbsError::TessellationFloor { tolerance, floor, relative }) => {
                     assert!(tolerance.to_bits() == t.to_bits(), "{tolerance} {t}");
                     assert!(floor > 0.0 && relative == MIN_TESSELLATION_TOLERANCE_REL, "{floor}");
                 }

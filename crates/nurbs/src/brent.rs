@@ -1,11 +1,18 @@
-//! One-dimensional numerical tools of the hydrostatics: Brent's root finder and maximiser
-//! (the Gauss-Legendre rule is the kernel's [`nurbs::GaussLegendre`]).
+//! Brent's methods in one dimension: a root in a bracket and a maximum on an interval, without
+//! derivatives (the root of a coordinate's level set along an iso-curve, [`crate::IsoCurve`];
+//! the extreme of a function along a curve).
 
 /// A root of `f` in `[a, b]` where `fa = f(a)` and `fb = f(b)` have opposite signs (or one
 /// is zero), by Brent's method (Brent 1973, "Algorithms for Minimization without Derivatives",
 /// ch. 4, procedure `zero`): inverse quadratic interpolation and secant steps safeguarded by
 /// bisection, to `4 eps |x| + xtol`.
-pub(crate) fn brent_root(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64, xtol: f64) -> f64 {
+///
+/// ```
+/// let f = |x: f64| x * x - 2.0;
+/// let r = nurbs::brent_root(f, 0.0, 2.0, f(0.0), f(2.0), 0.0);
+/// assert!((r - 2f64.sqrt()).abs() <= 4.0 * f64::EPSILON * 2f64.sqrt());
+/// ```
+pub fn brent_root(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64, xtol: f64) -> f64 {
     if fa == 0.0 {
         return a;
     }
@@ -75,7 +82,7 @@ pub(crate) fn brent_root(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, fa: f64,
 /// `localmin`: golden-section steps accelerated by parabolic interpolation), to the
 /// tolerance `sqrt(eps) |x| + xtol`; returns `(x, f(x))`, the best point evaluated, the ends
 /// `a` and `b` included (so a maximum at an end is found exactly).
-pub(crate) fn brent_max(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, xtol: f64) -> (f64, f64) {
+pub fn brent_max(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, xtol: f64) -> (f64, f64) {
     let c = 0.5 * (3.0 - 5f64.sqrt());
     let sqrt_eps = f64::EPSILON.sqrt();
     let mut best = (a, f(a));
@@ -173,7 +180,7 @@ pub(crate) fn brent_max(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, xtol: f64
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nurbs::assert_near;
+    use crate::assert_near;
 
     #[test]
     fn brent_finds_roots_to_round_off() {
@@ -183,7 +190,7 @@ mod tests {
         assert_near!(r, 2f64.cbrt(), 4.0 * f64::EPSILON * 2.0);
         // Zero at an end is returned as is.
         assert_eq!(brent_root(|x| x - 1.0, 1.0, 2.0, 0.0, 1.0, 0.0), 1.0);
-        // A flat then steep function (like a hull section near a flat bottom).
+        // A flat then steep function (a curve leaving a flat).
         let g = |x: f64| (x - 0.9).max(0.0).powi(3) - 1e-6;
         let r = brent_root(g, 0.0, 1.0, g(0.0), g(1.0), 0.0);
         assert_near!(r, 0.91, 1e-14);
