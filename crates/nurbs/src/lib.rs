@@ -72,9 +72,7 @@ pub use mesh::{EdgeCounts, TriMesh};
 pub use quadrature::GaussLegendre;
 pub use scattered::PointEvaluator;
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
-pub use tessellate::{
-    tessellate, Tessellation, TessellationOptions, MAX_GRID_LINES, MIDPOINT_FACTOR, MIN_TESSELLATION_TOLERANCE_REL,
-};
+pub use tessellate::{tessellate, Tessellation, TessellationOptions, MAX_GRID_LINES, MIN_TESSELLATION_TOLERANCE_REL};
 pub use vec3::Vec3;
 // refine / elevate / project: their helpers add `pub use` lines below.
 pub use project::{

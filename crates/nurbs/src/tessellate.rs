@@ -40,7 +40,7 @@ use rayon::prelude::*;
 use crate::{NurbsError, NurbsSurface, TriMesh, Vec3};
 
 /// Factor on the tolerance for the edge-midpoint deviation (see the module docs).
-pub const MIDPOINT_FACTOR: f64 = 0.75;
+const MIDPOINT_FACTOR: f64 = 0.75;
 
 /// Smallest tolerance accepted, relative to the diagonal of the control-net box: the mesh
 /// formats hold f32 coordinates (relative precision 6e-8), so a tighter chord is pointless.
