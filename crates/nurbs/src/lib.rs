@@ -1,7 +1,7 @@
 //! The NURBS kernel: knot vectors, B-spline basis functions, rational curves and
 //! surfaces with derivatives and curvature, knot insertion and refinement, degree elevation,
-//! closest-point projection, and fitting (parameterization, interpolation, least squares,
-//! skinning). `f64` and 3-D only; no I/O; every fallible call returns [`NurbsError`].
+//! closest-point projection, planar cuts by axis planes, and fitting (parameterization,
+//! interpolation, least squares, skinning). `f64` and 3-D only; no I/O; every fallible call returns [`NurbsError`].
 //!
 //! Skin a surface through a family of sections, then measure how far a point lies from it:
 //!
@@ -30,12 +30,14 @@
 //!
 //! The modules: `knots`, `basis`, `curve`, `surface` (evaluation, derivatives, curvature),
 //! `refine` and `elevate` (knot insertion, degree elevation), `project` (closest points),
+//! `plane` (planes normal to an axis) and `cut` (planar cuts with their curvature),
 //! `fit` (parameterization, knots, interpolation, least squares, skinning, corner lines,
 //! bounded refits), `linalg` (band and dense factorizations), `quadrature` (Gauss-Legendre)
 //! and `tolerance` (named tolerances).
 
 pub mod basis;
 mod curve;
+mod cut;
 mod elevate;
 mod error;
 pub mod fit;
@@ -45,6 +47,7 @@ pub mod fixtures;
 mod grid;
 mod knots;
 mod linalg;
+mod plane;
 mod project;
 mod quadrature;
 mod refine;
@@ -55,10 +58,14 @@ pub mod tolerance;
 mod vec3;
 
 pub use curve::{Homogeneous, NurbsCurve};
+// Planar cuts of a surface by axis planes: ordered polylines with the cut curve's curvature.
+pub use cut::{cut_curvature, cut_surface, cut_surface_many, three_point_curvature, CutCurve, CutOptions, CutPoint};
 pub use error::NurbsError;
 pub use grid::FirstDerivatives;
 pub use knots::{KnotVector, MAX_DEGREE};
+// Planes normal to a coordinate axis, with their 2-D drawing coordinates.
 pub use linalg::{band_cholesky, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu};
+pub use plane::{Axis, AxisPlane};
 pub use quadrature::GaussLegendre;
 pub use scattered::PointEvaluator;
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};
