@@ -63,8 +63,8 @@ pub use cut::{cut_curvature, cut_surface, cut_surface_many, three_point_curvatur
 pub use error::NurbsError;
 pub use grid::FirstDerivatives;
 pub use knots::{KnotVector, MAX_DEGREE};
-// Planes normal to a coordinate axis, with their 2-D drawing coordinates.
 pub use linalg::{band_cholesky, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu};
+// Planes normal to a coordinate axis, with their 2-D drawing coordinates.
 pub use plane::{Axis, AxisPlane};
 pub use quadrature::GaussLegendre;
 pub use scattered::PointEvaluator;
