@@ -10,10 +10,10 @@
 //! module says which planes a hull's flats lie on.
 
 use nurbs::fit::{
-    bounded_refit, bounding_diagonal, has_extent, knot_multiplicity, plane_run_ends, AxisPlane, BoundedRefit,
-    Continuity, ControlBox,
+    bounded_refit, bounding_diagonal, has_extent, knot_multiplicity, plane_run_ends, BoundedRefit, Continuity,
+    ControlBox,
 };
-use nurbs::{KnotVector, NurbsError, NurbsSurface, Vec3};
+use nurbs::{AxisPlane, KnotVector, NurbsError, NurbsSurface, Vec3};
 
 /// Which flat a [`FlatLine`] bounds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

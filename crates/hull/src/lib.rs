@@ -64,7 +64,8 @@ mod surface_input;
 mod tolerance_search;
 mod units;
 
-// Validity, curvature maps, planar cuts and fairness of a fitted surface.
+// Validity, curvature maps, planar cuts (the kernel's cuts, by the lines plan's `CutPlane`) and fairness
+// of a fitted surface.
 pub use analysis::{
     bending_energy, check_fit_validity, check_validity, curvature_map, cut_surface, cut_surface_many,
     default_quadrature, fairness_report, find_folds, gauss_legendre, point_bounds, BendingEnergy, CurvatureField,

@@ -199,6 +199,42 @@ impl KnotVector {
         out
     }
 
+    /// Parameter values for sampling along this knot vector: `intervals` uniform intervals of
+    /// the domain (at least 1), joined, when `refine_at_knots`, with every distinct interior
+    /// knot and with points that split each non-empty knot span into at least `per_span`
+    /// intervals. Sorted, without duplicates (values closer than `1e-12` of the domain are one),
+    /// the domain ends included.
+    ///
+    /// ```
+    /// use nurbs::KnotVector;
+    /// let k = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 0.25, 1.0, 1.0, 1.0])?;
+    /// // Uniform 0, 0.5, 1; with the knot 0.25 and the span midpoints 0.125 and 0.625.
+    /// assert_eq!(k.param_grid(2, false, 2), vec![0.0, 0.5, 1.0]);
+    /// assert_eq!(k.param_grid(2, true, 2), vec![0.0, 0.125, 0.25, 0.5, 0.625, 1.0]);
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
+    pub fn param_grid(&self, intervals: usize, refine_at_knots: bool, per_span: usize) -> Vec<f64> {
+        let (a, b) = self.domain();
+        let n = intervals.max(1);
+        let mut t: Vec<f64> = (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
+        if refine_at_knots {
+            let k = self.as_slice();
+            let p = self.degree();
+            let mut breaks: Vec<f64> = k[p..k.len() - p].to_vec();
+            breaks.dedup();
+            for w in breaks.windows(2) {
+                let (k0, k1) = (w[0], w[1]);
+                let m = per_span.max(1);
+                t.extend((0..=m).map(|j| k0 + (k1 - k0) * j as f64 / m as f64));
+            }
+        }
+        t.sort_by(f64::total_cmp);
+        // Values closer than round-off of the domain are one grid line.
+        let eps = 1e-12 * (b - a).abs();
+        t.dedup_by(|x, y| (*x - *y).abs() <= eps);
+        t
+    }
+
     /// The same knots mapped affinely onto `[a, b]`.
     ///
     /// # Errors
@@ -216,6 +252,21 @@ impl KnotVector {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn param_grid_contains_uniform_points_knots_and_splits_spans() {
+        let kv = KnotVector::try_new(3, vec![0., 0., 0., 0., 0.1, 0.7, 1., 1., 1., 1.]).expect("valid");
+        let t = kv.param_grid(4, true, 2);
+        // Uniform 0, .25, .5, .75, 1; knots .1, .7; span midpoints .05, .4, .85.
+        let want = [0.0, 0.05, 0.1, 0.25, 0.4, 0.5, 0.7, 0.75, 0.85, 1.0];
+        assert_eq!(t.len(), want.len(), "{t:?}");
+        for (a, b) in t.iter().zip(want) {
+            // Affine combinations of the knots: exact to a few ulps.
+            assert!((a - b).abs() <= 1e-15, "{t:?}");
+        }
+        let plain = kv.param_grid(4, false, 2);
+        assert_eq!(plain, vec![0.0, 0.25, 0.5, 0.75, 1.0]);
+    }
 
     #[test]
     fn rejects_invalid_vectors() {

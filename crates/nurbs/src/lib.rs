@@ -1,8 +1,8 @@
 //! The NURBS kernel: knot vectors, B-spline basis functions, rational curves and
 //! surfaces with derivatives and curvature, knot insertion and refinement, degree elevation,
-//! closest-point projection, iso-curves and their level sets, tessellation into a triangle
-//! mesh, and fitting (parameterization, interpolation, least squares, skinning). `f64` and 3-D
-//! only; no I/O; every fallible call returns [`NurbsError`].
+//! closest-point projection, planar cuts by axis planes, iso-curves and their level sets,
+//! tessellation into a triangle mesh, and fitting (parameterization, interpolation, least
+//! squares, skinning). `f64` and 3-D only; no I/O; every fallible call returns [`NurbsError`].
 //!
 //! Skin a surface through a family of sections, then measure how far a point lies from it:
 //!
@@ -31,6 +31,7 @@
 //!
 //! The modules: `knots`, `basis`, `curve`, `surface` (evaluation, derivatives, curvature),
 //! `refine` and `elevate` (knot insertion, degree elevation), `project` (closest points),
+//! `plane` (planes normal to an axis) and `cut` (planar cuts with their curvature),
 //! `iso` (iso-curves over a span, with the roots of a level set along them), `brent` (Brent's
 //! root finder and maximiser), `tessellate` and `mesh` (a surface triangulated to a chord
 //! tolerance, the triangle mesh), `fit` (parameterization, knots, interpolation, least squares,
@@ -40,6 +41,7 @@
 pub mod basis;
 mod brent;
 mod curve;
+mod cut;
 mod elevate;
 mod error;
 pub mod fit;
@@ -51,6 +53,7 @@ mod iso;
 mod knots;
 mod linalg;
 mod mesh;
+mod plane;
 mod project;
 mod quadrature;
 mod refine;
@@ -63,12 +66,16 @@ mod vec3;
 
 pub use brent::{brent_max, brent_root};
 pub use curve::{Homogeneous, NurbsCurve};
+// Planar cuts of a surface by axis planes: ordered polylines with the cut curve's curvature.
+pub use cut::{cut_curvature, cut_surface, cut_surface_many, three_point_curvature, CutCurve, CutOptions, CutPoint};
 pub use error::NurbsError;
 pub use grid::FirstDerivatives;
 pub use iso::{Direction, IsoCurve};
 pub use knots::{KnotVector, MAX_DEGREE};
 pub use linalg::{band_cholesky, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu};
 pub use mesh::{EdgeCounts, TriMesh};
+// Planes normal to a coordinate axis, with their 2-D drawing coordinates.
+pub use plane::{Axis, AxisPlane};
 pub use quadrature::GaussLegendre;
 pub use scattered::PointEvaluator;
 pub use surface::{Curvature, NurbsSurface, SurfaceDerivatives};

@@ -7,6 +7,7 @@
 use crate::basis::{basis_funs, ders_basis_funs, BasisRow};
 use crate::curve::{from_homogeneous, pack, to_homogeneous, Homogeneous};
 use crate::knots::MAX_DEGREE;
+use crate::tolerance::DEGENERATE_REL;
 use crate::{KnotVector, NurbsError, Vec3};
 
 /// The point and partial derivatives up to second order at one `(u, v)`.
@@ -35,6 +36,16 @@ impl SurfaceDerivatives {
     /// The unit normal `S_u x S_v / |S_u x S_v|`, `None` at a degenerate point.
     pub fn normal(&self) -> Option<Vec3> {
         self.su.cross(self.sv).normalized()
+    }
+
+    /// The unit normal where the parametrisation is regular enough for second-order
+    /// quantities: `|S_u x S_v| >= DEGENERATE_REL (|S_u|^2 + |S_v|^2)`
+    /// ([`DEGENERATE_REL`](crate::tolerance::DEGENERATE_REL)); `None` at and right next to a
+    /// collapsed edge (a pole, a pointed end), where the fundamental forms are round-off.
+    pub fn regular_normal(&self) -> Option<Vec3> {
+        let c = self.su.cross(self.sv);
+        let scale = self.su.norm_squared() + self.sv.norm_squared();
+        (c.norm() >= DEGENERATE_REL * scale).then(|| c.normalized()).flatten()
     }
 
     /// Gaussian and mean curvature from the first and second fundamental forms;
@@ -269,6 +280,15 @@ impl NurbsSurface {
             hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
         }
         (lo, hi)
+    }
+
+    /// The diagonal of the control net's bounding box ([`NurbsSurface::control_bounds`], which
+    /// contains the surface): the model size that relative tolerances refer to. `None` for an
+    /// empty or non-finite box.
+    pub fn model_size(&self) -> Option<f64> {
+        let (lo, hi) = self.control_bounds();
+        let size = (hi - lo).norm();
+        (size.is_finite() && size > 0.0).then_some(size)
     }
 
     /// The iso-parametric curve at fixed `v` (a curve in u), exact.

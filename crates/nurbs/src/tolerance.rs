@@ -19,6 +19,12 @@ pub const COINCIDENT_REL: f64 = 1e-9;
 /// lost most of its digits.
 pub const PIVOT_REL: f64 = 1e-12;
 
+/// Below this ratio `|S_u x S_v| / (|S_u|^2 + |S_v|^2)` (the sine of the angle between a
+/// surface's parameter lines times the ratio of their speeds) a point counts as degenerate
+/// ([`SurfaceDerivatives::regular_normal`](crate::SurfaceDerivatives::regular_normal)): the
+/// curvature from the fundamental forms then carries a relative round-off of ~1e-16 / 1e-8.
+pub const DEGENERATE_REL: f64 = 1e-8;
+
 /// Assert that two numbers (or `Vec3`s) agree within an absolute tolerance, printing both.
 #[macro_export]
 macro_rules! assert_near {

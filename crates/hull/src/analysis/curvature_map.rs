@@ -22,12 +22,11 @@
 //! This is the one sampling of curvature over a surface: the report's tables read its
 //! statistics, and the curvature picture (`view::curvature_map`, in the crate above) paints its nodes.
 
-use nurbs::{NurbsSurface, Vec3};
+use nurbs::{KnotVector, NurbsSurface, Vec3};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::cuts::regular_normal;
-use super::{param_grid, span_grid};
+use super::span_grid;
 use crate::offsets::COINCIDENT_REL;
 
 /// Settings of [`curvature_map`].
@@ -232,8 +231,8 @@ pub struct CurvatureSummary {
 
 /// The curvature map of `surface` on the grid of `options`.
 pub fn curvature_map(surface: &NurbsSurface, options: &CurvatureMapOptions) -> CurvatureMap {
-    let grid = |knots, n| match options.lines {
-        GridLines::Uniform => param_grid(knots, n, options.refine_at_knots, 2),
+    let grid = |knots: &KnotVector, n| match options.lines {
+        GridLines::Uniform => knots.param_grid(n, options.refine_at_knots, 2),
         GridLines::Spans => span_grid(knots, n),
     };
     let us = grid(surface.knots_u(), options.grid.0);
@@ -269,7 +268,7 @@ impl Regular {
 
     fn holds(self, d: &nurbs::SurfaceDerivatives) -> bool {
         match self {
-            Regular::Skewed => regular_normal(d).is_some(),
+            Regular::Skewed => d.regular_normal().is_some(),
             Regular::Area(tol) => d.su.cross(d.sv).norm() > tol,
         }
     }

@@ -27,11 +27,10 @@
 //! round-off of the analytic curvature (~1e-12 / size) and far below any visible bend.
 //! A closed loop is read from its first point round to it again.
 
-use nurbs::{NurbsSurface, Vec3};
+use nurbs::{cut_surface_many, CutCurve, CutOptions, NurbsSurface, Vec3};
 use serde::Serialize;
 
-use super::cuts::{cut_surface_many, regular_normal, CutCurve, CutOptions, CutPlane};
-use super::{model_size, param_grid};
+use super::CutPlane;
 
 /// Which planes to cut.
 #[derive(Clone, Debug, PartialEq)]
@@ -188,7 +187,7 @@ pub fn bending_energy(surface: &NurbsSurface, points: (usize, usize)) -> Bending
                     param += w * (d.suu.norm_squared() + 2.0 * d.suv.norm_squared() + d.svv.norm_squared());
                     let da = d.su.cross(d.sv).norm();
                     area += w * da;
-                    match regular_normal(&d).and_then(|_| d.curvature()) {
+                    match d.regular_normal().and_then(|_| d.curvature()) {
                         Some(c) if (c.mean.is_finite() && c.gaussian.is_finite()) => {
                             // k1^2 + k2^2 = (k1 + k2)^2 - 2 k1 k2.
                             thin += w * (4.0 * c.mean * c.mean - 2.0 * c.gaussian) * da;
@@ -246,7 +245,7 @@ pub fn cut_fairness(curve: &CutCurve, tau: f64) -> CutFairness {
 pub fn fairness_report(surface: &NurbsSurface, options: &FairnessOptions) -> FairnessReport {
     let points = options.quadrature.unwrap_or_else(|| default_quadrature(surface));
     let energy = bending_energy(surface, points);
-    let size = model_size(surface).unwrap_or(1.0);
+    let size = surface.model_size().unwrap_or(1.0);
     let tau = options.inflection_threshold.abs() / size;
     let (lo, hi) = surface_bounds(surface);
     let stations: Vec<CutPlane> = options.stations.values(lo.x, hi.x).into_iter().map(CutPlane::Station).collect();
@@ -273,8 +272,8 @@ pub fn fairness_report(surface: &NurbsSurface, options: &FairnessOptions) -> Fai
 
 /// The bounding box of the surface's points on a 64 x 64 parameter grid with its knot lines.
 fn surface_bounds(surface: &NurbsSurface) -> (Vec3, Vec3) {
-    let us = param_grid(surface.knots_u(), 64, true, 2);
-    let vs = param_grid(surface.knots_v(), 64, true, 2);
+    let us = surface.knots_u().param_grid(64, true, 2);
+    let vs = surface.knots_v().param_grid(64, true, 2);
     let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let mut hi = -lo;
     for &u in &us {
@@ -314,7 +313,7 @@ mod tests {
             .enumerate()
             .map(|(i, &k)| CutPoint { uv: (i as f64, 0.0), point: Vec3::new(i as f64, 0.0, 0.0), curvature: k })
             .collect();
-        CutCurve { plane: CutPlane::Station(0.0), points }
+        CutCurve { plane: CutPlane::Station(0.0).into(), points }
     }
 
     #[test]

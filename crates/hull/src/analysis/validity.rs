@@ -2,7 +2,7 @@
 //! reject it, looked for everywhere on the surface, not only at the offsets.
 //!
 //! [`check_validity`] samples the surface on a parameter grid refined at every knot span
-//! (`param_grid` with 8 samples per span each way, as [`find_folds`](super::find_folds)) and reports one
+//! ([`KnotVector::param_grid`](nurbs::KnotVector::param_grid) with 8 samples per span each way, as [`find_folds`](super::find_folds)) and reports one
 //! [`Finding`] per defect:
 //!
 //! - **fold** ([`find_folds`](super::find_folds)): the surface runs backwards across its sections (`x_v` of the
@@ -50,7 +50,6 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::fold::{folds_on_grid, Fold, PER_SPAN};
-use super::{model_size, param_grid};
 use crate::flats::{FlatKind, FlatLine};
 use crate::{Offsets, COINCIDENT_REL};
 
@@ -404,8 +403,8 @@ struct Grid {
 
 impl Grid {
     fn sample(surface: &NurbsSurface) -> Self {
-        let us = param_grid(surface.knots_u(), 16, true, PER_SPAN);
-        let vs = param_grid(surface.knots_v(), 16, true, PER_SPAN);
+        let us = surface.knots_u().param_grid(16, true, PER_SPAN);
+        let vs = surface.knots_v().param_grid(16, true, PER_SPAN);
         // Blocks of rows in parallel, gathered in order; each node is computed the same way
         // whatever the blocks, so the grid is the same whatever the thread count.
         let blocks: Vec<Vec<Node>> = vs
@@ -479,7 +478,7 @@ pub(crate) fn validity_and_folds(
             kept
         })
         .collect();
-    let floor = model_size(surface).unwrap_or(1.0) * 1e-12;
+    let floor = surface.model_size().unwrap_or(1.0) * 1e-12;
     let allowance = |extent: f64, rel: f64| (rel * extent).max(floor);
     let (hb, depth, length) = (envelope.half_beam(), envelope.depth(), envelope.length());
     let mut probes = vec![
@@ -794,7 +793,7 @@ struct Oriented {
 /// everywhere) or the surface has no size.
 fn oriented(surface: &NurbsSurface, grid: &Grid) -> Option<Oriented> {
     let (nu, nv) = (grid.nu(), grid.vs.len());
-    let size = model_size(surface)?;
+    let size = surface.model_size()?;
     let ((u0, u1), (v0, v1)) = (surface.domain_u(), surface.domain_v());
     // |S_u x S_v| at round-off of the model's area per unit parameter area: degenerate.
     let area_tol = COINCIDENT_REL * size * size / ((u1 - u0) * (v1 - v0));

@@ -36,7 +36,7 @@ pub use knots::{
 };
 pub use lsq::{approximate_curve, approximate_curve_auto, LeastSquaresSolver};
 pub use param::{common_parameters, parameterize, Parameterization, SkinParameterization, UnknownParameterization};
-pub use plane_runs::{plane_run_ends, AxisPlane, RunEnd};
+pub use plane_runs::{plane_run_ends, RunEnd};
 pub use skin::{
     skin_approximate, skin_approximate_with_knuckles, skin_interpolate, skin_interpolate_with_knuckles, SkinOptions,
     SkinResult,

@@ -1,36 +1,7 @@
 //! Runs of consecutive points on a plane: where a polyline lies in a plane and where it
 //! leaves it.
 
-use crate::Vec3;
-
-/// The plane `p[axis] = value` normal to a coordinate axis (0 = x, 1 = y, 2 = z).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AxisPlane {
-    pub axis: usize,
-    pub value: f64,
-}
-
-impl AxisPlane {
-    /// The plane `x = value`.
-    pub fn x(value: f64) -> Self {
-        AxisPlane { axis: 0, value }
-    }
-
-    /// The plane `y = value`.
-    pub fn y(value: f64) -> Self {
-        AxisPlane { axis: 1, value }
-    }
-
-    /// The plane `z = value`.
-    pub fn z(value: f64) -> Self {
-        AxisPlane { axis: 2, value }
-    }
-
-    /// The distance of `p` from the plane, `|p[axis] - value|`.
-    pub fn distance(&self, p: Vec3) -> f64 {
-        (p.to_array()[self.axis] - self.value).abs()
-    }
-}
+use crate::{AxisPlane, Vec3};
 
 /// One interior end of a run of points on a plane ([`plane_run_ends`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -46,8 +17,8 @@ pub struct RunEnd {
 /// plane. An end that is the first or last point of `points` meets nothing and is left out.
 ///
 /// ```
-/// use nurbs::fit::{plane_run_ends, AxisPlane, RunEnd};
-/// use nurbs::Vec3;
+/// use nurbs::fit::{plane_run_ends, RunEnd};
+/// use nurbs::{AxisPlane, Vec3};
 /// // Along z = 0 for three points, then up.
 /// let pts = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 1.0), (3.0, 2.0)].map(|(y, z)| Vec3::new(0.0, y, z));
 /// assert_eq!(plane_run_ends(&pts, AxisPlane::z(0.0), 1e-12, 3), vec![RunEnd { index: 2, upper: true }]);

@@ -58,7 +58,7 @@
 
 use std::fmt;
 
-use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
+use nurbs::{AxisPlane, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use rayon::prelude::*;
 
 use super::model::{Anchor, Drawing, Item, Rgb, Stroke};
@@ -816,8 +816,8 @@ fn cut_paper(l: &Layout, bx: Box3, c: &CutCurve) -> (Vec<[f64; 2]>, bool) {
 
 /// Paper point of the 2-D plane coordinates `q` of a cut of `plane` (the body plan side from
 /// the plane's x).
-fn view_pt(l: &Layout, bx: Box3, plane: CutPlane, q: [f64; 2]) -> [f64; 2] {
-    match plane {
+fn view_pt(l: &Layout, bx: Box3, plane: AxisPlane, q: [f64; 2]) -> [f64; 2] {
+    match CutPlane::from(plane) {
         CutPlane::Station(x) => l.body_pt(bx, q[0], q[1], bx.side(x)),
         CutPlane::Waterline(_) => l.plan_pt(bx, q[0], q[1]),
         CutPlane::Buttock(_) => l.profile_pt(bx, q[0], q[1]),
@@ -986,7 +986,7 @@ fn left_normals(surface: &NurbsSurface, c: &CutCurve, q: &[[f64; 2]]) -> Vec<[f6
             let (a, b) = (q[i.saturating_sub(1)], q[(i + 1).min(n - 1)]);
             let chord = [b[0] - a[0], b[1] - a[1]];
             let exact =
-                surface.normal(c.points[i].uv.0, c.points[i].uv.1).map(|nn| c.plane.coords(c.plane.axis().cross(nn)));
+                surface.normal(c.points[i].uv.0, c.points[i].uv.1).map(|nn| c.plane.coords(c.plane.normal().cross(nn)));
             let t = match exact {
                 Some(t) if t[0].hypot(t[1]) > 1e-6 => {
                     let sign = if t[0] * chord[0] + t[1] * chord[1] < 0.0 { -1.0 } else { 1.0 };
