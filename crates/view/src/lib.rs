@@ -49,8 +49,8 @@ pub use drawing::{
 pub use error::ViewError;
 #[cfg(feature = "png")]
 pub use render::{
-    convergence_plot, curvature_map, curvature_map_png, render_png, render_rgba, write_png, CurvatureMap,
-    CurvatureMapOptions, Image, RasterOptions, View, ViewFrame, MAX_PIXELS,
+    convergence_plot, curvature_image, curvature_map_png, render_png, render_rgba, write_png, CurvatureImage,
+    CurvatureImageOptions, Image, RasterOptions, ViewDirection, ViewFrame, MAX_PIXELS,
 };
 #[cfg(feature = "png")]
 pub use report_html::{
