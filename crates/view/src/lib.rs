@@ -40,6 +40,11 @@ mod markup;
 mod render;
 #[cfg(feature = "png")]
 mod report_html;
+/// Reading the pages in unit tests: the file the command line's tests include too.
+#[cfg(test)]
+#[path = "../tests/common/page.rs"]
+#[cfg_attr(not(feature = "png"), allow(dead_code))] // `urls` serves the report's tests
+mod test_page;
 mod viewer;
 
 pub use drawing::{

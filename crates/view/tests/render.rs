@@ -303,20 +303,8 @@ fn sphere_patch_is_all_on_the_positive_side() {
 fn degenerate_pole_is_grey_not_nan() {
     // The sphere octant from the equator to the pole: one edge collapses to the pole, where
     // S_u x S_v = 0 and the curvature is undefined.
-    let c = FRAC_1_SQRT_2;
-    let r = 1.0;
-    let meridian = [(r, 0.0, 1.0), (r, r, c), (0.0, r, 1.0)];
-    let longitude = [(1.0, 0.0, 1.0), (1.0, 1.0, c), (0.0, 1.0, 1.0)];
-    let mut pts = Vec::new();
-    let mut w = Vec::new();
-    for &(rho, z, wm) in &meridian {
-        for &(cx, cy, wl) in &longitude {
-            pts.push(Vec3::new(rho * cx, rho * cy, z));
-            w.push(wm * wl);
-        }
-    }
-    let k = || KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("quadratic knots");
-    let octant = NurbsSurface::try_new(k(), k(), &pts, Some(&w)).expect("valid octant");
+    // The kernel's octant (pole at u = 0) with u reversed: u from the equator to the pole.
+    let octant = nurbs::fixtures::sphere_octant(1.0).reversed_u();
     let map = curvature_image(&octant, CurvatureField::Gaussian, &small()).expect("renders");
     // The whole u = 1 line (the pole) is undefined; elsewhere K = 1.
     assert_eq!(map.undefined, map.grid.1);

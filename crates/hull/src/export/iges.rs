@@ -274,10 +274,8 @@ fn model_bounds(surface: Option<&NurbsSurface>, curves: &[NurbsCurve]) -> (Vec3,
 fn global_fields(lo: Vec3, hi: Vec3, meta: &IgesMeta) -> io::Result<Vec<String>> {
     let max_coord = [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z].iter().fold(0.0f64, |m, c| m.max(c.abs()));
     let size = (hi - lo).norm();
-    let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
-    let exponent = (1e-7 * size).log10().floor() as i32;
-    // Parsed rather than `powi` so these are exactly the decimals 1.0E<e>.
-    let power_of_ten = |e: i32| -> f64 { format!("1e{e}").parse().expect("a decimal power of ten parses") };
+    let exponent = super::resolution_exponent(size);
+    let power_of_ten = super::power_of_ten;
     let resolution = power_of_ten(exponent);
     let date = hollerith(&meta.timestamp);
     Ok(vec![
@@ -656,8 +654,7 @@ mod tests {
             // Resolution: a power of ten between 1e-7 and 1e-6 times the net's diagonal.
             let size = (hi - lo).norm();
             let r = num(&g[18]);
-            assert!(r <= 1e-7 * size && r > 1e-8 * size, "resolution {r} for size {size}");
-            assert_near!(r.log10(), r.log10().round(), 1e-12);
+            crate::export::assert_resolution(r, size);
         }
     }
 

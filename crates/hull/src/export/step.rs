@@ -243,13 +243,6 @@ fn curve_entity(data: &mut Data, c: &NurbsCurve) -> io::Result<String> {
     Ok(data.add(body))
 }
 
-/// `10^floor(log10(1e-7 size))`, the declared resolution (as in the IGES global section).
-fn resolution(size: f64) -> f64 {
-    let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
-    let e = (1e-7 * size).log10().floor() as i32;
-    format!("1e{e}").parse().expect("a decimal power of ten parses")
-}
-
 /// The length unit entity (and what it needs); returns its name.
 fn length_unit(data: &mut Data, units: Units) -> io::Result<String> {
     let si = |prefix: &str| format!("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT({prefix},.METRE.) )");
@@ -317,7 +310,7 @@ pub fn write_step<W: Write>(w: &mut W, surface: &NurbsSurface, meta: &StepMeta) 
     let solid = d.add("( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )".into());
     let uncertainty = d.add(format!(
         "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({}),{length},'distance_accuracy_value','confusion accuracy')",
-        real(resolution(size))?
+        real(super::resolution(size))?
     ));
     let ctx = d.add(format!(
         "( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT(({uncertainty})) \
@@ -431,7 +424,7 @@ fn wrap(text: &str, width: usize) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nurbs::{assert_near, KnotVector};
+    use nurbs::KnotVector;
 
     /// Bicubic in u, quadratic in v, a double interior knot, non-unit weights.
     fn sample_surface(rational: bool) -> NurbsSurface {
@@ -623,8 +616,7 @@ mod tests {
         let inst = instances(&m);
         let (_, u) = inst.iter().find(|(_, b)| b.starts_with("UNCERTAINTY_MEASURE_WITH_UNIT")).expect("uncertainty");
         let r = numbers_after(u, "LENGTH_MEASURE(")[0];
-        assert!(r <= 1e-7 * size && r > 1e-8 * size, "resolution {r} for size {size}");
-        assert_near!(r.log10(), r.log10().round(), 1e-12);
+        crate::export::assert_resolution(r, size);
     }
 
     #[test]
