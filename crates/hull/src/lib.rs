@@ -28,6 +28,16 @@
 //! assert!(iges.len() > 1000);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Cargo features
+//!
+//! Both on by default; without one the crate builds the same API, and the input that needs
+//! the part left out is refused with [`HullError::FeatureDisabled`] naming the feature.
+//!
+//! | feature | what it enables | dependencies |
+//! | --- | --- | --- |
+//! | `gzip` | gzip-compressed meshes (`.stl.gz`, `.obj.gz`) in [`read_mesh`], [`parse_mesh`], [`gunzip`] | flate2 |
+//! | `svg` | SVG drawings in [`read_drawing`], [`parse_drawing`], [`parse_svg`] (DXF needs nothing) | svgtypes, roxmltree |
 
 // Every type that appears in a public signature is in the `pub use` list below.
 #![warn(unnameable_types)]
