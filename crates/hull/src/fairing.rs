@@ -2,23 +2,8 @@
 //! sections and across them, with a bending-energy term, [`nurbs::fit::SkinOptions::smoothing`]),
 //! and the choice of its weight.
 //!
-//! A naval architect fairs "within building tolerance": the fairest surface whose error at the
-//! offsets stays within a tolerance, and a sound one (no fold). [`Fairing::Auto`] does that
-//! literally (see [`fair`]): the tolerance is `--tolerance` or, by default, the plain
-//! approximation's own max error at the same control points, so fairing never costs accuracy at
-//! the offsets unless the plain fit has validity findings (a fold, the surface leaving the
-//! offsets' envelope, ...: then the fit with fewer is worth up to twice the tolerance,
-//! [`UNSOUND_SLACK`]); "fairer" is measured as a naval architect would,
-//! by the thin-plate energy `∫ (k1^2 + k2^2) dA`, the largest Gaussian curvature and the
-//! inflections of the stations and waterlines ([`FairnessFigures`]), all no
-//! worse than the plain fit's.
-//!
-//! Measured (release, `ν` = 1e-4 .. 1 on the tables in `testdata/`): the 116 m cargo ship's
-//! thin-plate energy falls from 1.5e5 to 2.1e3 at `ν` = 1e-3 with the max error 105 mm against
-//! the plain fit's 108 mm; the Series 60 sample's from 91 to 61 at `ν` = 1e-2 (max 103.5 mm
-//! against 100.5, RMS 23.9 against 28.1 mm); R/V Gunnerus's forecastle fold goes at `ν` = 1e-2
-//! (max 85 mm against 63); on the exact Wigley hull any smoothing costs accuracy (2.4 µm RMS
-//! plain, 29 µm at 1e-3), so the plain fit stays.
+//! What fairing does and what it was measured to give is documented on [`Fairing`], where the
+//! library's users read it.
 
 use rayon::prelude::*;
 
