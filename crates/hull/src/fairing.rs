@@ -97,7 +97,7 @@ pub fn fair(
         Fairing::Lambda(l) => {
             let out = skin(l)?;
             let after = FairnessFigures::of(&out.surface);
-            Ok(Some((out, report(l, None, Vec::new(), after))))
+            Ok(Some((out.with_fairness(after), report(l, None, Vec::new(), after))))
         }
         Fairing::Auto { tolerance } => {
             let limit = tolerance.unwrap_or(plain.error.overall.max);
@@ -117,7 +117,7 @@ pub fn fair(
                     }
                     tried.push(FairTry { lambda: l, max, findings, accepted });
                     if let (true, Some(after)) = (accepted, after) {
-                        return Ok(Some((out, report(l, Some(limit), tried, after))));
+                        return Ok(Some((out.with_fairness(after), report(l, Some(limit), tried, after))));
                     }
                 }
             } else {
@@ -139,10 +139,11 @@ pub fn fair(
                 if let Some((k, out)) = best {
                     tried[k].accepted = true;
                     let after = FairnessFigures::of(&out.surface);
-                    return Ok(Some((out, report(tried[k].lambda, Some(limit), tried, after))));
+                    return Ok(Some((out.with_fairness(after), report(tried[k].lambda, Some(limit), tried, after))));
                 }
             }
-            let kept = FitOutcome { fairing: Some(report(0.0, Some(limit), tried, before)), ..plain.clone() };
+            let kept = FitOutcome { fairing: Some(report(0.0, Some(limit), tried, before)), ..plain.clone() }
+                .with_fairness(before);
             let r = kept.fairing.clone().expect("set above");
             Ok(Some((kept, r)))
         }
@@ -255,5 +256,23 @@ mod tests {
         assert_eq!(report.tried.len(), AUTO_LAMBDAS.len());
         assert!(report.tried.iter().all(|t| !t.accepted));
         assert!(report.summary(Units::Metre).contains("which is kept"), "{}", report.summary(Units::Metre));
+    }
+
+    #[test]
+    fn the_outcome_reuses_the_fairness_figures_of_its_own_surface_only() {
+        let offsets = series60_sample();
+        let cfg = FitConfig { fair: Fairing::Auto { tolerance: None }, ..FitConfig::default() };
+        let out = fit_offsets(&offsets, &cfg).expect("fits");
+        let fresh = FairnessFigures::of(&out.surface);
+        assert!(
+            out.measured_fairness.as_ref().is_some_and(|(s, _)| *s == out.surface),
+            "the fairing measured the answer's own surface"
+        );
+        assert_eq!(out.fairness_figures(), fresh);
+        // Another surface under the same outcome: measured again, not the recorded figures.
+        let mut other = out.clone();
+        other.surface = other.surface.scaled(2.0);
+        assert_eq!(other.fairness_figures(), FairnessFigures::of(&other.surface));
+        assert_ne!(other.fairness_figures(), fresh);
     }
 }

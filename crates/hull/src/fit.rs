@@ -208,9 +208,27 @@ pub struct FitOutcome {
     /// is refitted with its net within the envelope ([`nurbs::fit::bounded_refit`]); 0 when
     /// none was needed.
     pub envelope_held: usize,
+    /// The fairness figures the fairing measured, with the surface they are of: reused by
+    /// [`FitOutcome::fairness_figures`] for that very surface only.
+    pub(crate) measured_fairness: Option<(NurbsSurface, FairnessFigures)>,
 }
 
 impl FitOutcome {
+    /// The fairness figures of `surface` (`report.json`'s `fairness`): those the fairing
+    /// already measured (its `after`, or `before` when it kept the plain fit) when they are of
+    /// this very surface, else measured now ([`FairnessFigures::of`]).
+    pub fn fairness_figures(&self) -> FairnessFigures {
+        match &self.measured_fairness {
+            Some((measured, figures)) if *measured == self.surface => *figures,
+            _ => FairnessFigures::of(&self.surface),
+        }
+    }
+
+    /// This outcome, with `figures` recorded as its surface's ([`FitOutcome::fairness_figures`]).
+    pub(crate) fn with_fairness(self, figures: FairnessFigures) -> Self {
+        FitOutcome { measured_fairness: Some((self.surface.clone(), figures)), ..self }
+    }
+
     /// How defective the surface is, for choosing between fits: `(folds, findings)`, folds
     /// first, then validity findings of any kind (compared in that order).
     pub fn defects(&self) -> (usize, usize) {

@@ -190,7 +190,7 @@ impl Report {
             rejected: outcome.rejected.clone(),
             overfitting: None,
             validity: outcome.validity.clone(),
-            fairness: crate::fairing::FairnessFigures::of(s),
+            fairness: outcome.fairness_figures(),
             envelope_held: outcome.envelope_held,
             surface_source: None,
         }
