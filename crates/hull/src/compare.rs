@@ -5,60 +5,7 @@
 //! all with `--fair 0 --envelope free`, the plain objective); then the fair fits of the default
 //! `--fair auto --envelope hold` ([`FAIR_ROWS`]: `approx+fair`, `lm+fair`).
 //!
-//! `compare.json` layout (stable; later features add fields):
-//!
-//! ```text
-//! {"hullskin": "0.1.0",
-//!  "input": {"source": "...", "sections": K, "points": N, "units": "m"},
-//!  "degree": [P, Q], "control_points": [NU, NV], "parameterization": "centripetal,chord",
-//!  "seed": 1, "optimization": {"iterations": null, "population": null, "control_points": "resolved",
-//!                              "weight_layout": "full", "parameter_correction": false,
-//!                              "start_parameters": "foot_points"},
-//!  "curvature_sampling": {"grid": 41, "knot_lines": true},
-//!  "complete": true, "not_run": [],
-//!  "methods": [{"method": "interp", "status": "done", "control_points": [8, 25],
-//!               "error": {"max": .., "mean": .., "rms": .., "parametric_rms": ..},
-//!               "gaussian_curvature": {"max": .., "min": .., "max_at": [u, v], "min_at": [u, v],
-//!                                      "samples": n, "skipped": n},
-//!               "seconds": .., "error_seconds": .., "evaluations": 0, "iterations": 0,
-//!               "seed": null, "objective": null,
-//!               "held_out_rms": .., "held_out_max": .., "overfit": true,
-//!               "validity": {"valid": true, "findings": 0, "kinds": []}}, ...],
-//!  "held_out_folds": 4,
-//!  "floors": {"metric": "rms", "relative_tolerance": 1e-9, "all_hold": true,
-//!             "checks": [{"floor": "ga < approx", "holds": true, "value": .., "bound": ..}, ...]}}
-//! ```
-//!
-//! * `error`: the true distance of every offset to the surface by closest-point projection, in
-//!   the input's units ([`measure_fit_error`](crate::measure_fit_error)); `parametric_rms` is the
-//!   RMS of `|S(u_k, v_k) - Q_k|` at the fit's data parameters (an upper bound of `rms`).
-//! * `gaussian_curvature`: `K = (LN - M^2) / (EG - F^2)` (1 / units^2) sampled on a
-//!   [`CURVATURE_GRID`] x [`CURVATURE_GRID`] uniform parameter grid joined with every distinct
-//!   interior knot in each direction (the knot lines, where the second derivatives of a
-//!   surface with repeated knots may jump); see [`gaussian_curvature_range`]. Degenerate points
-//!   (a pointed stem, where `S_u x S_v` vanishes and K is undefined) are skipped and counted.
-//! * `seconds`: the fit itself (skinning, plus the weight optimisation), not the error
-//!   measurement (`error_seconds`), which costs the same for every method.
-//! * `evaluations` and `iterations`: of the objective, 0 for `interp` and `approx`; `seed` and
-//!   `objective` (`[start, final]`, the optimiser's parametric RMS objective) only for the
-//!   optimised methods.
-//! * `held_out_rms`, `held_out_max`: the error between the offsets by K-fold cross-validation
-//!   (`held_out_folds` = K; [`crate::held_out_for_config`]), `null` when not asked for, after a
-//!   stop or when a refit failed. `overfit`: the row is closer to the offsets than the plain
-//!   approximation but farther from the held-out ones (RMS; [`crate::overfit`]); `null`
-//!   without both held-out errors, and for `approx` itself.
-//! * `validity`: whether the row's surface is valid: the number of findings of
-//!   [`check_fit_validity`](crate::analysis::check_fit_validity) (folds, leaving the offsets'
-//!   envelope, bulging through a flat, inward-facing facets) and their kinds, each once;
-//!   `null` for a failed method.
-//! * `status`: `done`, `interrupted` (stopped by the user; the best surface found before the
-//!   stop is measured) or `failed` (with `failure`, the error message). On an interruption the
-//!   comparison stops: the methods after it are listed in `not_run` and `complete` is false.
-//!
-//! Floors (issue 3), on the true RMS error: each of GA, PSO and GSA ends strictly below the
-//! plain approximation, and the better of LM and GSA+LM ends at or below the best of the three
-//! (within [`FLOOR_RELATIVE_TOLERANCE`], for round-off). A failed method fails its floors; an
-//! interrupted or missing one leaves them unchecked (`holds: null`).
+//! The rest of this module's documentation is on [`compare_offsets`], where the library's users read it.
 
 use std::fmt::Write as _;
 
@@ -346,7 +293,7 @@ fn best(rows: &[CompareRow], names: &[&str], all_needed: bool) -> Known {
     }
 }
 
-/// Check the floors of issue 3 on `rows` (see the module docs): `ga`, `pso` and `gsa` each
+/// Check the floors of issue 3 on `rows` (see [`compare_offsets`]): `ga`, `pso` and `gsa` each
 /// strictly below `approx` in true RMS error; `min(lm, gsa+lm) <= min(ga, pso, gsa)` within
 /// [`FLOOR_RELATIVE_TOLERANCE`]. The best of the three is over those done and needs none
 /// interrupted or missing; the better of the local two needs one of them done, but an
@@ -434,6 +381,61 @@ pub struct Comparison {
 }
 
 /// Run every method of [`COMPARE_METHODS`] on `offsets` without progress reports or stops.
+///
+/// `compare.json` layout (stable; later features add fields):
+///
+/// ```text
+/// {"hullskin": "0.1.0",
+///  "input": {"source": "...", "sections": K, "points": N, "units": "m"},
+///  "degree": [P, Q], "control_points": [NU, NV], "parameterization": "centripetal,chord",
+///  "seed": 1, "optimization": {"iterations": null, "population": null, "control_points": "resolved",
+///                              "weight_layout": "full", "parameter_correction": false,
+///                              "start_parameters": "foot_points"},
+///  "curvature_sampling": {"grid": 41, "knot_lines": true},
+///  "complete": true, "not_run": [],
+///  "methods": [{"method": "interp", "status": "done", "control_points": [8, 25],
+///               "error": {"max": .., "mean": .., "rms": .., "parametric_rms": ..},
+///               "gaussian_curvature": {"max": .., "min": .., "max_at": [u, v], "min_at": [u, v],
+///                                      "samples": n, "skipped": n},
+///               "seconds": .., "error_seconds": .., "evaluations": 0, "iterations": 0,
+///               "seed": null, "objective": null,
+///               "held_out_rms": .., "held_out_max": .., "overfit": true,
+///               "validity": {"valid": true, "findings": 0, "kinds": []}}, ...],
+///  "held_out_folds": 4,
+///  "floors": {"metric": "rms", "relative_tolerance": 1e-9, "all_hold": true,
+///             "checks": [{"floor": "ga < approx", "holds": true, "value": .., "bound": ..}, ...]}}
+/// ```
+///
+/// * `error`: the true distance of every offset to the surface by closest-point projection, in
+///   the input's units ([`measure_fit_error`](crate::measure_fit_error)); `parametric_rms` is the
+///   RMS of `|S(u_k, v_k) - Q_k|` at the fit's data parameters (an upper bound of `rms`).
+/// * `gaussian_curvature`: `K = (LN - M^2) / (EG - F^2)` (1 / units^2) sampled on a
+///   [`CURVATURE_GRID`] x [`CURVATURE_GRID`] uniform parameter grid joined with every distinct
+///   interior knot in each direction (the knot lines, where the second derivatives of a
+///   surface with repeated knots may jump); see [`gaussian_curvature_range`]. Degenerate points
+///   (a pointed stem, where `S_u x S_v` vanishes and K is undefined) are skipped and counted.
+/// * `seconds`: the fit itself (skinning, plus the weight optimisation), not the error
+///   measurement (`error_seconds`), which costs the same for every method.
+/// * `evaluations` and `iterations`: of the objective, 0 for `interp` and `approx`; `seed` and
+///   `objective` (`[start, final]`, the optimiser's parametric RMS objective) only for the
+///   optimised methods.
+/// * `held_out_rms`, `held_out_max`: the error between the offsets by K-fold cross-validation
+///   (`held_out_folds` = K; [`crate::held_out_for_config`]), `null` when not asked for, after a
+///   stop or when a refit failed. `overfit`: the row is closer to the offsets than the plain
+///   approximation but farther from the held-out ones (RMS; [`crate::overfit`]); `null`
+///   without both held-out errors, and for `approx` itself.
+/// * `validity`: whether the row's surface is valid: the number of findings of
+///   [`check_fit_validity`](crate::analysis::check_fit_validity) (folds, leaving the offsets'
+///   envelope, bulging through a flat, inward-facing facets) and their kinds, each once;
+///   `null` for a failed method.
+/// * `status`: `done`, `interrupted` (stopped by the user; the best surface found before the
+///   stop is measured) or `failed` (with `failure`, the error message). On an interruption the
+///   comparison stops: the methods after it are listed in `not_run` and `complete` is false.
+///
+/// Floors (issue 3), on the true RMS error: each of GA, PSO and GSA ends strictly below the
+/// plain approximation, and the better of LM and GSA+LM ends at or below the best of the three
+/// (within [`FLOOR_RELATIVE_TOLERANCE`], for round-off). A failed method fails its floors; an
+/// interrupted or missing one leaves them unchecked (`holds: null`).
 ///
 /// # Errors
 /// As [`compare_offsets_with`].

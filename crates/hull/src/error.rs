@@ -93,6 +93,20 @@ pub enum HullError {
         /// The operating system's error.
         error: std::io::Error,
     },
+    /// An input that needs an optional part of the crate which this build left out: a
+    /// gzip-compressed mesh without the cargo feature `gzip`, an SVG drawing without `svg`.
+    #[error(
+        "{source_name}: {input} needs the cargo feature `{feature}` of hullskin-hull, which this build leaves out \
+         (build with it, or give the input in another form)"
+    )]
+    FeatureDisabled {
+        /// The input, as named in messages (a file name).
+        source_name: String,
+        /// What it is, e.g. `a gzip-compressed mesh`.
+        input: &'static str,
+        /// The cargo feature that reads it, e.g. `gzip`.
+        feature: &'static str,
+    },
     /// The input data are wrong at a known place: a parse error or a failed validation.
     #[error("{at}: {kind}")]
     Input {
@@ -1336,5 +1350,19 @@ mod tests {
         assert!(!io.is_setting());
         let input = HullError::input(Location::file("x.csv"), InputErrorKind::Empty);
         assert!(!input.is_setting());
+    }
+
+    #[test]
+    fn a_feature_left_out_is_named_with_the_input() {
+        let e = HullError::FeatureDisabled {
+            source_name: "hull.stl.gz".into(),
+            input: "a gzip-compressed mesh",
+            feature: "gzip",
+        };
+        assert_eq!(
+            e.to_string(),
+            "hull.stl.gz: a gzip-compressed mesh needs the cargo feature `gzip` of hullskin-hull, which this build \
+             leaves out (build with it, or give the input in another form)"
+        );
     }
 }

@@ -2,23 +2,8 @@
 //! sections and across them, with a bending-energy term, [`nurbs::fit::SkinOptions::smoothing`]),
 //! and the choice of its weight.
 //!
-//! A naval architect fairs "within building tolerance": the fairest surface whose error at the
-//! offsets stays within a tolerance, and a sound one (no fold). [`Fairing::Auto`] does that
-//! literally (see [`fair`]): the tolerance is `--tolerance` or, by default, the plain
-//! approximation's own max error at the same control points, so fairing never costs accuracy at
-//! the offsets unless the plain fit has validity findings (a fold, the surface leaving the
-//! offsets' envelope, ...: then the fit with fewer is worth up to twice the tolerance,
-//! [`UNSOUND_SLACK`]); "fairer" is measured as a naval architect would,
-//! by the thin-plate energy `∫ (k1^2 + k2^2) dA`, the largest Gaussian curvature and the
-//! inflections of the stations and waterlines ([`FairnessFigures`]), all no
-//! worse than the plain fit's.
-//!
-//! Measured (release, `ν` = 1e-4 .. 1 on the tables in `testdata/`): the 116 m cargo ship's
-//! thin-plate energy falls from 1.5e5 to 2.1e3 at `ν` = 1e-3 with the max error 105 mm against
-//! the plain fit's 108 mm; the Series 60 sample's from 91 to 61 at `ν` = 1e-2 (max 103.5 mm
-//! against 100.5, RMS 23.9 against 28.1 mm); R/V Gunnerus's forecastle fold goes at `ν` = 1e-2
-//! (max 85 mm against 63); on the exact Wigley hull any smoothing costs accuracy (2.4 µm RMS
-//! plain, 29 µm at 1e-3), so the plain fit stays.
+//! What fairing does and what it was measured to give is documented on [`Fairing`], where the
+//! library's users read it.
 
 use rayon::prelude::*;
 
@@ -112,7 +97,7 @@ pub fn fair(
         Fairing::Lambda(l) => {
             let out = skin(l)?;
             let after = FairnessFigures::of(&out.surface);
-            Ok(Some((out, report(l, None, Vec::new(), after))))
+            Ok(Some((out.with_fairness(after), report(l, None, Vec::new(), after))))
         }
         Fairing::Auto { tolerance } => {
             let limit = tolerance.unwrap_or(plain.error.overall.max);
@@ -132,7 +117,7 @@ pub fn fair(
                     }
                     tried.push(FairTry { lambda: l, max, findings, accepted });
                     if let (true, Some(after)) = (accepted, after) {
-                        return Ok(Some((out, report(l, Some(limit), tried, after))));
+                        return Ok(Some((out.with_fairness(after), report(l, Some(limit), tried, after))));
                     }
                 }
             } else {
@@ -154,10 +139,11 @@ pub fn fair(
                 if let Some((k, out)) = best {
                     tried[k].accepted = true;
                     let after = FairnessFigures::of(&out.surface);
-                    return Ok(Some((out, report(tried[k].lambda, Some(limit), tried, after))));
+                    return Ok(Some((out.with_fairness(after), report(tried[k].lambda, Some(limit), tried, after))));
                 }
             }
-            let kept = FitOutcome { fairing: Some(report(0.0, Some(limit), tried, before)), ..plain.clone() };
+            let kept = FitOutcome { fairing: Some(report(0.0, Some(limit), tried, before)), ..plain.clone() }
+                .with_fairness(before);
             let r = kept.fairing.clone().expect("set above");
             Ok(Some((kept, r)))
         }
@@ -270,5 +256,23 @@ mod tests {
         assert_eq!(report.tried.len(), AUTO_LAMBDAS.len());
         assert!(report.tried.iter().all(|t| !t.accepted));
         assert!(report.summary(Units::Metre).contains("which is kept"), "{}", report.summary(Units::Metre));
+    }
+
+    #[test]
+    fn the_outcome_reuses_the_fairness_figures_of_its_own_surface_only() {
+        let offsets = series60_sample();
+        let cfg = FitConfig { fair: Fairing::Auto { tolerance: None }, ..FitConfig::default() };
+        let out = fit_offsets(&offsets, &cfg).expect("fits");
+        let fresh = FairnessFigures::of(&out.surface);
+        assert!(
+            out.measured_fairness.as_ref().is_some_and(|(s, _)| *s == out.surface),
+            "the fairing measured the answer's own surface"
+        );
+        assert_eq!(out.fairness_figures(), fresh);
+        // Another surface under the same outcome: measured again, not the recorded figures.
+        let mut other = out.clone();
+        other.surface = other.surface.scaled(2.0);
+        assert_eq!(other.fairness_figures(), FairnessFigures::of(&other.surface));
+        assert_ne!(other.fairness_figures(), fresh);
     }
 }

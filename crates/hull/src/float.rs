@@ -1,27 +1,28 @@
 //! The one place that turns an `f64` into exact text for files (IGES, STEP, DXF, STL, OBJ,
 //! glTF, CSV); `numfmt` rounds figures for people ([`crate::format_figure`]).
 //!
-//! Every real number a writer emits goes through [`real`], so all exports agree on one
-//! representation: the *shortest* decimal string that parses back to the very same `f64`
-//! (Rust's float formatting is shortest-round-trip, Ryu/Grisu style), laid out the way IGES
-//! 5.3 (section 2.2.2.3, "Real numbers") and ISO 10303-21 readers expect:
-//!
-//! * always a decimal point: `3.0`, never `3`;
-//! * plain notation for `1e-5 <= |x| < 1e16`: `0.25`, `-12.5`, `0.00003`;
-//! * otherwise a mantissa with a decimal point and an upper-case `E` exponent: `1.0E-7`,
-//!   `-2.5E20`;
-//! * `-0.0` is written `0.0`; NaN and infinities are refused (no exchange format can hold them).
-//!
-//! The longest possible output is 24 characters (`-2.2250738585072014E-308`), which IGES
-//! writers rely on when they pack fields into 64-column records.
+//! The layout is documented on [`real`], where the library's users read it.
 
 use std::io;
 
 /// Longest string [`real`] can return.
 pub const MAX_REAL_LEN: usize = 24;
 
-/// Shortest round-trip text of `x` with a decimal point and an `E` exponent when needed
-/// (see the module docs for the exact layout).
+/// Shortest round-trip text of `x` with a decimal point and an `E` exponent when needed.
+///
+/// Every real number a writer of this crate emits goes through this function, so all exports
+/// agree on one representation: the *shortest* decimal string that parses back to the very
+/// same `f64` (Rust's float formatting is shortest-round-trip, Ryu/Grisu style), laid out the
+/// way IGES 5.3 (section 2.2.2.3, "Real numbers") and ISO 10303-21 readers expect:
+///
+/// * always a decimal point: `3.0`, never `3`;
+/// * plain notation for `1e-5 <= |x| < 1e16`: `0.25`, `-12.5`, `0.00003`;
+/// * otherwise a mantissa with a decimal point and an upper-case `E` exponent: `1.0E-7`,
+///   `-2.5E20`;
+/// * `-0.0` is written `0.0`; NaN and infinities are refused (no exchange format can hold them).
+///
+/// The longest possible output is 24 characters (`-2.2250738585072014E-308`), which IGES
+/// writers rely on when they pack fields into 64-column records.
 ///
 /// # Errors
 /// [`io::ErrorKind::InvalidData`] if `x` is NaN or infinite.

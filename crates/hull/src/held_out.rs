@@ -1,34 +1,7 @@
 //! The error between the offsets, by cross-validation: refit without some of the offsets and
 //! measure how far the held-out ones are from the refitted surface.
 //!
-//! The error at the offsets ([`crate::measure_fit_error`]) says nothing of the surface between
-//! them: interpolation has none there whatever it does in between. K-fold cross-validation
-//! (Hastie, Tibshirani and Friedman, *The Elements of Statistical Learning*, 2nd ed., 7.10)
-//! estimates it from the data alone. With `K` folds, `f = 0, ..., K - 1`:
-//!
-//! - **sections**: fold `f` refits without the interior sections `k` with `k mod K = f` (the
-//!   first and last stay: they bound the hull, and extrapolation past the ends is not what is
-//!   measured) and measures those sections' offsets;
-//! - **points**: fold `f` refits without the interior points `i` (neither the first nor the
-//!   last of their section) with `i mod K = f` of every section, and measures them. A section
-//!   that would keep fewer than `p + 1` points (the degree along the sections), or that is one
-//!   point (a pointed stem), keeps all of its own.
-//!
-//! Every held-out offset `Q` is measured by its true distance `min_{u,v} |S(u, v) - Q|` to the
-//! refitted surface (closest-point projection, as the error at the offsets). The reported
-//! `rms` and `max` are over all held-out offsets of both kinds, each measured once per kind
-//! (every interior section, every interior point of a section that can spare it, is held out
-//! exactly once).
-//!
-//! A refit sees the data with gaps twice the spacing where the held-out offsets were: the
-//! figure is the error of a slightly coarser table's fit, so it tends to overstate the error of
-//! the full fit between its offsets (a conservative estimate; the Wigley test of
-//! `tests/fit/held_out.rs` measures by how much on an exact surface).
-//!
-//! The refits are independent and run in parallel (rayon); each is a pure function of its data,
-//! and the distances are gathered in a fixed order, so the result is bit for bit the same
-//! whatever the thread count, provided the fitter itself is (every method of
-//! [`crate::fit_offsets`] is, for a given seed).
+//! The rest of this module's documentation is on [`held_out_error`], where the library's users read it.
 
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::time::Instant;
@@ -165,10 +138,39 @@ fn splits(offsets: &Offsets, options: &HeldOutOptions) -> Vec<Split> {
     sections.chain(points).collect()
 }
 
-/// The held-out error of the fitter `fit` on `offsets`: see the module docs. `fit` is any
+/// The held-out error of the fitter `fit` on `offsets`: see [`held_out_error`]. `fit` is any
 /// method (a closure over [`crate::fit_offsets`], a fair fit, an optimiser); it is called once
 /// per split, in parallel, and must be a pure function of the offsets it is given for the
 /// result not to depend on the thread count.
+///
+/// The error at the offsets ([`crate::measure_fit_error`]) says nothing of the surface between
+/// them: interpolation has none there whatever it does in between. K-fold cross-validation
+/// (Hastie, Tibshirani and Friedman, *The Elements of Statistical Learning*, 2nd ed., 7.10)
+/// estimates it from the data alone. With `K` folds, `f = 0, ..., K - 1`:
+///
+/// - **sections**: fold `f` refits without the interior sections `k` with `k mod K = f` (the
+///   first and last stay: they bound the hull, and extrapolation past the ends is not what is
+///   measured) and measures those sections' offsets;
+/// - **points**: fold `f` refits without the interior points `i` (neither the first nor the
+///   last of their section) with `i mod K = f` of every section, and measures them. A section
+///   that would keep fewer than `p + 1` points (the degree along the sections), or that is one
+///   point (a pointed stem), keeps all of its own.
+///
+/// Every held-out offset `Q` is measured by its true distance `min_{u,v} |S(u, v) - Q|` to the
+/// refitted surface (closest-point projection, as the error at the offsets). The reported
+/// `rms` and `max` are over all held-out offsets of both kinds, each measured once per kind
+/// (every interior section, every interior point of a section that can spare it, is held out
+/// exactly once).
+///
+/// A refit sees the data with gaps twice the spacing where the held-out offsets were: the
+/// figure is the error of a slightly coarser table's fit, so it tends to overstate the error of
+/// the full fit between its offsets (a conservative estimate; the Wigley test of
+/// `tests/fit/held_out.rs` measures by how much on an exact surface).
+///
+/// The refits are independent and run in parallel (rayon); each is a pure function of its data,
+/// and the distances are gathered in a fixed order, so the result is bit for bit the same
+/// whatever the thread count, provided the fitter itself is (every method of
+/// [`crate::fit_offsets`] is, for a given seed).
 ///
 /// # Errors
 /// [`HullError::HeldOut`] for invalid `options` or offsets too few to hold any out for the

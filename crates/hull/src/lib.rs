@@ -28,6 +28,54 @@
 //! assert!(iges.len() > 1000);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Cargo features
+//!
+//! Both on by default; without one the crate builds the same API, and the input that needs
+//! the part left out is refused with [`HullError::FeatureDisabled`] naming the feature.
+//!
+//! | feature | what it enables | dependencies |
+//! | --- | --- | --- |
+//! | `gzip` | gzip-compressed meshes (`.stl.gz`, `.obj.gz`) in [`read_mesh`], [`parse_mesh`], [`gunzip`] | flate2 |
+//! | `svg` | SVG drawings in [`read_drawing`], [`parse_drawing`], [`parse_svg`] (DXF needs nothing) | svgtypes, roxmltree |
+//!
+//! # Limits
+//!
+//! Documented caps on what hullskin accepts, each with the reason for its size, checked where
+//! the data enter (file reading, offsets, meshes, drawings, fit and optimisation settings,
+//! surface JSON).
+//!
+//! The caps are sized so that the biggest legitimate job fits in a few GiB of memory and runs
+//! in seconds to minutes on a two-core machine; they guard against mistakes (a runaway
+//! resampling, a typo such as `--iterations 1e9`, a corrupt header claiming four billion
+//! triangles), not against ships. Real offset tables have 10 to 60 stations of 5 to 40 points;
+//! the densest data at hand (sections sliced from a 1.4 M-triangle mesh) have a few thousand
+//! points per section. Above a cap the input is refused with [`HullError::Limit`], e.g.
+//!
+//! ```text
+//! scan.csv: 3,200,000 points exceed the cap of 2,000,000 (expected at most 2,000,000 offsets in all;
+//! see README Limits)
+//! ```
+//!
+//! | cap | value | why |
+//! | --- | --- | --- |
+//! | [`MAX_OFFSETS_FILE_BYTES`] | 256 MiB | a 2 M-point sections CSV is about 80 MB |
+//! | [`MAX_MESH_FILE_BYTES`] | 1 GiB | a binary STL of [`MAX_MESH_TRIANGLES`] is 1 GB |
+//! | [`MAX_DRAWING_FILE_BYTES`] | 256 MiB | a body-plan drawing is a few MB |
+//! | [`MAX_SURFACE_JSON_BYTES`] | 1 GiB | [`MAX_CONTROL_POINTS`] poles at ~80 bytes a line, plus weights |
+//! | [`MAX_CAD_FILE_BYTES`] | 1 GiB | [`MAX_CONTROL_POINTS`] poles as IGES or STEP text: ~110 bytes each |
+//! | [`MAX_STEP_INSTANCES`] | 10,000,000 | one `CARTESIAN_POINT` per pole of the largest surface, and more |
+//! | [`MAX_SECTIONS`] | 10,000 | a section every 1 cm over a 100 m hull |
+//! | [`MAX_POINTS_PER_SECTION`] | 100,000 | 0.1 mm spacing over a 10 m girth |
+//! | [`MAX_POINTS`] | 2,000,000 | one projection each for the fit error: ~1 min on 2 cores |
+//! | [`MAX_CONTROL_POINTS_PER_DIRECTION`] | 100,000 | as many as the points of a section |
+//! | [`MAX_CONTROL_POINTS`] | 4,000,000 | 128 MB of homogeneous poles, 2 M-point interpolation |
+//! | [`MAX_MESH_TRIANGLES`] | 20,000,000 | ~85 bytes each read and welded: under 2 GiB |
+//! | [`MAX_DRAWING_ENTITIES`] | 1,000,000 | a traced body plan has a few thousand |
+//! | [`MAX_OPTIM_VARIABLES`] | 10,000 | Levenberg-Marquardt's dense step matrix: 800 MB |
+//! | [`MAX_OPTIM_ITERATIONS`] | 1,000,000 | 5,000 times the GA's default 200 |
+//! | [`MAX_OPTIM_POPULATION`] | 10,000 | 200 times the GA's default 50 |
+//! | [`MAX_OPTIM_EVALUATIONS`] | 100,000,000 | population x iterations: 10,000 times the GA's default |
 
 // Every type that appears in a public signature is in the `pub use` list below.
 #![warn(unnameable_types)]

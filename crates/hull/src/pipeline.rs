@@ -270,6 +270,7 @@ fn assembled(
         rejected: Vec::new(),
         validity,
         envelope_held: 0,
+        measured_fairness: None,
     })
 }
 

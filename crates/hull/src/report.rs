@@ -1,60 +1,7 @@
 //! What a fit run writes: `surface.igs`, `surface.json` and `report.json` (all or nothing),
 //! and the summary table printed to the terminal.
 //!
-//! `report.json` layout (stable; later features add fields):
-//!
-//! ```text
-//! {"hullskin": "0.1.0", "method": "approx",
-//!  "input": {"source": "...", "sections": K, "points": N, "units": "m"},
-//!  "surface": {"degree": [P, Q], "control_points": [NU, NV], "rational": false},
-//!  "parameterization": "centripetal",
-//!  "error": {"max": .., "mean": .., "rms": .., "points": N, "worst": {...},
-//!            "per_section": [{"section": "..", "max": .., "mean": .., "rms": .., "points": n}],
-//!            "unconverged_projections": 0,
-//!            "held_out": {"rms": .., "max": .., "sections": {"max": .., "mean": .., "rms": .., "points": n},
-//!                         "points": {...}, "folds": 4, "refits": 8, "seconds": ..}},
-//!  "seconds": .., "fit_seconds": .., "error_seconds": ..,
-//!  "optimization": {"algorithm": "gsa", "seed": 1, "control_points": "resolved",
-//!                   "weight_layout": "full", "weight_bounds": [0.1, 10], "weight_range": [..],
-//!                   "weights_at_bounds": n, "iterations": .., "evaluations": .., "stop": "iterations",
-//!                   "start_value": .., "final_value": .., "history": [..],
-//!                   "parameter_correction": false, "settings": {..}, "seconds": ..},
-//!  "fairness": {"thin_plate": .., "gaussian": [min, max], "station_inflections": n,
-//!               "waterline_inflections": n},
-//!  "folds": [{"x": [x0, x1], "v": [v0, v1], "samples": n, "of": n}],
-//!  "validity": [{"kind": "below_centre_plane", "place": {"x": .., "y": .., "z": .., "u": .., "v": ..},
-//!                "size": .., "limit": .., "reference": .., "x_band": [x0, x1], "flat": "bottom"}]}
-//! ```
-//!
-//! `optimization` is present for the weight-optimised methods only; its `history` is the best
-//! objective (parametric RMS of the offsets) after each iteration. `fairness` is the final
-//! surface's ([`crate::fairing::FairnessFigures`]), always present. `fairing` is present when the fit was faired ([`crate::FairReport`]: `setting`, `lambda`
-//! (0: the plain fit was kept), `tolerance`, `tried` (`lambda`, `max`, `folds`, `accepted`),
-//! `before` and `after`, each as `fairness`); `rejected`
-//! lists results not taken as the answer, and why; `overfitting` (from `hullskin fit` with an
-//! optimised method) says when its held-out error shows over-fitting. `tolerance_search` is
-//! present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
-//! `interp_control_points`, `ratio`, `fits`, `complete`, `valid`, `tried`).
-//!
-//! A surface measured as it is (`hullskin fit SURFACE --offsets FILE`, [`Report::measured`])
-//! has `"method": "given"`, `"parameterization": "closest points"`, `fit_seconds` 0 and
-//! `surface_source`, the surface's file (left out for a fit).
-//!
-//! `envelope_held` (left out when 0) counts the control-point coordinates held on the offsets'
-//! envelope by `--envelope hold`.
-//!
-//! `folds` is left out when the surface does not fold. `validity` is always there: one finding
-//! per defect ([`crate::analysis::Finding`]; kinds `fold`, `below_centre_plane`,
-//! `beyond_half_breadth`, `below_lowest_offset`, `above_highest_offset`, `past_aft_end`,
-//! `past_fore_end`, `flat_bulge`, `inward_facing`), empty for a valid surface. `size` is how far
-//! past `reference` (model units; an area in units² for `inward_facing`), `limit` the allowance
-//! it exceeded; `reference`, `x_band` and `flat` only where they apply.
-//!
-//! Errors are distances in the input's units, measured by closest-point projection of every
-//! input point onto the surface. `error.held_out`, when asked for (`hullskin fit --held-out K`,
-//! on by default), is the error between the offsets by K-fold cross-validation
-//! ([`crate::held_out_for_config`]): the true distance of held-out sections and of held-out
-//! points within sections to the surface refitted without them.
+//! The layout of `report.json` is documented on [`Report`], where the library's users read it.
 
 use std::fmt::Write as _;
 use std::io;
@@ -88,6 +35,61 @@ pub struct SurfaceSummary {
 }
 
 /// `report.json`.
+///
+/// `report.json` layout (stable; later features add fields):
+///
+/// ```text
+/// {"hullskin": "0.1.0", "method": "approx",
+///  "input": {"source": "...", "sections": K, "points": N, "units": "m"},
+///  "surface": {"degree": [P, Q], "control_points": [NU, NV], "rational": false},
+///  "parameterization": "centripetal",
+///  "error": {"max": .., "mean": .., "rms": .., "points": N, "worst": {...},
+///            "per_section": [{"section": "..", "max": .., "mean": .., "rms": .., "points": n}],
+///            "unconverged_projections": 0,
+///            "held_out": {"rms": .., "max": .., "sections": {"max": .., "mean": .., "rms": .., "points": n},
+///                         "points": {...}, "folds": 4, "refits": 8, "seconds": ..}},
+///  "seconds": .., "fit_seconds": .., "error_seconds": ..,
+///  "optimization": {"algorithm": "gsa", "seed": 1, "control_points": "resolved",
+///                   "weight_layout": "full", "weight_bounds": [0.1, 10], "weight_range": [..],
+///                   "weights_at_bounds": n, "iterations": .., "evaluations": .., "stop": "iterations",
+///                   "start_value": .., "final_value": .., "history": [..],
+///                   "parameter_correction": false, "settings": {..}, "seconds": ..},
+///  "fairness": {"thin_plate": .., "gaussian": [min, max], "station_inflections": n,
+///               "waterline_inflections": n},
+///  "folds": [{"x": [x0, x1], "v": [v0, v1], "samples": n, "of": n}],
+///  "validity": [{"kind": "below_centre_plane", "place": {"x": .., "y": .., "z": .., "u": .., "v": ..},
+///                "size": .., "limit": .., "reference": .., "x_band": [x0, x1], "flat": "bottom"}]}
+/// ```
+///
+/// `optimization` is present for the weight-optimised methods only; its `history` is the best
+/// objective (parametric RMS of the offsets) after each iteration. `fairness` is the final
+/// surface's ([`crate::fairing::FairnessFigures`]), always present. `fairing` is present when the fit was faired ([`crate::FairReport`]: `setting`, `lambda`
+/// (0: the plain fit was kept), `tolerance`, `tried` (`lambda`, `max`, `folds`, `accepted`),
+/// `before` and `after`, each as `fairness`); `rejected`
+/// lists results not taken as the answer, and why; `overfitting` (from `hullskin fit` with an
+/// optimised method) says when its held-out error shows over-fitting. `tolerance_search` is
+/// present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
+/// `interp_control_points`, `ratio`, `fits`, `complete`, `valid`, `tried`).
+///
+/// A surface measured as it is (`hullskin fit SURFACE --offsets FILE`, [`Report::measured`])
+/// has `"method": "given"`, `"parameterization": "closest points"`, `fit_seconds` 0 and
+/// `surface_source`, the surface's file (left out for a fit).
+///
+/// `envelope_held` (left out when 0) counts the control-point coordinates held on the offsets'
+/// envelope by `--envelope hold`.
+///
+/// `folds` is left out when the surface does not fold. `validity` is always there: one finding
+/// per defect ([`crate::analysis::Finding`]; kinds `fold`, `below_centre_plane`,
+/// `beyond_half_breadth`, `below_lowest_offset`, `above_highest_offset`, `past_aft_end`,
+/// `past_fore_end`, `flat_bulge`, `inward_facing`), empty for a valid surface. `size` is how far
+/// past `reference` (model units; an area in units² for `inward_facing`), `limit` the allowance
+/// it exceeded; `reference`, `x_band` and `flat` only where they apply.
+///
+/// Errors are distances in the input's units, measured by closest-point projection of every
+/// input point onto the surface. `error.held_out`, when asked for (`hullskin fit --held-out K`,
+/// on by default), is the error between the offsets by K-fold cross-validation
+/// ([`crate::held_out_for_config`]): the true distance of held-out sections and of held-out
+/// points within sections to the surface refitted without them.
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
     pub hullskin: &'static str,
@@ -188,7 +190,7 @@ impl Report {
             rejected: outcome.rejected.clone(),
             overfitting: None,
             validity: outcome.validity.clone(),
-            fairness: crate::fairing::FairnessFigures::of(s),
+            fairness: outcome.fairness_figures(),
             envelope_held: outcome.envelope_held,
             surface_source: None,
         }

@@ -4,43 +4,7 @@
 //! offset, `error.overall.max`) is within a tolerance `T`; where no valid count is within `T`,
 //! the smallest within it, marked (`valid: false`).
 //!
-//! Strategy. Counts range over `p + 1 <= nu <= N` and `q + 1 <= nv <= K` (`N` offsets in the
-//! largest non-degenerate section, `K` sections, `p`, `q` the degrees the kernel uses); `(N, K)`
-//! is interpolation's count. If the max error `E(nu, nv)` never grew with either count, the
-//! counts within `T` would form a staircase (for each `nu` a least `nv*(nu)`, not growing with
-//! `nu`) found by bisection in about `(N - p) log2 K` fits. It is only roughly so: the knots
-//! and parameters are chosen per count, and on the Series 60 table `E(8, 19) = 12.7 mm` but
-//! `E(8, 20) = 21.4 mm`. So the bisection only supplies a bound, and a scan makes it exact:
-//!
-//! 1. fit `(N, K)` (interpolation for the plain least squares; held within the offsets'
-//!    envelope it may miss `T` where smaller counts reach it, so the search goes on);
-//! 2. bound: for `nu = p + 1, ..., N`, bisect for the least `nv` within `T` over
-//!    `[q + 1, min(nv(nu - 1), (B - 1) / nu)]`, `B` the fewest control points found within `T`
-//!    so far (only strictly smaller surfaces are of interest); stop when `nu (q + 1) >= B`.
-//!    Every success is a fitted, measured surface, so `B` is an upper bound whatever the data;
-//! 3. exact: fit the counts with fewer than `B` control points in increasing order of
-//!    `nu nv`; the first within `T` (with the others of as many control points) is the least,
-//!    as every smaller count was fitted and missed.
-//!
-//! So the answer is the true least count within `T`, with no assumption on `E`, unless the
-//! cap on fits ([`ToleranceSettings::max_fits`]) or a stop (Ctrl-C) cuts the search: then the
-//! best surface found so far is returned (within `T`, possibly not the smallest) and marked
-//! incomplete. Every count is fitted at most once (memoised). Of two surfaces with as many
-//! control points, the one with the smaller max error is kept.
-//!
-//! Measured on the Series 60 table (8 x 25 offsets, 110 counts; release, this 2-core machine):
-//!
-//! | method | T | count (control points) | fits | time |
-//! |---|---|---|---|---|
-//! | approx | 0.05 m | 8 x 11 (88) | 81 | 0.16 s |
-//! | approx | 0.02 m | 8 x 19 (152) | 104 | 0.23 s |
-//! | approx | 0.01 m | 8 x 23 (184) | 109 | 0.25 s |
-//! | lm | 0.05 m | 7 x 9 (63) | 48 | 0.8 s |
-//! | lm | 0.02 m | 6 x 16 (96) | 81 | 1.9 s |
-//! | lm | 0.01 m | 6 x 20 (120) | 87 | 2.3 s |
-//!
-//! The bound alone (bisection) gave 8 x 21 and 7 x 15 at 0.02 m. GSA costs about a second a
-//! fit: there the cap matters (`--iterations` shortens each fit).
+//! The rest of this module's documentation is on [`fit_to_tolerance`], where the library's users read it.
 
 use std::collections::BTreeMap;
 
@@ -445,8 +409,46 @@ pub struct ToleranceFit {
 }
 
 /// The smallest surface (fewest control points `nu nv`) of `config`'s method whose true max
-/// error is within `settings.tolerance`; `config.ctrl` is ignored. See the module docs for the
+/// error is within `settings.tolerance`; `config.ctrl` is ignored. See [`fit_to_tolerance`] for the
 /// strategy and its assumption.
+///
+/// Strategy. Counts range over `p + 1 <= nu <= N` and `q + 1 <= nv <= K` (`N` offsets in the
+/// largest non-degenerate section, `K` sections, `p`, `q` the degrees the kernel uses); `(N, K)`
+/// is interpolation's count. If the max error `E(nu, nv)` never grew with either count, the
+/// counts within `T` would form a staircase (for each `nu` a least `nv*(nu)`, not growing with
+/// `nu`) found by bisection in about `(N - p) log2 K` fits. It is only roughly so: the knots
+/// and parameters are chosen per count, and on the Series 60 table `E(8, 19) = 12.7 mm` but
+/// `E(8, 20) = 21.4 mm`. So the bisection only supplies a bound, and a scan makes it exact:
+///
+/// 1. fit `(N, K)` (interpolation for the plain least squares; held within the offsets'
+///    envelope it may miss `T` where smaller counts reach it, so the search goes on);
+/// 2. bound: for `nu = p + 1, ..., N`, bisect for the least `nv` within `T` over
+///    `[q + 1, min(nv(nu - 1), (B - 1) / nu)]`, `B` the fewest control points found within `T`
+///    so far (only strictly smaller surfaces are of interest); stop when `nu (q + 1) >= B`.
+///    Every success is a fitted, measured surface, so `B` is an upper bound whatever the data;
+/// 3. exact: fit the counts with fewer than `B` control points in increasing order of
+///    `nu nv`; the first within `T` (with the others of as many control points) is the least,
+///    as every smaller count was fitted and missed.
+///
+/// So the answer is the true least count within `T`, with no assumption on `E`, unless the
+/// cap on fits ([`ToleranceSettings::max_fits`]) or a stop (Ctrl-C) cuts the search: then the
+/// best surface found so far is returned (within `T`, possibly not the smallest) and marked
+/// incomplete. Every count is fitted at most once (memoised). Of two surfaces with as many
+/// control points, the one with the smaller max error is kept.
+///
+/// Measured on the Series 60 table (8 x 25 offsets, 110 counts; release, this 2-core machine):
+///
+/// | method | T | count (control points) | fits | time |
+/// |---|---|---|---|---|
+/// | approx | 0.05 m | 8 x 11 (88) | 81 | 0.16 s |
+/// | approx | 0.02 m | 8 x 19 (152) | 104 | 0.23 s |
+/// | approx | 0.01 m | 8 x 23 (184) | 109 | 0.25 s |
+/// | lm | 0.05 m | 7 x 9 (63) | 48 | 0.8 s |
+/// | lm | 0.02 m | 6 x 16 (96) | 81 | 1.9 s |
+/// | lm | 0.01 m | 6 x 20 (120) | 87 | 2.3 s |
+///
+/// The bound alone (bisection) gave 8 x 21 and 7 x 15 at 0.02 m. GSA costs about a second a
+/// fit: there the cap matters (`--iterations` shortens each fit).
 ///
 /// # Errors
 /// [`HullError::FitSetting`] for a tolerance that is not a positive finite number,

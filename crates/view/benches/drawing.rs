@@ -8,7 +8,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hull::{fit_offsets, series60_sample, FitConfig, Offsets, Section, Units};
-use nurbs::{KnotVector, NurbsSurface, Vec3};
+use nurbs::{NurbsSurface, Vec3};
 use view::{lines_plan, write_dxf, write_svg, LinesPlanOptions};
 
 /// `k` stations of `n` points of `y = b/2 (1 - 0.8 (2x/l)^2) (1 - (1 - z/t)^4)`.
@@ -30,18 +30,14 @@ fn hull_table(k: usize, n: usize) -> Offsets {
     Offsets::new("bench hull 21 x 11", Units::Metre, sections)
 }
 
-/// The Wigley hull as a degree (2, 2) Bezier patch (see tests/lines_plan.rs).
+/// The Wigley hull (L 100 m, B 10 m, T 6.25 m) as a degree (2, 2) Bezier patch: the tests'
+/// patch.
+#[allow(dead_code)]
+#[path = "../../hull/tests/common/surfaces.rs"]
+mod surfaces;
+
 fn wigley() -> NurbsSurface {
-    let (l, b, t) = (100.0, 10.0, 6.25);
-    let k = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
-    let (fx, gz) = ([0.0, 2.0, 0.0], [0.0, 1.0, 1.0]);
-    let mut pts = Vec::new();
-    for i in 0..3 {
-        for j in 0..3 {
-            pts.push(Vec3::new(l * i as f64 / 2.0, 0.5 * b * fx[i] * gz[j], t * j as f64 / 2.0));
-        }
-    }
-    NurbsSurface::try_new(k.clone(), k, &pts, None).expect("valid")
+    surfaces::wigley_patch(100.0, 10.0, 6.25)
 }
 
 fn bench_lines_plan(c: &mut Criterion) {

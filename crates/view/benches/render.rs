@@ -10,7 +10,7 @@
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use hull::{fit_offsets, series60_sample, CurvatureField, FitConfig, FitMethod};
 use nurbs::NurbsSurface;
-use view::{convergence_plot, curvature_map_png, render_png, CurvatureMapOptions, RasterOptions};
+use view::{convergence_plot, curvature_map_png, render_png, CurvatureImageOptions, RasterOptions};
 
 /// The unit sphere's octant, u from the equator to the pole (the edge u = 1 collapses to it).
 fn octant() -> NurbsSurface {
@@ -28,19 +28,19 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     // The case: the sample hull at the default options (1600 px, ~160 x 160 grid).
     for (name, surface) in [("sample_approx", &approx), ("sample_interp", &interp), ("octant_pole", &octant())] {
-        let o = CurvatureMapOptions { units: "m".into(), ..CurvatureMapOptions::default() };
+        let o = CurvatureImageOptions { units: "m".into(), ..CurvatureImageOptions::default() };
         g.bench_with_input(BenchmarkId::new("default", name), surface, |b, s| {
             b.iter(|| curvature_map_png(black_box(s), CurvatureField::Gaussian, &o).expect("renders"))
         });
     }
     for width in [800u32, 3200] {
-        let o = CurvatureMapOptions { width_px: width, units: "m".into(), ..CurvatureMapOptions::default() };
+        let o = CurvatureImageOptions { width_px: width, units: "m".into(), ..CurvatureImageOptions::default() };
         g.bench_with_input(BenchmarkId::new("width", width), &approx, |b, s| {
             b.iter(|| curvature_map_png(black_box(s), CurvatureField::Gaussian, &o).expect("renders"))
         });
     }
     for samples in [80usize, 320] {
-        let o = CurvatureMapOptions { samples, units: "m".into(), ..CurvatureMapOptions::default() };
+        let o = CurvatureImageOptions { samples, units: "m".into(), ..CurvatureImageOptions::default() };
         g.bench_with_input(BenchmarkId::new("samples", samples), &approx, |b, s| {
             b.iter(|| curvature_map_png(black_box(s), CurvatureField::Mean, &o).expect("renders"))
         });

@@ -103,7 +103,7 @@ pub enum ViewError {
 
     /// A curvature map narrower than its layout needs.
     #[error("curvature map width {width_px} px (expected at least {min})")]
-    CurvatureMapWidth {
+    CurvatureImageWidth {
         /// The width asked for.
         width_px: u32,
         /// The least width.

@@ -40,6 +40,11 @@ mod markup;
 mod render;
 #[cfg(feature = "png")]
 mod report_html;
+/// Reading the pages in unit tests: the file the command line's tests include too.
+#[cfg(test)]
+#[path = "../tests/common/page.rs"]
+#[cfg_attr(not(feature = "png"), allow(dead_code))] // `urls` serves the report's tests
+mod test_page;
 mod viewer;
 
 pub use drawing::{
@@ -49,8 +54,8 @@ pub use drawing::{
 pub use error::ViewError;
 #[cfg(feature = "png")]
 pub use render::{
-    convergence_plot, curvature_map, curvature_map_png, render_png, render_rgba, write_png, CurvatureMap,
-    CurvatureMapOptions, Image, RasterOptions, View, ViewFrame, MAX_PIXELS,
+    convergence_plot, curvature_image, curvature_map_png, render_png, render_rgba, write_png, CurvatureImage,
+    CurvatureImageOptions, Image, RasterOptions, ViewDirection, ViewFrame, MAX_PIXELS,
 };
 #[cfg(feature = "png")]
 pub use report_html::{

@@ -12,6 +12,7 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use common::python::tools_python;
+use common::surfaces::wigley_patch;
 use common::workspace_root;
 
 use hull::Units;
@@ -250,7 +251,7 @@ fn ezdxf_reads_3d_lines() {
 use hull::{
     cut_surface_many, fit_offsets, measure_fit_error, series60_sample, CutOptions, CutPlane, FitConfig, Offsets,
 };
-use nurbs::{KnotVector, NurbsSurface};
+use nurbs::NurbsSurface;
 use view::{lines_3d, lines_plan, write_svg, LinesPlanOptions, Sheet};
 
 const LAYERS: [&str; 10] =
@@ -542,26 +543,10 @@ fn sample_lines_plan_dxf_read_by_ezdxf() {
     assert_eq!(stations.len(), offsets.sections.len());
 }
 
-/// The Wigley hull `y = (B/2)(1 - (2x/L - 1)^2)(1 - (z/T - 1)^2)`, x from the aft end, z from
-/// the keel, exactly as a degree (2, 2) Bezier patch: with `x = L s`, `z = T t`,
-/// `1 - (2s - 1)^2 = 4 s (1 - s)` has Bernstein coefficients (0, 2, 0) and
-/// `1 - (t - 1)^2 = 2t - t^2` has (0, 1, 1).
-fn wigley(l: f64, b: f64, t: f64) -> NurbsSurface {
-    let k = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
-    let (fx, gz) = ([0.0, 2.0, 0.0], [0.0, 1.0, 1.0]);
-    let mut pts = Vec::new();
-    for i in 0..3 {
-        for j in 0..3 {
-            pts.push(Vec3::new(l * i as f64 / 2.0, 0.5 * b * fx[i] * gz[j], t * j as f64 / 2.0));
-        }
-    }
-    NurbsSurface::try_new(k.clone(), k, &pts, None).expect("valid")
-}
-
 #[test]
 fn wigley_midship_station_is_the_parabola() {
     let (l, b, t) = (100.0, 10.0, 6.25);
-    let s = wigley(l, b, t);
+    let s = wigley_patch(l, b, t);
     // Sanity of the patch itself: y(L/2, z) at z = T/2 is (B/2)(3/4).
     let mid = s.point(0.5, 0.5);
     assert!((mid.y - 0.5 * b * 0.75).abs() < 1e-12 && (mid.x - 50.0).abs() < 1e-12, "{mid:?}");
@@ -613,7 +598,7 @@ fn wigley_midship_station_is_the_parabola() {
 /// The same hull in millimetres draws the same sheet: only the unit of the numbers changes.
 #[test]
 fn units_change_labels_not_geometry() {
-    let s = wigley(100.0, 10.0, 6.25);
+    let s = wigley_patch(100.0, 10.0, 6.25);
     let pts: Vec<Vec3> = s.control_points().iter().map(|&p| p * 1000.0).collect();
     let s_mm = NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &pts, None).expect("valid");
     let opts = LinesPlanOptions::default();
@@ -637,7 +622,7 @@ fn units_change_labels_not_geometry() {
 /// sheet takes a smaller scale: the Wigley hull (L 100 m) is 1:500 on A3, 1:1000 on A5.
 #[test]
 fn given_lines_and_paper() {
-    let s = wigley(100.0, 10.0, 6.25);
+    let s = wigley_patch(100.0, 10.0, 6.25);
     let opts = LinesPlanOptions {
         stations: Some(vec![-10.0, 25.0, 50.0, 75.0, f64::NAN]),
         waterlines: Some(vec![2.0, 4.0]),

@@ -8,8 +8,8 @@ use std::f64::consts::FRAC_1_SQRT_2;
 use hull::{fit_offsets, series60_sample, CurvatureField, FitConfig};
 use nurbs::{KnotVector, NurbsSurface, Vec3};
 use view::{
-    convergence_plot, curvature_map, curvature_map_png, render_png, render_rgba, CurvatureMap, CurvatureMapOptions,
-    Image, RasterOptions, View, ViewError,
+    convergence_plot, curvature_image, curvature_map_png, render_png, render_rgba, CurvatureImage,
+    CurvatureImageOptions, Image, RasterOptions, ViewDirection, ViewError,
 };
 use view::{Anchor, Drawing, Item, Rgb, Stroke};
 
@@ -175,18 +175,18 @@ fn invalid_options_are_errors_not_panics() {
     assert!(matches!(err, ViewError::SheetSize { width_mm, height_mm: 10.0 } if width_mm.is_nan()), "{err}");
     assert_eq!(err.to_string(), "cannot rasterise a sheet of NaN x 10 mm (expected a finite positive size)");
     let cyl = cylinder(1.0, 4.0);
-    let map_error = |bad: CurvatureMapOptions| match curvature_map(&cyl, CurvatureField::Gaussian, &bad) {
+    let map_error = |bad: CurvatureImageOptions| match curvature_image(&cyl, CurvatureField::Gaussian, &bad) {
         Err(e) => e,
         Ok(_) => panic!("{bad:?} makes a map"),
     };
-    let err = map_error(CurvatureMapOptions { percentile: 0.0, ..CurvatureMapOptions::default() });
+    let err = map_error(CurvatureImageOptions { percentile: 0.0, ..CurvatureImageOptions::default() });
     assert!(matches!(err, ViewError::Percentile { percentile: 0.0 }), "{err}");
     assert_eq!(err.to_string(), "percentile 0 (expected a number in (0, 100])");
-    let err = map_error(CurvatureMapOptions { limit: Some(-1.0), ..CurvatureMapOptions::default() });
+    let err = map_error(CurvatureImageOptions { limit: Some(-1.0), ..CurvatureImageOptions::default() });
     assert!(matches!(err, ViewError::ColourLimit { limit: -1.0 }), "{err}");
     assert_eq!(err.to_string(), "colour limit -1 (expected a finite positive number)");
-    let err = map_error(CurvatureMapOptions { width_px: 10, ..CurvatureMapOptions::default() });
-    assert!(matches!(err, ViewError::CurvatureMapWidth { width_px: 10, min: 320 }), "{err}");
+    let err = map_error(CurvatureImageOptions { width_px: 10, ..CurvatureImageOptions::default() });
+    assert!(matches!(err, ViewError::CurvatureImageWidth { width_px: 10, min: 320 }), "{err}");
     assert_eq!(err.to_string(), "curvature map width 10 px (expected at least 320)");
 }
 
@@ -231,7 +231,7 @@ fn sphere_patch(r: f64) -> NurbsSurface {
 
 /// The pixels drawn by the surface inside a view: inside its rectangle shrunk by `inset` px
 /// (away from the outline strokes), where the pixel is not the white background.
-fn view_pixels(map: &CurvatureMap, view: usize, inset: f64) -> Vec<Rgb> {
+fn view_pixels(map: &CurvatureImage, view: usize, inset: f64) -> Vec<Rgb> {
     let [l, t, r, b] = map.views[view].rect_px;
     let mut out = Vec::new();
     for y in (t + inset).ceil() as u32..(b - inset).floor() as u32 {
@@ -245,13 +245,13 @@ fn view_pixels(map: &CurvatureMap, view: usize, inset: f64) -> Vec<Rgb> {
     out
 }
 
-fn small() -> CurvatureMapOptions {
-    CurvatureMapOptions { width_px: 800, samples: 60, units: "m".into(), ..CurvatureMapOptions::default() }
+fn small() -> CurvatureImageOptions {
+    CurvatureImageOptions { width_px: 800, samples: 60, units: "m".into(), ..CurvatureImageOptions::default() }
 }
 
 #[test]
 fn cylinder_has_zero_gaussian_curvature_and_reads_white() {
-    let map = curvature_map(&cylinder(1.0, 4.0), CurvatureField::Gaussian, &small()).expect("renders");
+    let map = curvature_image(&cylinder(1.0, 4.0), CurvatureField::Gaussian, &small()).expect("renders");
     // K is round-off (|K| far below 1e-9 for R = 1), so the limit is the floor
     // (1e-3 / D)^2 with D = diagonal of the sampled box = sqrt(16 + 1 + 1).
     let (lo, hi) = map.range.expect("defined everywhere");
@@ -269,7 +269,7 @@ fn cylinder_has_zero_gaussian_curvature_and_reads_white() {
 fn cylinder_mean_curvature_is_positive_half_inverse_radius() {
     // H = 1 / (2R) on a cylinder; the bilge is convex, so positive with the inward normal.
     let r = 2.0;
-    let map = curvature_map(&cylinder(r, 8.0), CurvatureField::Mean, &small()).expect("renders");
+    let map = curvature_image(&cylinder(r, 8.0), CurvatureField::Mean, &small()).expect("renders");
     let (lo, hi) = map.range.expect("defined everywhere");
     // Rational quadratic evaluation is exact to round-off: 1e-12 relative.
     assert!((lo - 0.25).abs() < 1e-12 && (hi - 0.25).abs() < 1e-12, "H range {lo} .. {hi}");
@@ -283,7 +283,7 @@ fn cylinder_mean_curvature_is_positive_half_inverse_radius() {
 #[test]
 fn sphere_patch_is_all_on_the_positive_side() {
     let r = 3.0;
-    let map = curvature_map(&sphere_patch(r), CurvatureField::Gaussian, &small()).expect("renders");
+    let map = curvature_image(&sphere_patch(r), CurvatureField::Gaussian, &small()).expect("renders");
     let (lo, hi) = map.range.expect("no degenerate point on this patch");
     let k = 1.0 / (r * r);
     assert!((lo - k).abs() < 1e-9 * k && (hi - k).abs() < 1e-9 * k, "K range {lo} .. {hi}");
@@ -303,21 +303,9 @@ fn sphere_patch_is_all_on_the_positive_side() {
 fn degenerate_pole_is_grey_not_nan() {
     // The sphere octant from the equator to the pole: one edge collapses to the pole, where
     // S_u x S_v = 0 and the curvature is undefined.
-    let c = FRAC_1_SQRT_2;
-    let r = 1.0;
-    let meridian = [(r, 0.0, 1.0), (r, r, c), (0.0, r, 1.0)];
-    let longitude = [(1.0, 0.0, 1.0), (1.0, 1.0, c), (0.0, 1.0, 1.0)];
-    let mut pts = Vec::new();
-    let mut w = Vec::new();
-    for &(rho, z, wm) in &meridian {
-        for &(cx, cy, wl) in &longitude {
-            pts.push(Vec3::new(rho * cx, rho * cy, z));
-            w.push(wm * wl);
-        }
-    }
-    let k = || KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("quadratic knots");
-    let octant = NurbsSurface::try_new(k(), k(), &pts, Some(&w)).expect("valid octant");
-    let map = curvature_map(&octant, CurvatureField::Gaussian, &small()).expect("renders");
+    // The kernel's octant (pole at u = 0) with u reversed: u from the equator to the pole.
+    let octant = nurbs::fixtures::sphere_octant(1.0).reversed_u();
+    let map = curvature_image(&octant, CurvatureField::Gaussian, &small()).expect("renders");
     // The whole u = 1 line (the pole) is undefined; elsewhere K = 1.
     assert_eq!(map.undefined, map.grid.1);
     let (lo, hi) = map.range.expect("defined off the pole");
@@ -329,10 +317,10 @@ fn degenerate_pole_is_grey_not_nan() {
     assert!(greyish, "the undefined pole shows grey");
 }
 
-fn sample_map(field: CurvatureField, width_px: u32) -> (NurbsSurface, CurvatureMap) {
+fn sample_map(field: CurvatureField, width_px: u32) -> (NurbsSurface, CurvatureImage) {
     let fit = fit_offsets(&series60_sample(), &FitConfig::default()).expect("the sample fits");
-    let o = CurvatureMapOptions { width_px, samples: 100, units: "m".into(), ..CurvatureMapOptions::default() };
-    let map = curvature_map(&fit.surface, field, &o).expect("renders");
+    let o = CurvatureImageOptions { width_px, samples: 100, units: "m".into(), ..CurvatureImageOptions::default() };
+    let map = curvature_image(&fit.surface, field, &o).expect("renders");
     (fit.surface, map)
 }
 
@@ -357,7 +345,7 @@ fn sample_hull_map_has_both_signs_and_true_shape_silhouette() {
         pts.iter().map(f).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
     };
     let (x, y, z) = (ext(|p| p.x), ext(|p| p.y), ext(|p| p.z));
-    assert_eq!(map.views[0].view, View::Profile);
+    assert_eq!(map.views[0].view, ViewDirection::Profile);
     for (k, vert) in [(0, z), (1, y)] {
         let frame = map.views[k];
         let [l, t, r, b] = frame.rect_px;

@@ -11,7 +11,6 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::OnceLock;
 
 use hull::{polynomial_approximation, read_surface_json, write_surface_json, SurfaceFile};
@@ -19,30 +18,7 @@ use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
 
 use crate::common::*;
-use crate::python::tools_python;
-
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// Run `tools/<script>` on `args`; the exit code and the JSON it printed.
-fn run_tool(python: &str, script: &str, args: &[&Path]) -> (i32, Value) {
-    let script = workspace_root().join("tools").join(script);
-    let out = Command::new(python).arg(&script).args(args).output().expect("run the checker");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let summary: Value = serde_json::from_str(&stdout).unwrap_or_else(|e| {
-        panic!("{} printed no JSON ({e}):\n{stdout}\n{}", script.display(), String::from_utf8_lossy(&out.stderr))
-    });
-    (out.status.code().unwrap_or(-1), summary)
-}
-
-fn assert_read_ok(what: &str, code: i32, summary: &Value) {
-    assert!(
-        code == 0 && summary["ok"] == true,
-        "{what}: the reader disagrees (exit {code}):\n{}",
-        serde_json::to_string_pretty(&summary["failed"]).unwrap_or_default()
-    );
-}
+use crate::python::{assert_tool_passed, run_tool, tools_python};
 
 /// Run `hullskin` in `dir` and require success; returns stdout.
 fn run_ok(dir: &Path, args: &[&str]) -> String {
@@ -134,7 +110,7 @@ fn step_and_iges_exports_are_read_by_occt() {
         assert!(said.contains(&format!("wrote {out}")), "{said}");
         let exp = expected(d, out, s, units, json!({}));
         let (code, summary) = run_tool(&python, "occt_check.py", &[&d.join(out), &exp]);
-        assert_read_ok(out, code, &summary);
+        assert_tool_passed(out, code, &summary);
         assert_eq!(summary["reads"]["native"]["samples"], 88);
     }
 
@@ -164,7 +140,7 @@ fn step_and_iges_exports_are_read_by_occt() {
         .collect();
     let exp = expected(d, "curves", &fit.surface, "m", json!({"curves": curve_docs}));
     let (code, summary) = run_tool(&python, "occt_check.py", &[&d.join("curves.igs"), &exp]);
-    assert_read_ok("curves.igs", code, &summary);
+    assert_tool_passed("curves.igs", code, &summary);
     assert_eq!(summary["reads"]["native"]["curves"].as_u64(), Some(curves.len() as u64));
     // A surface input has no sections: one curve per control column.
     let said = run_ok(d, &["export", plain, "--format", "iges-curves", "-o", "greville.igs"]);
@@ -180,7 +156,7 @@ fn step_and_iges_exports_are_read_by_occt() {
     let exp =
         expected(d, "poly", &approx.surface, "ft", json!({"reference": {"samples": samples(&r), "tolerance": tol}}));
     let (code, summary) = run_tool(&python, "occt_check.py", &[&d.join("poly.igs"), &exp]);
-    assert_read_ok("poly.igs", code, &summary);
+    assert_tool_passed("poly.igs", code, &summary);
     eprintln!(
         "iges-polynomial: {}, OCCT measures {:.2e} ft from the rational surface",
         said.trim(),
@@ -215,7 +191,7 @@ fn mirrored_and_converted_exports_are_read_by_occt() {
         );
         let exp = expected(d, out, &full, "m", json!({}));
         let (code, summary) = run_tool(&python, "occt_check.py", &[&d.join(out), &exp]);
-        assert_read_ok(out, code, &summary);
+        assert_tool_passed(out, code, &summary);
     }
     // A surface.json in metres written in millimetres: every pole times 1000, the unit MM.
     let mm = {
@@ -226,14 +202,14 @@ fn mirrored_and_converted_exports_are_read_by_occt() {
         run_ok(d, &["export", plain, "-o", out, "--units", "mm", "--timestamp", "0"]);
         let exp = expected(d, out, &mm, "mm", json!({}));
         let (code, summary) = run_tool(&python, "occt_check.py", &[&d.join(out), &exp]);
-        assert_read_ok(out, code, &summary);
+        assert_tool_passed(out, code, &summary);
     }
 }
 
 /// The mesh read back by `tools/mesh_check.py`: vertices, faces, and the JSON summary.
 fn read_mesh(python: &str, path: &Path) -> (Vec<Vec3>, usize, Value) {
     let (code, summary) = run_tool(python, "mesh_check.py", &[path]);
-    assert_read_ok(&path.display().to_string(), code, &summary);
+    assert_tool_passed(&path.display().to_string(), code, &summary);
     let v = summary["vertices"]
         .as_array()
         .expect("vertices")
@@ -306,7 +282,7 @@ fn dxf_export_is_read_by_ezdxf() {
     let mut counts = Vec::new();
     for name in ["lines.dxf", "full.dxf"] {
         let (code, summary) = run_tool(&python, "dxf_check.py", &[&d.join(name)]);
-        assert_read_ok(name, code, &summary);
+        assert_tool_passed(name, code, &summary);
         assert_eq!(summary["header"]["$INSUNITS"], 6, "metres");
         let polylines: Vec<&Value> =
             summary["entities"].as_array().expect("entities").iter().filter(|e| e["type"] == "POLYLINE").collect();

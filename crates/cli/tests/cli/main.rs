@@ -6,6 +6,9 @@
 //! e.g. `cargo test -p hullskin --test cli bad_input::`.
 
 mod common;
+/// Reading the report's page (base64, URLs): view's test helper, one for the workspace.
+#[path = "../../../view/tests/common/page.rs"]
+mod page;
 /// The Python of `tools/requirements.txt` for the export checks: the helper of hull's tests,
 /// one for the workspace.
 #[path = "../../../hull/tests/common/python.rs"]

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use crate::common::*;
+use crate::page::{unbase64, urls};
 use view::Image;
 
 /// The issue's floor on the size of one hull's report.
@@ -88,10 +89,6 @@ fn column<'a>(table: roxmltree::Node<'a, '_>, col: usize) -> Vec<&'a str> {
         .collect()
 }
 
-fn unbase64(s: &str) -> Vec<u8> {
-    base64::Engine::decode(&base64::engine::general_purpose::STANDARD, s).expect("base64")
-}
-
 /// The PNG of an `<img>` with a `data:` URI, checked against its width and height attributes.
 fn inline_png(doc: &roxmltree::Document<'_>, id: &str) -> (Vec<u8>, Image) {
     let img = by_id(doc, id).unwrap_or_else(|| panic!("no #{id}"));
@@ -102,19 +99,6 @@ fn inline_png(doc: &roxmltree::Document<'_>, id: &str) -> (Vec<u8>, Image) {
     assert_eq!(img.attribute("width"), Some(image.width().to_string().as_str()), "#{id}");
     assert_eq!(img.attribute("height"), Some(image.height().to_string().as_str()), "#{id}");
     (bytes, image)
-}
-
-/// The distinct `http(s)://` URLs of a text, sorted.
-fn urls(text: &str) -> Vec<&str> {
-    let mut out: Vec<&str> = text
-        .match_indices("http")
-        .map(|(k, _)| &text[k..])
-        .filter(|rest| rest.starts_with("http://") || rest.starts_with("https://"))
-        .map(|rest| &rest[..rest.find(|c: char| "\"'&<> )".contains(c)).unwrap_or(rest.len())])
-        .collect();
-    out.sort_unstable();
-    out.dedup();
-    out
 }
 
 /// The PNG data of a curvature map: many colours, and both ends of the diverging map (blue

@@ -1,47 +1,7 @@
 //! Validity of a fitted hull surface: the defects that make a CAD system or a naval architect
 //! reject it, looked for everywhere on the surface, not only at the offsets.
 //!
-//! [`check_validity`] samples the surface on a parameter grid refined at every knot span
-//! ([`KnotVector::param_grid`](nurbs::KnotVector::param_grid) with 8 samples per span each way, as [`find_folds`](super::find_folds)) and reports one
-//! [`Finding`] per defect:
-//!
-//! - **fold** ([`find_folds`](super::find_folds)): the surface runs backwards across its sections (`x_v` of the
-//!   minority's sign) and turns over there (some node running back faces the other way, as
-//!   the orientation below finds) or runs back by more than [`FOLD_RUN_REL`] of its length;
-//!   its size is how far back it runs, `max_{v_a < v_b} s (x(u, v_a) - x(u, v_b))`
-//!   over the band (`s` the majority's direction);
-//! - **envelope**: the surface leaves the box of the offsets ([`Envelope`]): below the centre
-//!   plane `y = 0`, beyond the largest half-breadth, below the lowest or above the highest
-//!   offset, past the aft or fore end section in x, each by more than [`ENVELOPE_REL`] (0.5 %,
-//!   issue 11) of the half-beam (y), the depth (z) or the length (x);
-//! - **flat bulge**: the surface crosses the plane of a flat of bottom or side
-//!   ([`FlatLine`], from `find_flat_lines`) within the x extent of the flat's sections, by more
-//!   than [`FLAT_REL`] of the depth or half-beam (a tenth of the envelope's allowance: a flat
-//!   is a plate, built to the plane);
-//! - **inward facing**: facets whose normal `S_u x S_v` points opposite to the rest of the
-//!   surface, a region larger than [`INWARD_SHARE`] of the surface's area.
-//!
-//! Each check gives at most one finding, its worst region (largest excess or area) with the
-//! number of separate regions past the same limit ([`Finding::places`]); folds are reported
-//! band by band, each with its own cure.
-//!
-//! The worst grid sample of each envelope and flat check is refined by golden-section search
-//! (Kiefer 1953), alternately in `u` and in `v`, over the grid cells around it, so the size
-//! reported is that of the surface, not of the grid (an extreme on the domain's edge, as at a
-//! transom or a keel, is found there: the search keeps the interval's ends).
-//!
-//! The orientation of the normals is propagated over the grid as in Hoppe et al., "Surface
-//! reconstruction from unorganized points" (SIGGRAPH 1992, section 3.3): along a minimum
-//! spanning tree of the grid's edges weighted `1 - |n_a . n_b|` (unit normals), flipping across
-//! an edge where `n_a . n_b < 0`. The most parallel (or antiparallel) pairs decide first, so a
-//! fold's crease (normals antiparallel on either side) flips the orientation and a sharp but
-//! ordinary turn of the surface (a knuckle, normals near 90 degrees apart) cannot decide
-//! against the rest. Nodes whose `|S_u x S_v|` is round-off (a collapsed edge at a pointed
-//! stem) are skipped. Each node carries the area `|S_u x S_v| du dv` (trapezoidal weights);
-//! the smaller orientation's connected regions are the inward-facing facets.
-//!
-//! Axes as everywhere: x forward, y to starboard, z up; sizes in the surface's units (areas
-//! in units squared).
+//! The rest of this module's documentation is on [`check_validity`], where the library's users read it.
 
 use std::collections::VecDeque;
 
@@ -435,6 +395,48 @@ impl Grid {
 /// flats (bottom, side) and the inward-facing facets, one finding for each (the worst region,
 /// with the count of regions) but folds, one per band. Empty for a valid
 /// surface. Deterministic: the same surface gives the same findings whatever the thread count.
+///
+/// [`check_validity`] samples the surface on a parameter grid refined at every knot span
+/// ([`KnotVector::param_grid`](nurbs::KnotVector::param_grid) with 8 samples per span each way, as [`find_folds`](super::find_folds)) and reports one
+/// [`Finding`] per defect:
+///
+/// - **fold** ([`find_folds`](super::find_folds)): the surface runs backwards across its sections (`x_v` of the
+///   minority's sign) and turns over there (some node running back faces the other way, as
+///   the orientation below finds) or runs back by more than [`FOLD_RUN_REL`] of its length;
+///   its size is how far back it runs, `max_{v_a < v_b} s (x(u, v_a) - x(u, v_b))`
+///   over the band (`s` the majority's direction);
+/// - **envelope**: the surface leaves the box of the offsets ([`Envelope`]): below the centre
+///   plane `y = 0`, beyond the largest half-breadth, below the lowest or above the highest
+///   offset, past the aft or fore end section in x, each by more than [`ENVELOPE_REL`] (0.5 %,
+///   issue 11) of the half-beam (y), the depth (z) or the length (x);
+/// - **flat bulge**: the surface crosses the plane of a flat of bottom or side
+///   ([`FlatLine`], from `find_flat_lines`) within the x extent of the flat's sections, by more
+///   than `FLAT_REL` of the depth or half-beam (a tenth of the envelope's allowance: a flat
+///   is a plate, built to the plane);
+/// - **inward facing**: facets whose normal `S_u x S_v` points opposite to the rest of the
+///   surface, a region larger than `INWARD_SHARE` of the surface's area.
+///
+/// Each check gives at most one finding, its worst region (largest excess or area) with the
+/// number of separate regions past the same limit ([`Finding::places`]); folds are reported
+/// band by band, each with its own cure.
+///
+/// The worst grid sample of each envelope and flat check is refined by golden-section search
+/// (Kiefer 1953), alternately in `u` and in `v`, over the grid cells around it, so the size
+/// reported is that of the surface, not of the grid (an extreme on the domain's edge, as at a
+/// transom or a keel, is found there: the search keeps the interval's ends).
+///
+/// The orientation of the normals is propagated over the grid as in Hoppe et al., "Surface
+/// reconstruction from unorganized points" (SIGGRAPH 1992, section 3.3): along a minimum
+/// spanning tree of the grid's edges weighted `1 - |n_a . n_b|` (unit normals), flipping across
+/// an edge where `n_a . n_b < 0`. The most parallel (or antiparallel) pairs decide first, so a
+/// fold's crease (normals antiparallel on either side) flips the orientation and a sharp but
+/// ordinary turn of the surface (a knuckle, normals near 90 degrees apart) cannot decide
+/// against the rest. Nodes whose `|S_u x S_v|` is round-off (a collapsed edge at a pointed
+/// stem) are skipped. Each node carries the area `|S_u x S_v| du dv` (trapezoidal weights);
+/// the smaller orientation's connected regions are the inward-facing facets.
+///
+/// Axes as everywhere: x forward, y to starboard, z up; sizes in the surface's units (areas
+/// in units squared).
 pub fn check_validity(surface: &NurbsSurface, envelope: &Envelope, flats: &[FlatLine]) -> Vec<Finding> {
     validity_and_folds(surface, envelope, flats).0
 }
@@ -779,7 +781,7 @@ impl Orientation {
 }
 
 /// The orientation of the sampled surface's normals `S_u x S_v`, propagated over the grid
-/// (see the module docs).
+/// (see [`check_validity`]).
 struct Oriented {
     /// Each node's area `|S_u x S_v| du dv` (0 where the normal is degenerate).
     area: Vec<f64>,
@@ -851,7 +853,7 @@ fn oriented(surface: &NurbsSurface, grid: &Grid) -> Option<Oriented> {
 }
 
 /// The largest inward-facing region of the sampled surface (the minority orientation of `o`,
-/// larger than [`INWARD_SHARE`] of the area) with the count of such regions, leaving out those
+/// larger than `INWARD_SHARE` of the area) with the count of such regions, leaving out those
 /// of which most of the area is on nodes where `folded` (a fold's own facets, reported as the
 /// fold). `None` when no region is past the limit.
 fn inward_facing(surface: &NurbsSurface, grid: &Grid, o: &Oriented, folded: impl Fn(usize) -> bool) -> Option<Finding> {

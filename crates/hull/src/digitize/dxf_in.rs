@@ -1,33 +1,6 @@
 //! ASCII DXF reader for drawn body plans: curves and texts of the `ENTITIES` section.
 //!
-//! A DXF file is a list of *group code / value* pairs, each on two lines: an integer code,
-//! then its value (AutoCAD DXF Reference; the R12 layout is a subset of every later one).
-//! Entities start with code 0 (their type) and run to the next code 0; code 8 is the layer.
-//! Read here, with their group codes:
-//!
-//! | entity       | groups                                                                          |
-//! |--------------|---------------------------------------------------------------------------------|
-//! | `LINE`       | 10/20 start, 11/21 end (world coordinates)                                       |
-//! | `ARC`        | 10/20 centre, 40 radius, 50/51 start/end angle in degrees, counter-clockwise   |
-//! | `CIRCLE`     | 10/20 centre, 40 radius (a closed curve)                                        |
-//! | `ELLIPSE`    | 10/20 centre, 11/21 major axis end (relative), 40 minor/major ratio, 41/42 parameters |
-//! | `LWPOLYLINE` | 70 flags (1 closed), per vertex 10/20 and 42 bulge = tan(included angle / 4)    |
-//! | `POLYLINE`   | 70 flags (1 closed, 8 3-D, 16/64 meshes: skipped), then `VERTEX`es (10/20, 42 bulge, 70 flags: 16 = spline frame point, skipped) and `SEQEND` |
-//! | `SPLINE`     | 71 degree, 40 knots, 41 weights, 10/20 control points; or 11/21 fit points only  |
-//! | `TEXT`       | 1 text, 10/20 insertion point, 11/21 alignment point when 72/73 justify it      |
-//! | `MTEXT`      | 3 and 1 text chunks (formatting codes removed), 10/20 insertion point            |
-//!
-//! Arcs, circles, polylines and texts lie in their *object coordinate system*, set by the
-//! extrusion direction 210/220/230. A drawing viewed from above has extrusion (0, 0, 1), the
-//! world system; mirrored entities have (0, 0, -1), whose x axis is the world's -x (the
-//! "arbitrary axis algorithm" of the DXF reference for a normal along -z). Other extrusions
-//! are not a plan drawing and are refused. A `SPLINE` given only by fit points is
-//! interpolated by a cubic with chord-length parameters and averaging knots (The NURBS Book
-//! eq. 9.5, 9.8); AutoCAD's own fit may differ slightly between the fit points.
-//!
-//! Everything else (blocks and their `INSERT`s, hatches, dimensions, points, solids) is
-//! skipped and listed in [`Sketch::notes`]. The `$INSUNITS` header variable gives
-//! [`Sketch::unit_mm`]. Errors name the file and the line.
+//! The rest of this module's documentation is on [`parse_dxf`], where the library's users read it.
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -89,6 +62,35 @@ fn pairs<'a>(text: &'a str, source: &str) -> Result<Vec<Pair<'a>>, HullError> {
 }
 
 /// Parse an ASCII DXF held in `text`; `source` names it in messages.
+///
+/// A DXF file is a list of *group code / value* pairs, each on two lines: an integer code,
+/// then its value (AutoCAD DXF Reference; the R12 layout is a subset of every later one).
+/// Entities start with code 0 (their type) and run to the next code 0; code 8 is the layer.
+/// Read here, with their group codes:
+///
+/// | entity       | groups                                                                          |
+/// |--------------|---------------------------------------------------------------------------------|
+/// | `LINE`       | 10/20 start, 11/21 end (world coordinates)                                       |
+/// | `ARC`        | 10/20 centre, 40 radius, 50/51 start/end angle in degrees, counter-clockwise   |
+/// | `CIRCLE`     | 10/20 centre, 40 radius (a closed curve)                                        |
+/// | `ELLIPSE`    | 10/20 centre, 11/21 major axis end (relative), 40 minor/major ratio, 41/42 parameters |
+/// | `LWPOLYLINE` | 70 flags (1 closed), per vertex 10/20 and 42 bulge = tan(included angle / 4)    |
+/// | `POLYLINE`   | 70 flags (1 closed, 8 3-D, 16/64 meshes: skipped), then `VERTEX`es (10/20, 42 bulge, 70 flags: 16 = spline frame point, skipped) and `SEQEND` |
+/// | `SPLINE`     | 71 degree, 40 knots, 41 weights, 10/20 control points; or 11/21 fit points only  |
+/// | `TEXT`       | 1 text, 10/20 insertion point, 11/21 alignment point when 72/73 justify it      |
+/// | `MTEXT`      | 3 and 1 text chunks (formatting codes removed), 10/20 insertion point            |
+///
+/// Arcs, circles, polylines and texts lie in their *object coordinate system*, set by the
+/// extrusion direction 210/220/230. A drawing viewed from above has extrusion (0, 0, 1), the
+/// world system; mirrored entities have (0, 0, -1), whose x axis is the world's -x (the
+/// "arbitrary axis algorithm" of the DXF reference for a normal along -z). Other extrusions
+/// are not a plan drawing and are refused. A `SPLINE` given only by fit points is
+/// interpolated by a cubic with chord-length parameters and averaging knots (The NURBS Book
+/// eq. 9.5, 9.8); AutoCAD's own fit may differ slightly between the fit points.
+///
+/// Everything else (blocks and their `INSERT`s, hatches, dimensions, points, solids) is
+/// skipped and listed in [`Sketch::notes`]. The `$INSUNITS` header variable gives
+/// [`Sketch::unit_mm`]. Errors name the file and the line.
 ///
 /// # Errors
 /// [`HullError::Input`] with [`crate::InputErrorKind::Drawing`] at the line of: a line that is

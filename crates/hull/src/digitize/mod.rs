@@ -29,6 +29,11 @@ mod join;
 mod map;
 mod options;
 mod stations;
+/// The SVG reader, or in a build without the cargo feature `svg` its stand-in that refuses.
+#[cfg(feature = "svg")]
+mod svg_in;
+#[cfg(not(feature = "svg"))]
+#[path = "svg_off.rs"]
 mod svg_in;
 
 use std::path::Path;

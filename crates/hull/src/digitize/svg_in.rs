@@ -46,7 +46,8 @@ pub const MAX_GROUP_DEPTH: usize = 256;
 /// # Errors
 /// [`HullError::Input`] with [`crate::InputErrorKind::Drawing`] at the line and column of:
 /// malformed XML, a root that is not `<svg>`, a `transform`, path data, `points` list or
-/// coordinate that does not parse, or a non-finite number.
+/// coordinate that does not parse, or a non-finite number. (In a build without the cargo
+/// feature `svg`, on by default, [`HullError::FeatureDisabled`].)
 pub fn parse_svg(text: &str, source: &str) -> Result<Sketch, HullError> {
     let opts = roxmltree::ParsingOptions { allow_dtd: true, ..roxmltree::ParsingOptions::default() };
     let doc = Document::parse_with_options(text, opts).map_err(|e| {

@@ -1,39 +1,7 @@
 //! IGES 5.3 export of one NURBS surface as a Rational B-Spline Surface entity (type 128),
 //! optionally with curves (the skinned sections) as Rational B-Spline Curve entities (type 126).
 //!
-//! The file has the five fixed-format sections of IGES 5.3 (ANS US PRO/IPO-100-1996,
-//! chapter 2), every record 80 columns, the section letter in column 73 and the sequence
-//! number right-justified in columns 74-80:
-//!
-//! * **S** (start): a human-readable line.
-//! * **G** (global): parameter delimiter `,`, record delimiter `;`, product id, file name,
-//!   native system, preprocessor version, integer/float limits, model space scale `1.0`,
-//!   units flag and units name, line weights, date, minimum resolution
-//!   (`10^floor(log10(1e-7 * size))`, `size` the diagonal of the control-net box), maximum
-//!   coordinate (the largest `|x|`, `|y|`, `|z|` of the control points, which bound the
-//!   surface), author, organisation, version flag `11` (5.3), drafting standard `0`, and the
-//!   model date. Strings are Hollerith constants `nH...`.
-//! * **D** (directory): one entry of two records for entity 128, form 0, status `00000000`.
-//! * **P** (parameter data, section 4.24 of the standard), in columns 1-64, the directory
-//!   pointer in columns 65-72, records split only between fields:
-//!   `128, K1, K2, M1, M2, PROP1..PROP5, S(-M1)..S(N1+M1), T(-M2)..T(N2+M2),
-//!   W(0,0)..W(K1,K2), X(0,0), Y(0,0), Z(0,0) .. Z(K1,K2), U(0), U(1), V(0), V(1);`
-//!   with `K1 = n_u - 1`, `M1 = p` (likewise in v), PROP1/PROP2 = closed in u/v (first and last
-//!   control rows identical), PROP3 = 1 (polynomial) only when all weights are equal,
-//!   PROP4/PROP5 = 0 (not periodic). Weights and points run with the **first (u) index fastest**,
-//!   `for j in 0..n_v { for i in 0..n_u }`, the transpose of the kernel's u-major storage
-//!   `i * n_v + j`. The last four numbers are the parameter ranges `[U(0), U(1)] x [V(0), V(1)]`,
-//!   the knot-vector domains (readers trim the surface to them).
-//! * With curves ([`write_iges_model`]), each curve follows as one more directory entry (D
-//!   records `2k + 1` and `2k + 2`) and its parameter records (section 4.23):
-//!   `126, K, M, PROP1..PROP4, T(-M)..T(N+M), W(0)..W(K), X(0), Y(0), Z(0) .. Z(K), V(0), V(1),
-//!   XNORM, YNORM, ZNORM;` (see `curve_fields`); every P record points back to its entity's
-//!   first D record, and the global section's maximum coordinate and resolution cover the
-//!   curves too.
-//! * **T** (terminate): the record counts of S, G, D and P.
-//!
-//! Reals are written by [`crate::float::real`] (shortest round-trip, always with a decimal
-//! point), so the file carries the surface bit for bit.
+//! The rest of this module's documentation is on [`write_iges`], where the library's users read it.
 
 use std::io::{self, Write};
 
@@ -135,8 +103,42 @@ const P_WIDTH: usize = 64;
 /// Largest sequence number that fits columns 74-80.
 const MAX_SEQUENCE: usize = 9_999_999;
 
-/// Write `surface` as an IGES 5.3 file holding one entity 128 (see the module docs for the
+/// Write `surface` as an IGES 5.3 file holding one entity 128 (see below for the
 /// exact layout).
+///
+/// The file has the five fixed-format sections of IGES 5.3 (ANS US PRO/IPO-100-1996,
+/// chapter 2), every record 80 columns, the section letter in column 73 and the sequence
+/// number right-justified in columns 74-80:
+///
+/// * **S** (start): a human-readable line.
+/// * **G** (global): parameter delimiter `,`, record delimiter `;`, product id, file name,
+///   native system, preprocessor version, integer/float limits, model space scale `1.0`,
+///   units flag and units name, line weights, date, minimum resolution
+///   (`10^floor(log10(1e-7 * size))`, `size` the diagonal of the control-net box), maximum
+///   coordinate (the largest `|x|`, `|y|`, `|z|` of the control points, which bound the
+///   surface), author, organisation, version flag `11` (5.3), drafting standard `0`, and the
+///   model date. Strings are Hollerith constants `nH...`.
+/// * **D** (directory): one entry of two records for entity 128, form 0, status `00000000`.
+/// * **P** (parameter data, section 4.24 of the standard), in columns 1-64, the directory
+///   pointer in columns 65-72, records split only between fields:
+///   `128, K1, K2, M1, M2, PROP1..PROP5, S(-M1)..S(N1+M1), T(-M2)..T(N2+M2),
+///   W(0,0)..W(K1,K2), X(0,0), Y(0,0), Z(0,0) .. Z(K1,K2), U(0), U(1), V(0), V(1);`
+///   with `K1 = n_u - 1`, `M1 = p` (likewise in v), PROP1/PROP2 = closed in u/v (first and last
+///   control rows identical), PROP3 = 1 (polynomial) only when all weights are equal,
+///   PROP4/PROP5 = 0 (not periodic). Weights and points run with the **first (u) index fastest**,
+///   `for j in 0..n_v { for i in 0..n_u }`, the transpose of the kernel's u-major storage
+///   `i * n_v + j`. The last four numbers are the parameter ranges `[U(0), U(1)] x [V(0), V(1)]`,
+///   the knot-vector domains (readers trim the surface to them).
+/// * With curves ([`write_iges_model`]), each curve follows as one more directory entry (D
+///   records `2k + 1` and `2k + 2`) and its parameter records (section 4.23):
+///   `126, K, M, PROP1..PROP4, T(-M)..T(N+M), W(0)..W(K), X(0), Y(0), Z(0) .. Z(K), V(0), V(1),
+///   XNORM, YNORM, ZNORM;` (see `curve_fields`); every P record points back to its entity's
+///   first D record, and the global section's maximum coordinate and resolution cover the
+///   curves too.
+/// * **T** (terminate): the record counts of S, G, D and P.
+///
+/// Reals are written by [`crate::float::real`] (shortest round-trip, always with a decimal
+/// point), so the file carries the surface bit for bit.
 ///
 /// # Errors
 /// Whatever `w` returns; [`io::ErrorKind::InvalidData`] if a number is not finite (cannot
@@ -148,7 +150,7 @@ pub fn write_iges<W: Write>(w: &mut W, surface: &NurbsSurface, meta: &IgesMeta) 
 }
 
 /// Write an IGES 5.3 file holding `surface` as entity 128 (when given) followed by every curve
-/// of `curves` as a rational B-spline curve, entity 126 (see the module docs). Directory
+/// of `curves` as a rational B-spline curve, entity 126 (see [`write_iges`]). Directory
 /// entries are numbered 1, 3, 5, .. in that order; the surface is labelled `SURFACE`, the
 /// curves `SECTION` with subscripts 1, 2, ...
 ///
@@ -274,10 +276,8 @@ fn model_bounds(surface: Option<&NurbsSurface>, curves: &[NurbsCurve]) -> (Vec3,
 fn global_fields(lo: Vec3, hi: Vec3, meta: &IgesMeta) -> io::Result<Vec<String>> {
     let max_coord = [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z].iter().fold(0.0f64, |m, c| m.max(c.abs()));
     let size = (hi - lo).norm();
-    let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
-    let exponent = (1e-7 * size).log10().floor() as i32;
-    // Parsed rather than `powi` so these are exactly the decimals 1.0E<e>.
-    let power_of_ten = |e: i32| -> f64 { format!("1e{e}").parse().expect("a decimal power of ten parses") };
+    let exponent = super::resolution_exponent(size);
+    let power_of_ten = super::power_of_ten;
     let resolution = power_of_ten(exponent);
     let date = hollerith(&meta.timestamp);
     Ok(vec![
@@ -656,8 +656,7 @@ mod tests {
             // Resolution: a power of ten between 1e-7 and 1e-6 times the net's diagonal.
             let size = (hi - lo).norm();
             let r = num(&g[18]);
-            assert!(r <= 1e-7 * size && r > 1e-8 * size, "resolution {r} for size {size}");
-            assert_near!(r.log10(), r.log10().round(), 1e-12);
+            crate::export::assert_resolution(r, size);
         }
     }
 

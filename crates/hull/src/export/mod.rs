@@ -24,3 +24,28 @@ pub use polynomial::{
 };
 pub use step::{step_timestamp, write_step, StepMeta};
 pub use surface_json::{read_surface_json, write_surface_json, SurfaceFile, SurfaceJsonError};
+/// The exponent `e` of the declared resolution `10^e` of an export (IGES global field 19,
+/// STEP's `UNCERTAINTY_MEASURE_WITH_UNIT`): `floor(log10(1e-7 size))`, `size` the diagonal of
+/// the control net's box (1 where it is zero or not finite).
+fn resolution_exponent(size: f64) -> i32 {
+    let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
+    (1e-7 * size).log10().floor() as i32
+}
+
+/// `10^e` as the decimal `1e<e>`: parsed rather than `powi`, so that it prints exactly.
+fn power_of_ten(e: i32) -> f64 {
+    format!("1e{e}").parse().expect("a decimal power of ten parses")
+}
+
+/// The declared resolution of an export, `10^floor(log10(1e-7 size))` ([`resolution_exponent`]).
+fn resolution(size: f64) -> f64 {
+    power_of_ten(resolution_exponent(size))
+}
+
+/// What the IGES and STEP tests check of the resolution `r` a file declares for a control net
+/// of diagonal `size`: a power of ten within a factor 10 below `1e-7 size`.
+#[cfg(test)]
+fn assert_resolution(r: f64, size: f64) {
+    assert!(r <= 1e-7 * size && r > 1e-8 * size, "resolution {r} for size {size}");
+    nurbs::assert_near!(r.log10(), r.log10().round(), 1e-12);
+}

@@ -1,47 +1,7 @@
 //! STEP AP214 export (ISO 10303-21 exchange file, schema `AUTOMOTIVE_DESIGN`) of one NURBS
 //! surface as a bounded face.
 //!
-//! The file is a clear-text encoding (ISO 10303-21:2002) with a `HEADER` (`FILE_DESCRIPTION`,
-//! `FILE_NAME` with the given timestamp, `FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'))`)
-//! and a `DATA` section, entities numbered `#1, #2, ...` in the order below:
-//!
-//! * **Product structure** (AP214 / ISO 10303-41): `APPLICATION_CONTEXT('automotive_design')`,
-//!   `APPLICATION_PROTOCOL_DEFINITION`, `PRODUCT_CONTEXT`, `PRODUCT`,
-//!   `PRODUCT_RELATED_PRODUCT_CATEGORY('part', ..)`, `PRODUCT_DEFINITION_FORMATION`,
-//!   `PRODUCT_DEFINITION_CONTEXT`, `PRODUCT_DEFINITION`, `PRODUCT_DEFINITION_SHAPE` and the
-//!   `SHAPE_DEFINITION_REPRESENTATION` tying it to the shape.
-//! * **Units and uncertainty** (ISO 10303-41 section 4): the length unit of [`Units`] as
-//!   `( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) )` (with `.MILLI.` for millimetres), or
-//!   for feet and inches a `CONVERSION_BASED_UNIT('FOOT' | 'INCH', ..)` of
-//!   `LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(0.3048 | 0.0254), metre)` with
-//!   `DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.)`; radian and steradian; an
-//!   `UNCERTAINTY_MEASURE_WITH_UNIT` of `10^floor(log10(1e-7 size))` (`size` the diagonal of
-//!   the control-net box, the same resolution the IGES writer declares); all in one complex
-//!   `GEOMETRIC_REPRESENTATION_CONTEXT(3)` with `GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT` and
-//!   `GLOBAL_UNIT_ASSIGNED_CONTEXT`.
-//! * **Shape** (ISO 10303-42): `MANIFOLD_SURFACE_SHAPE_REPRESENTATION('hull', (axis, model))`
-//!   with a `SHELL_BASED_SURFACE_MODEL` of one `OPEN_SHELL` of one
-//!   `ADVANCED_FACE((FACE_OUTER_BOUND), surface, .T.)`. The bound is an `EDGE_LOOP` around the
-//!   parameter rectangle, counter-clockwise in `(u, v)`: the iso-curves `v = v0` (forward),
-//!   `u = u1` (forward), `v = v1` (reversed) and `u = u0` (reversed), each an `EDGE_CURVE`
-//!   between `VERTEX_POINT`s at the corners `S(u0, v0)`, `S(u1, v0)`, `S(u1, v1)`, `S(u0, v1)`.
-//!   A boundary that collapses to a point (a pointed stem section, within `1e-9 size`) has no
-//!   edge: its two corners are one vertex, and readers add the degenerate edge themselves.
-//! * **The surface** (ISO 10303-42 section 4.4.41-4.4.43): when the weights differ, the complex
-//!   instance `( BOUNDED_SURFACE() B_SPLINE_SURFACE(p, q, ((P_00, P_01, ..), ..), .UNSPECIFIED.,
-//!   .F., .F., .F.) B_SPLINE_SURFACE_WITH_KNOTS((mult_u), (mult_v), (knots_u), (knots_v),
-//!   .UNSPECIFIED.) GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE(((w_00, ..), ..))
-//!   REPRESENTATION_ITEM('hull') SURFACE() )` (a complex entity lists its partial entities in
-//!   alphabetical order, ISO 10303-21 section 11.2.5.3); when all weights are equal the plain
-//!   `B_SPLINE_SURFACE_WITH_KNOTS`. The outer list runs over `i` (along u), the inner over `j`
-//!   (along v): the kernel's u-major order `i * n_v + j`. Knots are written as the distinct
-//!   values with their multiplicities (the clamped ends have multiplicity `p + 1`). Boundary
-//!   curves are `B_SPLINE_CURVE_WITH_KNOTS`, or the complex rational curve likewise.
-//!
-//! Reals are written by [`crate::float::real`] (shortest round-trip), so the file carries the
-//! surface bit for bit; strings are encoded per ISO 10303-21 section 7.3.3 (`'` doubled, `\`
-//! doubled, other characters outside printable ASCII as `\X2\hhhh\X0\` UTF-16 code units).
-//! The output depends only on its inputs (the timestamp is passed in), so it is reproducible.
+//! The rest of this module's documentation is on [`write_step`], where the library's users read it.
 
 use std::io::{self, Write};
 
@@ -243,13 +203,6 @@ fn curve_entity(data: &mut Data, c: &NurbsCurve) -> io::Result<String> {
     Ok(data.add(body))
 }
 
-/// `10^floor(log10(1e-7 size))`, the declared resolution (as in the IGES global section).
-fn resolution(size: f64) -> f64 {
-    let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
-    let e = (1e-7 * size).log10().floor() as i32;
-    format!("1e{e}").parse().expect("a decimal power of ten parses")
-}
-
 /// The length unit entity (and what it needs); returns its name.
 fn length_unit(data: &mut Data, units: Units) -> io::Result<String> {
     let si = |prefix: &str| format!("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT({prefix},.METRE.) )");
@@ -287,7 +240,49 @@ fn collapsed(c: &NurbsCurve, tol: f64) -> bool {
     pts.iter().all(|p| p.distance(pts[0]) <= tol)
 }
 
-/// Write `surface` as a STEP AP214 file holding one face (see the module docs for the layout).
+/// Write `surface` as a STEP AP214 file holding one face (see below for the layout).
+///
+/// The file is a clear-text encoding (ISO 10303-21:2002) with a `HEADER` (`FILE_DESCRIPTION`,
+/// `FILE_NAME` with the given timestamp, `FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'))`)
+/// and a `DATA` section, entities numbered `#1, #2, ...` in the order below:
+///
+/// * **Product structure** (AP214 / ISO 10303-41): `APPLICATION_CONTEXT('automotive_design')`,
+///   `APPLICATION_PROTOCOL_DEFINITION`, `PRODUCT_CONTEXT`, `PRODUCT`,
+///   `PRODUCT_RELATED_PRODUCT_CATEGORY('part', ..)`, `PRODUCT_DEFINITION_FORMATION`,
+///   `PRODUCT_DEFINITION_CONTEXT`, `PRODUCT_DEFINITION`, `PRODUCT_DEFINITION_SHAPE` and the
+///   `SHAPE_DEFINITION_REPRESENTATION` tying it to the shape.
+/// * **Units and uncertainty** (ISO 10303-41 section 4): the length unit of [`Units`] as
+///   `( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) )` (with `.MILLI.` for millimetres), or
+///   for feet and inches a `CONVERSION_BASED_UNIT('FOOT' | 'INCH', ..)` of
+///   `LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(0.3048 | 0.0254), metre)` with
+///   `DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.)`; radian and steradian; an
+///   `UNCERTAINTY_MEASURE_WITH_UNIT` of `10^floor(log10(1e-7 size))` (`size` the diagonal of
+///   the control-net box, the same resolution the IGES writer declares); all in one complex
+///   `GEOMETRIC_REPRESENTATION_CONTEXT(3)` with `GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT` and
+///   `GLOBAL_UNIT_ASSIGNED_CONTEXT`.
+/// * **Shape** (ISO 10303-42): `MANIFOLD_SURFACE_SHAPE_REPRESENTATION('hull', (axis, model))`
+///   with a `SHELL_BASED_SURFACE_MODEL` of one `OPEN_SHELL` of one
+///   `ADVANCED_FACE((FACE_OUTER_BOUND), surface, .T.)`. The bound is an `EDGE_LOOP` around the
+///   parameter rectangle, counter-clockwise in `(u, v)`: the iso-curves `v = v0` (forward),
+///   `u = u1` (forward), `v = v1` (reversed) and `u = u0` (reversed), each an `EDGE_CURVE`
+///   between `VERTEX_POINT`s at the corners `S(u0, v0)`, `S(u1, v0)`, `S(u1, v1)`, `S(u0, v1)`.
+///   A boundary that collapses to a point (a pointed stem section, within `1e-9 size`) has no
+///   edge: its two corners are one vertex, and readers add the degenerate edge themselves.
+/// * **The surface** (ISO 10303-42 section 4.4.41-4.4.43): when the weights differ, the complex
+///   instance `( BOUNDED_SURFACE() B_SPLINE_SURFACE(p, q, ((P_00, P_01, ..), ..), .UNSPECIFIED.,
+///   .F., .F., .F.) B_SPLINE_SURFACE_WITH_KNOTS((mult_u), (mult_v), (knots_u), (knots_v),
+///   .UNSPECIFIED.) GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE(((w_00, ..), ..))
+///   REPRESENTATION_ITEM('hull') SURFACE() )` (a complex entity lists its partial entities in
+///   alphabetical order, ISO 10303-21 section 11.2.5.3); when all weights are equal the plain
+///   `B_SPLINE_SURFACE_WITH_KNOTS`. The outer list runs over `i` (along u), the inner over `j`
+///   (along v): the kernel's u-major order `i * n_v + j`. Knots are written as the distinct
+///   values with their multiplicities (the clamped ends have multiplicity `p + 1`). Boundary
+///   curves are `B_SPLINE_CURVE_WITH_KNOTS`, or the complex rational curve likewise.
+///
+/// Reals are written by [`crate::float::real`] (shortest round-trip), so the file carries the
+/// surface bit for bit; strings are encoded per ISO 10303-21 section 7.3.3 (`'` doubled, `\`
+/// doubled, other characters outside printable ASCII as `\X2\hhhh\X0\` UTF-16 code units).
+/// The output depends only on its inputs (the timestamp is passed in), so it is reproducible.
 ///
 /// # Errors
 /// Whatever `w` returns; [`io::ErrorKind::InvalidData`] if a number is not finite (cannot
@@ -317,7 +312,7 @@ pub fn write_step<W: Write>(w: &mut W, surface: &NurbsSurface, meta: &StepMeta) 
     let solid = d.add("( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )".into());
     let uncertainty = d.add(format!(
         "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({}),{length},'distance_accuracy_value','confusion accuracy')",
-        real(resolution(size))?
+        real(super::resolution(size))?
     ));
     let ctx = d.add(format!(
         "( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT(({uncertainty})) \
@@ -431,7 +426,7 @@ fn wrap(text: &str, width: usize) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nurbs::{assert_near, KnotVector};
+    use nurbs::KnotVector;
 
     /// Bicubic in u, quadratic in v, a double interior knot, non-unit weights.
     fn sample_surface(rational: bool) -> NurbsSurface {
@@ -623,8 +618,7 @@ mod tests {
         let inst = instances(&m);
         let (_, u) = inst.iter().find(|(_, b)| b.starts_with("UNCERTAINTY_MEASURE_WITH_UNIT")).expect("uncertainty");
         let r = numbers_after(u, "LENGTH_MEASURE(")[0];
-        assert!(r <= 1e-7 * size && r > 1e-8 * size, "resolution {r} for size {size}");
-        assert_near!(r.log10(), r.log10().round(), 1e-12);
+        crate::export::assert_resolution(r, size);
     }
 
     #[test]

@@ -1,38 +1,7 @@
 //! The hullskin surface JSON format: one NURBS surface, lossless, for other programs and for
 //! reading back.
 //!
-//! ```json
-//! {
-//!   "format": "hullskin-surface",
-//!   "version": 1,
-//!   "units": "m",
-//!   "degree": [3, 3],
-//!   "control_points_count": [5, 4],
-//!   "knots_u": [0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0],
-//!   "knots_v": [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
-//!   "control_points": [
-//!     [0.0, 0.0, 0.0],
-//!     ...
-//!   ],
-//!   "weights": [1.0, ...]
-//! }
-//! ```
-//!
-//! * `degree` is `[p, q]`, the degrees in u and v; `control_points_count` is `[n_u, n_v]`.
-//! * `knots_u` / `knots_v` are the full clamped knot vectors (`n_u + p + 1` and `n_v + q + 1`
-//!   numbers, the first and last `p + 1` equal); the surface is defined on
-//!   `[knots_u[p], knots_u[n_u]] x [knots_v[q], knots_v[n_v]]`.
-//! * `control_points` holds `n_u * n_v` Euclidean points `[x, y, z]` **u-major**: the point
-//!   `P_ij` (`i` along u, `j` along v) is at index `i * n_v + j`.
-//! * `weights` holds the `n_u * n_v` weights in the same order (all `1.0` for a polynomial
-//!   surface; the reader also accepts the key missing, meaning all `1.0`).
-//! * `units` names the length unit of the coordinates (`"m"`, `"mm"`, `"ft"`, `"in"`).
-//!
-//! The surface is `S(u,v) = sum_ij N_i,p(u) N_j,q(v) w_ij P_ij / sum_ij N_i,p(u) N_j,q(v) w_ij`
-//! (The NURBS Book eq. 4.15). Numbers are written with the shortest representation that
-//! reads back to the same `f64`, so knots, weights and points survive a round trip exactly.
-//! The reader validates everything (knot vectors, counts, finite values, positive weights)
-//! and reports the first problem; it never panics.
+//! The rest of this module's documentation is on [`write_surface_json`], where the library's users read it.
 
 use std::io::{self, Write};
 
@@ -133,8 +102,41 @@ pub enum SurfaceJsonError {
     },
 }
 
-/// Write `surface` in the layout of the module docs: one key per line, one control point per
+/// Write `surface` in the layout described below: one key per line, one control point per
 /// line.
+///
+/// ```json
+/// {
+///   "format": "hullskin-surface",
+///   "version": 1,
+///   "units": "m",
+///   "degree": [3, 3],
+///   "control_points_count": [5, 4],
+///   "knots_u": [0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0],
+///   "knots_v": [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+///   "control_points": [
+///     [0.0, 0.0, 0.0],
+///     ...
+///   ],
+///   "weights": [1.0, ...]
+/// }
+/// ```
+///
+/// * `degree` is `[p, q]`, the degrees in u and v; `control_points_count` is `[n_u, n_v]`.
+/// * `knots_u` / `knots_v` are the full clamped knot vectors (`n_u + p + 1` and `n_v + q + 1`
+///   numbers, the first and last `p + 1` equal); the surface is defined on
+///   `[knots_u[p], knots_u[n_u]] x [knots_v[q], knots_v[n_v]]`.
+/// * `control_points` holds `n_u * n_v` Euclidean points `[x, y, z]` **u-major**: the point
+///   `P_ij` (`i` along u, `j` along v) is at index `i * n_v + j`.
+/// * `weights` holds the `n_u * n_v` weights in the same order (all `1.0` for a polynomial
+///   surface; the reader also accepts the key missing, meaning all `1.0`).
+/// * `units` names the length unit of the coordinates (`"m"`, `"mm"`, `"ft"`, `"in"`).
+///
+/// The surface is `S(u,v) = sum_ij N_i,p(u) N_j,q(v) w_ij P_ij / sum_ij N_i,p(u) N_j,q(v) w_ij`
+/// (The NURBS Book eq. 4.15). Numbers are written with the shortest representation that
+/// reads back to the same `f64`, so knots, weights and points survive a round trip exactly.
+/// The reader validates everything (knot vectors, counts, finite values, positive weights)
+/// and reports the first problem; it never panics.
 ///
 /// # Errors
 /// Whatever `w` returns.

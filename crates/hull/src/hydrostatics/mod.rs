@@ -2,144 +2,8 @@
 //! architects tabulate per draft (the columns of FREE!ship's hydrostatics table), for the
 //! whole ship (both sides) from the starboard half-hull surface.
 //!
-//! # Axes and the body measured
-//!
-//! The surface is the starboard half hull: x forward, y to starboard (half-breadth >= 0), z up
-//! from the baseline, its y = 0 edges on the centre plane. The body measured at draft `T` is
-//! the solid between the centre plane and the surface below the waterplane `z = T`,
-//! mirrored to port: `{(x, eta, z) : (x, z) under the surface's side view, z <= T,
-//! |eta| <= y(x, z)}`. Where the surface stops short of the centre plane (a flat of keel
-//! at the baseline, a transom at constant x) the body is closed by planes of constant z or x.
-//!
-//! # Method
-//!
-//! All volume figures are surface integrals over the hull surface alone, by the divergence
-//! theorem (Gauss): with `F = (0, y g, 0)`, `div F = g`, and on every closing plane of the
-//! body (centre plane `y = 0`, waterplane, flat bottom `z = const`, transom `x = const`)
-//! either `y = 0` or `n_y = 0`, so
-//!
-//! ```text
-//! V/2      = ∫∫ y n_y dA            = ∫∫ y (S_u × S_v)_y du dv      (g = 1)
-//! V/2 LCB  = ∫∫ x y n_y dA                                           (g = x)
-//! V/2 VCB  = ∫∫ z y n_y dA                                           (g = z)
-//! S/2      = ∫∫ |S_u × S_v| du dv                                    (wetted surface)
-//! ```
-//!
-//! over the part of the parameter domain where `z(u, v) <= T`. `(S_u × S_v)_y` is the Jacobian
-//! of `(u, v) -> (x, z)`, so `V/2` is the half-breadth integrated over the side view; its sign
-//! is the surface's orientation and is divided out (any direction of u and v works).
-//!
-//! The waterplane figures are line integrals along the waterline, the level set `z(u, v) = T`
-//! (`Γ dx` around the waterplane, where `Γ = 0` on the centre plane and `dx = 0` on a transom):
-//!
-//! ```text
-//! AW  = 2 ∫ y dx                LCF = ∫ x y dx / ∫ y dx
-//! I_T = (2/3) ∫ y³ dx           I_L = 2 ∫ (x - LCF)² y dx
-//! ```
-//!
-//! `Lwl` and `Bwl` are the waterline's x extent and twice its largest half-breadth (found on
-//! the quadrature nodes of the waterline and refined by Brent's maximiser). `AM` is the
-//! area of the section at the **middle of the waterline length** `x_m = (x_aft + x_fore)/2`
-//! (this module's convention; FREE!ship uses the middle of its Lpp): `AM = 2 |∫ y dz|` along
-//! the level set `x(u, v) = x_m` below the waterline.
-//!
-//! # Quadrature
-//!
-//! Each knot span is split into `split x split` cells, each integrated by an `order x order`
-//! Gauss-Legendre rule. Cells wholly below the waterline (by the bounding box of the span's
-//! control points) take the tensor rule; cells wholly above are skipped; a cell cut by the
-//! waterline is integrated as an iterated integral: `z` is checked to be monotone along one
-//! parameter on the cell, the cell's outer range is split where the waterline crosses the
-//! cell's inner ends, and each outer Gauss node gets the waterline's exact parameter (Brent's
-//! root finder, to round-off) and an inner Gauss rule over the wet side. The integrands are
-//! analytic inside a span and the clipped ones stay so, so the rule converges exponentially;
-//! a non-rational bicubic span below the waterline is integrated exactly for the volume and
-//! its moments (`x y n_y` has degree 11 in each parameter, order 8 is exact to 15). The
-//! monotone parameter is chosen from the signs of `z_u`, `z_v` on a 4 x 4 grid of interior
-//! samples; cells monotone in neither are split in four (up to 6 levels). The sums run in a fixed order, so
-//! results are the same bits whatever the number of threads ([`Hydrostatics::range`] runs
-//! drafts in parallel).
-//!
-//! # Accuracy (measured, `crates/hull/tests/shape/hydrostatics.rs`)
-//!
-//! * Exact Wigley hull (a degree (2,2) Bézier patch reproduces it exactly), at 0.1 T .. T
-//!   against the closed forms: every figure but S within 7e-14 relative (round-off: the
-//!   integrands are polynomials the rule integrates exactly); S within 1.2e-9 of an independent
-//!   2-D Gauss rule on the explicit formula (S's integrand is a square root; 0.148791 L² at T,
-//!   the published value, to its 6 digits).
-//! * Fitted surfaces (Series 60 Cb 0.60 and 0.80, Wigley offsets; interp and approx): the
-//!   default rule (order 8, split 2) against order 16, split 4 at three drafts: every figure
-//!   but S within 4e-14 relative, S within 4e-10. The quadrature error is thus far below the
-//!   fit's own (fitted Wigley offsets: 6e-6 from the closed forms; Series 60: see the tests).
-//! * The waterline is lifted by 16 ulps of the largest |z| (round-off on a knot line or a
-//!   level top edge then counts as wet), a bias of `AW x 16 ulp / V`, about 1e-14 relative.
-//! * `dV/dT = AW`, `d(V LCB)/dT = AW LCF`, `d(V KB)/dT = T AW` hold to the 1e-7 of the
-//!   central differences that check them: the line integrals agree with the surface ones.
-//!
-//! Speed (criterion, `benches/hydrostatics.rs`, release): about 1 ms per draft for the
-//! Series 60 sample fitted by approximation (6 x 19 control points), 2 ms by interpolation
-//! (8 x 25).
-//!
-//! # Conventions and units
-//!
-//! * `Draft` is `T`, the waterplane's z (above the baseline z = 0).
-//! * Coefficients on the waterline as FREE!ship: `CB = Vol/(Lwl Bwl T)`, `CM = AM/(Bwl T)`,
-//!   `CP = Vol/(AM Lwl)`, `CW = AW/(Lwl Bwl)`.
-//! * With the perpendiculars known ([`HydrostaticsOptions::perpendiculars`]: the AP and FP
-//!   x, `Lpp = FP - AP`, amidships at their middle), also the trade's coefficients on Lpp:
-//!   `CB_Lpp = Vol/(Lpp Bwl T)`, `CM_Lpp = AM_pp/(Bwl T)`, `CP_Lpp = Vol/(AM_pp Lpp)`, with
-//!   `AM_pp` the section area at amidships; and `LCB`, `LCF` as a percentage of Lpp from
-//!   amidships, **positive forward** (`100 (LCB - x_mid) / Lpp`), as Todd's Series 60 tables
-//!   give them. Without them these are absent (`None`, left out of the tables).
-//! * `LCB` and `LCF` are also x coordinates in the surface's axes.
-//! * Stability: `KB = VCB`, `BMt = I_T/Vol`, `BMl = I_L/Vol` (I_L about the LCF),
-//!   `KMt = KB + BMt`, `KMl = KB + BMl`.
-//! * `TPC` (tonnes per centimetre immersion) `= AW x 1 cm x density`.
-//! * `MCT` (moment to change trim by 1 cm, t·m/cm) `= Displ BMl / (100 L)` with `L = Lpp`
-//!   when the perpendiculars are known, else `Lwl`. The centre of gravity is unknown here,
-//!   so `GMl` is taken as `BMl` (the usual approximation: `KB - KG` is small against `BMl`,
-//!   about 1 % of it for ordinary ships).
-//! * Lengths in the surface's length unit `L` ([`HydrostaticsOptions::units`]); areas `L²`,
-//!   volumes `L³`. `Displ = Vol x density` in tonnes, the density given in t/m³ (the default
-//!   1.025 is sea water) and converted to tonnes per cubic `L`. `TPC` is in t/cm and `MCT` in
-//!   t·m/cm whatever `L`.
-//! * A draft at or below the lowest point of the surface gives a row of zeros (no volume, no
-//!   waterplane: every figure 0, never NaN). A draft above the highest point of the surface
-//!   is an error ([`HullError::Draft`]): the hull would be submerged. A draft at a level top
-//!   edge of the surface (the Wigley hull at its design draft) takes that edge as the
-//!   waterline. Where the top edge dips below the draft, the waterplane is open there and the
-//!   figures are those of the surface below the draft.
-//! * The wetted surface is the area of the surface below the waterline (both sides); a flat
-//!   of keel or a transom not modelled by the surface is not counted, nor is a centre-plane
-//!   web (below).
-//!
-//! # Centre-plane webs
-//!
-//! A station sliced from a mesh as two pieces (the DTC's bulb below and its stem above, a skeg
-//! and the hull over a propeller aperture) is joined along the centre plane, so the skinned
-//! surface carries a zero-thickness **web** lying in `y = 0` between the pieces. It is inside
-//! the mirrored hull: never wetted, and no part of the waterline's length. A knot span is a
-//! web when all its control points lie within `|y| <= 2e-3 x` the control net's diagonal (by
-//! the convex hull property the whole span then lies in that slab) and it is not joined,
-//! through such spans, to the keel line (a domain edge in the slab running along the ship:
-//! there the hull's fine ends close onto the centre plane, thin but wetted on both sides).
-//! The bound and its measurements are at `integrate::WEB_REL`. Web spans are integrated as
-//! any other (so `V`, its moments and the waterplane keep them: they add `y n_y ~ 0`), but
-//! their area goes to [`Hydrostatics::web_area`] instead of `S`, and their waterline pieces
-//! are left out of `Lwl`, `Bwl` and the middle of `Lwl` (so of `AM`, `CB`, `CM`, `CW`, `CP`).
-//! Whole spans are classified, so no quadrature cell is cut by a web's boundary and the rules
-//! stay exact; a surface without a web span gives the same bits as without the rule (no span
-//! of the Series 60, Wigley, Gunnerus, cargo ship or DTMB 5415 surfaces is one).
-//!
-//! The rule is coarse: a span holding both a web and a part of the hull (a bulb's top running
-//! into the web) counts as hull. On the DTC fitted at 41 stations the web spans lie above the
-//! bulb: at `T = 0.4 m` they hold 0.0038 m² (approx) and 0.0127 m² (interp), 0.04 % and
-//! 0.15 % of S; at the design draft 0.244 m none is wet: the waterline grazes the bulb's top,
-//! where the fitted surface strays 1 to 7 mm from the centre plane over both the bulb's neck
-//! (x 5.99 .. 6.08 m) and the web (6.08 .. 6.16 m), and no tolerance on `y` or on the normal
-//! tells them apart (the sliced data itself puts the waterline 1.2 mm off the centre plane at
-//! x = 6.123 m, where the mesh's waterline has ended at 6.077 m). `Lwl` there stays 6.218 m
-//! (approx) and 6.176 m (interp) against the mesh's 6.091 m.
+//! The axes, the body measured and the method are documented on [`Hydrostatics`], where the
+//! library's users read it.
 
 mod integrate;
 mod table;
@@ -367,6 +231,145 @@ pub fn table_drafts(
 }
 
 /// A surface prepared for hydrostatics at any number of drafts.
+///
+/// # Axes and the body measured
+///
+/// The surface is the starboard half hull: x forward, y to starboard (half-breadth >= 0), z up
+/// from the baseline, its y = 0 edges on the centre plane. The body measured at draft `T` is
+/// the solid between the centre plane and the surface below the waterplane `z = T`,
+/// mirrored to port: `{(x, eta, z) : (x, z) under the surface's side view, z <= T,
+/// |eta| <= y(x, z)}`. Where the surface stops short of the centre plane (a flat of keel
+/// at the baseline, a transom at constant x) the body is closed by planes of constant z or x.
+///
+/// # Method
+///
+/// All volume figures are surface integrals over the hull surface alone, by the divergence
+/// theorem (Gauss): with `F = (0, y g, 0)`, `div F = g`, and on every closing plane of the
+/// body (centre plane `y = 0`, waterplane, flat bottom `z = const`, transom `x = const`)
+/// either `y = 0` or `n_y = 0`, so
+///
+/// ```text
+/// V/2      = ∫∫ y n_y dA            = ∫∫ y (S_u × S_v)_y du dv      (g = 1)
+/// V/2 LCB  = ∫∫ x y n_y dA                                           (g = x)
+/// V/2 VCB  = ∫∫ z y n_y dA                                           (g = z)
+/// S/2      = ∫∫ |S_u × S_v| du dv                                    (wetted surface)
+/// ```
+///
+/// over the part of the parameter domain where `z(u, v) <= T`. `(S_u × S_v)_y` is the Jacobian
+/// of `(u, v) -> (x, z)`, so `V/2` is the half-breadth integrated over the side view; its sign
+/// is the surface's orientation and is divided out (any direction of u and v works).
+///
+/// The waterplane figures are line integrals along the waterline, the level set `z(u, v) = T`
+/// (`Γ dx` around the waterplane, where `Γ = 0` on the centre plane and `dx = 0` on a transom):
+///
+/// ```text
+/// AW  = 2 ∫ y dx                LCF = ∫ x y dx / ∫ y dx
+/// I_T = (2/3) ∫ y³ dx           I_L = 2 ∫ (x - LCF)² y dx
+/// ```
+///
+/// `Lwl` and `Bwl` are the waterline's x extent and twice its largest half-breadth (found on
+/// the quadrature nodes of the waterline and refined by Brent's maximiser). `AM` is the
+/// area of the section at the **middle of the waterline length** `x_m = (x_aft + x_fore)/2`
+/// (this module's convention; FREE!ship uses the middle of its Lpp): `AM = 2 |∫ y dz|` along
+/// the level set `x(u, v) = x_m` below the waterline.
+///
+/// # Quadrature
+///
+/// Each knot span is split into `split x split` cells, each integrated by an `order x order`
+/// Gauss-Legendre rule. Cells wholly below the waterline (by the bounding box of the span's
+/// control points) take the tensor rule; cells wholly above are skipped; a cell cut by the
+/// waterline is integrated as an iterated integral: `z` is checked to be monotone along one
+/// parameter on the cell, the cell's outer range is split where the waterline crosses the
+/// cell's inner ends, and each outer Gauss node gets the waterline's exact parameter (Brent's
+/// root finder, to round-off) and an inner Gauss rule over the wet side. The integrands are
+/// analytic inside a span and the clipped ones stay so, so the rule converges exponentially;
+/// a non-rational bicubic span below the waterline is integrated exactly for the volume and
+/// its moments (`x y n_y` has degree 11 in each parameter, order 8 is exact to 15). The
+/// monotone parameter is chosen from the signs of `z_u`, `z_v` on a 4 x 4 grid of interior
+/// samples; cells monotone in neither are split in four (up to 6 levels). The sums run in a fixed order, so
+/// results are the same bits whatever the number of threads ([`Hydrostatics::range`] runs
+/// drafts in parallel).
+///
+/// # Accuracy (measured, `crates/hull/tests/shape/hydrostatics.rs`)
+///
+/// * Exact Wigley hull (a degree (2,2) Bézier patch reproduces it exactly), at 0.1 T .. T
+///   against the closed forms: every figure but S within 7e-14 relative (round-off: the
+///   integrands are polynomials the rule integrates exactly); S within 1.2e-9 of an independent
+///   2-D Gauss rule on the explicit formula (S's integrand is a square root; 0.148791 L² at T,
+///   the published value, to its 6 digits).
+/// * Fitted surfaces (Series 60 Cb 0.60 and 0.80, Wigley offsets; interp and approx): the
+///   default rule (order 8, split 2) against order 16, split 4 at three drafts: every figure
+///   but S within 4e-14 relative, S within 4e-10. The quadrature error is thus far below the
+///   fit's own (fitted Wigley offsets: 6e-6 from the closed forms; Series 60: see the tests).
+/// * The waterline is lifted by 16 ulps of the largest |z| (round-off on a knot line or a
+///   level top edge then counts as wet), a bias of `AW x 16 ulp / V`, about 1e-14 relative.
+/// * `dV/dT = AW`, `d(V LCB)/dT = AW LCF`, `d(V KB)/dT = T AW` hold to the 1e-7 of the
+///   central differences that check them: the line integrals agree with the surface ones.
+///
+/// Speed (criterion, `benches/hydrostatics.rs`, release): about 1 ms per draft for the
+/// Series 60 sample fitted by approximation (6 x 19 control points), 2 ms by interpolation
+/// (8 x 25).
+///
+/// # Conventions and units
+///
+/// * `Draft` is `T`, the waterplane's z (above the baseline z = 0).
+/// * Coefficients on the waterline as FREE!ship: `CB = Vol/(Lwl Bwl T)`, `CM = AM/(Bwl T)`,
+///   `CP = Vol/(AM Lwl)`, `CW = AW/(Lwl Bwl)`.
+/// * With the perpendiculars known ([`HydrostaticsOptions::perpendiculars`]: the AP and FP
+///   x, `Lpp = FP - AP`, amidships at their middle), also the trade's coefficients on Lpp:
+///   `CB_Lpp = Vol/(Lpp Bwl T)`, `CM_Lpp = AM_pp/(Bwl T)`, `CP_Lpp = Vol/(AM_pp Lpp)`, with
+///   `AM_pp` the section area at amidships; and `LCB`, `LCF` as a percentage of Lpp from
+///   amidships, **positive forward** (`100 (LCB - x_mid) / Lpp`), as Todd's Series 60 tables
+///   give them. Without them these are absent (`None`, left out of the tables).
+/// * `LCB` and `LCF` are also x coordinates in the surface's axes.
+/// * Stability: `KB = VCB`, `BMt = I_T/Vol`, `BMl = I_L/Vol` (I_L about the LCF),
+///   `KMt = KB + BMt`, `KMl = KB + BMl`.
+/// * `TPC` (tonnes per centimetre immersion) `= AW x 1 cm x density`.
+/// * `MCT` (moment to change trim by 1 cm, t·m/cm) `= Displ BMl / (100 L)` with `L = Lpp`
+///   when the perpendiculars are known, else `Lwl`. The centre of gravity is unknown here,
+///   so `GMl` is taken as `BMl` (the usual approximation: `KB - KG` is small against `BMl`,
+///   about 1 % of it for ordinary ships).
+/// * Lengths in the surface's length unit `L` ([`HydrostaticsOptions::units`]); areas `L²`,
+///   volumes `L³`. `Displ = Vol x density` in tonnes, the density given in t/m³ (the default
+///   1.025 is sea water) and converted to tonnes per cubic `L`. `TPC` is in t/cm and `MCT` in
+///   t·m/cm whatever `L`.
+/// * A draft at or below the lowest point of the surface gives a row of zeros (no volume, no
+///   waterplane: every figure 0, never NaN). A draft above the highest point of the surface
+///   is an error ([`HullError::Draft`]): the hull would be submerged. A draft at a level top
+///   edge of the surface (the Wigley hull at its design draft) takes that edge as the
+///   waterline. Where the top edge dips below the draft, the waterplane is open there and the
+///   figures are those of the surface below the draft.
+/// * The wetted surface is the area of the surface below the waterline (both sides); a flat
+///   of keel or a transom not modelled by the surface is not counted, nor is a centre-plane
+///   web (below).
+///
+/// # Centre-plane webs
+///
+/// A station sliced from a mesh as two pieces (the DTC's bulb below and its stem above, a skeg
+/// and the hull over a propeller aperture) is joined along the centre plane, so the skinned
+/// surface carries a zero-thickness **web** lying in `y = 0` between the pieces. It is inside
+/// the mirrored hull: never wetted, and no part of the waterline's length. A knot span is a
+/// web when all its control points lie within `|y| <= 2e-3 x` the control net's diagonal (by
+/// the convex hull property the whole span then lies in that slab) and it is not joined,
+/// through such spans, to the keel line (a domain edge in the slab running along the ship:
+/// there the hull's fine ends close onto the centre plane, thin but wetted on both sides).
+/// The bound and its measurements are at `integrate::WEB_REL`. Web spans are integrated as
+/// any other (so `V`, its moments and the waterplane keep them: they add `y n_y ~ 0`), but
+/// their area goes to [`Hydrostatics::web_area`] instead of `S`, and their waterline pieces
+/// are left out of `Lwl`, `Bwl` and the middle of `Lwl` (so of `AM`, `CB`, `CM`, `CW`, `CP`).
+/// Whole spans are classified, so no quadrature cell is cut by a web's boundary and the rules
+/// stay exact; a surface without a web span gives the same bits as without the rule (no span
+/// of the Series 60, Wigley, Gunnerus, cargo ship or DTMB 5415 surfaces is one).
+///
+/// The rule is coarse: a span holding both a web and a part of the hull (a bulb's top running
+/// into the web) counts as hull. On the DTC fitted at 41 stations the web spans lie above the
+/// bulb: at `T = 0.4 m` they hold 0.0038 m² (approx) and 0.0127 m² (interp), 0.04 % and
+/// 0.15 % of S; at the design draft 0.244 m none is wet: the waterline grazes the bulb's top,
+/// where the fitted surface strays 1 to 7 mm from the centre plane over both the bulb's neck
+/// (x 5.99 .. 6.08 m) and the web (6.08 .. 6.16 m), and no tolerance on `y` or on the normal
+/// tells them apart (the sliced data itself puts the waterline 1.2 mm off the centre plane at
+/// x = 6.123 m, where the mesh's waterline has ended at 6.077 m). `Lwl` there stays 6.218 m
+/// (approx) and 6.176 m (interp) against the mesh's 6.091 m.
 #[derive(Clone, Debug)]
 pub struct Hydrostatics<'a> {
     /// One integrator per patch of the hull (one for a single surface).

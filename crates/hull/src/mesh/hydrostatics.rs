@@ -1,42 +1,7 @@
 //! Hydrostatics of a mesh at a draft, to compare with those of a fitted surface
 //! ([`crate::hydrostatics`](mod@crate::hydrostatics)).
 //!
-//! # Method
-//!
-//! Every triangle is clipped to the wet side `z <= T` (Sutherland-Hodgman against one plane;
-//! a triangle lying in the waterplane counts as dry) and the figures are sums over the clipped
-//! triangles, by the divergence theorem as in [`crate::hydrostatics`](mod@crate::hydrostatics): with `F = (0, y g, 0)`,
-//! `div F = g`, and `F . n = 0` on the centre plane (`y = 0`), on the waterplane and on any
-//! transom at constant x (`n_y = 0`), so the body needs no closing faces there:
-//!
-//! ```text
-//! V      = sum ∫ y n_y dA           V LCB = sum ∫ x y n_y dA       V KB = sum ∫ z y n_y dA
-//! S      = sum A                    (a half mesh's faces in the centre plane excluded)
-//! AW     = -sum ∫ n_z dA            AW LCF = -sum ∫ x n_z dA       I_T = -sum ∫ y^2 n_z dA
-//! ```
-//!
-//! The waterplane sums hold because `∮ n_z dA = ∮ x n_z dA = ∮ y^2 n_z dA = 0` over the closed
-//! wet body (Gauss with `(0, 0, 1)`, `(0, 0, x)`, `(0, 0, y^2)`), whose closing faces other
-//! than the waterplane (centre plane, vertical transom) have `n_z = 0`. `∫ y dA` is the area
-//! times the centroid's y; the quadratic integrands are integrated exactly by the edge-midpoint
-//! rule `∫ f dA = (A/3)(f(m_ab) + f(m_bc) + f(m_ca))` (Strang and Fix, *An Analysis of the
-//! Finite Element Method*, 1973, table 4.1). The figures are thus exact for the polyhedron:
-//! only the mesh's faceting separates them from the smooth hull's.
-//!
-//! # Both sides or one
-//!
-//! A mesh with both sides (its lowest y below `-1e-6` of its size) is measured as it is. A mesh
-//! of the starboard side only (`y >= 0`, open or closed at the centre plane) is measured and
-//! doubled: every figure is then of the whole ship.
-//!
-//! # Orientation
-//!
-//! Outward normals (counter-clockwise triangles seen from outside) give a positive volume. A
-//! mesh oriented inward gives a negative one; it is then measured as if turned outward
-//! ([`MeshHydrostatics::inward`] says so). A mesh oriented inconsistently gives wrong volumes
-//! (no orientation is repaired); [`MeshHydrostatics::open_edges_below`] counts the edges of
-//! one triangle below the waterline (off the centre plane), which a hull watertight below the
-//! waterline has none of.
+//! The rest of this module's documentation is on [`mesh_hydrostatics`], where the library's users read it.
 
 use std::collections::HashMap;
 
@@ -75,8 +40,45 @@ pub struct MeshHydrostatics {
     pub open_edges_below: usize,
 }
 
-/// The hydrostatics of `mesh` at draft `draft` (see the module docs). A draft below the mesh
+/// The hydrostatics of `mesh` at draft `draft` (see [`mesh_hydrostatics`]). A draft below the mesh
 /// gives zeros; a non-finite draft gives NaN figures.
+///
+/// # Method
+///
+/// Every triangle is clipped to the wet side `z <= T` (Sutherland-Hodgman against one plane;
+/// a triangle lying in the waterplane counts as dry) and the figures are sums over the clipped
+/// triangles, by the divergence theorem as in [`Hydrostatics`](crate::Hydrostatics): with `F = (0, y g, 0)`,
+/// `div F = g`, and `F . n = 0` on the centre plane (`y = 0`), on the waterplane and on any
+/// transom at constant x (`n_y = 0`), so the body needs no closing faces there:
+///
+/// ```text
+/// V      = sum ∫ y n_y dA           V LCB = sum ∫ x y n_y dA       V KB = sum ∫ z y n_y dA
+/// S      = sum A                    (a half mesh's faces in the centre plane excluded)
+/// AW     = -sum ∫ n_z dA            AW LCF = -sum ∫ x n_z dA       I_T = -sum ∫ y^2 n_z dA
+/// ```
+///
+/// The waterplane sums hold because `∮ n_z dA = ∮ x n_z dA = ∮ y^2 n_z dA = 0` over the closed
+/// wet body (Gauss with `(0, 0, 1)`, `(0, 0, x)`, `(0, 0, y^2)`), whose closing faces other
+/// than the waterplane (centre plane, vertical transom) have `n_z = 0`. `∫ y dA` is the area
+/// times the centroid's y; the quadratic integrands are integrated exactly by the edge-midpoint
+/// rule `∫ f dA = (A/3)(f(m_ab) + f(m_bc) + f(m_ca))` (Strang and Fix, *An Analysis of the
+/// Finite Element Method*, 1973, table 4.1). The figures are thus exact for the polyhedron:
+/// only the mesh's faceting separates them from the smooth hull's.
+///
+/// # Both sides or one
+///
+/// A mesh with both sides (its lowest y below `-1e-6` of its size) is measured as it is. A mesh
+/// of the starboard side only (`y >= 0`, open or closed at the centre plane) is measured and
+/// doubled: every figure is then of the whole ship.
+///
+/// # Orientation
+///
+/// Outward normals (counter-clockwise triangles seen from outside) give a positive volume. A
+/// mesh oriented inward gives a negative one; it is then measured as if turned outward
+/// ([`MeshHydrostatics::inward`] says so). A mesh oriented inconsistently gives wrong volumes
+/// (no orientation is repaired); [`MeshHydrostatics::open_edges_below`] counts the edges of
+/// one triangle below the waterline (off the centre plane), which a hull watertight below the
+/// waterline has none of.
 pub fn mesh_hydrostatics(mesh: &TriMesh, draft: f64) -> MeshHydrostatics {
     let size = mesh.size();
     let centre = CENTRE_REL * size;

@@ -1,54 +1,6 @@
 //! Slicing a hull mesh at stations `x = const` into sections for the fit.
 //!
-//! # What a section is
-//!
-//! The section at station `x = c` is the cut of the mesh by that plane, kept on the starboard
-//! side (`y >= 0`), as **one polyline from the keel to the deck edge**:
-//!
-//! 1. *Cut.* Every triangle with a vertex on each side of the plane gives one segment. A vertex
-//!    exactly on the plane counts as lying on the forward side (`x >= c`), a symbolic
-//!    perturbation of the plane to `c - 0`: no triangle is ever cut through a vertex, every
-//!    cut triangle crosses exactly two of its edges, and each segment end is identified by the
-//!    mesh edge it lies on, so the segments of a closed mesh join into closed loops whatever
-//!    the tessellation (Hoffmann, *Geometric and Solid Modeling*, 1989, ch. 4 on symbolic
-//!    perturbation). A triangle lying in the plane is not cut. The cut point on edge `(i, j)`,
-//!    `i < j`, is `v_i + t (v_j - v_i)` with `t = (c - x_i) / (x_j - x_i)`, computed the same
-//!    way from both triangles that share the edge.
-//! 2. *Starboard half.* A segment with both ends at `y >= 0` is kept (unless both are at
-//!    `y = 0`: it lies in the centre plane and bounds no half-breadth), one crossing `y = 0`
-//!    is clipped there, one at `y <= 0` is dropped. The clip points are chain ends.
-//! 3. *Chain.* Segments sharing an edge are joined (a hash map of edge ids). Each open chain
-//!    is a *piece*: on a closed symmetric hull a piece runs from the centre plane to the centre
-//!    plane. A piece starts at its end on the centre plane (`|y| <= 1e-6` of the mesh size)
-//!    when it has only one, otherwise at its lower end. Closed loops (wholly off the centre
-//!    plane: a bilge keel, a pod, a demihull) are skipped and listed in the station's notes.
-//! 4. *Join.* Pieces are joined in order of the height of their start; the joins run along
-//!    the centre plane where, at the bow, a bulb and the stem above it are cut in two pieces,
-//!    or aft, a skeg below an aperture. The section thus starts at the **keel**, the lowest
-//!    point of the cut on the centre plane.
-//! 5. *Deck off.* When the section ends on the centre plane (a closed mesh, cut through the
-//!    deck), the deck is cut off: walking back from that end, segments that go outward
-//!    (`y` growing) and rise or fall by at most `tan(deck_angle)` times their outward run are
-//!    deck; the section ends at the **deck edge** (the sheer), where the side turns down. A
-//!    mesh open at the top ends where the cut ends.
-//! 6. *Height limit.* With [`SliceOptions::max_z`], the section ends where it first rises
-//!    through that height.
-//! 7. *Resample.* Consecutive points closer than 1e-9 of the mesh size are merged, then the
-//!    polyline is resampled to [`SliceOptions::points`] points, both ends kept, equally spaced
-//!    in arc length or in arc length plus turning ([`Resample`]).
-//!
-//! A station is dropped, with the reason in [`SliceOutcome::dropped`], when it misses the
-//! mesh, has nothing on the starboard side but closed loops, lies wholly above `max_z`, is
-//! deck only, or is shorter than 1e-6 of the mesh size.
-//!
-//! # Where the stations go
-//!
-//! [`Stations::Count`] puts `n` stations over the mesh's x range, ends included but moved in
-//! by 1e-5 of the length so that the end stations cut the mesh (a transom at constant x lies
-//! in the plane of an end station otherwise, and a pointed end would give one point):
-//! [`Spacing::Uniform`] equally spaced, [`Spacing::Cosine`] at `x_m - (L/2) cos(pi i/(n-1))`,
-//! denser towards the ends where the shape changes fastest (bow, bulb, stern). [`Stations::At`]
-//! takes the positions given.
+//! The rest of this module's documentation is on [`slice_mesh`], where the library's users read it.
 
 use std::collections::HashMap;
 use std::fmt;
@@ -106,7 +58,7 @@ impl fmt::Display for Spacing {
 /// Where the stations are.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Stations {
-    /// `n` stations over the mesh's x range (see the module docs).
+    /// `n` stations over the mesh's x range (see [`slice_mesh`]).
     Count {
         /// Number of stations, at least 2.
         n: usize,
@@ -160,7 +112,7 @@ pub struct SliceOptions {
     pub resample: Resample,
     /// End the sections where they first rise through this height (default: at the deck edge).
     pub max_z: Option<f64>,
-    /// Largest slope of the deck from the horizontal, degrees (default 30; see the module docs).
+    /// Largest slope of the deck from the horizontal, degrees (default 30; see [`slice_mesh`]).
     pub deck_angle: f64,
     /// Units label of the offsets.
     pub units: Units,
@@ -256,7 +208,7 @@ impl SliceOutcome {
 }
 
 /// The x of `n` stations over `[x_min, x_max]`, ends moved in by [`END_INSET`] of the range
-/// (see the module docs); one station is put in the middle.
+/// (see [`slice_mesh`]); one station is put in the middle.
 ///
 /// # Errors
 /// [`HullError::Slice`] for `n == 0` or above [`MAX_STATIONS`], or a range that is not finite
@@ -292,7 +244,57 @@ pub fn station_positions(x_min: f64, x_max: f64, n: usize, spacing: Spacing) -> 
         .collect())
 }
 
-/// Slices `mesh` into sections, keel to deck edge on the starboard side (see the module docs).
+/// Slices `mesh` into sections, keel to deck edge on the starboard side.
+///
+/// # What a section is
+///
+/// The section at station `x = c` is the cut of the mesh by that plane, kept on the starboard
+/// side (`y >= 0`), as **one polyline from the keel to the deck edge**:
+///
+/// 1. *Cut.* Every triangle with a vertex on each side of the plane gives one segment. A vertex
+///    exactly on the plane counts as lying on the forward side (`x >= c`), a symbolic
+///    perturbation of the plane to `c - 0`: no triangle is ever cut through a vertex, every
+///    cut triangle crosses exactly two of its edges, and each segment end is identified by the
+///    mesh edge it lies on, so the segments of a closed mesh join into closed loops whatever
+///    the tessellation (Hoffmann, *Geometric and Solid Modeling*, 1989, ch. 4 on symbolic
+///    perturbation). A triangle lying in the plane is not cut. The cut point on edge `(i, j)`,
+///    `i < j`, is `v_i + t (v_j - v_i)` with `t = (c - x_i) / (x_j - x_i)`, computed the same
+///    way from both triangles that share the edge.
+/// 2. *Starboard half.* A segment with both ends at `y >= 0` is kept (unless both are at
+///    `y = 0`: it lies in the centre plane and bounds no half-breadth), one crossing `y = 0`
+///    is clipped there, one at `y <= 0` is dropped. The clip points are chain ends.
+/// 3. *Chain.* Segments sharing an edge are joined (a hash map of edge ids). Each open chain
+///    is a *piece*: on a closed symmetric hull a piece runs from the centre plane to the centre
+///    plane. A piece starts at its end on the centre plane (`|y| <= 1e-6` of the mesh size)
+///    when it has only one, otherwise at its lower end. Closed loops (wholly off the centre
+///    plane: a bilge keel, a pod, a demihull) are skipped and listed in the station's notes.
+/// 4. *Join.* Pieces are joined in order of the height of their start; the joins run along
+///    the centre plane where, at the bow, a bulb and the stem above it are cut in two pieces,
+///    or aft, a skeg below an aperture. The section thus starts at the **keel**, the lowest
+///    point of the cut on the centre plane.
+/// 5. *Deck off.* When the section ends on the centre plane (a closed mesh, cut through the
+///    deck), the deck is cut off: walking back from that end, segments that go outward
+///    (`y` growing) and rise or fall by at most `tan(deck_angle)` times their outward run are
+///    deck; the section ends at the **deck edge** (the sheer), where the side turns down. A
+///    mesh open at the top ends where the cut ends.
+/// 6. *Height limit.* With [`SliceOptions::max_z`], the section ends where it first rises
+///    through that height.
+/// 7. *Resample.* Consecutive points closer than 1e-9 of the mesh size are merged, then the
+///    polyline is resampled to [`SliceOptions::points`] points, both ends kept, equally spaced
+///    in arc length or in arc length plus turning ([`Resample`]).
+///
+/// A station is dropped, with the reason in [`SliceOutcome::dropped`], when it misses the
+/// mesh, has nothing on the starboard side but closed loops, lies wholly above `max_z`, is
+/// deck only, or is shorter than 1e-6 of the mesh size.
+///
+/// # Where the stations go
+///
+/// [`Stations::Count`] puts `n` stations over the mesh's x range, ends included but moved in
+/// by 1e-5 of the length so that the end stations cut the mesh (a transom at constant x lies
+/// in the plane of an end station otherwise, and a pointed end would give one point):
+/// [`Spacing::Uniform`] equally spaced, [`Spacing::Cosine`] at `x_m - (L/2) cos(pi i/(n-1))`,
+/// denser towards the ends where the shape changes fastest (bow, bulb, stern). [`Stations::At`]
+/// takes the positions given.
 ///
 /// # Errors
 /// [`HullError::Slice`] for fewer than 2 points per section or more than
@@ -361,7 +363,7 @@ pub fn slice_mesh(mesh: &TriMesh, options: &SliceOptions) -> Result<SliceOutcome
 }
 
 /// For every station (sorted x), the triangles it cuts: those with `x_min < c <= x_max`
-/// (a vertex at `c` counts as forward of the plane, see the module docs).
+/// (a vertex at `c` counts as forward of the plane, see [`slice_mesh`]).
 fn triangles_per_station(mesh: &TriMesh, xs: &[f64]) -> Vec<Vec<u32>> {
     let mut buckets = vec![Vec::new(); xs.len()];
     for (t, tri) in mesh.triangles.iter().enumerate() {

@@ -2,31 +2,7 @@
 //! STEP ISO 10303-21 ([`super::step`], `B_SPLINE_SURFACE_WITH_KNOTS` and its rational complex
 //! instance), behind one front: [`read_cad_surfaces`] and [`parse_cad_surfaces`].
 //!
-//! ```
-//! use hull::{parse_cad_surfaces, write_iges, CadFormat, IgesMeta, Units};
-//! use nurbs::{KnotVector, NurbsSurface, Vec3};
-//!
-//! let k = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).unwrap();
-//! let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(2.0, 1.0, 1.0)];
-//! let s = NurbsSurface::try_new(k.clone(), k, &pts, None).unwrap();
-//! let mut iges = Vec::new();
-//! write_iges(&mut iges, &s, &IgesMeta::new(Units::Millimetre.into(), "a.igs", "20240101.000000")).unwrap();
-//! // Read in the file's unit (None), or converted to metres.
-//! let read = parse_cad_surfaces(&iges, "a.igs", None).unwrap();
-//! assert_eq!((read.format, read.units, read.surfaces.len()), (CadFormat::Iges, Units::Millimetre, 1));
-//! assert_eq!(read.surfaces[0].surface, s);
-//! let metres = parse_cad_surfaces(&iges, "a.igs", Some(Units::Metre)).unwrap();
-//! assert_eq!(metres.surfaces[0].surface.control_point(1, 1), Vec3::new(2e-3, 1e-3, 1e-3));
-//! ```
-//!
-//! The format is told by the content (an IGES start record, `S` in column 73 of the first
-//! line; a STEP file opening with `ISO-10303-21;`), else by the extension (`.igs`, `.iges`,
-//! `.stp`, `.step`, any case). Coordinates are converted from the file's length unit to the
-//! caller's, or kept in the file's unit when it is one of [`Units`] (else converted to metres,
-//! with a note). What the readers do not read (curves, other surface types, trimming, colours)
-//! is listed in [`CadSurfaces::notes`]. Every malformed file gives [`HullError::Input`] with
-//! [`InputErrorKind::Cad`] at `file:line`, naming the entity and parameter; counts are checked
-//! against [`crate::limits`] before anything is allocated for them.
+//! The rest of this module's documentation is on [`parse_cad_surfaces`], where the library's users read it.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -131,6 +107,32 @@ pub fn read_cad_surfaces(path: &Path, target: Option<Units>) -> Result<CadSurfac
 
 /// Reads the B-spline surfaces of IGES or STEP text (format from the content), converted to
 /// `target`, or in the file's unit when `None`; `source` names the input in messages.
+///
+/// ```
+/// use hull::{parse_cad_surfaces, write_iges, CadFormat, IgesMeta, Units};
+/// use nurbs::{KnotVector, NurbsSurface, Vec3};
+///
+/// let k = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).unwrap();
+/// let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(2.0, 1.0, 1.0)];
+/// let s = NurbsSurface::try_new(k.clone(), k, &pts, None).unwrap();
+/// let mut iges = Vec::new();
+/// write_iges(&mut iges, &s, &IgesMeta::new(Units::Millimetre.into(), "a.igs", "20240101.000000")).unwrap();
+/// // Read in the file's unit (None), or converted to metres.
+/// let read = parse_cad_surfaces(&iges, "a.igs", None).unwrap();
+/// assert_eq!((read.format, read.units, read.surfaces.len()), (CadFormat::Iges, Units::Millimetre, 1));
+/// assert_eq!(read.surfaces[0].surface, s);
+/// let metres = parse_cad_surfaces(&iges, "a.igs", Some(Units::Metre)).unwrap();
+/// assert_eq!(metres.surfaces[0].surface.control_point(1, 1), Vec3::new(2e-3, 1e-3, 1e-3));
+/// ```
+///
+/// The format is told by the content (an IGES start record, `S` in column 73 of the first
+/// line; a STEP file opening with `ISO-10303-21;`), else by the extension (`.igs`, `.iges`,
+/// `.stp`, `.step`, any case). Coordinates are converted from the file's length unit to the
+/// caller's, or kept in the file's unit when it is one of [`Units`] (else converted to metres,
+/// with a note). What the readers do not read (curves, other surface types, trimming, colours)
+/// is listed in [`CadSurfaces::notes`]. Every malformed file gives [`HullError::Input`] with
+/// [`InputErrorKind::Cad`] at `file:line`, naming the entity and parameter; counts are checked
+/// against the caps (crate docs, Limits) before anything is allocated for them.
 ///
 /// # Errors
 /// [`HullError::Input`] with [`InputErrorKind::Cad`] when the content is neither format or

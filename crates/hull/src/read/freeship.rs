@@ -1,66 +1,7 @@
 //! FREE!ship (and DELFTship) text exchange: the "Offsets as 3D points" export and the curve
 //! import text.
 //!
-//! Layouts as FREE!ship writes and reads them (FREE!ship 2.6 / FREE!ship Plus, GPL, unit
-//! `FreeShipUnit.pas`: `TFreeEdit.File_ExportOffsets`, `TFreeEdit.File_ImportChines`,
-//! `TFreeIntersection.FGetDescription`).
-//!
-//! **Offsets export** (File > Export > Offsets, `*.txt`): every intersection of the model, the
-//! stations first, then the buttocks, the waterlines, the diagonals and the control curves:
-//!
-//! ```text
-//! Station 25.000
-//!            25.0000     0.0000     0.0000
-//!            25.0000     2.8125     0.6250
-//!            25.0000     4.4531     1.2500    KNUCKLE
-//! Buttock 1.000
-//!             4.9875     1.0000     0.0000
-//! Waterline 2.500
-//! 2 segments.
-//! SEGMENT 1
-//!             0.0000     0.0000     2.5000
-//! SEGMENT 2
-//! ...
-//! CONTROLCURVE
-//! ...
-//! ```
-//!
-//! - A description line: `Station`, `Buttock`, `Waterline` or `Diagonal`, a space, then the
-//!   plane's position with three decimals (`FloatToStrF(..., ffFixed, 7, 3)`: x of a station,
-//!   y of a buttock, z of a waterline); or `CONTROLCURVE`.
-//! - When the intersection has more than one piece, a line `N segments.` and a line
-//!   `SEGMENT i` before each piece.
-//! - One point a line: eight spaces, then x, y, z each with four decimals right-aligned in ten
-//!   characters, separated by one space (`MakeLength(P, 4, 10)`); a knuckle point ends with
-//!   `    KNUCKLE`.
-//!
-//! The stations are the body plan, the waterlines and buttocks the other two views: they are
-//! merged by [`super::views`] (each station curve is a section, keel to deck; every waterline
-//! and buttock crossing the station is checked against it and the disagreements reported).
-//! The pieces of a station are joined in file order, each turned to continue from the end of
-//! the one before. Diagonals and control curves are not read (noted).
-//!
-//! **Curve import text** (File > Import > Chines, `*.txt`):
-//!
-//! ```text
-//! 0
-//!   25.0 0.0 0.0
-//!   25.0 2.8125 0.625
-//!
-//!   50.0 0.0 0.0
-//!   ...
-//! EOF
-//! ```
-//!
-//! The first line is the units, `0` metric (metres) or `1` imperial (feet); then the curves as
-//! `x y z` lines, a blank line between two curves; an `EOF` line (or the end of the file) ends
-//! the data. Each curve becomes one section (points as in [`super::point_cloud`]); the
-//! coordinates are converted from the file's units to the units asked for.
-//!
-//! Axes: FREE!ship's, as written: x forward from the model's origin (where the designer put
-//! it, usually the aft perpendicular), y the half-breadth of the modelled side, z up from the
-//! baseline. A file whose half-breadths are all <= 0 (the other side) is mirrored, y -> -y,
-//! with a note; a file with both signs is an error.
+//! The rest of this module's documentation is on [`parse_freeship_offsets`], where the library's users read it.
 
 use nurbs::Vec3;
 
@@ -122,7 +63,68 @@ fn check_segment_count(item: Option<&Intersection>, source: &str) -> Result<(), 
     }
 }
 
-/// Parses a FREE!ship offsets export (see the module docs).
+/// Parses a FREE!ship offsets export.
+///
+/// Layouts as FREE!ship writes and reads them (FREE!ship 2.6 / FREE!ship Plus, GPL, unit
+/// `FreeShipUnit.pas`: `TFreeEdit.File_ExportOffsets`, `TFreeEdit.File_ImportChines`,
+/// `TFreeIntersection.FGetDescription`).
+///
+/// **Offsets export** (File > Export > Offsets, `*.txt`): every intersection of the model, the
+/// stations first, then the buttocks, the waterlines, the diagonals and the control curves:
+///
+/// ```text
+/// Station 25.000
+///            25.0000     0.0000     0.0000
+///            25.0000     2.8125     0.6250
+///            25.0000     4.4531     1.2500    KNUCKLE
+/// Buttock 1.000
+///             4.9875     1.0000     0.0000
+/// Waterline 2.500
+/// 2 segments.
+/// SEGMENT 1
+///             0.0000     0.0000     2.5000
+/// SEGMENT 2
+/// ...
+/// CONTROLCURVE
+/// ...
+/// ```
+///
+/// - A description line: `Station`, `Buttock`, `Waterline` or `Diagonal`, a space, then the
+///   plane's position with three decimals (`FloatToStrF(..., ffFixed, 7, 3)`: x of a station,
+///   y of a buttock, z of a waterline); or `CONTROLCURVE`.
+/// - When the intersection has more than one piece, a line `N segments.` and a line
+///   `SEGMENT i` before each piece.
+/// - One point a line: eight spaces, then x, y, z each with four decimals right-aligned in ten
+///   characters, separated by one space (`MakeLength(P, 4, 10)`); a knuckle point ends with
+///   `    KNUCKLE`.
+///
+/// The stations are the body plan, the waterlines and buttocks the other two views: they are
+/// merged by the three-views merge ([`Merged`](crate::Merged)) (each station curve is a section, keel to deck; every waterline
+/// and buttock crossing the station is checked against it and the disagreements reported).
+/// The pieces of a station are joined in file order, each turned to continue from the end of
+/// the one before. Diagonals and control curves are not read (noted).
+///
+/// **Curve import text** (File > Import > Chines, `*.txt`):
+///
+/// ```text
+/// 0
+///   25.0 0.0 0.0
+///   25.0 2.8125 0.625
+///
+///   50.0 0.0 0.0
+///   ...
+/// EOF
+/// ```
+///
+/// The first line is the units, `0` metric (metres) or `1` imperial (feet); then the curves as
+/// `x y z` lines, a blank line between two curves; an `EOF` line (or the end of the file) ends
+/// the data. Each curve becomes one section (points as in a point cloud); the
+/// coordinates are converted from the file's units to the units asked for.
+///
+/// Axes: FREE!ship's, as written: x forward from the model's origin (where the designer put
+/// it, usually the aft perpendicular), y the half-breadth of the modelled side, z up from the
+/// baseline. A file whose half-breadths are all <= 0 (the other side) is mirrored, y -> -y,
+/// with a note; a file with both signs is an error.
 ///
 /// # Errors
 ///
@@ -351,7 +353,7 @@ fn join(segments: Vec<ViewLine>, label: &str) -> ViewLine {
     out
 }
 
-/// Parses FREE!ship's curve import text (see the module docs), converting its units to
+/// Parses FREE!ship's curve import text (see [`parse_freeship_offsets`]), converting its units to
 /// `units`.
 ///
 /// # Errors

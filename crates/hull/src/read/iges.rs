@@ -1,48 +1,7 @@
 //! IGES 5.3 reader of rational B-spline surfaces (entity 128), the inverse of
 //! [`crate::export::write_iges`].
 //!
-//! The file is read as IGES 5.3 (ANS US PRO/IPO-100-1996) lays it out in chapter 2:
-//!
-//! * **Records** (section 2.2.4): 80 columns, the section letter in column 73 and the sequence
-//!   number in columns 74-80, counted from 1 in each section; `\r\n` line ends are accepted.
-//!   Sections come in the order S, G, D, P, T, each at least one record but D and P. The
-//!   compressed ASCII form (section letter `C`, section 2.3) and the binary form are refused.
-//! * **Terminate** (2.2.4.6): one record, `S nnnnnnn G nnnnnnn D nnnnnnn P nnnnnnn`; the counts
-//!   must match the sections read (a truncated file fails here or earlier, at its place).
-//! * **Global** (2.2.4.3): columns 1-72 of the G records, one stream of free-format parameters.
-//!   Field 1 and field 2 are the parameter and record delimiters as Hollerith constants `1Hc`
-//!   (defaulted: `,` and `;`); then field 13 the model space scale (real world = model /
-//!   scale), 14 the units flag and 15 the units name. Flags 1-11 are Table 3's units (1 inch,
-//!   2 mm, 3 the unit named in field 15, 4 ft, 5 mile, 6 m, 7 km, 8 mil, 9 micron, 10 cm, 11
-//!   microinch); with flag 3, field 15 must name one of them (`IN`, `INCH`, `MM`, `FT`, `MI`,
-//!   `M`, `KM`, `MIL`, `UM`, `CM`, `UIN`).
-//! * **Directory** (2.2.4.4): two records of ten 8-column fields per entity. Read are the
-//!   entity type (field 1), the parameter data pointer (2), the transformation matrix pointer
-//!   (7), the parameter line count (14) and the label (18). The form of a 128 (field 15) only
-//!   names the shape its parameters give (section 4.24), so it is not read.
-//! * **Parameter data** (2.2.4.5): columns 1-64 of the P records, from the entry's first record
-//!   for its line count, each pointing back to its directory entry in columns 65-72. Free
-//!   format (2.2.2): integers, reals (with `E` or `D` exponents), Hollerith strings `nHc..c`
-//!   (which may hold the delimiters), empty fields. The parameters of one entity run over as
-//!   many records as it needs (the blanks that pad a record are ignored around numbers; a
-//!   Hollerith string may continue on the next record). The record delimiter ends them.
-//!
-//! **Entity 128** (section 4.24): `128, K1, K2, M1, M2, PROP1..PROP5, S(-M1)..S(N1+M1),
-//! T(-M2)..T(N2+M2), W(0,0)..W(K1,K2), X(0,0), Y(0,0), Z(0,0) .. Z(K1,K2), U(0), U(1), V(0), V(1)`
-//! with `n_u = K1 + 1` poles of degree `M1` along u (likewise v); weights and points run with
-//! the first index fastest (`k = j * n_u + i`), turned into the kernel's u-major order
-//! `i * n_v + j`. The weights are read whatever PROP3 (polynomial) says; a PROP3 of 1 with
-//! unequal weights is noted. A parameter range `[U(0), U(1)] x [V(0), V(1)]` narrower than the
-//! knots' domain is noted, the whole surface returned.
-//!
-//! **Entity 124** (section 4.21), the transformation matrix `R11 R12 R13 T1 R21 .. T3`, when
-//! a 128's directory entry points to one: every control point becomes `R p + T` (exact for a
-//! NURBS: the map is affine and the weights stay), a 124 pointing to another 124 applied
-//! first (3.2.2), chains checked for cycles.
-//!
-//! **Entities 144 and 143** (trimmed and bounded surfaces, 4.34 and 4.32): their base surface,
-//! when it is a 128, is returned whole, with a note that the trimming was ignored. Every other
-//! entity is counted in one note by type.
+//! The rest of this module's documentation is on [`parse_iges`], where the library's users read it.
 
 use nurbs::Vec3;
 
@@ -63,8 +22,51 @@ struct Sections<'a> {
 
 const LETTERS: [u8; 5] = [b'S', b'G', b'D', b'P', b'T'];
 
-/// Reads the entity-128 surfaces of an IGES file (module docs), converted to `target`, or in
+/// Reads the entity-128 surfaces of an IGES file (see [`parse_iges`]), converted to `target`, or in
 /// the file's unit when `None`.
+///
+/// The file is read as IGES 5.3 (ANS US PRO/IPO-100-1996) lays it out in chapter 2:
+///
+/// * **Records** (section 2.2.4): 80 columns, the section letter in column 73 and the sequence
+///   number in columns 74-80, counted from 1 in each section; `\r\n` line ends are accepted.
+///   Sections come in the order S, G, D, P, T, each at least one record but D and P. The
+///   compressed ASCII form (section letter `C`, section 2.3) and the binary form are refused.
+/// * **Terminate** (2.2.4.6): one record, `S nnnnnnn G nnnnnnn D nnnnnnn P nnnnnnn`; the counts
+///   must match the sections read (a truncated file fails here or earlier, at its place).
+/// * **Global** (2.2.4.3): columns 1-72 of the G records, one stream of free-format parameters.
+///   Field 1 and field 2 are the parameter and record delimiters as Hollerith constants `1Hc`
+///   (defaulted: `,` and `;`); then field 13 the model space scale (real world = model /
+///   scale), 14 the units flag and 15 the units name. Flags 1-11 are Table 3's units (1 inch,
+///   2 mm, 3 the unit named in field 15, 4 ft, 5 mile, 6 m, 7 km, 8 mil, 9 micron, 10 cm, 11
+///   microinch); with flag 3, field 15 must name one of them (`IN`, `INCH`, `MM`, `FT`, `MI`,
+///   `M`, `KM`, `MIL`, `UM`, `CM`, `UIN`).
+/// * **Directory** (2.2.4.4): two records of ten 8-column fields per entity. Read are the
+///   entity type (field 1), the parameter data pointer (2), the transformation matrix pointer
+///   (7), the parameter line count (14) and the label (18). The form of a 128 (field 15) only
+///   names the shape its parameters give (section 4.24), so it is not read.
+/// * **Parameter data** (2.2.4.5): columns 1-64 of the P records, from the entry's first record
+///   for its line count, each pointing back to its directory entry in columns 65-72. Free
+///   format (2.2.2): integers, reals (with `E` or `D` exponents), Hollerith strings `nHc..c`
+///   (which may hold the delimiters), empty fields. The parameters of one entity run over as
+///   many records as it needs (the blanks that pad a record are ignored around numbers; a
+///   Hollerith string may continue on the next record). The record delimiter ends them.
+///
+/// **Entity 128** (section 4.24): `128, K1, K2, M1, M2, PROP1..PROP5, S(-M1)..S(N1+M1),
+/// T(-M2)..T(N2+M2), W(0,0)..W(K1,K2), X(0,0), Y(0,0), Z(0,0) .. Z(K1,K2), U(0), U(1), V(0), V(1)`
+/// with `n_u = K1 + 1` poles of degree `M1` along u (likewise v); weights and points run with
+/// the first index fastest (`k = j * n_u + i`), turned into the kernel's u-major order
+/// `i * n_v + j`. The weights are read whatever PROP3 (polynomial) says; a PROP3 of 1 with
+/// unequal weights is noted. A parameter range `[U(0), U(1)] x [V(0), V(1)]` narrower than the
+/// knots' domain is noted, the whole surface returned.
+///
+/// **Entity 124** (section 4.21), the transformation matrix `R11 R12 R13 T1 R21 .. T3`, when
+/// a 128's directory entry points to one: every control point becomes `R p + T` (exact for a
+/// NURBS: the map is affine and the weights stay), a 124 pointing to another 124 applied
+/// first (3.2.2), chains checked for cycles.
+///
+/// **Entities 144 and 143** (trimmed and bounded surfaces, 4.34 and 4.32): their base surface,
+/// when it is a 128, is returned whole, with a note that the trimming was ignored. Every other
+/// entity is counted in one note by type.
 ///
 /// # Errors
 /// [`crate::InputErrorKind::Cad`] at the record and parameter that break the format, or the

@@ -1,46 +1,6 @@
 //! JSON offset tables: the vessel.js ship specification and the OpenHull station table.
 //!
-//! **vessel.js** (`structure.hull` of a ship specification, e.g. R/V Gunnerus in
-//! `shared/data/gunnerus/gunnerus.json`; layout from vessel.js `source/classes/Hull.js`):
-//!
-//! ```json
-//! {"structure": {"hull": {
-//!   "attributes": {"LOA": 36.25, "BOA": 9.6, "Depth": 6.6},
-//!   "halfBreadths": {"waterlines": [0, 0.0758, ...], "stations": [0, 0.016, ...],
-//!                    "table": [[null, 0, 0.0237, ...], ...]}}}}
-//! ```
-//!
-//! Normalised: `x = station LOA` (from the aft end of LOA, forward), `z = waterline Depth`
-//! (from the baseline), `y = cell BOA / 2`, in metres (converted to the requested units).
-//! `table[i][j]` is waterline `i` at station `j`; `null` is a missing offset. Each station
-//! becomes one section, keel to deck, labelled with its index. vessel.js gives the hull as one
-//! table: its waterlines and stations are the same cells, so there is nothing to cross-check;
-//! a non-empty `buttockHeights` is not read (noted).
-//!
-//! **OpenHull** (`offsets_table.json` of the 116 m coastal cargo ship,
-//! `shared/data/coastal_cargo_116m/`): an object of stations, each an object of values in
-//! millimetres:
-//!
-//! ```json
-//! {"2": {"站号": 2.0, "船底线": 0.0, "1000WL": 4236.0, ..., "1000纵剖线": 28.0, ...,
-//!        "主甲板宽": 8086.0, "主甲边高": 9149.0, ...}}
-//! ```
-//!
-//! - `站号`: the station number, 0 at the AP; `x = station spacing`, the spacing being
-//!   `Lpp / 20` when [`super::ReadOptions::dimensions`] are given, else `station_spacing_m` (or `lpp_m / 20`)
-//!   of a `principals.json` beside the file;
-//! - `NNNNWL`: the half-breadth on the waterline NNNN mm above the baseline;
-//! - `NNNN纵剖线`: the height of the buttock NNNN mm off the centreline;
-//! - `船底线`: the height of the bottom (keel) line on the centreline;
-//! - `主甲板宽`, `主甲边高`: the main-deck edge, half-breadth and height;
-//! - `主甲中高` (main deck at the centreline), `船楼甲板宽`, `楼甲边高`, `楼甲中高` (raised
-//!   deck), `舷墙宽`, `舷墙高` (bulwark): above the hull's side, not read (noted).
-//!
-//! The waterlines, buttocks, keel and deck are the three views of [`super::views`], merged into
-//! one section per station with the buttocks checked against the waterlines.
-//!
-//! Errors give the line and column of the JSON text (characters, 1-based) where the parser
-//! stopped, or of the key whose value is wrong.
+//! The rest of this module's documentation is on [`parse_json_table`], where the library's users read it.
 
 use std::path::Path;
 
@@ -94,6 +54,48 @@ fn locate(text: &str, source: &str, keys: &[&str]) -> Location {
 
 /// Parses a JSON offset table (either layout, told apart by its keys). `dir` is the folder of
 /// the file, where an OpenHull table's `principals.json` is looked for.
+///
+/// **vessel.js** (`structure.hull` of a ship specification, e.g. R/V Gunnerus in
+/// `shared/data/gunnerus/gunnerus.json`; layout from vessel.js `source/classes/Hull.js`):
+///
+/// ```json
+/// {"structure": {"hull": {
+///   "attributes": {"LOA": 36.25, "BOA": 9.6, "Depth": 6.6},
+///   "halfBreadths": {"waterlines": [0, 0.0758, ...], "stations": [0, 0.016, ...],
+///                    "table": [[null, 0, 0.0237, ...], ...]}}}}
+/// ```
+///
+/// Normalised: `x = station LOA` (from the aft end of LOA, forward), `z = waterline Depth`
+/// (from the baseline), `y = cell BOA / 2`, in metres (converted to the requested units).
+/// `table[i][j]` is waterline `i` at station `j`; `null` is a missing offset. Each station
+/// becomes one section, keel to deck, labelled with its index. vessel.js gives the hull as one
+/// table: its waterlines and stations are the same cells, so there is nothing to cross-check;
+/// a non-empty `buttockHeights` is not read (noted).
+///
+/// **OpenHull** (`offsets_table.json` of the 116 m coastal cargo ship,
+/// `shared/data/coastal_cargo_116m/`): an object of stations, each an object of values in
+/// millimetres:
+///
+/// ```json
+/// {"2": {"站号": 2.0, "船底线": 0.0, "1000WL": 4236.0, ..., "1000纵剖线": 28.0, ...,
+///        "主甲板宽": 8086.0, "主甲边高": 9149.0, ...}}
+/// ```
+///
+/// - `站号`: the station number, 0 at the AP; `x = station spacing`, the spacing being
+///   `Lpp / 20` when [`super::ReadOptions::dimensions`] are given, else `station_spacing_m` (or `lpp_m / 20`)
+///   of a `principals.json` beside the file;
+/// - `NNNNWL`: the half-breadth on the waterline NNNN mm above the baseline;
+/// - `NNNN纵剖线`: the height of the buttock NNNN mm off the centreline;
+/// - `船底线`: the height of the bottom (keel) line on the centreline;
+/// - `主甲板宽`, `主甲边高`: the main-deck edge, half-breadth and height;
+/// - `主甲中高` (main deck at the centreline), `船楼甲板宽`, `楼甲边高`, `楼甲中高` (raised
+///   deck), `舷墙宽`, `舷墙高` (bulwark): above the hull's side, not read (noted).
+///
+/// The waterlines, buttocks, keel and deck are the three views of the three-views merge ([`Merged`](crate::Merged)), merged into
+/// one section per station with the buttocks checked against the waterlines.
+///
+/// Errors give the line and column of the JSON text (characters, 1-based) where the parser
+/// stopped, or of the key whose value is wrong.
 ///
 /// # Errors
 ///

@@ -1,39 +1,6 @@
 //! The long CSV: one point a row, columns found by their names.
 //!
-//! ```text
-//! station_index,x_m_from_aft_end,waterline_index,z_m_above_baseline,halfbreadth_m,halfbreadth_is_null_in_source
-//! 20,11.6,0,0.0,0.0,0
-//! 21,12.18,0,0.0,0.0,0
-//! 0,0.0,1,0.5,0.0,0
-//! ...
-//! ```
-//!
-//! The header names the columns, in any order, case-insensitive:
-//!
-//! - `x`, `y`, `z`: a column named `x` or starting with `x_` (`x_m_from_AP`), the same for `z`;
-//!   for `y` also any name containing `halfbreadth`, `half_breadth` or `half-breadth`. So
-//!   `x,z,y` (station, height, half-breadth) is read as it says.
-//! - optional, the station label: `section`, `sections`, `station`, `station_index`, `frame`;
-//!   without it the stations are told apart by their `x`.
-//! - optional, the kind of point: `point_type`, `kind` or `type` (see below), and the name of
-//!   its line: `source_keys` or `line`.
-//! - any other column is not read (listed in a note).
-//!
-//! An empty half-breadth is a missing offset (a `null` of the source) and is skipped.
-//!
-//! **Without a kind column** every row is an offset of its station: each station (label, or
-//! x) becomes one section, its points in order of height (ties by half-breadth), keel to deck;
-//! rows of a station need not be consecutive (tables written waterline by waterline). The
-//! sections are put in order of x.
-//!
-//! **With a kind column** the rows are the lines of a lines plan, merged by
-//! [`super::views`]: kinds containing `waterline` are waterline half-breadths, `buttock`
-//! buttock heights, `keel` (or `profile`, `stem`, `stern`) centre-plane profile points, and
-//! `deck_edge` or `deck` the deck line at side (the main deck); kinds naming a `centreline`
-//! or `centerline` deck height, a `raised` deck or a `bulwark` lie above the hull's side and
-//! are not read (counted in a note). Any other kind is an error.
-//!
-//! Axes: as written (x forward, y half-breadth >= 0, z up), in the units given.
+//! The rest of this module's documentation is on [`parse_long_csv`], where the library's users read it.
 
 use std::collections::HashMap;
 
@@ -112,7 +79,42 @@ fn view_of(kind: &str) -> Result<Option<super::View>, ()> {
     }
 }
 
-/// Parses a long CSV (see the module docs).
+/// Parses a long CSV (see [`parse_long_csv`]).
+///
+/// ```text
+/// station_index,x_m_from_aft_end,waterline_index,z_m_above_baseline,halfbreadth_m,halfbreadth_is_null_in_source
+/// 20,11.6,0,0.0,0.0,0
+/// 21,12.18,0,0.0,0.0,0
+/// 0,0.0,1,0.5,0.0,0
+/// ...
+/// ```
+///
+/// The header names the columns, in any order, case-insensitive:
+///
+/// - `x`, `y`, `z`: a column named `x` or starting with `x_` (`x_m_from_AP`), the same for `z`;
+///   for `y` also any name containing `halfbreadth`, `half_breadth` or `half-breadth`. So
+///   `x,z,y` (station, height, half-breadth) is read as it says.
+/// - optional, the station label: `section`, `sections`, `station`, `station_index`, `frame`;
+///   without it the stations are told apart by their `x`.
+/// - optional, the kind of point: `point_type`, `kind` or `type` (see below), and the name of
+///   its line: `source_keys` or `line`.
+/// - any other column is not read (listed in a note).
+///
+/// An empty half-breadth is a missing offset (a `null` of the source) and is skipped.
+///
+/// **Without a kind column** every row is an offset of its station: each station (label, or
+/// x) becomes one section, its points in order of height (ties by half-breadth), keel to deck;
+/// rows of a station need not be consecutive (tables written waterline by waterline). The
+/// sections are put in order of x.
+///
+/// **With a kind column** the rows are the lines of a lines plan, merged by
+/// the three-views merge ([`Merged`](crate::Merged)): kinds containing `waterline` are waterline half-breadths, `buttock`
+/// buttock heights, `keel` (or `profile`, `stem`, `stern`) centre-plane profile points, and
+/// `deck_edge` or `deck` the deck line at side (the main deck); kinds naming a `centreline`
+/// or `centerline` deck height, a `raised` deck or a `bulwark` lie above the hull's side and
+/// are not read (counted in a note). Any other kind is an error.
+///
+/// Axes: as written (x forward, y half-breadth >= 0, z up), in the units given.
 ///
 /// # Errors
 ///

@@ -1,47 +1,6 @@
 //! Readers of offset data, told apart by their content.
 //!
-//! | format | module | recognised by |
-//! |---|---|---|
-//! | sections CSV `section,x,y,z` | [`sections_csv`] | first field `section` |
-//! | offset table (stations across, waterlines down) | [`offset_table`] | any other CSV |
-//! | Todd's Series 60 table (fractions, `MaxBm` row) | [`series60_table`] | a `MaxBm` row |
-//! | long CSV, one point a row, columns by name (`x,z,y`, ...) | [`long_csv`] | a header naming x, y and z columns |
-//! | JSON offset tables (vessel.js ship, OpenHull table) | [`json_table`] | first character `{` |
-//! | station point clouds (`x y z` or `y z` blocks) | [`point_cloud`] | whitespace-separated numbers |
-//! | FREE!ship offsets export and curve import text | [`freeship`] | a `Station 1.000` line, or a first line `0`/`1` |
-//!
-//! B-spline *surfaces* (not offsets) are read from IGES and STEP files by [`cad`] ([`iges`],
-//! [`step`]), through [`read_cad_surfaces`].
-//!
-//! The CSV formats are delimited text, UTF-8 (a byte-order mark is skipped; UTF-16 is refused
-//! with a message saying so), with `\n`, `\r\n` or `\r` line ends, mixed as they come.
-//! Fields are trimmed of spaces and tabs; a field may be quoted with `"` (a doubled `""` inside
-//! stands for one quote; a quoted field ends on its own line). Blank lines, lines of empty
-//! fields only (`,,,` as spreadsheets export them), and lines whose first non-blank character is
-//! `#` are skipped. `nan` and `inf` are refused.
-//!
-//! The delimiter is the file's, set by its first data line (the first line neither blank nor a
-//! comment): a semicolon when that line holds one and none of the pieces between them holds more
-//! than one comma or starts or ends with one (a European spreadsheet's CSV: `z\x;0;2,5;5`), else
-//! a tab by the same rule (a spreadsheet's text export), else a comma (so `"a;b",1,2` and
-//! `0,<tab>1.5,<tab>2` are comma files). Every later line must use the same delimiter (a line that uses
-//! another is refused at its place). With a comma delimiter numbers use a decimal point (a
-//! decimal comma splits the number into two fields, and the messages say so). With a `;` or
-//! tab delimiter, and only then, a field that is a number written with one decimal comma and
-//! no point (`1,5`, `-0,25`, `1,5e-3`) is read as that number with a decimal point (`1.5`);
-//! a field with both (`1.000,5`, thousands grouped) is not a number.
-//!
-//! Errors point at `file:line:column`, with 1-based line numbers of the file and 1-based
-//! field numbers as columns (CSV fields; whitespace-separated tokens in the text formats;
-//! characters in JSON) (see [`crate::Location`]).
-//!
-//! Every reader converts to hullskin's axes (x forward from the aft end or AP, y the
-//! half-breadth >= 0, z up from the baseline) and [`read_offsets_with`] says in
-//! [`ReadOutcome::axes`] which axes it assumed or how it converted, with notes, suspicious
-//! values and disagreements between the views of a lines plan.
-//!
-//! The readers parse; they do not check the data can be skinned: call
-//! [`Offsets::validate`] with the fit's degree + 1 for that.
+//! The rest of this module's documentation is on [`read_offsets`], where the library's users read it.
 
 mod cad;
 mod freeship;
@@ -211,6 +170,49 @@ pub(crate) const AS_WRITTEN: &str = "as written: x forward, y half-breadth >= 0,
 /// Reads the offsets in `path`, any format (see [`detect_format`]), in `units`.
 /// The `source` of the result is `path` as given. Notes and reports are dropped: see
 /// [`read_offsets_with`] for them.
+///
+/// | format | reader | recognised by |
+/// |---|---|---|
+/// | sections CSV `section,x,y,z` | [`parse_sections_csv`] | first field `section` |
+/// | offset table (stations across, waterlines down) | [`parse_offset_table`] | any other CSV |
+/// | Todd's Series 60 table (fractions, `MaxBm` row) | [`parse_series60_table`] | a `MaxBm` row |
+/// | long CSV, one point a row, columns by name (`x,z,y`, ...) | [`parse_long_csv`] | a header naming x, y and z columns |
+/// | JSON offset tables (vessel.js ship, OpenHull table) | [`parse_json_table`] | first character `{` |
+/// | station point clouds (`x y z` or `y z` blocks) | [`parse_point_cloud`] | whitespace-separated numbers |
+/// | FREE!ship offsets export and curve import text | [`parse_freeship_offsets`] | a `Station 1.000` line, or a first line `0`/`1` |
+///
+/// B-spline *surfaces* (not offsets) are read from IGES and STEP files by [`parse_cad_surfaces`] ([`parse_iges`],
+/// [`parse_step`]), through [`read_cad_surfaces`].
+///
+/// The CSV formats are delimited text, UTF-8 (a byte-order mark is skipped; UTF-16 is refused
+/// with a message saying so), with `\n`, `\r\n` or `\r` line ends, mixed as they come.
+/// Fields are trimmed of spaces and tabs; a field may be quoted with `"` (a doubled `""` inside
+/// stands for one quote; a quoted field ends on its own line). Blank lines, lines of empty
+/// fields only (`,,,` as spreadsheets export them), and lines whose first non-blank character is
+/// `#` are skipped. `nan` and `inf` are refused.
+///
+/// The delimiter is the file's, set by its first data line (the first line neither blank nor a
+/// comment): a semicolon when that line holds one and none of the pieces between them holds more
+/// than one comma or starts or ends with one (a European spreadsheet's CSV: `z\x;0;2,5;5`), else
+/// a tab by the same rule (a spreadsheet's text export), else a comma (so `"a;b",1,2` and
+/// `0,<tab>1.5,<tab>2` are comma files). Every later line must use the same delimiter (a line that uses
+/// another is refused at its place). With a comma delimiter numbers use a decimal point (a
+/// decimal comma splits the number into two fields, and the messages say so). With a `;` or
+/// tab delimiter, and only then, a field that is a number written with one decimal comma and
+/// no point (`1,5`, `-0,25`, `1,5e-3`) is read as that number with a decimal point (`1.5`);
+/// a field with both (`1.000,5`, thousands grouped) is not a number.
+///
+/// Errors point at `file:line:column`, with 1-based line numbers of the file and 1-based
+/// field numbers as columns (CSV fields; whitespace-separated tokens in the text formats;
+/// characters in JSON) (see [`crate::Location`]).
+///
+/// Every reader converts to hullskin's axes (x forward from the aft end or AP, y the
+/// half-breadth >= 0, z up from the baseline) and [`read_offsets_with`] says in
+/// [`ReadOutcome::axes`] which axes it assumed or how it converted, with notes, suspicious
+/// values and disagreements between the views of a lines plan.
+///
+/// The readers parse; they do not check the data can be skinned: call
+/// [`Offsets::validate`] with the fit's degree + 1 for that.
 ///
 /// # Errors
 ///

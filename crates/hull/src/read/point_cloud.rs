@@ -1,42 +1,6 @@
 //! Station point clouds: whitespace-separated `x y z` (or `y z`) points, one section per block.
 //!
-//! ```text
-//! % frigate, one station after another (BSpline3D-MATLAB frigate_1Surface.dat)
-//!   0.0000000e+000  7.5000000e-001  6.8290000e+000
-//!   0.0000000e+000  1.5000000e+000  8.5630000e+000
-//!  -2.0000000e+000  7.5000000e-001  5.3710000e+000
-//! ```
-//!
-//! ```text
-//! station 5 x = 12.5
-//! 0.0 0.0
-//! 1.2 0.4
-//!
-//! station 6 x = 15
-//! 0.0 0.1
-//! 1.3 0.5
-//! ```
-//!
-//! - One point a line: three numbers `x y z`, or two numbers `y z` whose station position is
-//!   given by its block's header (`x = 12.5`, `x=12.5` or `x 12.5` anywhere in it). Numbers are
-//!   separated by spaces or tabs; Fortran/MATLAB exponents (`7.5e-001`) are fine.
-//! - Blocks are separated by blank lines or by header lines (any line whose first word is not
-//!   a number; its text labels the block). Lines starting with `#` or `%` are comments.
-//! - A file without any blank line or header between its points (the MATLAB clouds) is cut
-//!   into stations where `x` changes: consecutive points at one `x` form a station.
-//!
-//! Each block becomes one section, labelled by its header or `x<position>` (`x-78`). Points
-//! are put keel to deck: a section whose heights fall is reversed; a section given in no order
-//! along its curve (the frigate lists buttock, waterline, keel and deck points in turn) is
-//! recognised by the polyline through its points in order of height (ties by half-breadth)
-//! being shorter than the one in the file's order, and is sorted so, with a note. A section
-//! whose points follow its curve (even one whose height goes down and up, such as a hollow
-//! garboard) keeps its order.
-//! Stations listed fore to aft are put aft to fore (a note says so).
-//!
-//! Axes: as written, assumed x forward, y the half-breadth (>= 0; a negative y is an error),
-//! z up; the origin is kept (the note gives the ranges of x and z, so a reader sees whether x
-//! runs from the AP or from midship).
+//! The rest of this module's documentation is on [`parse_point_cloud`], where the library's users read it.
 
 use nurbs::Vec3;
 
@@ -189,7 +153,7 @@ fn length(pts: &[Vec3]) -> f64 {
     pts.windows(2).map(|w| (w[1].y - w[0].y).hypot(w[1].z - w[0].z)).sum()
 }
 
-/// Turns blocks into sections keel to deck and aft to fore (see the module docs); returns
+/// Turns blocks into sections keel to deck and aft to fore (see [`parse_point_cloud`]); returns
 /// the notes.
 pub(crate) fn sections_of(blocks: Vec<Block>) -> (Vec<Section>, Vec<String>) {
     let mut notes = Vec::new();
@@ -240,7 +204,45 @@ pub(crate) fn ranges_note(sections: &[Section]) -> String {
     format!("origin as in the file: x from {x0} to {x1}, z from {z0} to {z1}")
 }
 
-/// Parses a station point cloud (see the module docs).
+/// Parses a station point cloud (see [`parse_point_cloud`]).
+///
+/// ```text
+/// % frigate, one station after another (BSpline3D-MATLAB frigate_1Surface.dat)
+///   0.0000000e+000  7.5000000e-001  6.8290000e+000
+///   0.0000000e+000  1.5000000e+000  8.5630000e+000
+///  -2.0000000e+000  7.5000000e-001  5.3710000e+000
+/// ```
+///
+/// ```text
+/// station 5 x = 12.5
+/// 0.0 0.0
+/// 1.2 0.4
+///
+/// station 6 x = 15
+/// 0.0 0.1
+/// 1.3 0.5
+/// ```
+///
+/// - One point a line: three numbers `x y z`, or two numbers `y z` whose station position is
+///   given by its block's header (`x = 12.5`, `x=12.5` or `x 12.5` anywhere in it). Numbers are
+///   separated by spaces or tabs; Fortran/MATLAB exponents (`7.5e-001`) are fine.
+/// - Blocks are separated by blank lines or by header lines (any line whose first word is not
+///   a number; its text labels the block). Lines starting with `#` or `%` are comments.
+/// - A file without any blank line or header between its points (the MATLAB clouds) is cut
+///   into stations where `x` changes: consecutive points at one `x` form a station.
+///
+/// Each block becomes one section, labelled by its header or `x<position>` (`x-78`). Points
+/// are put keel to deck: a section whose heights fall is reversed; a section given in no order
+/// along its curve (the frigate lists buttock, waterline, keel and deck points in turn) is
+/// recognised by the polyline through its points in order of height (ties by half-breadth)
+/// being shorter than the one in the file's order, and is sorted so, with a note. A section
+/// whose points follow its curve (even one whose height goes down and up, such as a hollow
+/// garboard) keeps its order.
+/// Stations listed fore to aft are put aft to fore (a note says so).
+///
+/// Axes: as written, assumed x forward, y the half-breadth (>= 0; a negative y is an error),
+/// z up; the origin is kept (the note gives the ranges of x and z, so a reader sees whether x
+/// runs from the AP or from midship).
 ///
 /// # Errors
 ///

@@ -1,44 +1,6 @@
 //! Todd's Series 60 parent tables: dimensionless half-breadths, scaled by the user's Lpp, B, T.
 //!
-//! The five parent hulls of Todd (1963), "Series 60 - Methodical Experiments with Models of
-//! Single-Screw Merchant Ships", DTMB Report 1712, as transcribed in `cb0p6.csv` ..
-//! `cb0p8.csv` (see `shared/data/series60/PROVENANCE.md`):
-//!
-//! ```text
-//! ,0 ,0.075,0.25,0.5,0.75,1,1.25,1.5,SAR
-//! 0,0,0,10,0,0,0,0.02,0.042,0
-//! 0.5,0.009,0.032,0.042,0.041,0.043,0.051,0.076,0.12,0.042
-//! ...
-//! 20,0,0,0,0,0,0.082,0.27,0.42,0.004
-//! MaxBm,0.71,0.866,0.985,1,1,1,1,1,
-//! ```
-//!
-//! - Header: a blank corner cell, then the waterlines as z/T (z above the baseline, T the design
-//!   draft; 1.0 is the design waterline), then optional non-numeric columns (`SAR`, the sectional
-//!   area ratio), which are not offsets and are skipped.
-//! - One row per station, numbered 0 (FP) to 20 (AP) in twentieths of Lpp (half stations
-//!   allowed): each cell the half-breadth as a FRACTION of that waterline's maximum
-//!   half-breadth. An empty cell is a missing offset.
-//! - A `MaxBm` row: each waterline's maximum half-breadth as a fraction of B/2.
-//!
-//! Conversion to hullskin's axes (x forward from the AP, y half-breadth, z up from the
-//! baseline), with [`MainDimensions`] `Lpp`, `B`, `T` given by the user:
-//!
-//! ```text
-//! x = (1 - station / 20) Lpp        y = cell MaxBm(waterline) B / 2        z = (z/T) T
-//! ```
-//!
-//! Each station becomes one section, keel to deck (z ascending), labelled with its station
-//! number as written; the sections are put AP first (x increasing), as the built-in sample.
-//!
-//! Suspicious values: a cell is a fraction of the waterline's maximum, so a cell above 1 cannot
-//! be right (the Cb 0.60 transcription reads `10` at station 0, WL 0.25, where the other
-//! transcriptions have 0). Such a cell is reported as a [`SuspiciousValue`] with its place;
-//! [`SuspiciousPolicy`] says what is done with it (by default it is replaced by the linear
-//! interpolation in z of its station's nearest sound cells below and above, and the report says
-//! so). Negative cells are errors.
-//!
-//! Fields are trimmed (the transcriptions have trailing spaces inside fields).
+//! The rest of this module's documentation is on [`parse_series60_table`], where the library's users read it.
 
 use nurbs::Vec3;
 
@@ -107,6 +69,46 @@ pub(crate) fn looks_like_series60(recs: &[Record<'_>]) -> bool {
 
 /// Parses a Series 60 table held in `text` and scales it by `dims`; `source` names it in
 /// messages.
+///
+/// The five parent hulls of Todd (1963), "Series 60 - Methodical Experiments with Models of
+/// Single-Screw Merchant Ships", DTMB Report 1712, as transcribed in `cb0p6.csv` ..
+/// `cb0p8.csv` (see `shared/data/series60/PROVENANCE.md`):
+///
+/// ```text
+/// ,0 ,0.075,0.25,0.5,0.75,1,1.25,1.5,SAR
+/// 0,0,0,10,0,0,0,0.02,0.042,0
+/// 0.5,0.009,0.032,0.042,0.041,0.043,0.051,0.076,0.12,0.042
+/// ...
+/// 20,0,0,0,0,0,0.082,0.27,0.42,0.004
+/// MaxBm,0.71,0.866,0.985,1,1,1,1,1,
+/// ```
+///
+/// - Header: a blank corner cell, then the waterlines as z/T (z above the baseline, T the design
+///   draft; 1.0 is the design waterline), then optional non-numeric columns (`SAR`, the sectional
+///   area ratio), which are not offsets and are skipped.
+/// - One row per station, numbered 0 (FP) to 20 (AP) in twentieths of Lpp (half stations
+///   allowed): each cell the half-breadth as a FRACTION of that waterline's maximum
+///   half-breadth. An empty cell is a missing offset.
+/// - A `MaxBm` row: each waterline's maximum half-breadth as a fraction of B/2.
+///
+/// Conversion to hullskin's axes (x forward from the AP, y half-breadth, z up from the
+/// baseline), with [`MainDimensions`] `Lpp`, `B`, `T` given by the user:
+///
+/// ```text
+/// x = (1 - station / 20) Lpp        y = cell MaxBm(waterline) B / 2        z = (z/T) T
+/// ```
+///
+/// Each station becomes one section, keel to deck (z ascending), labelled with its station
+/// number as written; the sections are put AP first (x increasing), as the built-in sample.
+///
+/// Suspicious values: a cell is a fraction of the waterline's maximum, so a cell above 1 cannot
+/// be right (the Cb 0.60 transcription reads `10` at station 0, WL 0.25, where the other
+/// transcriptions have 0). Such a cell is reported as a [`SuspiciousValue`] with its place;
+/// [`SuspiciousPolicy`] says what is done with it (by default it is replaced by the linear
+/// interpolation in z of its station's nearest sound cells below and above, and the report says
+/// so). Negative cells are errors.
+///
+/// Fields are trimmed (the transcriptions have trailing spaces inside fields).
 ///
 /// # Errors
 ///

@@ -1,54 +1,6 @@
 //! The three views of a lines plan merged into sections, their disagreements reported.
 //!
-//! A lines plan gives a hull three times over:
-//!
-//! - the **body plan**: the stations, each a curve `(y, z)` at one `x`;
-//! - the **half-breadth plan**: the waterlines, each a curve `(x, y)` at one height `z`;
-//! - the **sheer plan** (profile): the buttocks, each a curve `(x, z)` at one half-breadth `y`,
-//!   and the centre-plane profile (keel, stem and stern, `y = 0`) and the deck line at side
-//!   (`y(x)`, `z(x)`).
-//!
-//! Offset tables carry the same lines as points at the stations (a waterline's half-breadth at
-//! each station, a buttock's height at each station, the keel height, the deck edge); exports of
-//! hull programs carry them as dense curves. [`ThreeViews::merge`] turns them into one
-//! [`Section`] per station, from the keel or stem profile to the deck, and lists every place
-//! where the views disagree by more than a tolerance; nothing is averaged.
-//!
-//! # The merge, station by station
-//!
-//! Each line is cut at the station's `x`: a point of the line at that `x` (within
-//! [`SAME_X_REL`] of the model size) is taken as it is; for dense curves
-//! ([`ThreeViews::dense`]) the line is also interpolated linearly between its two points on
-//! either side of `x`, once per crossing.
-//! A line that does not reach the station gives nothing there.
-//!
-//! **With a body-plan curve** the curve is the section (oriented keel to deck). Every
-//! waterline, buttock and deck-edge point the other views give at the station is compared
-//! with it at the point's height `z` (the keel point is an end of the section, not compared): the
-//! curve's half-breadth there is the crossing of the curve with the plane `z` nearest to the
-//! point (a horizontal run of the curve at exactly that height, such as a flat of bottom, gives
-//! the point's own `y` clamped to the run). A difference above the tolerance is a
-//! [`Disagreement`]. The keel point is put before the curve when the curve does not start on
-//! it (farther than the tolerance) and it is not above the curve's lowest point, the deck edge
-//! after it when it lies above its highest point, and curve points
-//! above the deck edge are cut off.
-//!
-//! **Without a body-plan curve** (offset tables) the section is built from the half-breadth
-//! plan and the profile: the keel point `(0, z_keel)`, the waterline points and the deck edge,
-//! in order of height (ties by half-breadth), up to the deck edge. Each buttock point is then
-//! checked against its neighbours in that order: a section from keel to deck whose points rise
-//! in z has its half-breadth between the half-breadths of the two neighbours of any point
-//! placed on it (between two offsets the section neither folds back nor bulges past them), so a
-//! buttock point whose `y` lies outside that range by more than the tolerance contradicts the
-//! waterlines and is a [`Disagreement`] (left out of the section, reported). This test works
-//! at the coarse spacing of real tables, where a straight line between waterlines 1 m apart
-//! can miss a bilge by half a metre and any distance-based test would condemn sound points. A
-//! buttock point above the deck edge (on a bulwark or a raised deck) or with no neighbour below
-//! it is left out and noted, not compared.
-//!
-//! The tolerance defaults to [`DEFAULT_TOLERANCE_REL`] times the model size (1.2 cm on a
-//! 116 m ship): above the 1 mm resolution of tables given in millimetres, below any real
-//! disagreement worth a look.
+//! The rest of this module's documentation is on [`{`], where the library's users read it.
 
 use nurbs::Vec3;
 
@@ -62,7 +14,7 @@ use crate::units::Units;
 /// drawing precision).
 pub const SAME_X_REL: f64 = 1e-9;
 
-/// The default disagreement tolerance, relative to the model size (see the module docs).
+/// The default disagreement tolerance, relative to the model size (see [`Merged`]).
 pub const DEFAULT_TOLERANCE_REL: f64 = 1e-4;
 
 /// Which view a line belongs to.
@@ -201,7 +153,7 @@ pub struct Disagreement {
     pub z: f64,
     /// The half-breadth the station's section allows at `z`: its body-plan curve's, or,
     /// without a body plan, the nearest bound of the range between the point's neighbours on
-    /// the section made of the waterlines (see the module docs).
+    /// the section made of the waterlines (see [`Merged`]).
     pub body_plan_y: f64,
     /// The half-breadth of the compared point (a waterline's half-breadth at the station, a
     /// buttock's plane, the deck edge).
@@ -245,6 +197,56 @@ impl std::fmt::Display for Disagreement {
 }
 
 /// The merged sections with everything the merge found.
+///
+/// A lines plan gives a hull three times over:
+///
+/// - the **body plan**: the stations, each a curve `(y, z)` at one `x`;
+/// - the **half-breadth plan**: the waterlines, each a curve `(x, y)` at one height `z`;
+/// - the **sheer plan** (profile): the buttocks, each a curve `(x, z)` at one half-breadth `y`,
+///   and the centre-plane profile (keel, stem and stern, `y = 0`) and the deck line at side
+///   (`y(x)`, `z(x)`).
+///
+/// Offset tables carry the same lines as points at the stations (a waterline's half-breadth at
+/// each station, a buttock's height at each station, the keel height, the deck edge); exports of
+/// hull programs carry them as dense curves. [`ThreeViews::merge`] turns them into one
+/// [`Section`] per station, from the keel or stem profile to the deck, and lists every place
+/// where the views disagree by more than a tolerance; nothing is averaged.
+///
+/// # The merge, station by station
+///
+/// Each line is cut at the station's `x`: a point of the line at that `x` (within
+/// `SAME_X_REL` of the model size) is taken as it is; for dense curves
+/// ([`ThreeViews::dense`]) the line is also interpolated linearly between its two points on
+/// either side of `x`, once per crossing.
+/// A line that does not reach the station gives nothing there.
+///
+/// **With a body-plan curve** the curve is the section (oriented keel to deck). Every
+/// waterline, buttock and deck-edge point the other views give at the station is compared
+/// with it at the point's height `z` (the keel point is an end of the section, not compared): the
+/// curve's half-breadth there is the crossing of the curve with the plane `z` nearest to the
+/// point (a horizontal run of the curve at exactly that height, such as a flat of bottom, gives
+/// the point's own `y` clamped to the run). A difference above the tolerance is a
+/// [`Disagreement`]. The keel point is put before the curve when the curve does not start on
+/// it (farther than the tolerance) and it is not above the curve's lowest point, the deck edge
+/// after it when it lies above its highest point, and curve points
+/// above the deck edge are cut off.
+///
+/// **Without a body-plan curve** (offset tables) the section is built from the half-breadth
+/// plan and the profile: the keel point `(0, z_keel)`, the waterline points and the deck edge,
+/// in order of height (ties by half-breadth), up to the deck edge. Each buttock point is then
+/// checked against its neighbours in that order: a section from keel to deck whose points rise
+/// in z has its half-breadth between the half-breadths of the two neighbours of any point
+/// placed on it (between two offsets the section neither folds back nor bulges past them), so a
+/// buttock point whose `y` lies outside that range by more than the tolerance contradicts the
+/// waterlines and is a [`Disagreement`] (left out of the section, reported). This test works
+/// at the coarse spacing of real tables, where a straight line between waterlines 1 m apart
+/// can miss a bilge by half a metre and any distance-based test would condemn sound points. A
+/// buttock point above the deck edge (on a bulwark or a raised deck) or with no neighbour below
+/// it is left out and noted, not compared.
+///
+/// The tolerance defaults to [`DEFAULT_TOLERANCE_REL`] times the model size (1.2 cm on a
+/// 116 m ship): above the 1 mm resolution of tables given in millimetres, below any real
+/// disagreement worth a look.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Merged {
     /// One section per station, keel to deck.
@@ -292,7 +294,7 @@ impl ThreeViews {
         }
     }
 
-    /// Merges the views into one section per station (see the module docs for the rules).
+    /// Merges the views into one section per station (see [`Merged`] for the rules).
     /// Stations where no view gives a point are left out with a note.
     pub fn merge(&self, options: &MergeOptions) -> Merged {
         let size = self.size();

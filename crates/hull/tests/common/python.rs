@@ -40,3 +40,34 @@ pub fn tools_python(skip_var: &str, what: &str) -> String {
         ),
     }
 }
+
+/// Run `tools/<script>` with `python` on `args`: its exit code and the JSON summary it printed
+/// (panics, with its output, when it printed none).
+pub fn run_tool(python: &str, script: &str, args: &[&Path]) -> (i32, serde_json::Value) {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tools").join(script);
+    let out = Command::new(python)
+        .arg(&script)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {python} {}: {e}", script.display()));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let summary = serde_json::from_str(&stdout).unwrap_or_else(|e| {
+        panic!(
+            "{} did not print a JSON summary ({e}); status {:?}\nstdout:\n{stdout}\nstderr:\n{stderr}",
+            script.display(),
+            out.status
+        )
+    });
+    (out.status.code().unwrap_or(-1), summary)
+}
+
+/// A check of [`run_tool`] passed: exit 0 and `"ok": true`; else panics naming `case` and
+/// printing what failed.
+pub fn assert_tool_passed(case: &str, code: i32, summary: &serde_json::Value) {
+    assert!(
+        code == 0 && summary["ok"] == true,
+        "{case}: the reader disagrees with the export (exit {code}):\n{}",
+        serde_json::to_string_pretty(&summary["failed"]).unwrap_or_default()
+    );
+}

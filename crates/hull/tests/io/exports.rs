@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use crate::common::python::tools_python;
+use crate::common::python::{assert_tool_passed, run_tool, tools_python};
 use crate::common::surfaces::{samples, weights_changed};
 use crate::common::workspace_root;
 
@@ -29,34 +29,6 @@ use serde_json::{json, Value};
 
 fn occt_python() -> String {
     tools_python("HULLSKIN_SKIP_OCCT", "Open CASCADE check of the STEP and IGES exports")
-}
-
-/// Run `tools/<script>` with `args`; returns (exit code, parsed JSON summary).
-fn run_tool(python: &str, script: &str, args: &[&Path]) -> (i32, Value) {
-    let script = workspace_root().join("tools").join(script);
-    let out = Command::new(python)
-        .arg(&script)
-        .args(args)
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run {python} {}: {e}", script.display()));
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let summary: Value = serde_json::from_str(&stdout).unwrap_or_else(|e| {
-        panic!(
-            "{} did not print a JSON summary ({e}); status {:?}\nstdout:\n{stdout}\nstderr:\n{stderr}",
-            script.display(),
-            out.status
-        )
-    });
-    (out.status.code().unwrap_or(-1), summary)
-}
-
-fn assert_passed(case: &str, code: i32, summary: &Value) {
-    assert!(
-        code == 0 && summary["ok"] == true,
-        "{case}: the reader disagrees with the export (exit {code}):\n{}",
-        serde_json::to_string_pretty(&summary["failed"]).unwrap_or_default()
-    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -179,7 +151,7 @@ fn occt_reads_the_step_export_exactly() {
             let exp = dir.path().join(format!("{case}.json"));
             write_expected(&exp, &s, units, None);
             let (code, summary) = run_tool(&python, "occt_check.py", &[&stp, &exp]);
-            assert_passed(&case, code, &summary);
+            assert_tool_passed(&case, code, &summary);
             for read in ["native", "default_mm"] {
                 let r = &summary["reads"][read];
                 assert_eq!(r["samples"].as_u64(), Some(88), "{case} {read}");
@@ -277,7 +249,7 @@ fn occt_reads_iges_section_curves() {
         let exp = dir.path().join(format!("{name}.json"));
         write_expected(&exp, &surface, Units::Metre, Some(&curves));
         let (code, summary) = run_tool(&python, "occt_check.py", &[&igs, &exp]);
-        assert_passed(name, code, &summary);
+        assert_tool_passed(name, code, &summary);
         let r = &summary["reads"]["native"];
         assert_eq!(r["curves"].as_u64(), Some(curves.len() as u64));
         eprintln!(
@@ -316,7 +288,7 @@ fn occt_reads_the_polynomial_approximation() {
         doc["reference"] = json!({"samples": samples(&s), "tolerance": tol});
         std::fs::write(&exp, doc.to_string()).expect("write");
         let (code, summary) = run_tool(&python, "occt_check.py", &[&igs, &exp]);
-        assert_passed(name, code, &summary);
+        assert_tool_passed(name, code, &summary);
         eprintln!(
             "{name}: {}x{} -> {}x{} polynomial poles after {} refinements; deviation {:.2e} (ours, {} points), \
              {:.2e} (OCCT, 88 points), tolerance {tol:.2e}",
@@ -365,7 +337,7 @@ fn vec3s(v: &Value, map: impl Fn([f64; 3]) -> Vec3) -> Vec<Vec3> {
 
 fn read_mesh(python: &str, path: &Path, units: Units) -> ReadMesh {
     let (code, summary) = run_tool(python, "mesh_check.py", &[path]);
-    assert_passed(&path.display().to_string(), code, &summary);
+    assert_tool_passed(&path.display().to_string(), code, &summary);
     let glb = summary["format"] == "glb";
     let k = units.metres_per_unit();
     // glTF: (X, Y, Z) = (y, z, x) in metres.

@@ -6,9 +6,8 @@
 //! fails the tests fail (the check cannot vanish silently) unless `HULLSKIN_SKIP_OCCT=1`.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-use crate::common::python::tools_python;
+use crate::common::python::{assert_tool_passed, run_tool, tools_python};
 use crate::common::surfaces::{polynomial, rational_bicubic, samples, weights_changed};
 use crate::common::workspace_root;
 use nurbs::fixtures::quarter_cylinder;
@@ -60,26 +59,6 @@ fn write_case_with(
     (igs, exp)
 }
 
-/// Run the checker; returns (exit code, parsed summary).
-fn run_check(python: &str, igs: &Path, exp: &Path) -> (i32, Value) {
-    let script = workspace_root().join("tools/occt_check.py");
-    let out = Command::new(python)
-        .arg(&script)
-        .arg(igs)
-        .arg(exp)
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run {python} {}: {e}", script.display()));
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let summary: Value = serde_json::from_str(&stdout).unwrap_or_else(|e| {
-        panic!(
-            "occt_check.py did not print a JSON summary ({e}); status {:?}\nstdout:\n{stdout}\nstderr:\n{stderr}",
-            out.status
-        )
-    });
-    (out.status.code().unwrap_or(-1), summary)
-}
-
 #[test]
 #[cfg_attr(skip_occt, ignore = "HULLSKIN_SKIP_OCCT=1")]
 fn occt_reads_the_iges_export_exactly() {
@@ -100,12 +79,8 @@ fn occt_reads_the_iges_export_exactly() {
             let s = s.scaled(k);
             let case = format!("{name}_{}", units.name.to_lowercase());
             let (igs, exp) = write_case(dir.path(), &case, &s, units, &samples(&s));
-            let (code, summary) = run_check(&python, &igs, &exp);
-            assert!(
-                code == 0 && summary["ok"] == true,
-                "{case}: OCCT disagrees with the export (exit {code}):\n{}",
-                serde_json::to_string_pretty(&summary["failed"]).unwrap_or_default()
-            );
+            let (code, summary) = run_tool(&python, "occt_check.py", &[&igs, &exp]);
+            assert_tool_passed(&case, code, &summary);
             let r = &summary["reads"];
             eprintln!(
                 "{case}: OCP {} native err {:.1e}, default-mm scale {} (expected {}) err {:.1e}",
@@ -142,12 +117,8 @@ fn occt_reads_fitted_hull_surfaces() {
         let cfg = hull::FitConfig { method, ctrl, ..hull::FitConfig::default() };
         let s = hull::fit_offsets(&offsets, &cfg).expect("fits").surface;
         let (igs, exp) = write_case(dir.path(), name, &s, IgesUnits::METRE, &samples(&s));
-        let (code, summary) = run_check(&python, &igs, &exp);
-        assert!(
-            code == 0 && summary["ok"] == true,
-            "{name}: OCCT disagrees with the export (exit {code}):\n{}",
-            serde_json::to_string_pretty(&summary["failed"]).unwrap_or_default()
-        );
+        let (code, summary) = run_tool(&python, "occt_check.py", &[&igs, &exp]);
+        assert_tool_passed(name, code, &summary);
         assert_eq!(summary["reads"]["native"]["samples"].as_u64(), Some(samples(&s).len() as u64), "{name}");
     }
 }
@@ -200,7 +171,7 @@ fn occt_finds_the_default_fit_within_the_offsets_envelope() {
             "grid": 300,
         });
         let (igs, exp) = write_case_with(dir.path(), &name, &s, IgesUnits::METRE, &samples(&s), Some(envelope));
-        let (code, summary) = run_check(&python, &igs, &exp);
+        let (code, summary) = run_tool(&python, "occt_check.py", &[&igs, &exp]);
         let excess = &summary["reads"]["native"]["envelope_excess"];
         eprintln!("{name}: OCCT's surface past the envelope's faces {excess}, allowed {allowance:?}");
         assert_eq!(excess["grid"].as_u64(), Some(300), "{name}: the grid was sampled");
@@ -226,7 +197,7 @@ fn occt_check_detects_a_mismatch() {
     let s = quarter_cylinder(2.0, 3.0);
     let wrong = weights_changed(&s);
     let (igs, exp) = write_case(dir.path(), "wrong_weight", &s, IgesUnits::METRE, &samples(&wrong));
-    let (code, summary) = run_check(&python, &igs, &exp);
+    let (code, summary) = run_tool(&python, "occt_check.py", &[&igs, &exp]);
     assert_eq!(code, 1, "{summary}");
     let failed = summary["failed"].to_string();
     assert!(failed.contains("points at"), "{failed}");
@@ -234,7 +205,7 @@ fn occt_check_detects_a_mismatch() {
     // Written in metres but the expectation (and so the default-mm scale) says millimetres.
     let (igs, _) = write_case(dir.path(), "unit_m", &s, IgesUnits::METRE, &samples(&s));
     let (_, exp) = write_case(dir.path(), "unit_mm", &s, IgesUnits::MILLIMETRE, &samples(&s));
-    let (code, summary) = run_check(&python, &igs, &exp);
+    let (code, summary) = run_tool(&python, "occt_check.py", &[&igs, &exp]);
     assert_eq!(code, 1, "{summary}");
     let failed = summary["failed"].to_string();
     assert!(failed.contains("global units") && failed.contains("default_mm: poles"), "{failed}");

@@ -63,6 +63,26 @@ fn size(points: &[Vec3]) -> f64 {
 }
 
 /// `|a - b| <= REL * scale` for each pair, with the pair's label on failure.
+/// Our homogeneous control point `a` and curvo's `b`, as the (ours, theirs, label) pairs of
+/// [`assert_close`]: `P^w_at` (x, y, z) and `w_at` (the weight).
+fn homogeneous_pairs(a: &Homogeneous, b: &Point4<f64>, at: &str) -> [(Vec3, Vec3, String); 2] {
+    [
+        (Vec3::new(a[0], a[1], a[2]), Vec3::new(b.x, b.y, b.z), format!("P^w_{at}")),
+        (Vec3::new(a[3], 0.0, 0.0), Vec3::new(b.w, 0.0, 0.0), format!("w_{at}")),
+    ]
+}
+
+/// [`homogeneous_pairs`] of every control point of two curves, in order (curvo's extra
+/// trailing points, if any, left out).
+fn curve_pairs(ours: &NurbsCurve, theirs: &NurbsCurve3D<f64>) -> Vec<(Vec3, Vec3, String)> {
+    ours.homogeneous()
+        .iter()
+        .zip(theirs.control_points())
+        .enumerate()
+        .flat_map(|(i, (a, b))| homogeneous_pairs(a, b, &i.to_string()))
+        .collect()
+}
+
 fn assert_close(pairs: &[(Vec3, Vec3, String)], scale: f64) -> Result<(), TestCaseError> {
     for (a, b, at) in pairs {
         prop_assert!((*a - *b).norm() <= REL * scale, "{at}: ours {a:?}, curvo {b:?}, scale {scale:e}");
@@ -131,18 +151,7 @@ proptest! {
         let mut theirs = curvo_curve(&c);
         theirs.try_refine_knot(x.clone()).expect("curvo refines too");
         prop_assert_eq!(ours.knots().as_slice().to_vec(), theirs.knots().to_vec());
-        let pairs: Vec<_> = ours
-            .homogeneous()
-            .iter()
-            .zip(theirs.control_points())
-            .enumerate()
-            .flat_map(|(i, (a, b))| {
-                [
-                    (Vec3::new(a[0], a[1], a[2]), Vec3::new(b.x, b.y, b.z), format!("P^w_{i}")),
-                    (Vec3::new(a[3], 0.0, 0.0), Vec3::new(b.w, 0.0, 0.0), format!("w_{i}")),
-                ]
-            })
-            .collect();
+        let pairs = curve_pairs(&ours, &theirs);
         prop_assert_eq!(ours.num_control_points(), theirs.control_points().len());
         // Homogeneous coordinates reach |w P| <= 50.
         assert_close(&pairs, 50.0)?;
@@ -167,9 +176,7 @@ proptest! {
         let mut pairs = Vec::new();
         for (i, row) in net.iter().enumerate() {
             for (j, b) in row.iter().enumerate() {
-                let a = ours.homogeneous()[i * ours.n_v() + j];
-                pairs.push((Vec3::new(a[0], a[1], a[2]), Vec3::new(b.x, b.y, b.z), format!("P^w_{i},{j}")));
-                pairs.push((Vec3::new(a[3], 0.0, 0.0), Vec3::new(b.w, 0.0, 0.0), format!("w_{i},{j}")));
+                pairs.extend(homogeneous_pairs(&ours.homogeneous()[i * ours.n_v() + j], b, &format!("{i},{j}")));
             }
         }
         assert_close(&pairs, 50.0)?;
@@ -194,18 +201,7 @@ proptest! {
         let (n, m) = (ours.num_control_points(), ours.knots().as_slice().len());
         prop_assert_eq!(theirs.control_points().len(), n + 3);
         prop_assert_eq!(ours.knots().as_slice(), &theirs.knots().to_vec()[..m]);
-        let pairs: Vec<_> = ours
-            .homogeneous()
-            .iter()
-            .zip(theirs.control_points())
-            .enumerate()
-            .flat_map(|(i, (a, b))| {
-                [
-                    (Vec3::new(a[0], a[1], a[2]), Vec3::new(b.x, b.y, b.z), format!("P^w_{i}")),
-                    (Vec3::new(a[3], 0.0, 0.0), Vec3::new(b.w, 0.0, 0.0), format!("w_{i}")),
-                ]
-            })
-            .collect();
+        let pairs = curve_pairs(&ours, &theirs);
         assert_close(&pairs, 50.0)?;
     }
 }

@@ -53,9 +53,10 @@ const MIN_WIDTH_PX: u32 = 320;
 /// Paper resolution used to size the annotations (pixels per millimetre at 150 dpi).
 const PX_PER_MM: f64 = 150.0 / 25.4;
 
-/// Settings of a curvature map.
+/// Settings of a curvature picture ([`curvature_image`]): how [`hull::curvature_map`]'s
+/// sampling is painted.
 #[derive(Clone, Debug, PartialEq)]
-pub struct CurvatureMapOptions {
+pub struct CurvatureImageOptions {
     /// Image width in pixels (at least 320); the height follows from the hull's proportions.
     pub width_px: u32,
     /// Percentile of `|value|` taken as the colour limit, in `(0, 100]`.
@@ -74,10 +75,10 @@ pub struct CurvatureMapOptions {
     pub samples: usize,
 }
 
-impl Default for CurvatureMapOptions {
+impl Default for CurvatureImageOptions {
     /// 1600 px wide, 98th percentile, unshaded, about 160 x 160 samples.
     fn default() -> Self {
-        CurvatureMapOptions {
+        CurvatureImageOptions {
             width_px: 1600,
             percentile: 98.0,
             limit: None,
@@ -89,20 +90,21 @@ impl Default for CurvatureMapOptions {
     }
 }
 
-/// One of the two orthographic views.
+/// The direction of one of the picture's two orthographic views (hull's `View` is something
+/// else: which view of a lines plan an offsets line belongs to).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum View {
+pub enum ViewDirection {
     /// x right, z up; the outer (largest y) side visible.
     Profile,
     /// x right, y down from the centre line; seen from below (lowest z visible).
     Bottom,
 }
 
-impl View {
+impl ViewDirection {
     fn label(self) -> &'static str {
         match self {
-            View::Profile => "Profile (x, z), side view",
-            View::Bottom => "Bottom (x, y), seen from below, centre line at the top",
+            ViewDirection::Profile => "Profile (x, z), side view",
+            ViewDirection::Bottom => "Bottom (x, y), seen from below, centre line at the top",
         }
     }
 
@@ -110,16 +112,16 @@ impl View {
     /// nearer the viewer.
     fn coords(self, p: Vec3) -> (f64, f64, f64) {
         match self {
-            View::Profile => (p.x, p.z, p.y),
-            View::Bottom => (p.x, p.y, -p.z),
+            ViewDirection::Profile => (p.x, p.z, p.y),
+            ViewDirection::Bottom => (p.x, p.y, -p.z),
         }
     }
 
     /// The viewing direction's axis, for shading.
     fn axis(self) -> Vec3 {
         match self {
-            View::Profile => Vec3::new(0.0, 1.0, 0.0),
-            View::Bottom => Vec3::new(0.0, 0.0, 1.0),
+            ViewDirection::Profile => Vec3::new(0.0, 1.0, 0.0),
+            ViewDirection::Bottom => Vec3::new(0.0, 0.0, 1.0),
         }
     }
 }
@@ -129,7 +131,7 @@ impl View {
 /// rectangle `rect_px = [left, top, right, bottom]` at `scale` pixels per model unit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ViewFrame {
-    pub view: View,
+    pub view: ViewDirection,
     pub rect_px: [f64; 4],
     pub h_range: (f64, f64),
     pub v_range: (f64, f64),
@@ -142,16 +144,17 @@ impl ViewFrame {
         let (h, v, _) = self.view.coords(p);
         let col = self.rect_px[0] + (h - self.h_range.0) * self.scale;
         let row = match self.view {
-            View::Profile => self.rect_px[1] + (self.v_range.1 - v) * self.scale,
-            View::Bottom => self.rect_px[1] + (v - self.v_range.0) * self.scale,
+            ViewDirection::Profile => self.rect_px[1] + (self.v_range.1 - v) * self.scale,
+            ViewDirection::Bottom => self.rect_px[1] + (v - self.v_range.0) * self.scale,
         };
         [col, row]
     }
 }
 
-/// A rendered curvature map and what it shows.
+/// A curvature picture: [`hull::curvature_map`]'s sampling painted as an image, and what it
+/// shows.
 #[derive(Clone, Debug, PartialEq)]
-pub struct CurvatureMap {
+pub struct CurvatureImage {
     pub image: Image,
     pub field: CurvatureField,
     /// The colour limit `L`: colours span `[-L, L]`.
@@ -178,19 +181,19 @@ struct Sample {
     normal: Option<Vec3>,
 }
 
-/// Render the curvature map of `surface`.
+/// Paint the curvature map of `surface` (sampled by [`hull::curvature_map`]) as a picture.
 ///
 /// # Errors
-/// [`ViewError::CurvatureMapWidth`], [`ViewError::Percentile`], [`ViewError::ColourLimit`] or
+/// [`ViewError::CurvatureImageWidth`], [`ViewError::Percentile`], [`ViewError::ColourLimit`] or
 /// [`ViewError::Samples`] for unusable options (width under 320 px, percentile outside
 /// `(0, 100]`, a limit that is not finite and positive, samples outside 2..=2000),
 /// [`ViewError::NoLength`] for a surface without extent along x, or
 /// [`ViewError::TooManyPixels`] for an image above [`super::MAX_PIXELS`].
-pub fn curvature_map(
+pub fn curvature_image(
     surface: &NurbsSurface,
     field: CurvatureField,
-    options: &CurvatureMapOptions,
-) -> Result<CurvatureMap, ViewError> {
+    options: &CurvatureImageOptions,
+) -> Result<CurvatureImage, ViewError> {
     check_options(options)?;
     let (samples, nu, nv) = evaluate(surface, field, options.samples);
 
@@ -221,7 +224,7 @@ pub fn curvature_map(
     let info = Info { field, limit, range, undefined, n: nu * nv, options, clipped };
     let items = annotations(&layout, &info, &samples, nu, nv);
     draw_items(&mut pixmap, &items, mapping);
-    Ok(CurvatureMap {
+    Ok(CurvatureImage {
         image: Image::from_pixmap(pixmap, pixels_per_metre(PX_PER_MM)),
         field,
         limit,
@@ -234,21 +237,21 @@ pub fn curvature_map(
     })
 }
 
-/// [`curvature_map`] encoded as PNG.
+/// [`curvature_image`] encoded as PNG.
 ///
 /// # Errors
-/// As [`curvature_map`].
+/// As [`curvature_image`].
 pub fn curvature_map_png(
     surface: &NurbsSurface,
     field: CurvatureField,
-    options: &CurvatureMapOptions,
+    options: &CurvatureImageOptions,
 ) -> Result<Vec<u8>, ViewError> {
-    curvature_map(surface, field, options)?.image.to_png()
+    curvature_image(surface, field, options)?.image.to_png()
 }
 
-fn check_options(o: &CurvatureMapOptions) -> Result<(), ViewError> {
+fn check_options(o: &CurvatureImageOptions) -> Result<(), ViewError> {
     if o.width_px < MIN_WIDTH_PX {
-        return Err(ViewError::CurvatureMapWidth { width_px: o.width_px, min: MIN_WIDTH_PX });
+        return Err(ViewError::CurvatureImageWidth { width_px: o.width_px, min: MIN_WIDTH_PX });
     }
     if !(o.percentile > 0.0 && o.percentile <= 100.0) {
         return Err(ViewError::Percentile { percentile: o.percentile });
@@ -318,7 +321,7 @@ impl Layout {
         let left = (margin + axis + 0.5 * (avail - lx * scale)).round();
         let mut y = margin + title_px * 1.3 + label_px * 3.2; // title, subtitle
         let mut frames = Vec::with_capacity(2);
-        for (view, vlo, vhi) in [(View::Profile, lo.z, hi.z), (View::Bottom, lo.y, hi.y)] {
+        for (view, vlo, vhi) in [(ViewDirection::Profile, lo.z, hi.z), (ViewDirection::Bottom, lo.y, hi.y)] {
             y += label_px * 2.6; // the view's label
             let top = y.round();
             let rect = [left, top, left + lx * scale, top + (vhi - vlo) * scale];
@@ -481,7 +484,7 @@ struct Info<'a> {
     range: Option<(f64, f64)>,
     undefined: usize,
     n: usize,
-    options: &'a CurvatureMapOptions,
+    options: &'a CurvatureImageOptions,
     clipped: usize,
 }
 
@@ -541,8 +544,8 @@ fn annotations(layout: &Layout, info: &Info, samples: &[Sample], nu: usize, nv: 
         let (ticks, step) = spaced_ticks(frame.v_range, frame.scale, 2.5 * layout.label_px, 4);
         for v in ticks {
             let row = match frame.view {
-                View::Profile => t + (frame.v_range.1 - v) * frame.scale,
-                View::Bottom => t + (v - frame.v_range.0) * frame.scale,
+                ViewDirection::Profile => t + (frame.v_range.1 - v) * frame.scale,
+                ViewDirection::Bottom => t + (v - frame.v_range.0) * frame.scale,
             };
             items.push(line(vec![mm(l - 10.0, row), mm(l - 4.0, row)], Rgb::BLACK, 1.0, "scales"));
             let label = format_tick(v, step);
@@ -669,7 +672,7 @@ mod tests {
     #[test]
     fn views_project_with_one_scale() {
         let frame = ViewFrame {
-            view: View::Profile,
+            view: ViewDirection::Profile,
             rect_px: [100.0, 50.0, 300.0, 90.0],
             h_range: (0.0, 100.0),
             v_range: (0.0, 20.0),
@@ -678,7 +681,7 @@ mod tests {
         // x right, z up: (0, *, 20) is the top-left corner, (100, *, 0) the bottom-right.
         assert_eq!(frame.project(Vec3::new(0.0, 5.0, 20.0)), [100.0, 50.0]);
         assert_eq!(frame.project(Vec3::new(100.0, 5.0, 0.0)), [300.0, 90.0]);
-        let bottom = ViewFrame { view: View::Bottom, v_range: (0.0, 8.0), ..frame };
+        let bottom = ViewFrame { view: ViewDirection::Bottom, v_range: (0.0, 8.0), ..frame };
         // Seen from below: the centre line y = 0 is the top edge, y grows downward.
         assert_eq!(bottom.project(Vec3::new(50.0, 0.0, 3.0)), [200.0, 50.0]);
         assert_eq!(bottom.project(Vec3::new(50.0, 8.0, 3.0)), [200.0, 66.0]);

@@ -12,5 +12,7 @@ mod curvature_png;
 mod raster;
 
 pub use convergence::convergence_plot;
-pub use curvature_png::{curvature_map, curvature_map_png, CurvatureMap, CurvatureMapOptions, View, ViewFrame};
+pub use curvature_png::{
+    curvature_image, curvature_map_png, CurvatureImage, CurvatureImageOptions, ViewDirection, ViewFrame,
+};
 pub use raster::{render_png, render_rgba, write_png, Image, RasterOptions, MAX_PIXELS};

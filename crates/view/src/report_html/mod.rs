@@ -279,7 +279,7 @@ pub fn write_report(dir: &Path, report: &ReportFiles) -> Result<Vec<PathBuf>, Vi
 /// [`ViewError::DraftAtKeel`] for a design draft at or below the keel, and [`ViewError::Hull`]
 /// holding [`HullError::Draft`](hull::HullError::Draft) for one that is not finite or above the
 /// top of the surface; [`ViewError::Density`] for a density that is not positive; the errors of
-/// [`curvature_map`](crate::curvature_map) for a curvature picture narrower than 320 px or a
+/// [`curvature_image`](crate::curvature_image) for a curvature picture narrower than 320 px or a
 /// surface the pictures cannot show (no extent along x, non-finite points).
 pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Result<ReportFiles, ViewError> {
     let surface = inputs.surface;
@@ -321,14 +321,14 @@ pub fn build_report(inputs: &ReportInputs<'_>, options: &ReportOptions) -> Resul
     let lines3d_dxf = to_bytes(|w| write_dxf_3d_lines(w, &curves, units), "the 3-D lines DXF")?;
     let lines_png = render::render_png(&sheet, &lines_png_raster(&sheet, &options.raster))?;
     let picture = |field| {
-        let o = render::CurvatureMapOptions {
+        let o = render::CurvatureImageOptions {
             width_px: options.curvature_width_px,
             units: u.to_string(),
             title: inputs.source.clone(),
             samples: options.curvature_samples,
-            ..render::CurvatureMapOptions::default()
+            ..render::CurvatureImageOptions::default()
         };
-        render::curvature_map(surface, field, &o)
+        render::curvature_image(surface, field, &o)
     };
     let gaussian = picture(CurvatureField::Gaussian)?;
     let mean = picture(CurvatureField::Mean)?;

@@ -34,7 +34,7 @@ pub(super) struct Page<'p, 'a> {
     pub(super) lines_svg: &'p str,
     /// The lines plan's sheet.
     pub(super) lines_sheet: Sheet,
-    pub(super) maps: [(&'p render::CurvatureMap, &'p [u8], &'static str); 2],
+    pub(super) maps: [(&'p render::CurvatureImage, &'p [u8], &'static str); 2],
     pub(super) convergence: Option<(&'p [u8], u32, u32)>,
     pub(super) viewer_html: &'p str,
 }

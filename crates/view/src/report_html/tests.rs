@@ -1,6 +1,7 @@
 use super::page::signed;
 use super::*;
 use crate::render::Image;
+use crate::test_page::{unbase64, urls};
 use crate::viewer::Resolution;
 use hull::{HullError, PlaneSelection, HYDROSTATICS_COLUMNS};
 use nurbs::KnotVector;
@@ -66,23 +67,6 @@ fn column(table: roxmltree::Node<'_, '_>, col: usize) -> Vec<f64> {
             td.attribute("data-value").expect("a number cell").parse().expect("a number")
         })
         .collect()
-}
-
-fn unbase64(s: &str) -> Vec<u8> {
-    base64::Engine::decode(&base64::engine::general_purpose::STANDARD, s).expect("base64")
-}
-
-/// The distinct `http(s)://` URLs of a page, sorted.
-pub(crate) fn urls(html: &str) -> Vec<&str> {
-    let mut out: Vec<&str> = html
-        .match_indices("http")
-        .map(|(k, _)| &html[k..])
-        .filter(|rest| rest.starts_with("http://") || rest.starts_with("https://"))
-        .map(|rest| &rest[..rest.find(|c: char| "\"'&<> )".contains(c)).unwrap_or(rest.len())])
-        .collect();
-    out.sort_unstable();
-    out.dedup();
-    out
 }
 
 #[test]

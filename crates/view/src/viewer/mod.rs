@@ -369,11 +369,8 @@ fn data_block(html: &str) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_page::unbase64;
     use hull::{fit_offsets, series60_sample, FitConfig};
-
-    fn unbase64(s: &str) -> Vec<u8> {
-        base64::Engine::decode(&base64::engine::general_purpose::STANDARD, s).expect("base64")
-    }
 
     fn f32s(s: &Value) -> Vec<f32> {
         unbase64(s.as_str().expect("string"))

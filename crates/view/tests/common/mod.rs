@@ -8,6 +8,8 @@ pub mod browser;
 pub mod python;
 #[path = "../../../hull/tests/common/root.rs"]
 mod root;
+#[path = "../../../hull/tests/common/surfaces.rs"]
+pub mod surfaces;
 #[path = "../../../hull/tests/common/tables.rs"]
 pub mod tables;
 
