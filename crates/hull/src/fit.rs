@@ -356,7 +356,8 @@ pub struct FairReport {
     pub tried: Vec<FairTry>,
     /// Validity findings of the plain approximation.
     pub plain_findings: usize,
-    /// Before (the plain approximation at the same control points) and after.
+    /// Before (the plain least squares at the same control points, before any envelope hold)
+    /// and after.
     pub before: FairnessFigures,
     pub after: FairnessFigures,
 }

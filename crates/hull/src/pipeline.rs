@@ -104,7 +104,7 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     // plain one.
     let approx = FitConfig { method: FitMethod::Approx, ..*config };
     let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx }, Measure::Full);
-    let fair = if plain.flat_lines.is_empty() { crate::fairing::fair(&plain, config.fair, skin)? } else { None };
+    let fair = if plain.flat_lines.is_empty() { crate::fairing::fair(&plain, None, config.fair, skin)? } else { None };
     let mut candidates: Vec<FitOutcome> = Vec::new();
     if let Some((mut f, report)) = fair {
         f.fairing = Some(report);
@@ -177,7 +177,15 @@ fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Resul
     }
     let skin = |nu: f64| smoothed(nu, Measure::Full);
     let start = Instant::now();
-    Ok(match crate::fairing::fair(&plain, config.fair, skin)? {
+    // The plain least squares before the envelope hold, whose fairness `auto` is to keep
+    // (issue 11's fairness floor compares with it).
+    let free = match config.fair {
+        Fairing::Auto { .. } if plain.envelope_held > 0 => {
+            Some(fit_skin(offsets, &FitConfig { envelope: EnvelopeHold::Free, ..*config }, Measure::Lean)?.surface)
+        }
+        _ => None,
+    };
+    Ok(match crate::fairing::fair(&plain, free.as_ref(), config.fair, skin)? {
         Some((mut out, report)) => {
             // The time of the whole choice, the plain fit and every smoothed one measured.
             let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
