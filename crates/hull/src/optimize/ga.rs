@@ -1,26 +1,7 @@
 //! Real-coded Genetic Algorithm: binary tournament selection, simulated binary crossover (SBX)
 //! and polynomial mutation in their bounded forms, with elitism.
 //!
-//! Sources:
-//! - K. Deb, R. B. Agrawal, "Simulated binary crossover for continuous search space",
-//!   Complex Systems 9 (1995) 115-148 (SBX);
-//! - K. Deb, M. Goyal, "A combined genetic adaptive search (GeneAS) for engineering design",
-//!   Computer Science and Informatics 26 (1996) 30-45 (polynomial mutation);
-//! - the bounded forms of both as in Deb's reference NSGA-II code (`realcross`,
-//!   `real_mutate_ind`) and K. Deb, A. Pratap, S. Agarwal, T. Meyarivan, "A fast and elitist
-//!   multiobjective genetic algorithm: NSGA-II", IEEE TEC 6 (2002) 182-197, whose settings
-//!   (p_c = 0.9, eta_c = 20, p_m = 1/n, eta_m = 20) are the defaults here;
-//! - D. E. Goldberg, K. Deb, "A comparative analysis of selection schemes used in genetic
-//!   algorithms", FOGA 1 (1991) 69-93 (tournament selection).
-//!
-//! The search runs in the unit cube: each variable is normalised, `x = lo + t (hi - lo)`,
-//! `t` in `[0, 1]`, so the constants do not depend on the box's scale.
-//!
-//! One generation: the `elites` best individuals are copied unchanged (and not re-evaluated);
-//! the other `N - elites` slots are filled by pairs of children, each pair made from two
-//! tournament winners by SBX (with probability `p_c`, else copies) and then polynomial
-//! mutation. Only the children are evaluated, so a run of `T` generations costs
-//! `N + T (N - elites)` evaluations.
+//! The rest of this module's documentation is on [`run`], where the library's users read it.
 //!
 //! This file also holds the small pieces shared by the three evolutionary optimisers (GA, PSO,
 //! GSA): the unit-box mapping, the seeding near the start and the bookkeeping of the best point.
@@ -88,6 +69,29 @@ impl Default for GaOptions {
 /// thread; only the evaluations run in parallel, so the result does not depend on the thread
 /// count. `evaluations = N + iterations * (N - elites)`; with `iterations = 0` or no variables
 /// only the start is evaluated.
+///
+/// # Algorithm
+///
+/// Sources:
+/// - K. Deb, R. B. Agrawal, "Simulated binary crossover for continuous search space",
+///   Complex Systems 9 (1995) 115-148 (SBX);
+/// - K. Deb, M. Goyal, "A combined genetic adaptive search (GeneAS) for engineering design",
+///   Computer Science and Informatics 26 (1996) 30-45 (polynomial mutation);
+/// - the bounded forms of both as in Deb's reference NSGA-II code (`realcross`,
+///   `real_mutate_ind`) and K. Deb, A. Pratap, S. Agarwal, T. Meyarivan, "A fast and elitist
+///   multiobjective genetic algorithm: NSGA-II", IEEE TEC 6 (2002) 182-197, whose settings
+///   (p_c = 0.9, eta_c = 20, p_m = 1/n, eta_m = 20) are the defaults here;
+/// - D. E. Goldberg, K. Deb, "A comparative analysis of selection schemes used in genetic
+///   algorithms", FOGA 1 (1991) 69-93 (tournament selection).
+///
+/// The search runs in the unit cube: each variable is normalised, `x = lo + t (hi - lo)`,
+/// `t` in `[0, 1]`, so the constants do not depend on the box's scale.
+///
+/// One generation: the `elites` best individuals are copied unchanged (and not re-evaluated);
+/// the other `N - elites` slots are filled by pairs of children, each pair made from two
+/// tournament winners by SBX (with probability `p_c`, else copies) and then polynomial
+/// mutation. Only the children are evaluated, so a run of `T` generations costs
+/// `N + T (N - elites)` evaluations.
 pub fn run(obj: &dyn Objective, opts: &GaOptions, seed: u64, control: &Control<'_>) -> OptimResult {
     let d = obj.dim();
     let start = obj.start();

@@ -1,44 +1,7 @@
 //! Gravitational Search Algorithm (E. Rashedi, H. Nezamabadi-pour, S. Saryazdi, "GSA: A
 //! Gravitational Search Algorithm", Information Sciences 179 (2009) 2232-2248).
 //!
-//! `N` agents move in the unit cube (`x = lo + t (hi - lo)`, `t` in `[0, 1]`, over the
-//! objective's [`Objective::search_box`]). At iteration `k`
-//! (`s = k - 1` moves done, of `T`), with the fitness `f_i` of the agents (minimised):
-//!
-//! - masses: `m_i = (f_i - worst) / (best - worst)`, `M_i = m_i / sum_j m_j`,
-//!   `best = min f`, `worst = max f`; all masses equal when `best = worst`; an infeasible agent
-//!   (`f = +inf`) has mass 0 and `worst` is taken over the feasible ones;
-//! - gravitational constant (the paper's experiments): `G = G0 exp(-alpha s / T)`;
-//! - the `Kbest` heaviest agents attract: `Kbest` falls linearly from `N` to
-//!   `final_kbest N`, at least 1 (the paper ends with one agent, the reference code with 2 %:
-//!   the same for `N = 50`);
-//! - acceleration (the agent's own mass cancels, `a_i = F_i / M_i`):
-//!   `a_i^d = G sum_{j in Kbest, j != i} rand_j M_j (t_j^d - t_i^d) / (R_ij + eps)`,
-//!   `R_ij = |t_i - t_j|_2`, `rand_j ~ U[0,1)`;
-//! - motion: `v_i^d <- rand_i v_i^d + a_i^d`, `t_i^d <- t_i^d + v_i^d`,
-//!   `rand_i ~ U[0,1)`.
-//!
-//! The random weights are drawn either as the paper's equations write them (`rand_j` per pair
-//! `(i, j)`, `rand_i` per agent: [`GsaRandom::PerAgent`]) or as the authors' reference MATLAB
-//! code does (`rand` per pair and per dimension in `Gfield.m`, `rand(N, dim) .* V` in `move.m`:
-//! [`GsaRandom::PerDimension`], the default). With one scalar per pair, every pull is along
-//! `t_j - t_i` and the swarm stays in the span of its initial differences, which in tens of
-//! dimensions stalls: on a coupled quadratic (tests below) with the default budget, seeds 0-3,
-//! the paper's form ended at 13-33 % of the start value in 40 variables and 37-62 % in 80 (the
-//! size of a full weight grid), the reference code's at most 0.0014 % and 0.17-0.46 %.
-//!
-//! Departures from the paper, each forced by the setting or noted in the brief:
-//! - `G0` is relative to the unit cube, not the paper's benchmark ranges (it used `G0 = 100`
-//!   on ranges of width ~10-1000); see [`GsaOptions::g0`];
-//! - an agent leaving the cube is put on the bound and that velocity component is zeroed (the
-//!   authors' reference code re-draws such agents at random, which would throw away the seeding
-//!   near the start);
-//! - the agents start near the start (uniform within `init_spread`), and none of them is the
-//!   start itself: a planted start agent would hold nearly all the mass and the swarm would
-//!   collapse onto it. The start is evaluated separately, so the result is never worse than it.
-//!
-//! A run of `T` iterations with `N` agents costs `1 + N (T + 1)` evaluations (the start, the
-//! initial swarm, and one swarm per move).
+//! The rest of this module's documentation is on [`run`], where the library's users read it.
 
 use rand::Rng;
 use rayon::prelude::*;
@@ -89,7 +52,7 @@ pub struct GsaOptions {
     /// around the start. Default 0.1.
     pub init_spread: f64,
     /// Where the random weights are drawn. Default [`GsaRandom::PerDimension`] (the authors'
-    /// code), far better in tens of variables (see the module documentation).
+    /// code), far better in tens of variables (see [`run`]).
     pub random: GsaRandom,
 }
 
@@ -114,6 +77,50 @@ impl Default for GsaOptions {
 /// the calling thread in a fixed order; only the evaluations run in parallel, so the result
 /// does not depend on the thread count. `evaluations = 1 + N (iterations + 1)`; with
 /// `iterations = 0` or no variables only the start is evaluated.
+///
+/// # Algorithm
+///
+/// Gravitational Search Algorithm (E. Rashedi, H. Nezamabadi-pour, S. Saryazdi, "GSA: A
+/// Gravitational Search Algorithm", Information Sciences 179 (2009) 2232-2248).
+///
+/// `N` agents move in the unit cube (`x = lo + t (hi - lo)`, `t` in `[0, 1]`, over the
+/// objective's [`Objective::search_box`]). At iteration `k`
+/// (`s = k - 1` moves done, of `T`), with the fitness `f_i` of the agents (minimised):
+///
+/// - masses: `m_i = (f_i - worst) / (best - worst)`, `M_i = m_i / sum_j m_j`,
+///   `best = min f`, `worst = max f`; all masses equal when `best = worst`; an infeasible agent
+///   (`f = +inf`) has mass 0 and `worst` is taken over the feasible ones;
+/// - gravitational constant (the paper's experiments): `G = G0 exp(-alpha s / T)`;
+/// - the `Kbest` heaviest agents attract: `Kbest` falls linearly from `N` to
+///   `final_kbest N`, at least 1 (the paper ends with one agent, the reference code with 2 %:
+///   the same for `N = 50`);
+/// - acceleration (the agent's own mass cancels, `a_i = F_i / M_i`):
+///   `a_i^d = G sum_{j in Kbest, j != i} rand_j M_j (t_j^d - t_i^d) / (R_ij + eps)`,
+///   `R_ij = |t_i - t_j|_2`, `rand_j ~ U[0,1)`;
+/// - motion: `v_i^d <- rand_i v_i^d + a_i^d`, `t_i^d <- t_i^d + v_i^d`,
+///   `rand_i ~ U[0,1)`.
+///
+/// The random weights are drawn either as the paper's equations write them (`rand_j` per pair
+/// `(i, j)`, `rand_i` per agent: [`GsaRandom::PerAgent`]) or as the authors' reference MATLAB
+/// code does (`rand` per pair and per dimension in `Gfield.m`, `rand(N, dim) .* V` in `move.m`:
+/// [`GsaRandom::PerDimension`], the default). With one scalar per pair, every pull is along
+/// `t_j - t_i` and the swarm stays in the span of its initial differences, which in tens of
+/// dimensions stalls: on a coupled quadratic (tests below) with the default budget, seeds 0-3,
+/// the paper's form ended at 13-33 % of the start value in 40 variables and 37-62 % in 80 (the
+/// size of a full weight grid), the reference code's at most 0.0014 % and 0.17-0.46 %.
+///
+/// Departures from the paper, each forced by the setting or noted in the brief:
+/// - `G0` is relative to the unit cube, not the paper's benchmark ranges (it used `G0 = 100`
+///   on ranges of width ~10-1000); see [`GsaOptions::g0`];
+/// - an agent leaving the cube is put on the bound and that velocity component is zeroed (the
+///   authors' reference code re-draws such agents at random, which would throw away the seeding
+///   near the start);
+/// - the agents start near the start (uniform within `init_spread`), and none of them is the
+///   start itself: a planted start agent would hold nearly all the mass and the swarm would
+///   collapse onto it. The start is evaluated separately, so the result is never worse than it.
+///
+/// A run of `T` iterations with `N` agents costs `1 + N (T + 1)` evaluations (the start, the
+/// initial swarm, and one swarm per move).
 pub fn run(obj: &dyn Objective, opts: &GsaOptions, seed: u64, control: &Control<'_>) -> OptimResult {
     run_observed(obj, opts, seed, control, &mut |_, _| {})
 }
@@ -336,7 +343,7 @@ mod tests {
 
     #[test]
     fn per_dimension_random_beats_per_agent_in_many_variables() {
-        // The reason for the default (module documentation). A reduced budget (30 agents, 200
+        // The reason for the default (the docs of `run`). A reduced budget (30 agents, 200
         // iterations) keeps the test quick; measured over seeds 0-3 in 40 variables the
         // per-dimension draws ended at 0.7-1.7 % of the start value, the paper's per-pair
         // scalar at 31-52 %.
