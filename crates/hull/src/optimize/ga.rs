@@ -93,29 +93,16 @@ impl Default for GaOptions {
 /// mutation. Only the children are evaluated, so a run of `T` generations costs
 /// `N + T (N - elites)` evaluations.
 pub fn run(obj: &dyn Objective, opts: &GaOptions, seed: u64, control: &Control<'_>) -> OptimResult {
-    let d = obj.dim();
-    let start = obj.start();
-    if d == 0 || opts.iterations == 0 {
-        return start_only(obj, start);
-    }
     let budget = opts.iterations;
-    let unit = UnitBox::new(obj);
-    let t0 = unit.to_t(&start);
     let n = opts.population.max(2);
+    // Current generation (genes in the unit cube, points in the box, values) and the next one.
+    let Seeded { d, unit, mut rng, mut t, mut xs, .. } = match Seeded::new(obj, budget, n, seed, opts.init_spread, true)
+    {
+        Ok(s) => s,
+        Err(r) => return *r,
+    };
     let elites = opts.elites.min(n - 1);
     let pm = opts.mutation_prob.unwrap_or(1.0 / d as f64);
-    let mut rng = rng(seed);
-
-    // Current generation (genes in the unit cube, points in the box, values) and the next one.
-    let mut t = vec![0.0; n * d];
-    let mut xs = vec![vec![0.0; d]; n];
-    t[..d].copy_from_slice(&t0);
-    xs[0].clone_from(&start);
-    for i in 1..n {
-        let ti = &mut t[i * d..(i + 1) * d];
-        perturb(&mut rng, &t0, opts.init_spread, ti);
-        unit.to_x(ti, &mut xs[i]);
-    }
     let mut fit = evaluate_all(obj, &xs);
     let mut rec = Record::new(&xs[0], fit[0], n, budget);
     rec.offer_best(&xs, &fit);
@@ -322,6 +309,55 @@ pub(super) fn absorb(t: &mut f64, vel: f64) -> f64 {
     } else {
         *t = moved;
         vel
+    }
+}
+
+/// The start of a run, alike in the three evolutionary optimisers: `n` points in the unit cube
+/// `t` (`n x d`, row-major) and in the box `xs`, each within `spread` of the start; with
+/// `keep_start` the first of them is the start itself (GA, PSO), else all are drawn (GSA, whose
+/// planted start would hold nearly all the mass). The random numbers are drawn in that order
+/// from the stream seeded by `seed`, which the run goes on drawing from.
+pub(super) struct Seeded {
+    pub(super) d: usize,
+    pub(super) start: Vec<f64>,
+    pub(super) unit: UnitBox,
+    pub(super) rng: ChaCha8Rng,
+    pub(super) t: Vec<f64>,
+    pub(super) xs: Vec<Vec<f64>>,
+}
+
+impl Seeded {
+    /// The seeded population, or the start-only result ([`start_only`]) when there is nothing
+    /// to search: no variable or no iteration.
+    pub(super) fn new(
+        obj: &dyn Objective,
+        iterations: usize,
+        n: usize,
+        seed: u64,
+        spread: f64,
+        keep_start: bool,
+    ) -> Result<Self, Box<OptimResult>> {
+        let d = obj.dim();
+        let start = obj.start();
+        if d == 0 || iterations == 0 {
+            return Err(Box::new(start_only(obj, start)));
+        }
+        let unit = UnitBox::new(obj);
+        let t0 = unit.to_t(&start);
+        let mut rng = rng(seed);
+        let mut t = vec![0.0; n * d];
+        let mut xs = vec![vec![0.0; d]; n];
+        let first = usize::from(keep_start);
+        if keep_start {
+            t[..d].copy_from_slice(&t0);
+            xs[0].clone_from(&start);
+        }
+        for i in first..n {
+            let ti = &mut t[i * d..(i + 1) * d];
+            perturb(&mut rng, &t0, spread, ti);
+            unit.to_x(ti, &mut xs[i]);
+        }
+        Ok(Seeded { d, start, unit, rng, t, xs })
     }
 }
 

@@ -6,8 +6,8 @@
 use rand::Rng;
 use rayon::prelude::*;
 
-use super::ga::{absorb, perturb, start_only, unit_random, Record, UnitBox};
-use super::{evaluate_all, rng, Control, Objective, OptimResult, StopReason};
+use super::ga::{absorb, unit_random, Record, Seeded};
+use super::{evaluate_all, Control, Objective, OptimResult, StopReason};
 
 /// How the random weights of the forces and of the velocity memory are drawn.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -134,29 +134,18 @@ fn run_observed(
     control: &Control<'_>,
     observe: &mut dyn FnMut(usize, &[f64]),
 ) -> OptimResult {
-    let d = obj.dim();
-    let start = obj.start();
-    if d == 0 || opts.iterations == 0 {
-        return start_only(obj, start);
-    }
     let budget = opts.iterations;
-    let unit = UnitBox::new(obj);
-    let t0 = unit.to_t(&start);
     let n = opts.agents.max(2);
-    let mut rng = rng(seed);
-
+    let Seeded { d, start, unit, mut rng, mut t, mut xs, .. } =
+        match Seeded::new(obj, budget, n, seed, opts.init_spread, false) {
+            Ok(s) => s,
+            Err(r) => return *r,
+        };
     let start_value = evaluate_all(obj, std::slice::from_ref(&start))[0];
     let mut rec = Record::new(&start, start_value, 1, budget);
 
-    let mut t = vec![0.0; n * d];
     let mut v = vec![0.0; n * d];
     let mut acc = vec![0.0; n * d];
-    let mut xs = vec![vec![0.0; d]; n];
-    for (i, x) in xs.iter_mut().enumerate() {
-        let ti = &mut t[i * d..(i + 1) * d];
-        perturb(&mut rng, &t0, opts.init_spread, ti);
-        unit.to_x(ti, x);
-    }
     observe(0, &t);
     let mut fit = evaluate_all(obj, &xs);
     rec.evaluations += n;

@@ -4,8 +4,8 @@
 
 use rand::Rng;
 
-use super::ga::{perturb, start_only, unit_random, Record, UnitBox};
-use super::{evaluate_all, rng, Control, Objective, OptimResult, StopReason};
+use super::ga::{unit_random, Record, Seeded};
+use super::{evaluate_all, Control, Objective, OptimResult, StopReason};
 
 /// The velocity rule.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -107,28 +107,15 @@ impl Default for PsoOptions {
 /// itself), so the run is never worse than the start. A run of `T` iterations with `N`
 /// particles costs `N (T + 1)` evaluations.
 pub fn run(obj: &dyn Objective, opts: &PsoOptions, seed: u64, control: &Control<'_>) -> OptimResult {
-    let d = obj.dim();
-    let start = obj.start();
-    if d == 0 || opts.iterations == 0 {
-        return start_only(obj, start);
-    }
     let budget = opts.iterations;
-    let unit = UnitBox::new(obj);
-    let t0 = unit.to_t(&start);
     let n = opts.particles.max(1);
+    let Seeded { d, unit, mut rng, mut t, mut xs, .. } = match Seeded::new(obj, budget, n, seed, opts.init_spread, true)
+    {
+        Ok(s) => s,
+        Err(r) => return *r,
+    };
     let vmax = if opts.vmax > 0.0 && opts.vmax.is_finite() { opts.vmax } else { f64::INFINITY };
-    let mut rng = rng(seed);
-
-    let mut t = vec![0.0; n * d];
     let mut v = vec![0.0; n * d];
-    let mut xs = vec![vec![0.0; d]; n];
-    t[..d].copy_from_slice(&t0);
-    xs[0].clone_from(&start);
-    for i in 1..n {
-        let ti = &mut t[i * d..(i + 1) * d];
-        perturb(&mut rng, &t0, opts.init_spread, ti);
-        unit.to_x(ti, &mut xs[i]);
-    }
     let fit = evaluate_all(obj, &xs);
     // Personal bests: in the unit cube (for the dynamics) and in the box (exact, to return).
     let mut best_t = t.clone();
