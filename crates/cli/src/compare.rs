@@ -90,11 +90,7 @@ mod tests {
     use super::*;
     use clap::Parser;
 
-    #[derive(Debug, Parser)]
-    struct Wrap {
-        #[command(flatten)]
-        args: CompareArgs,
-    }
+    type Wrap = crate::Wrap<CompareArgs>;
 
     #[test]
     fn flags_reach_the_config() {

@@ -250,11 +250,7 @@ mod tests {
     use super::*;
     use clap::Parser;
 
-    #[derive(Debug, Parser)]
-    struct Wrap {
-        #[command(flatten)]
-        args: ExportArgs,
-    }
+    type Wrap = crate::Wrap<ExportArgs>;
 
     fn parse(argv: &[&str]) -> Result<ExportArgs, clap::Error> {
         Wrap::try_parse_from(std::iter::once("x").chain(argv.iter().copied())).map(|w| w.args)

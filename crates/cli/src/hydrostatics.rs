@@ -146,11 +146,7 @@ mod tests {
     use super::*;
     use clap::Parser;
 
-    #[derive(Debug, Parser)]
-    struct Wrap {
-        #[command(flatten)]
-        args: HydrostaticsArgs,
-    }
+    type Wrap = crate::Wrap<HydrostaticsArgs>;
 
     #[test]
     fn flags_reach_the_arguments() {

@@ -130,6 +130,15 @@ fn run() -> anyhow::Result<ExitCode> {
     }
 }
 
+/// One subcommand's arguments `A` as a parser of their own: the unit tests of each
+/// subcommand's flags parse through it.
+#[cfg(test)]
+#[derive(Debug, clap::Parser)]
+struct Wrap<A: clap::Args> {
+    #[command(flatten)]
+    args: A,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -292,11 +292,7 @@ mod tests {
     use clap::Parser;
     use hull::FitMethod;
 
-    #[derive(Debug, Parser)]
-    struct Wrap {
-        #[command(flatten)]
-        args: ReportArgs,
-    }
+    type Wrap = crate::Wrap<ReportArgs>;
 
     #[test]
     fn flags_reach_the_arguments() {

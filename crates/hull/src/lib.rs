@@ -226,7 +226,7 @@ pub use report::{
     write_fit_outputs_with_report, write_report_json, InputSummary, Measured, Report, SurfaceSummary,
 };
 // The built-in Series 60 sample.
-pub use sample::{series60_sample, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
+pub use sample::{series60_sample, wigley_hull, Particulars, SAMPLE_PARTICULARS, SERIES60_CB060_CSV, SERIES60_SOURCE};
 // What an input file holds: offsets, a surface or a mesh.
 pub use surface_input::{detect_surface_input, holds_surface, is_mesh_path, strip_bom, SurfaceInput};
 // The search for the fewest control points within a tolerance.

@@ -12,6 +12,8 @@
 //! (baseline to 1.5 T), every cell present. The source's typo at the FP, WL 0.25 T (`10`) is
 //! set to 0. See `testdata/README.md` and `testdata/gen_series60.py`.
 
+use nurbs::{KnotVector, NurbsSurface, Vec3};
+
 use crate::offsets::{Offsets, Perpendiculars};
 use crate::read::parse_offset_table;
 use crate::units::Units;
@@ -54,6 +56,34 @@ pub fn series60_sample() -> Offsets {
     // The table's x runs from the AP to the FP, Lpp apart.
     offsets.perpendiculars = Perpendiculars::try_new(0.0, SAMPLE_PARTICULARS.lpp).ok();
     offsets
+}
+
+/// The Wigley hull of length `l`, beam `b` and draft `t` as an exact surface:
+/// `y = (b/2) (1 - (2 xi / l)^2) (1 - ((t - z) / t)^2)`, `xi = x - l/2`, `x` from 0 (aft) to
+/// `l`, `z` up from the keel to `t`. `y` is quadratic in `x` and in `z`, so the degree (2, 2)
+/// Bézier patch with `z = t u` and `x = l v` reproduces it exactly (u runs keel to deck, v aft
+/// to fore, as a hullskin fit). Bernstein coefficients: `4 v (1 - v) = 2 B_1(v)` -> `[0, 2, 0]`;
+/// `2u - u^2` -> `[0, 1, 1]`. Its closed forms (block coefficient 4/9, centre of buoyancy
+/// `5t/8` above the keel at draft `t`) make it the test hull of the hydrostatics and analysis.
+///
+/// ```
+/// let s = hull::wigley_hull(100.0, 10.0, 6.25);
+/// // Midship at the design waterline: the half beam.
+/// let p = s.point(1.0, 0.5);
+/// assert!((p.x - 50.0).abs() < 1e-12 && (p.y - 5.0).abs() < 1e-12 && (p.z - 6.25).abs() < 1e-12);
+/// ```
+#[must_use]
+pub fn wigley_hull(l: f64, b: f64, t: f64) -> NurbsSurface {
+    // Bézier knots and a 3 x 3 net: valid whatever the (finite) dimensions.
+    let k = || KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("Bezier knots");
+    let (fv, gu) = ([0.0, 2.0, 0.0], [0.0, 1.0, 1.0]);
+    let mut pts = Vec::new();
+    for (i, g) in gu.iter().enumerate() {
+        for (j, f) in fv.iter().enumerate() {
+            pts.push(Vec3::new(l * j as f64 / 2.0, 0.5 * b * f * g, t * i as f64 / 2.0));
+        }
+    }
+    NurbsSurface::try_new(k(), k(), &pts, None).expect("a 3 x 3 net on Bezier knots")
 }
 
 #[cfg(test)]

@@ -1,31 +1,8 @@
 //! Fairness measures of a surface: bending energies and the inflections and curvature peaks
 //! of its stations and waterlines.
 //!
-//! # Energies
-//!
-//! Both are integrated by Gauss-Legendre quadrature over every non-empty knot-span rectangle
-//! (the integrands are smooth inside a span; their derivatives jump across knots):
-//!
-//! - **thin plate** `E_tp = integral (k1^2 + k2^2) dA = integral (4 H^2 - 2 K) |S_u x S_v| du dv`,
-//!   the bending energy of a thin elastic plate (Kirchhoff; Moreton and Sequin 1992,
-//!   "Functional optimization for fair surface design"). It depends on the shape only, not on
-//!   the parametrisation, and is scale-free (dimensionless: a sphere's is `8 pi` whatever its
-//!   radius), so it compares two surfaces of the same hull: a bump raises it.
-//! - **parametric** `E_p = integral |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2 du dv` (length^2 per
-//!   parameter^2: it carries the parametrisation), the stand-in that fitting smoothers
-//!   minimise because it is quadratic in the control points (Greiner 1994, "Variational design
-//!   and fairing of spline surfaces"). It only compares surfaces with the same
-//!   parametrisation, e.g. two fits with the same knots.
-//!
-//! # Inflections
-//!
-//! Along each branch of a cut the signed curvature of [`CutPoint`](super::CutPoint) is read
-//! in order; a sign change counts once the curvature has gone from below `-tau` to above
-//! `+tau` or back (hysteresis), values with `|kappa| <= tau` changing nothing. `tau` is
-//! [`FairnessOptions::inflection_threshold`] divided by the model size (the diagonal of the
-//! control net's box): the default 1e-6 (a radius of a million model sizes) is far above the
-//! round-off of the analytic curvature (~1e-12 / size) and far below any visible bend.
-//! A closed loop is read from its first point round to it again.
+//! The rest of this module's documentation is on [`BendingEnergy`] (the energies) and
+//! [`fairness_report`] (the inflections), where the library's users read it.
 
 use nurbs::{cut_surface_many, CutCurve, CutOptions, NurbsSurface, Vec3};
 use serde::Serialize;
@@ -78,7 +55,21 @@ impl Default for FairnessOptions {
     }
 }
 
-/// Integrals over the surface (see the module documentation).
+/// Integrals over the surface, the measures of its fairness.
+///
+/// Both are integrated by Gauss-Legendre quadrature over every non-empty knot-span rectangle
+/// (the integrands are smooth inside a span; their derivatives jump across knots):
+///
+/// - **thin plate** `E_tp = integral (k1^2 + k2^2) dA = integral (4 H^2 - 2 K) |S_u x S_v| du dv`,
+///   the bending energy of a thin elastic plate (Kirchhoff; Moreton and Sequin 1992,
+///   "Functional optimization for fair surface design"). It depends on the shape only, not on
+///   the parametrisation, and is scale-free (dimensionless: a sphere's is `8 pi` whatever its
+///   radius), so it compares two surfaces of the same hull: a bump raises it.
+/// - **parametric** `E_p = integral |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2 du dv` (length^2 per
+///   parameter^2: it carries the parametrisation), the stand-in that fitting smoothers
+///   minimise because it is quadratic in the control points (Greiner 1994, "Variational design
+///   and fairing of spline surfaces"). It only compares surfaces with the same
+///   parametrisation, e.g. two fits with the same knots.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct BendingEnergy {
     /// `integral dA`.
@@ -242,6 +233,16 @@ pub fn cut_fairness(curve: &CutCurve, tau: f64) -> CutFairness {
 
 /// The fairness report: energies, and each station's and waterline's inflections and peak
 /// curvature.
+///
+/// # Inflections
+///
+/// Along each branch of a cut the signed curvature of [`CutPoint`](super::CutPoint) is read
+/// in order; a sign change counts once the curvature has gone from below `-tau` to above
+/// `+tau` or back (hysteresis), values with `|kappa| <= tau` changing nothing. `tau` is
+/// [`FairnessOptions::inflection_threshold`] divided by the model size (the diagonal of the
+/// control net's box): the default 1e-6 (a radius of a million model sizes) is far above the
+/// round-off of the analytic curvature (~1e-12 / size) and far below any visible bend.
+/// A closed loop is read from its first point round to it again.
 pub fn fairness_report(surface: &NurbsSurface, options: &FairnessOptions) -> FairnessReport {
     let points = options.quadrature.unwrap_or_else(|| default_quadrature(surface));
     let energy = bending_energy(surface, points);

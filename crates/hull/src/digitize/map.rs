@@ -1,31 +1,6 @@
 //! From drawn curves to offsets: scale, datum, station identification, sides, joining.
 //!
-//! # The mapping
-//!
-//! With `s` the model length of one drawing unit and `(X0, Y0)` the datum (the drawing point
-//! where the body plan's centreline meets its baseline), a drawing point `(X, Y)` of a
-//! station curve becomes
-//!
-//! ```text
-//! y = |X - X0| s              (half-breadth: aft stations drawn left, fore ones right)
-//! z = (Y - Y0) s              (DXF, y up)      z = (Y0 - Y) s     (SVG, y down)
-//! ```
-//!
-//! and its station's `x`. For a scale `paper:model` (1:50 is `1:50`), `s = u / 1000 / m * model
-//! / paper` with `u` the millimetres per drawing unit (from the file, or given) and `m` the
-//! metres per output unit; for a scale given as drawing units per output unit `k`, `s = 1 / k`.
-//!
-//! # Tolerances (drawing units)
-//!
-//! `D` is the diagonal of the box of the curves considered. Curved pieces are flattened to
-//! within [`DigitizeOptions::flatness`] (default `1e-6 D`, half a micrometre on an A3 sheet:
-//! below the 1 µm the SVG writers round to). Two piece ends within
-//! [`DigitizeOptions::join_tol`] (default `1e-4 D`) are the same point; a point within it of
-//! the centreline `X = X0` is on the centreline, on neither side.
-//!
-//! The pieces are joined into runs first (`join.rs`, where the rules are), then sorted into
-//! stations and placed along the hull (`stations.rs`); the settings and the result are in
-//! `options.rs`.
+//! The rest of this module's documentation is on [`digitize`], where the library's users read it.
 
 use nurbs::Vec3;
 
@@ -74,6 +49,33 @@ pub(super) struct Found {
 }
 
 /// Digitise the station curves of `sketch` into offsets (see the module docs).
+///
+/// # The mapping
+///
+/// With `s` the model length of one drawing unit and `(X0, Y0)` the datum (the drawing point
+/// where the body plan's centreline meets its baseline), a drawing point `(X, Y)` of a
+/// station curve becomes
+///
+/// ```text
+/// y = |X - X0| s              (half-breadth: aft stations drawn left, fore ones right)
+/// z = (Y - Y0) s              (DXF, y up)      z = (Y0 - Y) s     (SVG, y down)
+/// ```
+///
+/// and its station's `x`. For a scale `paper:model` (1:50 is `1:50`), `s = u / 1000 / m * model
+/// / paper` with `u` the millimetres per drawing unit (from the file, or given) and `m` the
+/// metres per output unit; for a scale given as drawing units per output unit `k`, `s = 1 / k`.
+///
+/// # Tolerances (drawing units)
+///
+/// `D` is the diagonal of the box of the curves considered. Curved pieces are flattened to
+/// within [`DigitizeOptions::flatness`] (default `1e-6 D`, half a micrometre on an A3 sheet:
+/// below the 1 µm the SVG writers round to). Two piece ends within
+/// [`DigitizeOptions::join_tol`] (default `1e-4 D`) are the same point; a point within it of
+/// the centreline `X = X0` is on the centreline, on neither side.
+///
+/// The pieces are joined into runs first (`join.rs`, where the rules are), then sorted into
+/// stations and placed along the hull (`stations.rs`); the settings and the result are in
+/// `options.rs`.
 ///
 /// # Errors
 /// [`HullError::Digitize`] for a scale or datum that cannot work (a ratio scale on a drawing

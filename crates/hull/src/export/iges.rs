@@ -481,25 +481,9 @@ fn wrap_text(text: &str, width: usize) -> Vec<String> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::sample_surface;
     use super::*;
     use nurbs::{assert_near, KnotVector};
-
-    /// A 5 x 4 control net, bicubic in u and quadratic in v, non-uniform knots, non-unit
-    /// weights: every count differs between u and v, so a transposition error shows.
-    fn sample_surface() -> NurbsSurface {
-        let ku = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.3, 1.0, 1.0, 1.0, 1.0]).expect("valid");
-        let kv = KnotVector::try_new(2, vec![-1.0, -1.0, -1.0, 0.25, 2.0, 2.0, 2.0]).expect("valid");
-        let (nu, nv) = (ku.num_basis(), kv.num_basis());
-        let mut pts = Vec::new();
-        let mut w = Vec::new();
-        for i in 0..nu {
-            for j in 0..nv {
-                pts.push(Vec3::new(10.0 * i as f64, 1.5 * j as f64 + 0.1 * i as f64, 0.3 * (i * j) as f64 - 40.0));
-                w.push(1.0 + 0.1 * i as f64 + 0.05 * j as f64);
-            }
-        }
-        NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
-    }
 
     fn write(s: &NurbsSurface, units: IgesUnits) -> String {
         let mut meta = IgesMeta::new(units, "test.igs", "20240102.030405");
@@ -553,7 +537,7 @@ mod tests {
 
     #[test]
     fn records_are_80_columns_in_order_with_counts() {
-        let text = write(&sample_surface(), IgesUnits::METRE);
+        let text = write(&sample_surface(false, true), IgesUnits::METRE);
         let letters: String = text.lines().map(|l| char::from(l.as_bytes()[72])).collect();
         // Sections appear in the order S, G, D, P, T, each a contiguous block.
         let mut order: Vec<char> = letters.chars().collect();
@@ -580,7 +564,7 @@ mod tests {
 
     #[test]
     fn directory_entry_fields() {
-        let text = write(&sample_surface(), IgesUnits::METRE);
+        let text = write(&sample_surface(false, true), IgesUnits::METRE);
         let d = section(&text, 'D');
         let field = |line: &str, k: usize| line[8 * k..8 * k + 8].trim().to_string();
         assert_eq!(field(d[0], 0), "128");
@@ -593,7 +577,7 @@ mod tests {
 
     #[test]
     fn parameter_records_split_between_fields_and_point_to_the_entry() {
-        let text = write(&sample_surface(), IgesUnits::METRE);
+        let text = write(&sample_surface(false, true), IgesUnits::METRE);
         let p = section(&text, 'P');
         assert!(p.len() > 3, "the sample needs several records to test the split");
         for line in &p {
@@ -605,7 +589,7 @@ mod tests {
 
     #[test]
     fn parameter_data_parse_back_to_the_surface() {
-        let s = sample_surface();
+        let s = sample_surface(false, true);
         let text = write(&s, IgesUnits::METRE);
         let f = p_fields(&text);
         let (nu, nv, p, q) = (s.n_u(), s.n_v(), s.degree_u(), s.degree_v());
@@ -633,7 +617,7 @@ mod tests {
 
     #[test]
     fn global_section_fields() {
-        let s = sample_surface();
+        let s = sample_surface(false, true);
         for units in [IgesUnits::METRE, IgesUnits::MILLIMETRE, IgesUnits::FOOT, IgesUnits::INCH] {
             let text = write(&s, units);
             let g = split_fields(&section(&text, 'G').iter().map(|l| &l[..72]).collect::<String>());
@@ -694,7 +678,7 @@ mod tests {
         let mut meta = IgesMeta::new(IgesUnits::METRE, &"long name ".repeat(20), "20240102.030405");
         meta.author = "é".repeat(80);
         let mut out = Vec::new();
-        write_iges(&mut out, &sample_surface(), &meta).expect("writes");
+        write_iges(&mut out, &sample_surface(false, true), &meta).expect("writes");
         let text = String::from_utf8(out).expect("ASCII");
         assert!(text.lines().all(|l| l.len() == 80 && l.is_ascii()));
     }
@@ -719,7 +703,7 @@ mod tests {
 
     #[test]
     fn curves_follow_the_surface_as_entity_126() {
-        let s = sample_surface();
+        let s = sample_surface(false, true);
         let curves = section_curves(&s, &[-1.0, 0.5, 2.0]);
         assert_eq!(curves.len(), 3);
         let meta = IgesMeta::new(IgesUnits::METRE, "c.igs", "20240102.030405");
@@ -767,7 +751,7 @@ mod tests {
 
     #[test]
     fn curves_alone_and_nothing_at_all() {
-        let s = sample_surface();
+        let s = sample_surface(false, true);
         let curves = section_curves(&s, &[0.0, 1.0]);
         let meta = IgesMeta::new(IgesUnits::METRE, "c.igs", "20240102.030405");
         let mut out = Vec::new();
@@ -811,8 +795,8 @@ mod tests {
         let s = NurbsSurface::try_new(ku, kv, &pts, None).expect("valid");
         assert_eq!(section_curves(&s, &[0.0, 0.5, 1.0]).len(), 2);
         // Greville abscissae of a clamped cubic: the ends and the knot averages.
-        let g = greville_v(&sample_surface());
-        assert_eq!(g.len(), sample_surface().n_v());
+        let g = greville_v(&sample_surface(false, true));
+        assert_eq!(g.len(), sample_surface(false, true).n_v());
         assert_eq!((g[0], g[g.len() - 1]), (-1.0, 2.0));
         assert!(g.windows(2).all(|w| w[0] < w[1]));
     }

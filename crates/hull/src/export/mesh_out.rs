@@ -3,33 +3,8 @@
 //! ([`crate::mesh::stl`], [`crate::mesh::obj`]), given the labels made here; glTF is written
 //! here.
 //!
-//! * **STL binary**: the header [`stl_header`] (ASCII, never starting with `solid`, so
-//!   readers do not take it for ASCII STL, naming the units), then per triangle the unit
-//!   normal and the three corners as little-endian f32. The normal is the triangle's own,
-//!   agreeing with its counter-clockwise winding (outward).
-//! * **STL ASCII**: `solid NAME` ([`mesh_name`]), per triangle `facet normal nx ny nz`,
-//!   `outer loop`, three `vertex x y z`, `endloop`, `endfacet`; `endsolid NAME`.
-//! * **OBJ**: the comments [`obj_comments`] naming the units, `o NAME`, `v x y z` and
-//!   `vn nx ny nz` per vertex (the surface's outward normal there), `f a//a b//b c//c` per
-//!   triangle (1-based).
-//!
-//! STL and OBJ keep the surface's coordinates and units (neither format records units; the
-//! OBJ comment and the STL header name them).
-//!
-//! * **glTF binary** (Khronos glTF 2.0, section 4.4 "GLB file format specification"): a
-//!   12-byte header (`glTF`, version 2, total length), a JSON chunk padded with spaces and a
-//!   BIN chunk, each 4-byte aligned. One mesh of one indexed triangle primitive (mode 4) with
-//!   `POSITION` (f32 VEC3, with the `min`/`max` the specification requires), `NORMAL` (f32
-//!   unit VEC3), `COLOR_0` (f32 VEC3, linear RGB) and `u32` indices, one material
-//!   (white, not metallic, double-sided as the surface is open), one node and one scene.
-//!   glTF fixes metres and +Y up (section 3.4), so lengths are converted to metres and the
-//!   axes permuted cyclically, `(X, Y, Z) = (y, z, x)`: up is up, forward is +Z, and the
-//!   permutation is a rotation (no mirror image). `COLOR_0` is the Gaussian curvature on the
-//!   diverging map [`diverging`] (blue negative, white zero, red positive), saturating at
-//!   [`curvature_limit`] (the 98th percentile of `|K|`, as in the 3-D viewer),
-//!   its sRGB stops turned into linear values as glTF requires
-//!   (`c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055)^2.4`, IEC 61966-2-1). The
-//!   `extras` of the asset record the source units, the axes and the curvature limit.
+//! The formats are documented on [`stl_header`] (binary STL), [`mesh_name`] (ASCII STL),
+//! [`obj_comments`] (OBJ) and [`write_glb`] (glTF), where the library's users read them.
 //!
 //! Text numbers go through [`crate::float::real`]; binary ones are IEEE little-endian.
 
@@ -47,6 +22,9 @@ fn invalid(msg: String) -> io::Error {
 
 /// `name` as a name token of STL and OBJ: printable ASCII without spaces (others become
 /// `_`); `hull` if nothing is left.
+///
+/// **STL ASCII**: `solid NAME` ([`mesh_name`]), per triangle `facet normal nx ny nz`,
+/// `outer loop`, three `vertex x y z`, `endloop`, `endfacet`; `endsolid NAME`.
 pub fn mesh_name(name: &str) -> String {
     let t: String = name.chars().map(|c| if c.is_ascii_graphic() { c } else { '_' }).collect();
     if t.is_empty() {
@@ -58,12 +36,24 @@ pub fn mesh_name(name: &str) -> String {
 
 /// The binary STL header of a mesh named `name` in `units`:
 /// `hullskin binary STL NAME units SYMBOL` (cut to 80 bytes by the writer).
+///
+/// **STL binary**: the header [`stl_header`] (ASCII, never starting with `solid`, so
+/// readers do not take it for ASCII STL, naming the units), then per triangle the unit
+/// normal and the three corners as little-endian f32. The normal is the triangle's own,
+/// agreeing with its counter-clockwise winding (outward).
 pub fn stl_header(name: &str, units: Units) -> String {
     format!("hullskin binary STL {} units {}", mesh_name(name), units.symbol())
 }
 
 /// The OBJ comments of a mesh named `name`, triangulated to `tolerance` in `units`: the
 /// version, the tolerance, the units and the axes.
+///
+/// **OBJ**: the comments [`obj_comments`] naming the units, `o NAME`, `v x y z` and
+/// `vn nx ny nz` per vertex (the surface's outward normal there), `f a//a b//b c//c` per
+/// triangle (1-based).
+///
+/// STL and OBJ keep the surface's coordinates and units (neither format records units; the
+/// OBJ comment and the STL header name them).
 ///
 /// # Errors
 /// [`io::ErrorKind::InvalidData`] for a non-finite tolerance.
@@ -148,7 +138,22 @@ const GLB_MAGIC: u32 = 0x4654_6C67;
 const CHUNK_JSON: u32 = 0x4E4F_534A;
 const CHUNK_BIN: u32 = 0x004E_4942;
 
-/// Write the mesh of `tess` (in `units`) as one binary glTF 2.0 file (see the module docs).
+/// Write the mesh of `tess` (in `units`) as one binary glTF 2.0 file.
+///
+/// **glTF binary** (Khronos glTF 2.0, section 4.4 "GLB file format specification"): a
+/// 12-byte header (`glTF`, version 2, total length), a JSON chunk padded with spaces and a
+/// BIN chunk, each 4-byte aligned. One mesh of one indexed triangle primitive (mode 4) with
+/// `POSITION` (f32 VEC3, with the `min`/`max` the specification requires), `NORMAL` (f32
+/// unit VEC3), `COLOR_0` (f32 VEC3, linear RGB) and `u32` indices, one material
+/// (white, not metallic, double-sided as the surface is open), one node and one scene.
+/// glTF fixes metres and +Y up (section 3.4), so lengths are converted to metres and the
+/// axes permuted cyclically, `(X, Y, Z) = (y, z, x)`: up is up, forward is +Z, and the
+/// permutation is a rotation (no mirror image). `COLOR_0` is the Gaussian curvature on the
+/// diverging map [`diverging`] (blue negative, white zero, red positive), saturating at
+/// [`curvature_limit`] (the 98th percentile of `|K|`, as in the 3-D viewer),
+/// its sRGB stops turned into linear values as glTF requires
+/// (`c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055)^2.4`, IEC 61966-2-1). The
+/// `extras` of the asset record the source units, the axes and the curvature limit.
 ///
 /// # Errors
 /// Whatever `w` returns; [`io::ErrorKind::InvalidInput`] for an empty mesh or one too large

@@ -42,6 +42,29 @@ fn resolution(size: f64) -> f64 {
     power_of_ten(resolution_exponent(size))
 }
 
+/// The surface of the IGES and STEP unit tests: bicubic in u, quadratic in v, v domain
+/// `[-1, 2]`, non-uniform knots; every count differs between u and v, so a transposition error
+/// shows. `double_knot` makes the interior u knot 0.3 double (a 6 x 4 net, for STEP's knot
+/// multiplicities; else 5 x 4); `rational` gives weights from 1 to 1.55, else all 2 (a
+/// polynomial surface written with a constant weight).
+#[cfg(test)]
+fn sample_surface(double_knot: bool, rational: bool) -> nurbs::NurbsSurface {
+    let interior: &[f64] = if double_knot { &[0.3, 0.3] } else { &[0.3] };
+    let ku = [&[0.0; 4][..], interior, &[1.0; 4]].concat();
+    let ku = nurbs::KnotVector::try_new(3, ku).expect("valid");
+    let kv = nurbs::KnotVector::try_new(2, vec![-1.0, -1.0, -1.0, 0.25, 2.0, 2.0, 2.0]).expect("valid");
+    let (nu, nv) = (ku.num_basis(), kv.num_basis());
+    let mut pts = Vec::new();
+    let mut w = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            pts.push(nurbs::Vec3::new(10.0 * i as f64, 1.5 * j as f64 + 0.1 * i as f64, 0.3 * (i * j) as f64 - 40.0));
+            w.push(if rational { 1.0 + 0.1 * i as f64 + 0.05 * j as f64 } else { 2.0 });
+        }
+    }
+    nurbs::NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+}
+
 /// What the IGES and STEP tests check of the resolution `r` a file declares for a control net
 /// of diagonal `size`: a power of ten within a factor 10 below `1e-7 size`.
 #[cfg(test)]

@@ -425,24 +425,9 @@ fn wrap(text: &str, width: usize) -> Vec<String> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::sample_surface;
     use super::*;
     use nurbs::KnotVector;
-
-    /// Bicubic in u, quadratic in v, a double interior knot, non-unit weights.
-    fn sample_surface(rational: bool) -> NurbsSurface {
-        let ku = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 1.0, 1.0, 1.0, 1.0]).expect("valid");
-        let kv = KnotVector::try_new(2, vec![-1.0, -1.0, -1.0, 0.25, 2.0, 2.0, 2.0]).expect("valid");
-        let (nu, nv) = (ku.num_basis(), kv.num_basis());
-        let mut pts = Vec::new();
-        let mut w = Vec::new();
-        for i in 0..nu {
-            for j in 0..nv {
-                pts.push(Vec3::new(10.0 * i as f64, 1.5 * j as f64 + 0.1 * i as f64, 0.3 * (i * j) as f64 - 40.0));
-                w.push(if rational { 1.0 + 0.1 * i as f64 + 0.05 * j as f64 } else { 2.0 });
-            }
-        }
-        NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
-    }
 
     fn write(s: &NurbsSurface, units: Units) -> String {
         let mut meta = StepMeta::new(units, "test.stp", "2024-01-02T03:04:05");
@@ -497,7 +482,7 @@ mod tests {
 
     #[test]
     fn header_and_structure() {
-        let text = write(&sample_surface(true), Units::Metre);
+        let text = write(&sample_surface(true, true), Units::Metre);
         assert!(text.starts_with("ISO-10303-21;\nHEADER;\n"));
         assert!(text.ends_with("ENDSEC;\nEND-ISO-10303-21;\n"));
         assert!(text.contains("FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));"));
@@ -544,7 +529,7 @@ mod tests {
 
     #[test]
     fn rational_surface_is_a_complex_instance_that_parses_back() {
-        let s = sample_surface(true);
+        let s = sample_surface(true, true);
         let text = write(&s, Units::Metre);
         let inst = instances(&text);
         let (_, surf) = inst.iter().find(|(_, b)| b.contains("RATIONAL_B_SPLINE_SURFACE")).expect("surface");
@@ -597,14 +582,14 @@ mod tests {
 
     #[test]
     fn polynomial_surface_is_plain() {
-        let text = write(&sample_surface(false), Units::Metre);
+        let text = write(&sample_surface(true, false), Units::Metre);
         assert!(!text.contains("RATIONAL_B_SPLINE_SURFACE"));
         assert_eq!(text.matches("B_SPLINE_SURFACE_WITH_KNOTS('hull',3,2,((").count(), 1);
     }
 
     #[test]
     fn units_and_uncertainty() {
-        let s = sample_surface(true);
+        let s = sample_surface(true, true);
         let m = write(&s, Units::Metre);
         assert!(m.contains("SI_UNIT($,.METRE.)") && !m.contains("CONVERSION_BASED_UNIT"));
         assert!(write(&s, Units::Millimetre).contains("SI_UNIT(.MILLI.,.METRE.)"));
@@ -653,7 +638,7 @@ mod tests {
 
     #[test]
     fn deterministic() {
-        let s = sample_surface(true);
+        let s = sample_surface(true, true);
         assert_eq!(write(&s, Units::Foot), write(&s, Units::Foot));
     }
 

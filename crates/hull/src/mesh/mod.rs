@@ -12,19 +12,8 @@
 //!   mesh at a draft, by the divergence theorem on the triangles clipped at the waterplane.
 //! - [`distance::mesh_distance`]: the distance of the mesh's vertices to a fitted surface.
 //!
-//! # Axes and units
-//!
-//! The mesh is expected in hullskin's axes (see [`crate::Offsets`]): **x forward** (from the
-//! aft perpendicular or any origin), **y across** with the centre plane at `y = 0` (the mesh
-//! holds both sides, or only the starboard side `y >= 0`), **z up** (from the keel or any
-//! origin). Meshes in other axes are brought to these by [`MeshReadOptions::axes`], a signed
-//! permutation applied first, and [`MeshReadOptions::shift`], a translation applied after it:
-//! the point `p` of the file becomes `axes(p) + shift`. For instance a mesh with z forward and
-//! y up (common in graphics) is read with axes `z,x,y`; a mesh whose bow points to -x with
-//! `-x,-y,z` (a half turn about z, which keeps the frame right-handed).
-//!
-//! Coordinates are not converted: as for offsets, the units (`--units`) are a label carried
-//! to the outputs ([`crate::Units`]).
+//! The axes and units a mesh is read in are documented on [`MeshReadOptions`], where the
+//! library's users read them.
 
 mod distance;
 mod gzip;
@@ -180,6 +169,20 @@ impl MeshFormat {
 }
 
 /// Settings of [`read_mesh`] and [`parse_mesh`].
+///
+/// # Axes and units
+///
+/// The mesh is expected in hullskin's axes (see [`crate::Offsets`]): **x forward** (from the
+/// aft perpendicular or any origin), **y across** with the centre plane at `y = 0` (the mesh
+/// holds both sides, or only the starboard side `y >= 0`), **z up** (from the keel or any
+/// origin). Meshes in other axes are brought to these by [`MeshReadOptions::axes`], a signed
+/// permutation applied first, and [`MeshReadOptions::shift`], a translation applied after it:
+/// the point `p` of the file becomes `axes(p) + shift`. For instance a mesh with z forward and
+/// y up (common in graphics) is read with axes `z,x,y`; a mesh whose bow points to -x with
+/// `-x,-y,z` (a half turn about z, which keeps the frame right-handed).
+///
+/// Coordinates are not converted: as for offsets, the units (`--units`) are a label carried
+/// to the outputs ([`crate::Units`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshReadOptions {
     /// The file's axes as hullskin's (default identity `x,y,z`).

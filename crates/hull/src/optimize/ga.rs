@@ -1,26 +1,7 @@
 //! Real-coded Genetic Algorithm: binary tournament selection, simulated binary crossover (SBX)
 //! and polynomial mutation in their bounded forms, with elitism.
 //!
-//! Sources:
-//! - K. Deb, R. B. Agrawal, "Simulated binary crossover for continuous search space",
-//!   Complex Systems 9 (1995) 115-148 (SBX);
-//! - K. Deb, M. Goyal, "A combined genetic adaptive search (GeneAS) for engineering design",
-//!   Computer Science and Informatics 26 (1996) 30-45 (polynomial mutation);
-//! - the bounded forms of both as in Deb's reference NSGA-II code (`realcross`,
-//!   `real_mutate_ind`) and K. Deb, A. Pratap, S. Agarwal, T. Meyarivan, "A fast and elitist
-//!   multiobjective genetic algorithm: NSGA-II", IEEE TEC 6 (2002) 182-197, whose settings
-//!   (p_c = 0.9, eta_c = 20, p_m = 1/n, eta_m = 20) are the defaults here;
-//! - D. E. Goldberg, K. Deb, "A comparative analysis of selection schemes used in genetic
-//!   algorithms", FOGA 1 (1991) 69-93 (tournament selection).
-//!
-//! The search runs in the unit cube: each variable is normalised, `x = lo + t (hi - lo)`,
-//! `t` in `[0, 1]`, so the constants do not depend on the box's scale.
-//!
-//! One generation: the `elites` best individuals are copied unchanged (and not re-evaluated);
-//! the other `N - elites` slots are filled by pairs of children, each pair made from two
-//! tournament winners by SBX (with probability `p_c`, else copies) and then polynomial
-//! mutation. Only the children are evaluated, so a run of `T` generations costs
-//! `N + T (N - elites)` evaluations.
+//! The rest of this module's documentation is on [`run`], where the library's users read it.
 //!
 //! This file also holds the small pieces shared by the three evolutionary optimisers (GA, PSO,
 //! GSA): the unit-box mapping, the seeding near the start and the bookkeeping of the best point.
@@ -88,30 +69,40 @@ impl Default for GaOptions {
 /// thread; only the evaluations run in parallel, so the result does not depend on the thread
 /// count. `evaluations = N + iterations * (N - elites)`; with `iterations = 0` or no variables
 /// only the start is evaluated.
+///
+/// # Algorithm
+///
+/// Sources:
+/// - K. Deb, R. B. Agrawal, "Simulated binary crossover for continuous search space",
+///   Complex Systems 9 (1995) 115-148 (SBX);
+/// - K. Deb, M. Goyal, "A combined genetic adaptive search (GeneAS) for engineering design",
+///   Computer Science and Informatics 26 (1996) 30-45 (polynomial mutation);
+/// - the bounded forms of both as in Deb's reference NSGA-II code (`realcross`,
+///   `real_mutate_ind`) and K. Deb, A. Pratap, S. Agarwal, T. Meyarivan, "A fast and elitist
+///   multiobjective genetic algorithm: NSGA-II", IEEE TEC 6 (2002) 182-197, whose settings
+///   (p_c = 0.9, eta_c = 20, p_m = 1/n, eta_m = 20) are the defaults here;
+/// - D. E. Goldberg, K. Deb, "A comparative analysis of selection schemes used in genetic
+///   algorithms", FOGA 1 (1991) 69-93 (tournament selection).
+///
+/// The search runs in the unit cube: each variable is normalised, `x = lo + t (hi - lo)`,
+/// `t` in `[0, 1]`, so the constants do not depend on the box's scale.
+///
+/// One generation: the `elites` best individuals are copied unchanged (and not re-evaluated);
+/// the other `N - elites` slots are filled by pairs of children, each pair made from two
+/// tournament winners by SBX (with probability `p_c`, else copies) and then polynomial
+/// mutation. Only the children are evaluated, so a run of `T` generations costs
+/// `N + T (N - elites)` evaluations.
 pub fn run(obj: &dyn Objective, opts: &GaOptions, seed: u64, control: &Control<'_>) -> OptimResult {
-    let d = obj.dim();
-    let start = obj.start();
-    if d == 0 || opts.iterations == 0 {
-        return start_only(obj, start);
-    }
     let budget = opts.iterations;
-    let unit = UnitBox::new(obj);
-    let t0 = unit.to_t(&start);
     let n = opts.population.max(2);
+    // Current generation (genes in the unit cube, points in the box, values) and the next one.
+    let Seeded { d, unit, mut rng, mut t, mut xs, .. } = match Seeded::new(obj, budget, n, seed, opts.init_spread, true)
+    {
+        Ok(s) => s,
+        Err(r) => return *r,
+    };
     let elites = opts.elites.min(n - 1);
     let pm = opts.mutation_prob.unwrap_or(1.0 / d as f64);
-    let mut rng = rng(seed);
-
-    // Current generation (genes in the unit cube, points in the box, values) and the next one.
-    let mut t = vec![0.0; n * d];
-    let mut xs = vec![vec![0.0; d]; n];
-    t[..d].copy_from_slice(&t0);
-    xs[0].clone_from(&start);
-    for i in 1..n {
-        let ti = &mut t[i * d..(i + 1) * d];
-        perturb(&mut rng, &t0, opts.init_spread, ti);
-        unit.to_x(ti, &mut xs[i]);
-    }
     let mut fit = evaluate_all(obj, &xs);
     let mut rec = Record::new(&xs[0], fit[0], n, budget);
     rec.offer_best(&xs, &fit);
@@ -318,6 +309,55 @@ pub(super) fn absorb(t: &mut f64, vel: f64) -> f64 {
     } else {
         *t = moved;
         vel
+    }
+}
+
+/// The start of a run, alike in the three evolutionary optimisers: `n` points in the unit cube
+/// `t` (`n x d`, row-major) and in the box `xs`, each within `spread` of the start; with
+/// `keep_start` the first of them is the start itself (GA, PSO), else all are drawn (GSA, whose
+/// planted start would hold nearly all the mass). The random numbers are drawn in that order
+/// from the stream seeded by `seed`, which the run goes on drawing from.
+pub(super) struct Seeded {
+    pub(super) d: usize,
+    pub(super) start: Vec<f64>,
+    pub(super) unit: UnitBox,
+    pub(super) rng: ChaCha8Rng,
+    pub(super) t: Vec<f64>,
+    pub(super) xs: Vec<Vec<f64>>,
+}
+
+impl Seeded {
+    /// The seeded population, or the start-only result ([`start_only`]) when there is nothing
+    /// to search: no variable or no iteration.
+    pub(super) fn new(
+        obj: &dyn Objective,
+        iterations: usize,
+        n: usize,
+        seed: u64,
+        spread: f64,
+        keep_start: bool,
+    ) -> Result<Self, Box<OptimResult>> {
+        let d = obj.dim();
+        let start = obj.start();
+        if d == 0 || iterations == 0 {
+            return Err(Box::new(start_only(obj, start)));
+        }
+        let unit = UnitBox::new(obj);
+        let t0 = unit.to_t(&start);
+        let mut rng = rng(seed);
+        let mut t = vec![0.0; n * d];
+        let mut xs = vec![vec![0.0; d]; n];
+        let first = usize::from(keep_start);
+        if keep_start {
+            t[..d].copy_from_slice(&t0);
+            xs[0].clone_from(&start);
+        }
+        for i in first..n {
+            let ti = &mut t[i * d..(i + 1) * d];
+            perturb(&mut rng, &t0, spread, ti);
+            unit.to_x(ti, &mut xs[i]);
+        }
+        Ok(Seeded { d, start, unit, rng, t, xs })
     }
 }
 

@@ -1,50 +1,13 @@
 //! Gravitational Search Algorithm (E. Rashedi, H. Nezamabadi-pour, S. Saryazdi, "GSA: A
 //! Gravitational Search Algorithm", Information Sciences 179 (2009) 2232-2248).
 //!
-//! `N` agents move in the unit cube (`x = lo + t (hi - lo)`, `t` in `[0, 1]`, over the
-//! objective's [`Objective::search_box`]). At iteration `k`
-//! (`s = k - 1` moves done, of `T`), with the fitness `f_i` of the agents (minimised):
-//!
-//! - masses: `m_i = (f_i - worst) / (best - worst)`, `M_i = m_i / sum_j m_j`,
-//!   `best = min f`, `worst = max f`; all masses equal when `best = worst`; an infeasible agent
-//!   (`f = +inf`) has mass 0 and `worst` is taken over the feasible ones;
-//! - gravitational constant (the paper's experiments): `G = G0 exp(-alpha s / T)`;
-//! - the `Kbest` heaviest agents attract: `Kbest` falls linearly from `N` to
-//!   `final_kbest N`, at least 1 (the paper ends with one agent, the reference code with 2 %:
-//!   the same for `N = 50`);
-//! - acceleration (the agent's own mass cancels, `a_i = F_i / M_i`):
-//!   `a_i^d = G sum_{j in Kbest, j != i} rand_j M_j (t_j^d - t_i^d) / (R_ij + eps)`,
-//!   `R_ij = |t_i - t_j|_2`, `rand_j ~ U[0,1)`;
-//! - motion: `v_i^d <- rand_i v_i^d + a_i^d`, `t_i^d <- t_i^d + v_i^d`,
-//!   `rand_i ~ U[0,1)`.
-//!
-//! The random weights are drawn either as the paper's equations write them (`rand_j` per pair
-//! `(i, j)`, `rand_i` per agent: [`GsaRandom::PerAgent`]) or as the authors' reference MATLAB
-//! code does (`rand` per pair and per dimension in `Gfield.m`, `rand(N, dim) .* V` in `move.m`:
-//! [`GsaRandom::PerDimension`], the default). With one scalar per pair, every pull is along
-//! `t_j - t_i` and the swarm stays in the span of its initial differences, which in tens of
-//! dimensions stalls: on a coupled quadratic (tests below) with the default budget, seeds 0-3,
-//! the paper's form ended at 13-33 % of the start value in 40 variables and 37-62 % in 80 (the
-//! size of a full weight grid), the reference code's at most 0.0014 % and 0.17-0.46 %.
-//!
-//! Departures from the paper, each forced by the setting or noted in the brief:
-//! - `G0` is relative to the unit cube, not the paper's benchmark ranges (it used `G0 = 100`
-//!   on ranges of width ~10-1000); see [`GsaOptions::g0`];
-//! - an agent leaving the cube is put on the bound and that velocity component is zeroed (the
-//!   authors' reference code re-draws such agents at random, which would throw away the seeding
-//!   near the start);
-//! - the agents start near the start (uniform within `init_spread`), and none of them is the
-//!   start itself: a planted start agent would hold nearly all the mass and the swarm would
-//!   collapse onto it. The start is evaluated separately, so the result is never worse than it.
-//!
-//! A run of `T` iterations with `N` agents costs `1 + N (T + 1)` evaluations (the start, the
-//! initial swarm, and one swarm per move).
+//! The rest of this module's documentation is on [`run`], where the library's users read it.
 
 use rand::Rng;
 use rayon::prelude::*;
 
-use super::ga::{absorb, perturb, start_only, unit_random, Record, UnitBox};
-use super::{evaluate_all, rng, Control, Objective, OptimResult, StopReason};
+use super::ga::{absorb, unit_random, Record, Seeded};
+use super::{evaluate_all, Control, Objective, OptimResult, StopReason};
 
 /// How the random weights of the forces and of the velocity memory are drawn.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -89,7 +52,7 @@ pub struct GsaOptions {
     /// around the start. Default 0.1.
     pub init_spread: f64,
     /// Where the random weights are drawn. Default [`GsaRandom::PerDimension`] (the authors'
-    /// code), far better in tens of variables (see the module documentation).
+    /// code), far better in tens of variables (see [`run`]).
     pub random: GsaRandom,
 }
 
@@ -114,6 +77,50 @@ impl Default for GsaOptions {
 /// the calling thread in a fixed order; only the evaluations run in parallel, so the result
 /// does not depend on the thread count. `evaluations = 1 + N (iterations + 1)`; with
 /// `iterations = 0` or no variables only the start is evaluated.
+///
+/// # Algorithm
+///
+/// Gravitational Search Algorithm (E. Rashedi, H. Nezamabadi-pour, S. Saryazdi, "GSA: A
+/// Gravitational Search Algorithm", Information Sciences 179 (2009) 2232-2248).
+///
+/// `N` agents move in the unit cube (`x = lo + t (hi - lo)`, `t` in `[0, 1]`, over the
+/// objective's [`Objective::search_box`]). At iteration `k`
+/// (`s = k - 1` moves done, of `T`), with the fitness `f_i` of the agents (minimised):
+///
+/// - masses: `m_i = (f_i - worst) / (best - worst)`, `M_i = m_i / sum_j m_j`,
+///   `best = min f`, `worst = max f`; all masses equal when `best = worst`; an infeasible agent
+///   (`f = +inf`) has mass 0 and `worst` is taken over the feasible ones;
+/// - gravitational constant (the paper's experiments): `G = G0 exp(-alpha s / T)`;
+/// - the `Kbest` heaviest agents attract: `Kbest` falls linearly from `N` to
+///   `final_kbest N`, at least 1 (the paper ends with one agent, the reference code with 2 %:
+///   the same for `N = 50`);
+/// - acceleration (the agent's own mass cancels, `a_i = F_i / M_i`):
+///   `a_i^d = G sum_{j in Kbest, j != i} rand_j M_j (t_j^d - t_i^d) / (R_ij + eps)`,
+///   `R_ij = |t_i - t_j|_2`, `rand_j ~ U[0,1)`;
+/// - motion: `v_i^d <- rand_i v_i^d + a_i^d`, `t_i^d <- t_i^d + v_i^d`,
+///   `rand_i ~ U[0,1)`.
+///
+/// The random weights are drawn either as the paper's equations write them (`rand_j` per pair
+/// `(i, j)`, `rand_i` per agent: [`GsaRandom::PerAgent`]) or as the authors' reference MATLAB
+/// code does (`rand` per pair and per dimension in `Gfield.m`, `rand(N, dim) .* V` in `move.m`:
+/// [`GsaRandom::PerDimension`], the default). With one scalar per pair, every pull is along
+/// `t_j - t_i` and the swarm stays in the span of its initial differences, which in tens of
+/// dimensions stalls: on a coupled quadratic (tests below) with the default budget, seeds 0-3,
+/// the paper's form ended at 13-33 % of the start value in 40 variables and 37-62 % in 80 (the
+/// size of a full weight grid), the reference code's at most 0.0014 % and 0.17-0.46 %.
+///
+/// Departures from the paper, each forced by the setting or noted in the brief:
+/// - `G0` is relative to the unit cube, not the paper's benchmark ranges (it used `G0 = 100`
+///   on ranges of width ~10-1000); see [`GsaOptions::g0`];
+/// - an agent leaving the cube is put on the bound and that velocity component is zeroed (the
+///   authors' reference code re-draws such agents at random, which would throw away the seeding
+///   near the start);
+/// - the agents start near the start (uniform within `init_spread`), and none of them is the
+///   start itself: a planted start agent would hold nearly all the mass and the swarm would
+///   collapse onto it. The start is evaluated separately, so the result is never worse than it.
+///
+/// A run of `T` iterations with `N` agents costs `1 + N (T + 1)` evaluations (the start, the
+/// initial swarm, and one swarm per move).
 pub fn run(obj: &dyn Objective, opts: &GsaOptions, seed: u64, control: &Control<'_>) -> OptimResult {
     run_observed(obj, opts, seed, control, &mut |_, _| {})
 }
@@ -127,29 +134,18 @@ fn run_observed(
     control: &Control<'_>,
     observe: &mut dyn FnMut(usize, &[f64]),
 ) -> OptimResult {
-    let d = obj.dim();
-    let start = obj.start();
-    if d == 0 || opts.iterations == 0 {
-        return start_only(obj, start);
-    }
     let budget = opts.iterations;
-    let unit = UnitBox::new(obj);
-    let t0 = unit.to_t(&start);
     let n = opts.agents.max(2);
-    let mut rng = rng(seed);
-
+    let Seeded { d, start, unit, mut rng, mut t, mut xs, .. } =
+        match Seeded::new(obj, budget, n, seed, opts.init_spread, false) {
+            Ok(s) => s,
+            Err(r) => return *r,
+        };
     let start_value = evaluate_all(obj, std::slice::from_ref(&start))[0];
     let mut rec = Record::new(&start, start_value, 1, budget);
 
-    let mut t = vec![0.0; n * d];
     let mut v = vec![0.0; n * d];
     let mut acc = vec![0.0; n * d];
-    let mut xs = vec![vec![0.0; d]; n];
-    for (i, x) in xs.iter_mut().enumerate() {
-        let ti = &mut t[i * d..(i + 1) * d];
-        perturb(&mut rng, &t0, opts.init_spread, ti);
-        unit.to_x(ti, x);
-    }
     observe(0, &t);
     let mut fit = evaluate_all(obj, &xs);
     rec.evaluations += n;
@@ -336,7 +332,7 @@ mod tests {
 
     #[test]
     fn per_dimension_random_beats_per_agent_in_many_variables() {
-        // The reason for the default (module documentation). A reduced budget (30 agents, 200
+        // The reason for the default (the docs of `run`). A reduced budget (30 agents, 200
         // iterations) keeps the test quick; measured over seeds 0-3 in 40 variables the
         // per-dimension draws ended at 0.7-1.7 % of the start value, the paper's per-pair
         // scalar at 31-52 %.

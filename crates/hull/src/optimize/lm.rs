@@ -1,56 +1,7 @@
 //! Levenberg-Marquardt on the variable-projection functional of the weights (Golub and Pereyra
 //! 1973, with Kaufman's 1975 Jacobian), and optionally on the data parameters too.
 //!
-//! Each iteration solves `(J^T J + μ D) h = -J^T r` with Marquardt's scaling
-//! `D = diag(J^T J)` (floored at `1e-12 max_i (J^T J)_ii`), for the variables not held at a bound
-//! by the gradient (an active-set projection: a variable on its bound whose gradient points out
-//! of the box is frozen for that step), clamps `x + h` into the box, and accepts the step when
-//! the sum of squares falls. The damping follows Nielsen (1999): on success
-//! `μ <- μ max(1/3, 1 - (2 ϱ - 1)^3)` with `ϱ` the ratio of actual to predicted decrease, on
-//! failure `μ <- μ ν, ν <- 2 ν` (Madsen, Nielsen and Tingleff, *Methods for non-linear least
-//! squares problems*, 2004, Alg. 3.16).
-//!
-//! Stops when the relative decrease of `|r|^2` and its prediction both fall below
-//! `tolerance`, when the scaled gradient `max_i |J_i^T r| / (|J_i| |r|)` of the free variables
-//! falls below `gradient_tolerance`, when the step is below `step_tolerance (|x| +
-//! step_tolerance)`, when the last `stall.0` iterations together gained less than `stall.1` of
-//! the RMS, when the value reaches round-off (`1e-15` of the model size), or after
-//! `max_iterations` (one trial step each). Only decreases are accepted, so the result is never
-//! worse than the start.
-//!
-//! Cost: with Kaufman's Jacobian the normal equations come straight from the problem's
-//! structure ([`WeightProblem::normal_equations`], `J` never formed); with the exact Jacobian
-//! or the data parameters, from the dense `J`. Measured on the Series 60 table (release, one
-//! core of this 2-core Xeon), against the dense `J` and the former tolerance `1e-10`:
-//!
-//! | control points, layout | iterations | time |
-//! |---|---|---|
-//! | 6 x 19, full (114 weights) | 91 -> 78 | 189 -> 56 ms |
-//! | 6 x 19, rank one | 44 -> 35 | 17.3 -> 6.5 ms |
-//! | 6 x 12, full | 25 -> 18 | 24.7 -> 6.3 ms |
-//! | 6 x 12, rank one | 20 -> 17 | 5.5 -> 2.3 ms |
-//!
-//! with final values within `3e-8` relative. Neither another damping (`μ_0` from `1e-5` to 1,
-//! a floor on `μ`), the exact Jacobian, geodesic acceleration (Transtrum and Sethna 2012) nor
-//! a secant update of the large-residual term (Dennis, Gay and Welsch 1981) cut the iteration
-//! count at 6 x 19: its long middle phase (ϱ about 0.5 with `μ` below `1e-4`, weights reaching
-//! their bounds one by one) is the functional's.
-//!
-//! Many weights: where forming and factoring the normal equations would cost 4x more than
-//! the matrix-free step (`lm/model.rs`: preconditioned conjugate gradients on products with
-//! Kaufman's `J^T J`, at most [`LmOptions::max_cg`] of them, relative residual from
-//! [`LmOptions::cg_tolerance`] down to [`LmOptions::cg_tolerance_min`] by Eisenstat and
-//! Walker's forcing sequence as the gradient falls), that is used instead; the evaluation of an accepted point is
-//! reused for its model. On the tables of `testdata/` (the README's table, `tools/lm_speed.sh`)
-//! this took LM from 60x-970x the plain approximation's time to 7x-13x on 176 to 780 weights,
-//! at a higher final RMS where the old runs went furthest (WPB 0.37 mm against 0.027); CG's
-//! cap 8 -> 12 with the forcing sequence and a race probe of 20 iterations cut that to 0.317 mm
-//! (trawler 3.81 -> 1.99, against 1.77 dense) at 7x-16x.
-//! [`run_best_of`] runs several starts a few iterations each and only the lowest on.
-//!
-//! With [`run_with_parameters`] the unknowns are the log-weights and every offset's `u_k` (and
-//! `v_k`), the control points still eliminated by least squares: this recovers exactly
-//! rational shapes (circular sections) to round-off, which weights at fixed parameters cannot.
+//! The rest of this module's documentation is on [`run`], where the library's users read it.
 
 use std::cell::RefCell;
 
@@ -63,6 +14,50 @@ mod model;
 use model::{forcing, step_path, Dense, MatrixFree, Model, StepPath};
 
 /// Settings of [`run`] (and of the polish and the parameter correction of [`super::optimize_weights`]).
+///
+/// # The matrix-free step
+///
+/// The Gauss-Newton model of one Levenberg-Marquardt iteration, and its damped step
+/// `(J^T J + R + μ D) h = -(J^T r + R θ)` on the free variables, two ways:
+///
+/// * `Dense`: the normal matrix formed (`d x d`), the step by dense Cholesky, `D` its
+///   diagonal (Marquardt 1963).
+/// * `MatrixFree`: only products with `J^T J` (see `weights/matvec.rs`, each
+///   `O(m (p+1)(q+1) + n bw)`), the step by preconditioned conjugate gradients (Hestenes and
+///   Stiefel 1952; Nocedal and Wright, *Numerical Optimization*, 2nd ed., Alg. 5.3) stopped at
+///   a relative residual `η` (an inexact Newton step: Dembo, Eisenstat and Steihaug 1982;
+///   every CG iterate from zero lowers the quadratic model, so a truncated step still
+///   descends). `D = diag(A^T A) / m + diag(R)`, the fixed-point part of the diagonal, an upper
+///   bound of `diag(J^T J + R)` that costs nothing (the exact one needs `d` band solves), is
+///   the damping's scaling and, with `μ`, the Jacobi preconditioner.
+///
+/// `step_path` picks the cheaper by an estimate of the multiply-adds of one iteration.
+///
+/// Kaufman's Jacobian of the variable-projection residual as an operator: products `J v`,
+/// `J^T w` and `(J^T J) v` without forming `J` or `J^T J`, for a matrix-free
+/// Levenberg-Marquardt step (conjugate gradients) on problems with many weights.
+///
+/// With `A` the derivative of the residuals at fixed control points (`3 m x d`, sparse: offset
+/// `k`'s row block has one entry `R_kc (P_c - S_k)` per control point `c` of its support,
+/// summed into `(p+1) + (q+1)` variables in the rank-one layout), `H` the `m x n` matrix
+/// `h_kc = B_kc / W_k` acting on each coordinate, and `G = H^T H` (+ the anchor ridge) with the
+/// band Cholesky factor `G = L L^T` that the evaluation made, Kaufman's Jacobian is
+/// (Kaufman 1975; see [`WeightProblem::normal_equations`])
+///
+/// `J = (I - H G^{-1} H^T) A / sqrt(m)` (`Resolved` mode), `J = A / sqrt(m)` (`Fixed`),
+///
+/// and the normal matrix the dense path forms is `m J^T J = A^T (I - H G^{-1} H^T) A`
+/// (one projection: the projector is idempotent when `G = H^T H`, and with the anchor this is
+/// the same `O(anchor)` approximation as `normal_equations`). So
+///
+/// * `J v`: `u = A v` (`3 m (p+1)(q+1)` multiply-adds), `t = H^T u`, `t <- G^{-1} t` (two band
+///   substitutions, `6 n bw`), `u <- u - H t`;
+/// * `J^T w`: the same projection of `w`, then `A^T`;
+/// * `(J^T J) v = A^T (I - H G^{-1} H^T) A v / m`: one projection,
+///
+/// each `O(m (p+1)(q+1) + n bw)`, against `O(m d^2)` for the dense normal equations. The prior
+/// `R` of the log-weights (see `WeightProblem::prior_apply`) is added by the caller's
+/// operator, not here.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LmOptions {
     /// Trial steps at most.
@@ -155,6 +150,59 @@ pub struct ParamFit {
 }
 
 /// Levenberg-Marquardt from the problem's start (all weights 1).
+///
+/// # Algorithm
+///
+/// Each iteration solves `(J^T J + μ D) h = -J^T r` with Marquardt's scaling
+/// `D = diag(J^T J)` (floored at `1e-12 max_i (J^T J)_ii`), for the variables not held at a bound
+/// by the gradient (an active-set projection: a variable on its bound whose gradient points out
+/// of the box is frozen for that step), clamps `x + h` into the box, and accepts the step when
+/// the sum of squares falls. The damping follows Nielsen (1999): on success
+/// `μ <- μ max(1/3, 1 - (2 ϱ - 1)^3)` with `ϱ` the ratio of actual to predicted decrease, on
+/// failure `μ <- μ ν, ν <- 2 ν` (Madsen, Nielsen and Tingleff, *Methods for non-linear least
+/// squares problems*, 2004, Alg. 3.16).
+///
+/// Stops when the relative decrease of `|r|^2` and its prediction both fall below
+/// `tolerance`, when the scaled gradient `max_i |J_i^T r| / (|J_i| |r|)` of the free variables
+/// falls below `gradient_tolerance`, when the step is below `step_tolerance (|x| +
+/// step_tolerance)`, when the last `stall.0` iterations together gained less than `stall.1` of
+/// the RMS, when the value reaches round-off (`1e-15` of the model size), or after
+/// `max_iterations` (one trial step each). Only decreases are accepted, so the result is never
+/// worse than the start.
+///
+/// Cost: with Kaufman's Jacobian the normal equations come straight from the problem's
+/// structure ([`WeightProblem::normal_equations`], `J` never formed); with the exact Jacobian
+/// or the data parameters, from the dense `J`. Measured on the Series 60 table (release, one
+/// core of this 2-core Xeon), against the dense `J` and the former tolerance `1e-10`:
+///
+/// | control points, layout | iterations | time |
+/// |---|---|---|
+/// | 6 x 19, full (114 weights) | 91 -> 78 | 189 -> 56 ms |
+/// | 6 x 19, rank one | 44 -> 35 | 17.3 -> 6.5 ms |
+/// | 6 x 12, full | 25 -> 18 | 24.7 -> 6.3 ms |
+/// | 6 x 12, rank one | 20 -> 17 | 5.5 -> 2.3 ms |
+///
+/// with final values within `3e-8` relative. Neither another damping (`μ_0` from `1e-5` to 1,
+/// a floor on `μ`), the exact Jacobian, geodesic acceleration (Transtrum and Sethna 2012) nor
+/// a secant update of the large-residual term (Dennis, Gay and Welsch 1981) cut the iteration
+/// count at 6 x 19: its long middle phase (ϱ about 0.5 with `μ` below `1e-4`, weights reaching
+/// their bounds one by one) is the functional's.
+///
+/// Many weights: where forming and factoring the normal equations would cost 4x more than
+/// the matrix-free step (`lm/model.rs`: preconditioned conjugate gradients on products with
+/// Kaufman's `J^T J`, at most [`LmOptions::max_cg`] of them, relative residual from
+/// [`LmOptions::cg_tolerance`] down to [`LmOptions::cg_tolerance_min`] by Eisenstat and
+/// Walker's forcing sequence as the gradient falls), that is used instead; the evaluation of an accepted point is
+/// reused for its model. On the tables of `testdata/` (the README's table, `tools/lm_speed.sh`)
+/// this took LM from 60x-970x the plain approximation's time to 7x-13x on 176 to 780 weights,
+/// at a higher final RMS where the old runs went furthest (WPB 0.37 mm against 0.027); CG's
+/// cap 8 -> 12 with the forcing sequence and a race probe of 20 iterations cut that to 0.317 mm
+/// (trawler 3.81 -> 1.99, against 1.77 dense) at 7x-16x.
+/// `run_best_of` runs several starts a few iterations each and only the lowest on.
+///
+/// With `run_with_parameters` the unknowns are the log-weights and every offset's `u_k` (and
+/// `v_k`), the control points still eliminated by least squares: this recovers exactly
+/// rational shapes (circular sections) to round-off, which weights at fixed parameters cannot.
 pub fn run(problem: &WeightProblem, opts: &LmOptions, control: &Control<'_>) -> OptimResult {
     polish(problem, &problem.start(), opts, control)
 }

@@ -1,36 +1,11 @@
-//! Particle Swarm Optimization with a global-best topology, in two published variants:
+//! Particle Swarm Optimization with a global-best topology, in two published variants.
 //!
-//! - inertia weight (Y. Shi, R. Eberhart, "A modified particle swarm optimizer", IEEE ICEC
-//!   1998, 69-73; the weight decreasing linearly from 0.9 to 0.4 over the run is from
-//!   Y. Shi, R. Eberhart, "Empirical study of particle swarm optimization", CEC 1999):
-//!   `v <- w(k) v + c1 r1 (p - x) + c2 r2 (g - x)`, `w(k) = w0 + (w1 - w0) (k - 1) / (T - 1)`;
-//! - constriction (M. Clerc, J. Kennedy, "The particle swarm - explosion, stability, and
-//!   convergence in a multidimensional complex space", IEEE TEC 6 (2002) 58-73):
-//!   `v <- chi (v + c1 r1 (p - x) + c2 r2 (g - x))`,
-//!   `chi = 2 / |2 - phi - sqrt(phi^2 - 4 phi)|`, `phi = c1 + c2 = 4.1`, so `chi = 0.7298`.
-//!
-//! then `x <- x + v`. `p` is the particle's own best point, `g` the swarm's best, `r1`, `r2`
-//! uniform in `[0, 1)` drawn per particle and per variable. Each velocity component is clamped
-//! to `[-vmax, vmax]`. The search runs in the unit cube (`x = lo + t (hi - lo)`, `t` in
-//! `[0, 1]`): a particle crossing a bound is put on it and that velocity component is reversed
-//! and halved, `v <- -v / 2` (the confinement of M. Clerc's Standard PSO 2011). Zeroing it
-//! instead (SPSO 2007) stalls the global-best swarm whenever its best point touches a bound:
-//! once every particle sits on the bound, `p - x = g - x = 0` there and nothing moves it again;
-//! on the shifted 20-variable sphere below that left the run 1,000-10,000x further from the
-//! optimum (gap 3e-3 to 3e-2 against 6e-7 to 5e-6).
-//! The update is synchronous (the whole swarm moves, then is evaluated in parallel, then the
-//! bests are updated), which parallel evaluation requires.
-//!
-//! Velocities start at zero (A. Engelbrecht, "Particle swarm optimization: velocity
-//! initialization", CEC 2012, found zero initial velocities as good as random ones and less
-//! prone to leaving the box); the positions start near the start (particle 0 is the start
-//! itself), so the run is never worse than the start. A run of `T` iterations with `N`
-//! particles costs `N (T + 1)` evaluations.
+//! The rest of this module's documentation is on [`run`], where the library's users read it.
 
 use rand::Rng;
 
-use super::ga::{perturb, start_only, unit_random, Record, UnitBox};
-use super::{evaluate_all, rng, Control, Objective, OptimResult, StopReason};
+use super::ga::{unit_random, Record, Seeded};
+use super::{evaluate_all, Control, Objective, OptimResult, StopReason};
 
 /// The velocity rule.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -100,29 +75,47 @@ impl Default for PsoOptions {
 /// calling thread in a fixed order; only the evaluations run in parallel, so the result does
 /// not depend on the thread count. `evaluations = N (iterations + 1)`; with `iterations = 0` or
 /// no variables only the start is evaluated.
+///
+/// # Algorithm
+///
+/// Particle Swarm Optimization with a global-best topology, in two published variants:
+///
+/// - inertia weight (Y. Shi, R. Eberhart, "A modified particle swarm optimizer", IEEE ICEC
+///   1998, 69-73; the weight decreasing linearly from 0.9 to 0.4 over the run is from
+///   Y. Shi, R. Eberhart, "Empirical study of particle swarm optimization", CEC 1999):
+///   `v <- w(k) v + c1 r1 (p - x) + c2 r2 (g - x)`, `w(k) = w0 + (w1 - w0) (k - 1) / (T - 1)`;
+/// - constriction (M. Clerc, J. Kennedy, "The particle swarm - explosion, stability, and
+///   convergence in a multidimensional complex space", IEEE TEC 6 (2002) 58-73):
+///   `v <- chi (v + c1 r1 (p - x) + c2 r2 (g - x))`,
+///   `chi = 2 / |2 - phi - sqrt(phi^2 - 4 phi)|`, `phi = c1 + c2 = 4.1`, so `chi = 0.7298`.
+///
+/// then `x <- x + v`. `p` is the particle's own best point, `g` the swarm's best, `r1`, `r2`
+/// uniform in `[0, 1)` drawn per particle and per variable. Each velocity component is clamped
+/// to `[-vmax, vmax]`. The search runs in the unit cube (`x = lo + t (hi - lo)`, `t` in
+/// `[0, 1]`): a particle crossing a bound is put on it and that velocity component is reversed
+/// and halved, `v <- -v / 2` (the confinement of M. Clerc's Standard PSO 2011). Zeroing it
+/// instead (SPSO 2007) stalls the global-best swarm whenever its best point touches a bound:
+/// once every particle sits on the bound, `p - x = g - x = 0` there and nothing moves it again;
+/// on the shifted 20-variable sphere below that left the run 1,000-10,000x further from the
+/// optimum (gap 3e-3 to 3e-2 against 6e-7 to 5e-6).
+/// The update is synchronous (the whole swarm moves, then is evaluated in parallel, then the
+/// bests are updated), which parallel evaluation requires.
+///
+/// Velocities start at zero (A. Engelbrecht, "Particle swarm optimization: velocity
+/// initialization", CEC 2012, found zero initial velocities as good as random ones and less
+/// prone to leaving the box); the positions start near the start (particle 0 is the start
+/// itself), so the run is never worse than the start. A run of `T` iterations with `N`
+/// particles costs `N (T + 1)` evaluations.
 pub fn run(obj: &dyn Objective, opts: &PsoOptions, seed: u64, control: &Control<'_>) -> OptimResult {
-    let d = obj.dim();
-    let start = obj.start();
-    if d == 0 || opts.iterations == 0 {
-        return start_only(obj, start);
-    }
     let budget = opts.iterations;
-    let unit = UnitBox::new(obj);
-    let t0 = unit.to_t(&start);
     let n = opts.particles.max(1);
+    let Seeded { d, unit, mut rng, mut t, mut xs, .. } = match Seeded::new(obj, budget, n, seed, opts.init_spread, true)
+    {
+        Ok(s) => s,
+        Err(r) => return *r,
+    };
     let vmax = if opts.vmax > 0.0 && opts.vmax.is_finite() { opts.vmax } else { f64::INFINITY };
-    let mut rng = rng(seed);
-
-    let mut t = vec![0.0; n * d];
     let mut v = vec![0.0; n * d];
-    let mut xs = vec![vec![0.0; d]; n];
-    t[..d].copy_from_slice(&t0);
-    xs[0].clone_from(&start);
-    for i in 1..n {
-        let ti = &mut t[i * d..(i + 1) * d];
-        perturb(&mut rng, &t0, opts.init_spread, ti);
-        unit.to_x(ti, &mut xs[i]);
-    }
     let fit = evaluate_all(obj, &xs);
     // Personal bests: in the unit cube (for the dynamics) and in the box (exact, to return).
     let mut best_t = t.clone();

@@ -1,37 +1,7 @@
 //! The NURBS weight-optimisation objective: the RMS parametric residual of the offsets as a
 //! function of the (log-)weights, with the control points either kept or re-solved.
 //!
-//! With data points `Q_k` at parameters `(u_k, v_k)`, B-spline products
-//! `B_kc = N_{i,p}(u_k) N_{j,q}(v_k)` (`c = (i, j)`) and weights `w_c`, the rational basis is
-//! `R_kc(w) = B_kc w_c / W_k`, `W_k = sum_c B_kc w_c` (The NURBS Book eq. 4.15), and
-//! `S_k = sum_c R_kc(w) P_c`. The objective is
-//!
-//! `f(θ) = sqrt( (1/m) sum_k |S_k - Q_k|^2 + ρ^2 (1/d) sum_i θ_i^2 )`,
-//!
-//! over `d` log-weights `θ` in a box (weights in `[0.1, 10]` by default), `m` offsets, and a
-//! mild regularisation `ρ = regularization x model size` that keeps the log-weights near 0
-//! (weights near 1) where the data do not care, and fixes the scale gauge (multiplying all weights
-//! by one factor changes nothing else). At `θ = 0` the penalty vanishes. With a fairness term
-//! ([`WeightOptions::fair`]) the data and fairness parts are taken at the gauge-fixed `Π θ`
-//! (`gauge`), as the energy of the homogeneous net would otherwise fall with the weights' scale.
-//!
-//! * [`WeightMode::Fixed`]: `P_c` are the control points of the plain approximation.
-//! * [`WeightMode::Resolved`] (variable projection, Golub and Pereyra 1973): for each `w`,
-//!   `P(w) = argmin_P sum_k |sum_c R_kc(w) P_c - Q_k|^2`. Writing `Y_c = w_c P_c` (homogeneous
-//!   coordinates) and `h_kc = B_kc / W_k`, `S_k = sum_c h_kc Y_c`, so `Y` solves the normal
-//!   equations `G Y = H^T Q` with `G = H^T H` - the same system as `R^T R P = R^T Q`
-//!   (`R = H diag(w)`), without the `w_c w_d` scaling that would square the weights' spread
-//!   into its condition number. Each row of `H` has `(p+1)(q+1)` non-zeros, so `G` is banded:
-//!   half-bandwidth `p n_v + q` in u-major order, `q n_u + p` in v-major order; the smaller is
-//!   used. The B-spline products are computed once (they do not depend on `w`): an evaluation
-//!   costs at most `m ((p+1)(q+1))^2 / 2` multiply-adds to assemble `G` (much less for the
-//!   offsets of one skinned section, which share `v`: their sum is a Kronecker product, see
-//!   `add_run`) and `n bw^2 / 2` to factor it, with scratch space reused per thread (no
-//!   allocation once warm). Measured (`benches/objective.rs`, one core of this 2-core Xeon):
-//!   10 x 8 bicubic, 250 offsets: about 160,000 evaluations/s fixed, 28,000/s re-solved.
-//!
-//! A singular or too ill-conditioned `G` (Cholesky pivot below `1e-12` of its diagonal, as when
-//! some control point has no offset in its support) makes the value `+inf`, never NaN.
+//! The rest of this module's documentation is on [`WeightProblem`], where the library's users read it.
 //!
 //! The files of this module, one part each: `basis` (the band layout and the basis products,
 //! independent of the weights), `solve` (one evaluation: weights, control points, residuals,
@@ -120,7 +90,7 @@ pub struct WeightOptions {
     /// `[ln lo, ln hi]`; in the rank-one layout each factor to `[ln lo / 2, ln hi / 2]`, so
     /// every product `a_i b_j` stays in range too.
     pub bounds: (f64, f64),
-    /// `ρ / model size` (see the module docs): a log-weight of 1 on every variable costs as much
+    /// `ρ / model size` (see [`WeightProblem`]): a log-weight of 1 on every variable costs as much
     /// as an RMS error of `regularization x size`. The default `1e-6` is far below any fit
     /// error of interest (0.1 mm on a 100 m hull) yet pins the scale gauge.
     pub regularization: f64,
@@ -179,8 +149,65 @@ impl Default for WeightOptions {
     }
 }
 
-/// The weight-optimisation objective (see the module docs). `Sync`: evaluations may run in
+/// The weight-optimisation objective. `Sync`: evaluations may run in
 /// parallel, each with its own per-thread scratch.
+///
+/// # The objective
+///
+/// With data points `Q_k` at parameters `(u_k, v_k)`, B-spline products
+/// `B_kc = N_{i,p}(u_k) N_{j,q}(v_k)` (`c = (i, j)`) and weights `w_c`, the rational basis is
+/// `R_kc(w) = B_kc w_c / W_k`, `W_k = sum_c B_kc w_c` (The NURBS Book eq. 4.15), and
+/// `S_k = sum_c R_kc(w) P_c`. The objective is
+///
+/// `f(θ) = sqrt( (1/m) sum_k |S_k - Q_k|^2 + ρ^2 (1/d) sum_i θ_i^2 )`,
+///
+/// over `d` log-weights `θ` in a box (weights in `[0.1, 10]` by default), `m` offsets, and a
+/// mild regularisation `ρ = regularization x model size` that keeps the log-weights near 0
+/// (weights near 1) where the data do not care, and fixes the scale gauge (multiplying all weights
+/// by one factor changes nothing else). At `θ = 0` the penalty vanishes. With a fairness term
+/// ([`WeightOptions::fair`]) the data and fairness parts are taken at the gauge-fixed `Π θ`
+/// (`gauge`), as the energy of the homogeneous net would otherwise fall with the weights' scale.
+///
+/// * [`WeightMode::Fixed`]: `P_c` are the control points of the plain approximation.
+/// * [`WeightMode::Resolved`] (variable projection, Golub and Pereyra 1973): for each `w`,
+///   `P(w) = argmin_P sum_k |sum_c R_kc(w) P_c - Q_k|^2`. Writing `Y_c = w_c P_c` (homogeneous
+///   coordinates) and `h_kc = B_kc / W_k`, `S_k = sum_c h_kc Y_c`, so `Y` solves the normal
+///   equations `G Y = H^T Q` with `G = H^T H` - the same system as `R^T R P = R^T Q`
+///   (`R = H diag(w)`), without the `w_c w_d` scaling that would square the weights' spread
+///   into its condition number. Each row of `H` has `(p+1)(q+1)` non-zeros, so `G` is banded:
+///   half-bandwidth `p n_v + q` in u-major order, `q n_u + p` in v-major order; the smaller is
+///   used. The B-spline products are computed once (they do not depend on `w`): an evaluation
+///   costs at most `m ((p+1)(q+1))^2 / 2` multiply-adds to assemble `G` (much less for the
+///   offsets of one skinned section, which share `v`: their sum is a Kronecker product, see
+///   `add_run`) and `n bw^2 / 2` to factor it, with scratch space reused per thread (no
+///   allocation once warm). Measured (`benches/objective.rs`, one core of this 2-core Xeon):
+///   10 x 8 bicubic, 250 offsets: about 160,000 evaluations/s fixed, 28,000/s re-solved.
+///
+/// A singular or too ill-conditioned `G` (Cholesky pivot below `1e-12` of its diagonal, as when
+/// some control point has no offset in its support) makes the value `+inf`, never NaN.
+///
+/// # The fairness term's scale gauge
+///
+/// Multiplying every weight by one factor `e^c` leaves the rational surface unchanged, and in
+/// `Resolved` mode the least-squares homogeneous control points scale with it: `Y -> e^c Y`.
+/// The data residuals do not see `c`, but the net's energy `|D Y|^2` does, as `e^{2c}`: a
+/// fairness term on `Y` rewards lowering all weights together, and an optimiser runs every
+/// weight towards its lower bound without making the surface any fairer (measured: `--method
+/// lm` on the built-in sample ended with weights in `[0.1, 0.47]`, 15 of 114 on the bound).
+///
+/// The fix is to measure the energy in a fixed gauge. With a fairness term, the data and
+/// fairness parts of the objective are evaluated at `Π θ`, where `Π` removes the mean of each
+/// gauge group (all log-weights; in the rank-one layout `α` and `β` separately, each of whose
+/// common shifts scales every weight), so the weights' geometric mean is 1 there:
+///
+/// `f(θ)^2 = F(Π θ) + θ^T R θ`, `F` the data and fairness parts, `R` the prior,
+///
+/// which is `F` with the energy `e^{-2 μ} |D Y|^2` (`μ` the mean log-weight) at `θ`: invariant
+/// under the scaling, and equal to the old term wherever `μ = 0` (the start). The chain rule
+/// gives the Jacobian of those rows as `J(Π θ) Π` (`Π` symmetric and idempotent), the normal
+/// matrix `Π J^T J Π` and the gradient `Π J^T r`; the prior (`R`, which pins the gauge at
+/// `μ = 0`) is taken at `θ` itself. The surface is the one at `Π θ`, written with the weights
+/// `e^θ` of the box. Without a fairness term nothing changes (bit for bit).
 #[derive(Clone, Debug)]
 pub struct WeightProblem {
     ku: KnotVector,
@@ -195,7 +222,7 @@ pub struct WeightProblem {
     lower: Vec<f64>,
     upper: Vec<f64>,
     size: f64,
-    /// `ρ` of the module docs.
+    /// `ρ` of [`WeightProblem`]'s docs.
     rho: f64,
     /// The section (run of offsets sharing one `v` at construction) of each offset.
     section: Vec<usize>,
@@ -443,7 +470,7 @@ impl Objective for WeightProblem {
     fn upper(&self) -> &[f64] {
         &self.upper
     }
-    /// `f(θ)` of the module docs; `+inf` for an infeasible point (wrong length, non-finite
+    /// `f(θ)` of [`WeightProblem`]'s docs; `+inf` for an infeasible point (wrong length, non-finite
     /// entries, singular least-squares system).
     fn value(&self, x: &[f64]) -> f64 {
         self.value_with(&self.table, x)

@@ -1,35 +1,7 @@
 //! STEP reader (ISO 10303-21 clear-text exchange files) of B-spline surfaces, the inverse of
 //! [`crate::export::write_step`] and a reader of what CAD systems write (AP203, AP214, AP242).
 //!
-//! * **Exchange structure** (ISO 10303-21:2002 sections 5-8): `ISO-10303-21;`, a `HEADER`
-//!   section (skipped), a `DATA` section of entity instances `#n = ...;` ended by `ENDSEC;`,
-//!   and `END-ISO-10303-21;`. Tokens may be separated by blanks, line breaks and comments
-//!   `/* ... */` (section 5.6) anywhere, so an instance may span many lines. Strings are
-//!   `'...'` with `''` for a quote (7.3.3; the `\X2\` encodings are left as written, they only
-//!   name things here). An instance is simple, `NAME(params)` (11.2.2), or complex,
-//!   `(A(params) B(params) ...)`, one partial entity per supertype (11.2.5).
-//! * **Surfaces** (ISO 10303-42 section 4.4.41-4.4.43): the simple
-//!   `B_SPLINE_SURFACE_WITH_KNOTS(name, p, q, ((#P00, #P01, ..), ..), form, u_closed, v_closed,
-//!   self_intersect, (mult_u), (mult_v), (knots_u), (knots_v), knot_spec)`, and the complex
-//!   rational instance with the partials `B_SPLINE_SURFACE(p, q, net, form, u_closed, v_closed,
-//!   self_intersect)`, `B_SPLINE_SURFACE_WITH_KNOTS(mult_u, mult_v, knots_u, knots_v, spec)`,
-//!   `RATIONAL_B_SPLINE_SURFACE(((w00, w01, ..), ..))` and `REPRESENTATION_ITEM(name)`. The
-//!   outer list of the net and of the weights runs along u, the inner along v: the kernel's
-//!   u-major order. Each pole is a `CARTESIAN_POINT(name, (x, y, z))`. The knots are the
-//!   distinct values with their multiplicities, expanded to the full knot vector.
-//! * **Length unit** (ISO 10303-41 section 4.2): the `GLOBAL_UNIT_ASSIGNED_CONTEXT` of the
-//!   representation contexts, whose length unit is `(LENGTH_UNIT() NAMED_UNIT(*)
-//!   SI_UNIT(prefix, .METRE.))` (prefix `$` or `.MILLI.`, `.CENTI.`, `.KILO.`, ...) or a
-//!   `CONVERSION_BASED_UNIT('INCH', #m)` with `#m = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(f),
-//!   #u)`, `f` units `#u` (followed to its end, cycles refused). Every context must agree (a file
-//!   with two length units is refused); a file without one is read in millimetres, with a note,
-//!   as Open CASCADE does.
-//!
-//! Other geometry (curves, analytic and trimmed surfaces) is counted by entity name in one
-//! note, and the bounds of faces (`ADVANCED_FACE`) are noted as ignored: each B-spline surface
-//! is returned whole. The reader indexes the instances first (24 bytes each, at most
-//! [`crate::limits::MAX_STEP_INSTANCES`]) and parses only those it needs, with a cap on the
-//! parameters of one instance and on the nesting of lists.
+//! The rest of this module's documentation is on [`parse_step`], where the library's users read it.
 
 use nurbs::Vec3;
 
@@ -118,8 +90,40 @@ impl Entity {
     }
 }
 
-/// Reads the B-spline surfaces of a STEP file (module docs), converted to `target`, or in
+/// Reads the B-spline surfaces of a STEP file (see "What is read" below), converted to `target`, or in
 /// the file's unit when `None`.
+///
+/// # What is read
+///
+/// * **Exchange structure** (ISO 10303-21:2002 sections 5-8): `ISO-10303-21;`, a `HEADER`
+///   section (skipped), a `DATA` section of entity instances `#n = ...;` ended by `ENDSEC;`,
+///   and `END-ISO-10303-21;`. Tokens may be separated by blanks, line breaks and comments
+///   `/* ... */` (section 5.6) anywhere, so an instance may span many lines. Strings are
+///   `'...'` with `''` for a quote (7.3.3; the `\X2\` encodings are left as written, they only
+///   name things here). An instance is simple, `NAME(params)` (11.2.2), or complex,
+///   `(A(params) B(params) ...)`, one partial entity per supertype (11.2.5).
+/// * **Surfaces** (ISO 10303-42 section 4.4.41-4.4.43): the simple
+///   `B_SPLINE_SURFACE_WITH_KNOTS(name, p, q, ((#P00, #P01, ..), ..), form, u_closed, v_closed,
+///   self_intersect, (mult_u), (mult_v), (knots_u), (knots_v), knot_spec)`, and the complex
+///   rational instance with the partials `B_SPLINE_SURFACE(p, q, net, form, u_closed, v_closed,
+///   self_intersect)`, `B_SPLINE_SURFACE_WITH_KNOTS(mult_u, mult_v, knots_u, knots_v, spec)`,
+///   `RATIONAL_B_SPLINE_SURFACE(((w00, w01, ..), ..))` and `REPRESENTATION_ITEM(name)`. The
+///   outer list of the net and of the weights runs along u, the inner along v: the kernel's
+///   u-major order. Each pole is a `CARTESIAN_POINT(name, (x, y, z))`. The knots are the
+///   distinct values with their multiplicities, expanded to the full knot vector.
+/// * **Length unit** (ISO 10303-41 section 4.2): the `GLOBAL_UNIT_ASSIGNED_CONTEXT` of the
+///   representation contexts, whose length unit is `(LENGTH_UNIT() NAMED_UNIT(*)
+///   SI_UNIT(prefix, .METRE.))` (prefix `$` or `.MILLI.`, `.CENTI.`, `.KILO.`, ...) or a
+///   `CONVERSION_BASED_UNIT('INCH', #m)` with `#m = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(f),
+///   #u)`, `f` units `#u` (followed to its end, cycles refused). Every context must agree (a file
+///   with two length units is refused); a file without one is read in millimetres, with a note,
+///   as Open CASCADE does.
+///
+/// Other geometry (curves, analytic and trimmed surfaces) is counted by entity name in one
+/// note, and the bounds of faces (`ADVANCED_FACE`) are noted as ignored: each B-spline surface
+/// is returned whole. The reader indexes the instances first (24 bytes each, at most
+/// [`crate::limits::MAX_STEP_INSTANCES`]) and parses only those it needs, with a cap on the
+/// parameters of one instance and on the nesting of lists.
 ///
 /// # Errors
 /// [`crate::InputErrorKind::Cad`] at the line and instance that break the format, reference a

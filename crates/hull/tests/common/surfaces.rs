@@ -68,18 +68,8 @@ pub fn polynomial() -> NurbsSurface {
     NurbsSurface::try_new(ku, kv, &pts, None).expect("valid")
 }
 
-/// The Wigley hull of length `l`, beam `b` and draft `t`, `y = (B/2)(1 - (2 xi/L)^2)(1 - ((T - z)/T)^2)`, `xi = x - L/2`, `z` up from
-/// the keel, as a degree (2,2) Bezier patch: `y` is quadratic in `x` and in `z`, so with
-/// `z = T u` and `x = L v` the patch reproduces it exactly. Bernstein coefficients:
-/// `4 v (1 - v) = 2 B_1(v)` -> `[0, 2, 0]`; `2u - u^2` -> `[0, 1, 1]`.
+/// The Wigley hull of length `l`, beam `b` and draft `t`, from the aft end: the library's
+/// exact patch [`hull::wigley_hull`].
 pub fn wigley_patch(l: f64, b: f64, t: f64) -> NurbsSurface {
-    let k = || KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("Bezier knots");
-    let (fv, gu) = ([0.0, 2.0, 0.0], [0.0, 1.0, 1.0]);
-    let mut pts = Vec::new();
-    for (i, g) in gu.iter().enumerate() {
-        for (j, f) in fv.iter().enumerate() {
-            pts.push(Vec3::new(l * j as f64 / 2.0, 0.5 * b * f * g, t * i as f64 / 2.0));
-        }
-    }
-    NurbsSurface::try_new(k(), k(), &pts, None).expect("valid patch")
+    hull::wigley_hull(l, b, t)
 }

@@ -14,7 +14,7 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use crate::common::python::{assert_tool_passed, run_tool, tools_python};
-use crate::common::surfaces::{samples, weights_changed};
+use crate::common::surfaces::{self, samples, weights_changed};
 use crate::common::workspace_root;
 
 use hull::{
@@ -24,7 +24,7 @@ use hull::{
     Units,
 };
 use nurbs::fixtures::quarter_cylinder_along_x as quarter_cylinder;
-use nurbs::{KnotVector, NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
+use nurbs::{NurbsCurve, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
 
 fn occt_python() -> String {
@@ -34,23 +34,11 @@ fn occt_python() -> String {
 // ---------------------------------------------------------------------------------------------
 // Surfaces
 
-/// Rational bicubic, non-uniform knots with a double knot in v, v domain not [0, 1], weights
-/// from 0.6 to 1.9: a hull-like half section swept along x.
+/// The shared rational bicubic ([`surfaces::rational_bicubic`]) with u and v swapped, so that
+/// it is swept along v: its sections at constant v are stations (`x = const`), as the section
+/// curves and the pointed stem here need.
 fn rational_bicubic() -> NurbsSurface {
-    let ku = KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.2, 0.45, 0.5, 1.0, 1.0, 1.0, 1.0]).expect("valid");
-    let kv = KnotVector::try_new(3, vec![-2.0, -2.0, -2.0, -2.0, 0.5, 0.5, 1.5, 3.0, 3.0, 3.0, 3.0]).expect("valid");
-    let (nu, nv) = (ku.num_basis(), kv.num_basis());
-    let mut pts = Vec::new();
-    let mut w = Vec::new();
-    for i in 0..nu {
-        for j in 0..nv {
-            let (a, b) = (i as f64 / (nu - 1) as f64, j as f64 / (nv - 1) as f64);
-            let beam = 7.0 * (1.0 - (2.0 * b - 1.0).powi(4));
-            pts.push(Vec3::new(110.0 * b, beam * (a * 1.4).sin().min(1.0) + 0.02 * j as f64, 6.0 * a - 0.3 * b));
-            w.push(0.6 + 1.3 * ((i * 5 + j * 3) % 7) as f64 / 6.0);
-        }
-    }
-    NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+    surfaces::rational_bicubic().transposed()
 }
 
 /// The built-in Series 60 hull fitted by approximation (polynomial), and the same net with

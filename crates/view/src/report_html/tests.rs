@@ -11,21 +11,9 @@ const L: f64 = 100.0;
 const B: f64 = 10.0;
 const T: f64 = 6.25;
 
-/// The exact Wigley hull `y = B/2 (1 - (2x/L)²)(1 - ((T - z)/T)²)`, `|x| <= L/2`,
-/// `0 <= z <= T`, as a biquadratic Bézier patch: along x, `1 - (2t - 1)² = 4t(1 - t)` has
-/// Bernstein coefficients (0, 2, 0); along z, `s(2 - s)` has (0, 1, 1). u runs keel to
-/// deck, v aft to fore, as a hullskin fit.
+/// The exact Wigley hull ([`hull::wigley_hull`], x from the aft end).
 fn wigley() -> NurbsSurface {
-    let k = || KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).expect("valid");
-    let (cx, cz) = ([0.0, 2.0, 0.0], [0.0, 1.0, 1.0]);
-    let mut pts = Vec::new();
-    for i in 0..3 {
-        for j in 0..3 {
-            let (x, z) = (-L / 2.0 + L * j as f64 / 2.0, T * i as f64 / 2.0);
-            pts.push(Vec3::new(x, B / 2.0 * cx[j] * cz[i], z));
-        }
-    }
-    NurbsSurface::try_new(k(), k(), &pts, None).expect("valid patch")
+    hull::wigley_hull(L, B, T)
 }
 
 /// Small pictures and grids: the tests check structure, not looks (and run unoptimised).

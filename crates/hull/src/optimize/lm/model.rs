@@ -1,18 +1,7 @@
 //! The Gauss-Newton model of one Levenberg-Marquardt iteration, and its damped step
-//! `(J^T J + R + μ D) h = -(J^T r + R θ)` on the free variables, two ways:
+//! `(J^T J + R + μ D) h = -(J^T r + R θ)` on the free variables, two ways.
 //!
-//! * [`Dense`]: the normal matrix formed (`d x d`), the step by dense Cholesky, `D` its
-//!   diagonal (Marquardt 1963).
-//! * [`MatrixFree`]: only products with `J^T J` (see `weights/matvec.rs`, each
-//!   `O(m (p+1)(q+1) + n bw)`), the step by preconditioned conjugate gradients (Hestenes and
-//!   Stiefel 1952; Nocedal and Wright, *Numerical Optimization*, 2nd ed., Alg. 5.3) stopped at
-//!   a relative residual `η` (an inexact Newton step: Dembo, Eisenstat and Steihaug 1982;
-//!   every CG iterate from zero lowers the quadratic model, so a truncated step still
-//!   descends). `D = diag(A^T A) / m + diag(R)`, the fixed-point part of the diagonal, an upper
-//!   bound of `diag(J^T J + R)` that costs nothing (the exact one needs `d` band solves), is
-//!   the damping's scaling and, with `μ`, the Jacobi preconditioner.
-//!
-//! [`step_path`] picks the cheaper by an estimate of the multiply-adds of one iteration.
+//! The rest of this module's documentation is on [`LmOptions`](super::LmOptions), where the library's users read it.
 
 use super::super::linalg::{dense_cholesky, dense_solve, dot};
 use super::super::weights::{JacobianOp, WeightLayout, WeightProblem};
@@ -104,7 +93,7 @@ impl Model for Dense {
     }
 }
 
-/// The model by products with `J^T J` (see the module docs).
+/// The model by products with `J^T J` (see the docs of `LmOptions`).
 pub(super) struct MatrixFree<'a> {
     problem: &'a WeightProblem,
     op: JacobianOp<'a>,

@@ -1,25 +1,6 @@
 //! The scale gauge of the fairness term.
 //!
-//! Multiplying every weight by one factor `e^c` leaves the rational surface unchanged, and in
-//! `Resolved` mode the least-squares homogeneous control points scale with it: `Y -> e^c Y`.
-//! The data residuals do not see `c`, but the net's energy `|D Y|^2` does, as `e^{2c}`: a
-//! fairness term on `Y` rewards lowering all weights together, and an optimiser runs every
-//! weight towards its lower bound without making the surface any fairer (measured: `--method
-//! lm` on the built-in sample ended with weights in `[0.1, 0.47]`, 15 of 114 on the bound).
-//!
-//! The fix is to measure the energy in a fixed gauge. With a fairness term, the data and
-//! fairness parts of the objective are evaluated at `Π θ`, where `Π` removes the mean of each
-//! gauge group (all log-weights; in the rank-one layout `α` and `β` separately, each of whose
-//! common shifts scales every weight), so the weights' geometric mean is 1 there:
-//!
-//! `f(θ)^2 = F(Π θ) + θ^T R θ`, `F` the data and fairness parts, `R` the prior,
-//!
-//! which is `F` with the energy `e^{-2 μ} |D Y|^2` (`μ` the mean log-weight) at `θ`: invariant
-//! under the scaling, and equal to the old term wherever `μ = 0` (the start). The chain rule
-//! gives the Jacobian of those rows as `J(Π θ) Π` (`Π` symmetric and idempotent), the normal
-//! matrix `Π J^T J Π` and the gradient `Π J^T r`; the prior (`R`, which pins the gauge at
-//! `μ = 0`) is taken at `θ` itself. The surface is the one at `Π θ`, written with the weights
-//! `e^θ` of the box. Without a fairness term nothing changes (bit for bit).
+//! The rest of this module's documentation is on [`WeightProblem`] (its scale gauge), where the library's users read it.
 
 use super::{WeightLayout, WeightProblem};
 use crate::optimize::Objective;

@@ -2,27 +2,7 @@
 //! `J^T w` and `(J^T J) v` without forming `J` or `J^T J`, for a matrix-free
 //! Levenberg-Marquardt step (conjugate gradients) on problems with many weights.
 //!
-//! With `A` the derivative of the residuals at fixed control points (`3 m x d`, sparse: offset
-//! `k`'s row block has one entry `R_kc (P_c - S_k)` per control point `c` of its support,
-//! summed into `(p+1) + (q+1)` variables in the rank-one layout), `H` the `m x n` matrix
-//! `h_kc = B_kc / W_k` acting on each coordinate, and `G = H^T H` (+ the anchor ridge) with the
-//! band Cholesky factor `G = L L^T` that the evaluation made, Kaufman's Jacobian is
-//! (Kaufman 1975; see [`WeightProblem::normal_equations`])
-//!
-//! `J = (I - H G^{-1} H^T) A / sqrt(m)` (`Resolved` mode), `J = A / sqrt(m)` (`Fixed`),
-//!
-//! and the normal matrix the dense path forms is `m J^T J = A^T (I - H G^{-1} H^T) A`
-//! (one projection: the projector is idempotent when `G = H^T H`, and with the anchor this is
-//! the same `O(anchor)` approximation as `normal_equations`). So
-//!
-//! * `J v`: `u = A v` (`3 m (p+1)(q+1)` multiply-adds), `t = H^T u`, `t <- G^{-1} t` (two band
-//!   substitutions, `6 n bw`), `u <- u - H t`;
-//! * `J^T w`: the same projection of `w`, then `A^T`;
-//! * `(J^T J) v = A^T (I - H G^{-1} H^T) A v / m`: one projection,
-//!
-//! each `O(m (p+1)(q+1) + n bw)`, against `O(m d^2)` for the dense normal equations. The prior
-//! `R` of the log-weights (see [`WeightProblem::prior_apply`]) is added by the caller's
-//! operator, not here.
+//! The rest of this module's documentation is on [`LmOptions`](super::super::LmOptions), where the library's users read it.
 
 use super::{band_solve, Scratch, WeightLayout, WeightMode, WeightProblem};
 use crate::optimize::Objective;
@@ -66,7 +46,7 @@ pub(crate) struct JacobianOp<'a> {
 }
 
 impl WeightProblem {
-    /// Kaufman's Jacobian at `x` as an operator (see the module docs); `None` where the value
+    /// Kaufman's Jacobian at `x` as an operator (see the docs of `LmOptions`); `None` where the value
     /// is infinite.
     #[cfg(test)]
     pub(crate) fn jacobian_op(&self, x: &[f64]) -> Option<JacobianOp<'_>> {

@@ -1,21 +1,7 @@
 //! Control points held in a box: the least squares of [`WeightProblem`] (with its fairness term)
 //! under `lo <= P_c <= hi`, coordinate by coordinate.
 //!
-//! By the convex hull property of a NURBS surface with positive weights (The NURBS Book, P4.4
-//! for surfaces), every point of the surface is a convex combination of its control points, so
-//! control points within the box keep the whole surface within it: a bound on the control net is
-//! a guarantee between the offsets, where a check of the offsets alone sees nothing. Used with the
-//! offsets' envelope (widened by less than the validity allowance), it keeps a fit from crossing
-//! the centre plane, bulging past the largest half-breadth or the keel, or running past the end
-//! sections.
-//!
-//! Each coordinate is a strictly convex quadratic programme `min 1/2 y^T G y - b^T y`,
-//! `l <= y <= h` (homogeneous `y = w P`, so `l = w lo`), with `G` the banded normal matrix. It is
-//! solved by a primal active set (Nocedal and Wright, *Numerical Optimization*, 2nd ed., 16.5):
-//! the bounded variables are eliminated from the banded system (their rows and columns replaced
-//! by the diagonal), every free variable past a bound is put on it, and once none is, the bound
-//! whose multiplier `(G y - b)_c` has the wrong sign the most is released, one at a time, until
-//! the KKT conditions hold. Each step is one band factorization, `n bw^2 / 2`.
+//! The rest of this module's documentation is on [`WeightProblem::surface_within`], where the library's users read it.
 
 pub use nurbs::fit::ControlBox;
 use nurbs::{NurbsError, NurbsSurface};
@@ -34,6 +20,22 @@ impl WeightProblem {
     /// The rational surface of variables `x` whose control points minimise the least squares
     /// (with the fairness term) within `bounds`, and how many control-point coordinates ended on
     /// a bound. Without an active bound it is [`WeightProblem::surface`].
+    ///
+    /// By the convex hull property of a NURBS surface with positive weights (The NURBS Book, P4.4
+    /// for surfaces), every point of the surface is a convex combination of its control points, so
+    /// control points within the box keep the whole surface within it: a bound on the control net is
+    /// a guarantee between the offsets, where a check of the offsets alone sees nothing. Used with the
+    /// offsets' envelope (widened by less than the validity allowance), it keeps a fit from crossing
+    /// the centre plane, bulging past the largest half-breadth or the keel, or running past the end
+    /// sections.
+    ///
+    /// Each coordinate is a strictly convex quadratic programme `min 1/2 y^T G y - b^T y`,
+    /// `l <= y <= h` (homogeneous `y = w P`, so `l = w lo`), with `G` the banded normal matrix. It is
+    /// solved by a primal active set (Nocedal and Wright, *Numerical Optimization*, 2nd ed., 16.5):
+    /// the bounded variables are eliminated from the banded system (their rows and columns replaced
+    /// by the diagonal), every free variable past a bound is put on it, and once none is, the bound
+    /// whose multiplier `(G y - b)_c` has the wrong sign the most is released, one at a time, until
+    /// the KKT conditions hold. Each step is one band factorization, `n bw^2 / 2`.
     ///
     /// # Errors
     /// [`HullError::Weights`] in `Fixed` mode (the control points do not move), for a wrong `x`
@@ -78,7 +80,7 @@ impl WeightProblem {
         Ok((surface, active_total))
     }
 
-    /// One coordinate's box-constrained quadratic programme (module docs); `None` if a system is
+    /// One coordinate's box-constrained quadratic programme (see [`WeightProblem::surface_within`]); `None` if a system is
     /// singular. Returns the solution and the number of active bounds.
     fn box_qp(&self, g: &[f64], b: &[f64], lo: &[f64], hi: &[f64], tol: f64) -> Option<(Vec<f64>, usize)> {
         let pat = &self.pat;
