@@ -1,15 +1,7 @@
 //! Optimisers of the NURBS weights: the objective is kept apart from the algorithms, so the
 //! Genetic Algorithm, Particle Swarm Optimization, the Gravitational Search Algorithm and the
-//! local solvers all minimise one [`Objective`] over `&[f64]`.
-//!
-//! Reproducibility: every algorithm draws its random numbers from one ChaCha8 stream seeded by
-//! the caller, in a fixed order on the calling thread; only the objective evaluations of a
-//! population run in parallel (rayon), and each evaluation is a pure function of its vector.
-//! So the same seed gives bit-identical results whatever the thread count.
-//!
-//! Every run starts from the objective's [`Objective::start`] (all weights 1) and never returns
-//! anything worse than it (elitism), records the best value after each iteration, and stops
-//! early, keeping its best, when [`Control::stop`] is raised (Ctrl-C).
+//! local solvers all minimise one [`Objective`] over `&[f64]`. The rest of this module's
+//! documentation is on [`Objective`] and [`Control`], where the library's users read it.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -45,7 +37,17 @@ pub trait FittedSurface {
     fn params(&self) -> &[Vec<(f64, f64)>];
 }
 
-/// A function to minimise over a box.
+/// A function to minimise over a box: one objective for the Genetic Algorithm, Particle Swarm
+/// Optimization, the Gravitational Search Algorithm and the local solvers.
+///
+/// Reproducibility: every algorithm draws its random numbers from one ChaCha8 stream seeded by
+/// the caller, in a fixed order on the calling thread; only the objective evaluations of a
+/// population run in parallel (rayon), and each evaluation is a pure function of its vector.
+/// So the same seed gives bit-identical results whatever the thread count.
+///
+/// Every run starts from [`Objective::start`] (all weights 1) and never returns anything worse
+/// than it (elitism), records the best value after each iteration, and stops early, keeping
+/// its best, when [`Control::stop`] is raised (Ctrl-C).
 pub trait Objective: Sync {
     /// Number of variables.
     fn dim(&self) -> usize;
@@ -114,7 +116,9 @@ pub struct Progress {
     pub evaluations: usize,
 }
 
-/// How a caller watches and stops a run.
+/// How a caller watches and stops a run: progress after each iteration, and a flag that, once
+/// raised (the command line raises it on Ctrl-C), ends the run at the end of its iteration,
+/// keeping the best found so far (never worse than [`Objective::start`]).
 pub struct Control<'a> {
     /// Raised (e.g. by a Ctrl-C handler) to stop the run at the end of the current iteration.
     pub stop: &'a AtomicBool,
