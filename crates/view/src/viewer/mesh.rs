@@ -33,7 +33,10 @@ impl Default for Resolution {
     }
 }
 
-/// The sampled surface: an `nu x nv` vertex grid, u-major (`i * nv + j`).
+/// The sampled surface: an `nu x nv` vertex grid, u-major (`i * nv + j`), with fields at every
+/// vertex. A structured grid, not a triangle mesh ([`nurbs::TriMesh`]): the page makes the
+/// triangles of the grid (and of the mirrored half) itself, so none are stored; its vertices
+/// keep the grid's parameters for the error field and the grid's shape for the page.
 #[derive(Clone, Debug)]
 pub(crate) struct Mesh {
     pub nu: usize,
