@@ -2,7 +2,7 @@
 //! tests and benchmarks and the tests of the crates above it: one place for each fixture. Not
 //! part of the API.
 //!
-//! Exact surfaces (a quarter cylinder in two placements, a sphere octant), a full circle,
+//! Exact surfaces (a quarter cylinder in two placements, a half cylinder, a sphere octant), a full circle,
 //! a wavy bicubic net, section families, and proptest strategies for random curves and
 //! surfaces.
 
@@ -39,6 +39,24 @@ pub fn quarter_cylinder_along_x(r: f64, h: f64) -> NurbsSurface {
     let mut w = Vec::new();
     for (y, z, wi) in [(0.0, -r, 1.0), (r, -r, FRAC_1_SQRT_2), (r, 0.0, 1.0)] {
         for x in [0.0, h] {
+            pts.push(Vec3::new(x, y, z));
+            w.push(wi);
+        }
+    }
+    NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
+}
+
+/// Half a circular cylinder along x: radius `r`, axis at `(y, z) = (0, r)`, the section from
+/// `(0, 0)` through `(r, r)` to `(0, 2r)`, two rational quadratic quarter arcs in u (knot 0.5
+/// doubled); linear in v from x = 0 to `len`.
+pub fn half_cylinder_along_x(r: f64, len: f64) -> NurbsSurface {
+    let ku = KnotVector::try_new(2, vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.]).expect("valid");
+    let kv = KnotVector::try_new(1, vec![0., 0., 1., 1.]).expect("valid");
+    let s = FRAC_1_SQRT_2;
+    let section = [(0.0, 0.0, 1.0), (r, 0.0, s), (r, r, 1.0), (r, 2.0 * r, s), (0.0, 2.0 * r, 1.0)];
+    let (mut pts, mut w) = (Vec::new(), Vec::new());
+    for (y, z, wi) in section {
+        for x in [0.0, len] {
             pts.push(Vec3::new(x, y, z));
             w.push(wi);
         }

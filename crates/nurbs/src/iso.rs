@@ -17,7 +17,7 @@
 
 use crate::basis::{basis_funs, ders_basis_funs, BasisRow};
 use crate::knots::MAX_DEGREE;
-use crate::{brent_root, FirstDerivatives, NurbsSurface, Vec3};
+use crate::{brent_root, Axis, FirstDerivatives, NurbsSurface, Vec3};
 
 /// A parameter direction of a surface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,7 +47,7 @@ impl Direction {
 /// parameter in the inner span, and for an outer value in the outer span.
 ///
 /// ```
-/// use nurbs::{Direction, IsoCurve};
+/// use nurbs::{Axis, Direction, IsoCurve};
 ///
 /// // The quarter cylinder y^2 + z^2 = 4 (y >= 0, z <= 0) along x from 0 to 3 (x = 3 v): one
 /// // span in each direction.
@@ -60,11 +60,11 @@ impl Direction {
 /// let exact = s.derivatives(0.3, 0.25);
 /// assert!(d.su.distance(exact.su) < 1e-12 && d.sv.distance(exact.sv) < 1e-12);
 /// // The root of the level set y = 1 lies on it, on the circle.
-/// let t = iso.root(1, 1.0, 0.0, 1.0).expect("y runs from 0 to 2 along u");
+/// let t = iso.root(Axis::Y, 1.0, 0.0, 1.0).expect("y runs from 0 to 2 along u");
 /// let q = iso.point(t);
 /// assert!((q.y - 1.0).abs() < 1e-15 && (q.y.hypot(q.z) - 2.0).abs() < 1e-15);
 /// // The level set y = 1 is the line z = -sqrt 3 along x: its tangent dS/dv is (3, 0, 0).
-/// let (at, tangent) = iso.cut_point(1, t);
+/// let (at, tangent) = iso.cut_point(Axis::Y, t);
 /// assert_eq!(at, q);
 /// assert!(tangent.distance(nurbs::Vec3::new(3.0, 0.0, 0.0)) < 1e-12);
 /// ```
@@ -173,10 +173,10 @@ impl<'s> IsoCurve<'s> {
         }
     }
 
-    /// The root in `[a, b]` of `f(t) = S(t)[axis] - level` (axis 0, 1, 2 for x, y, z) if `f`
+    /// The root in `[a, b]` of `f(t) = S(t)[axis] - level` if `f`
     /// changes sign there (taking `f <= 0` as one side), by Brent's method to round-off
     /// ([`brent_root`]); `None` if it does not.
-    pub fn root(&self, axis: usize, level: f64, a: f64, b: f64) -> Option<f64> {
+    pub fn root(&self, axis: Axis, level: f64, a: f64, b: f64) -> Option<f64> {
         let g = |t: f64| self.point(t)[axis] - level;
         let (ga, gb) = (g(a), g(b));
         if (ga <= 0.0) == (gb <= 0.0) {
@@ -187,7 +187,7 @@ impl<'s> IsoCurve<'s> {
 
     /// As [`IsoCurve::root`], or without a sign change (round-off next to where the level set
     /// meets an end) the end where `|f|` is smaller.
-    pub fn root_or_end(&self, axis: usize, level: f64, a: f64, b: f64) -> f64 {
+    pub fn root_or_end(&self, axis: Axis, level: f64, a: f64, b: f64) -> f64 {
         let g = |t: f64| self.point(t)[axis] - level;
         let (ga, gb) = (g(a), g(b));
         if (ga <= 0.0) != (gb <= 0.0) {
@@ -203,7 +203,7 @@ impl<'s> IsoCurve<'s> {
     /// parameter) of the level set of the coordinate `axis` through it, the curve
     /// `inner = r(s)` with `r' = -f_outer / f_inner` (`f` the coordinate; `r' = 0` where
     /// `f_inner = 0`).
-    pub fn cut_point(&self, axis: usize, r: f64) -> (Vec3, Vec3) {
+    pub fn cut_point(&self, axis: Axis, r: f64) -> (Vec3, Vec3) {
         let d = self.derivatives(r);
         let (s_in, s_out) = match self.along {
             Direction::U => (d.su, d.sv),
@@ -246,10 +246,10 @@ mod tests {
         let s = crate::fixtures::quarter_cylinder_along_x(2.0, 3.0);
         let iso = IsoCurve::new(&s, Direction::U, 0.5, (2, 1));
         // y runs from 0 to 2 along u: no root of y = 5, the end u = 1 (y = 2) is nearer.
-        assert_eq!(iso.root(1, 5.0, 0.0, 1.0), None);
-        assert_eq!(iso.root_or_end(1, 5.0, 0.0, 1.0), 1.0);
-        assert_eq!(iso.root_or_end(1, -1.0, 0.0, 1.0), 0.0);
-        let r = iso.root_or_end(1, 1.5, 0.0, 1.0);
+        assert_eq!(iso.root(Axis::Y, 5.0, 0.0, 1.0), None);
+        assert_eq!(iso.root_or_end(Axis::Y, 5.0, 0.0, 1.0), 1.0);
+        assert_eq!(iso.root_or_end(Axis::Y, -1.0, 0.0, 1.0), 0.0);
+        let r = iso.root_or_end(Axis::Y, 1.5, 0.0, 1.0);
         assert!((iso.point(r).y - 1.5).abs() < 1e-15);
     }
 }

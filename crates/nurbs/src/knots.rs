@@ -199,6 +199,25 @@ impl KnotVector {
         out
     }
 
+    /// The distinct knot values bounding the non-empty spans: the domain's start, every
+    /// distinct interior knot, the domain's end (`spans + 1` values, increasing). With
+    /// [`split_spans`], the parameter grids of the tessellation, the viewer, the curvature
+    /// picture and the projectors' sampling.
+    ///
+    /// ```
+    /// use nurbs::KnotVector;
+    /// let k = KnotVector::try_new(2, vec![0.0, 0.0, 0.0, 0.25, 0.25, 1.0, 1.0, 1.0])?;
+    /// assert_eq!(k.span_breaks(), vec![0.0, 0.25, 1.0]);
+    /// # Ok::<(), nurbs::NurbsError>(())
+    /// ```
+    pub fn span_breaks(&self) -> Vec<f64> {
+        let (a, b) = self.domain();
+        let mut out = vec![a];
+        out.extend(self.interior_breaks().into_iter().map(|(t, _)| t));
+        out.push(b);
+        out
+    }
+
     /// Parameter values for sampling along this knot vector: `intervals` uniform intervals of
     /// the domain (at least 1), joined, when `refine_at_knots`, with every distinct interior
     /// knot and with points that split each non-empty knot span into at least `per_span`
@@ -218,11 +237,7 @@ impl KnotVector {
         let n = intervals.max(1);
         let mut t: Vec<f64> = (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
         if refine_at_knots {
-            let k = self.as_slice();
-            let p = self.degree();
-            let mut breaks: Vec<f64> = k[p..k.len() - p].to_vec();
-            breaks.dedup();
-            for w in breaks.windows(2) {
+            for w in self.span_breaks().windows(2) {
                 let (k0, k1) = (w[0], w[1]);
                 let m = per_span.max(1);
                 t.extend((0..=m).map(|j| k0 + (k1 - k0) * j as f64 / m as f64));
@@ -247,6 +262,24 @@ impl KnotVector {
         let k = self.knots.iter().map(|&u| if u == e { b } else { a + (u - s) * (b - a) / (e - s) }).collect();
         KnotVector::try_new(self.degree, k)
     }
+}
+
+/// Parameters splitting span `i` of `breaks` (increasing; [`KnotVector::span_breaks`]) into
+/// `counts[i]` equal intervals (at least 1): `b_i + (b_i+1 - b_i) j / n_i` for `j < n_i`, then
+/// the last break, `sum n_i + 1` values. How many intervals each span gets is the caller's
+/// sampling rule (a fixed number, in proportion to the span's length, ...).
+///
+/// ```
+/// assert_eq!(nurbs::split_spans(&[0.0, 0.5, 1.0], &[1, 4]), vec![0.0, 0.5, 0.625, 0.75, 0.875, 1.0]);
+/// ```
+pub fn split_spans(breaks: &[f64], counts: &[usize]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(counts.iter().map(|&n| n.max(1)).sum::<usize>() + 1);
+    for (w, &n) in breaks.windows(2).zip(counts) {
+        let n = n.max(1);
+        out.extend((0..n).map(|j| w[0] + (w[1] - w[0]) * j as f64 / n as f64));
+    }
+    out.extend(breaks.last());
+    out
 }
 
 #[cfg(test)]

@@ -71,7 +71,7 @@ pub use cut::{cut_curvature, cut_surface, cut_surface_many, three_point_curvatur
 pub use error::NurbsError;
 pub use grid::FirstDerivatives;
 pub use iso::{Direction, IsoCurve};
-pub use knots::{KnotVector, MAX_DEGREE};
+pub use knots::{split_spans, KnotVector, MAX_DEGREE};
 pub use linalg::{band_cholesky, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu};
 pub use mesh::{EdgeCounts, TriMesh};
 // Planes normal to a coordinate axis, with their 2-D drawing coordinates.

@@ -1,5 +1,7 @@
 //! Planes normal to a coordinate axis, with the 2-D drawing coordinates of a point in them.
 
+use std::ops::Index;
+
 use crate::Vec3;
 
 /// A coordinate axis.
@@ -26,6 +28,18 @@ impl Axis {
             Axis::X => Vec3::new(1.0, 0.0, 0.0),
             Axis::Y => Vec3::new(0.0, 1.0, 0.0),
             Axis::Z => Vec3::new(0.0, 0.0, 1.0),
+        }
+    }
+}
+
+/// A point's coordinate along an axis: `p[Axis::Y] == p.y`.
+impl Index<Axis> for Vec3 {
+    type Output = f64;
+    fn index(&self, axis: Axis) -> &f64 {
+        match axis {
+            Axis::X => &self.x,
+            Axis::Y => &self.y,
+            Axis::Z => &self.z,
         }
     }
 }
@@ -141,7 +155,7 @@ mod tests {
             assert_eq!(ea.cross(eb), plane.view_normal(), "{plane:?}");
             assert_eq!(plane.signed_distance(Vec3::new(0.5, 0.5, 0.5)), 0.0);
             assert_eq!(plane.value, 0.5);
-            assert_eq!(plane.normal()[plane.axis.index()], 1.0);
+            assert_eq!(plane.normal()[plane.axis], 1.0);
         }
     }
 }

@@ -239,11 +239,24 @@ impl NurbsSurface {
         if let Some(n) = self.derivatives(u, v).normal() {
             return Some(n);
         }
-        let ((u0, u1), (v0, v1)) = (self.domain_u(), self.domain_v());
-        let (eu, ev) = (1e-7 * (u1 - u0), 1e-7 * (v1 - v0));
-        let uu = (u.clamp(u0, u1)).clamp(u0 + eu, u1 - eu);
-        let vv = (v.clamp(v0, v1)).clamp(v0 + ev, v1 - ev);
+        let (uu, vv) = self.nudged_inside(u, v, 1e-7);
         self.derivatives(uu, vv).normal()
+    }
+
+    /// `(u, v)` moved inside the domain, toward its middle, to at least `rel` of each
+    /// direction's length from its boundary: where the normal or curvature of a degenerate
+    /// point (on a boundary collapsed to a point) is taken as a limit.
+    ///
+    /// ```
+    /// let s = nurbs::fixtures::quarter_cylinder_along_x(2.0, 3.0);
+    /// let ((u0, u1), (v0, _)) = (s.domain_u(), s.domain_v());
+    /// let (u, v) = s.nudged_inside(u0, v0 + 0.5, 1e-6);
+    /// assert_eq!((u, v), (u0 + 1e-6 * (u1 - u0), v0 + 0.5));
+    /// ```
+    pub fn nudged_inside(&self, u: f64, v: f64, rel: f64) -> (f64, f64) {
+        let ((u0, u1), (v0, v1)) = (self.domain_u(), self.domain_v());
+        let (eu, ev) = (rel * (u1 - u0), rel * (v1 - v0));
+        (u.clamp(u0 + eu, u1 - eu), v.clamp(v0 + ev, v1 - ev))
     }
 
     /// Gaussian and mean curvature at `(u, v)`, `None` at a degenerate point.

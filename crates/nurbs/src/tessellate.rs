@@ -95,25 +95,6 @@ pub struct Tessellation {
     pub flipped: bool,
 }
 
-/// The distinct knots of `knots` within `domain`, each span cut in two.
-fn initial_params(knots: &[f64], domain: (f64, f64)) -> Vec<f64> {
-    let (a, b) = domain;
-    let mut breaks = vec![a];
-    for &k in knots {
-        if k > a && k < b && breaks.last().is_some_and(|&last| k > last) {
-            breaks.push(k);
-        }
-    }
-    breaks.push(b);
-    let mut out = Vec::with_capacity(2 * breaks.len());
-    for w in breaks.windows(2) {
-        out.push(w[0]);
-        out.push(0.5 * (w[0] + w[1]));
-    }
-    out.push(b);
-    out
-}
-
 /// Surface points by exact parameter bits, evaluated once.
 struct PointCache<'a> {
     surface: &'a NurbsSurface,
@@ -249,13 +230,9 @@ fn refine(grid: &mut Vec<f64>, errors: &[f64], limit: f64) -> bool {
     changed
 }
 
-/// A point slightly inside the domain, toward its middle, where the normal and curvature of a
-/// degenerate point (on a boundary collapsed to a point) are taken as limits.
-fn nudged(s: &NurbsSurface, u: f64, v: f64) -> (f64, f64) {
-    let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
-    let (eu, ev) = (1e-6 * (u1 - u0), 1e-6 * (v1 - v0));
-    (u.clamp(u0 + eu, u1 - eu), v.clamp(v0 + ev, v1 - ev))
-}
+/// How far inside the domain the normal and curvature of a degenerate point (on a boundary
+/// collapsed to a point) are taken as limits ([`NurbsSurface::nudged_inside`]).
+const NUDGE_REL: f64 = 1e-6;
 
 /// Triangulate `surface` so that no triangle is farther than `options.tolerance` from it: a
 /// tensor grid of parameters through every knot, refined until every chord's sagitta is
@@ -305,8 +282,13 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
     if !(tol.is_finite() && tol > 0.0 && tol >= floor) {
         return Err(NurbsError::TessellationFloor { tolerance: tol, floor, relative: MIN_TESSELLATION_TOLERANCE_REL });
     }
-    let mut gu = initial_params(surface.knots_u().as_slice(), surface.domain_u());
-    let mut gv = initial_params(surface.knots_v().as_slice(), surface.domain_v());
+    // The distinct knots, each span cut in two.
+    let halved = |mut grid: Vec<f64>| {
+        let all = vec![1.0; grid.len() - 1];
+        refine(&mut grid, &all, 0.0);
+        grid
+    };
+    let (mut gu, mut gv) = (halved(surface.knots_u().span_breaks()), halved(surface.knots_v().span_breaks()));
     let mut cache = PointCache { surface, points: HashMap::new() };
     let limit = MIDPOINT_FACTOR * tol;
     let errors = loop {
@@ -338,7 +320,7 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Resu
         .par_iter()
         .map(|&(u, v)| {
             let d = surface.derivatives(u, v);
-            let (un, vn) = nudged(surface, u, v);
+            let (un, vn) = surface.nudged_inside(u, v, NUDGE_REL);
             let n = d.normal().or_else(|| surface.normal(un, vn)).unwrap_or(Vec3::new(0.0, 0.0, 0.0));
             let k = d.curvature().or_else(|| surface.curvature(un, vn)).map_or(f64::NAN, |c| c.gaussian);
             Vertex { n, k }

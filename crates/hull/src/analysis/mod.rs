@@ -43,16 +43,10 @@ use nurbs::KnotVector;
 /// curvature picture, `view::curvature_map`).
 pub(crate) fn span_grid(knots: &KnotVector, target: usize) -> Vec<f64> {
     let (a, b) = knots.domain();
-    let mut breaks = vec![a];
-    breaks.extend(knots.interior_breaks().into_iter().map(|(k, _)| k).filter(|&k| k > a && k < b));
-    breaks.push(b);
-    let mut t = Vec::new();
-    for w in breaks.windows(2) {
-        let n = ((target as f64 * (w[1] - w[0]) / (b - a)).round() as usize).max(2);
-        t.extend((0..n).map(|j| w[0] + (w[1] - w[0]) * j as f64 / n as f64));
-    }
-    t.push(b);
-    t
+    let breaks = knots.span_breaks();
+    let counts: Vec<usize> =
+        breaks.windows(2).map(|w| ((target as f64 * (w[1] - w[0]) / (b - a)).round() as usize).max(2)).collect();
+    nurbs::split_spans(&breaks, &counts)
 }
 
 #[cfg(test)]

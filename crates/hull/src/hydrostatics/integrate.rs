@@ -16,7 +16,7 @@
 
 use nurbs::basis::{ders_basis_funs, BasisRow};
 use nurbs::{
-    brent_max, brent_root, Direction, FirstDerivatives, GaussLegendre, IsoCurve, NurbsSurface, Vec3, MAX_DEGREE,
+    brent_max, brent_root, Axis, Direction, FirstDerivatives, GaussLegendre, IsoCurve, NurbsSurface, Vec3, MAX_DEGREE,
 };
 
 /// Subdivision levels of a cell where the level set is monotone in neither parameter.
@@ -38,10 +38,10 @@ const SIGN_SAMPLES: usize = 4;
 /// are joined to the keel line. 2e-3 keeps Gunnerus's skeg out by a third.
 pub(crate) const WEB_REL: f64 = 2e-3;
 
-/// The coordinates the level sets are taken of, as indices of a point: `x` (the midship
+/// The coordinates the level sets are taken of: `x` (the midship
 /// section `x = x_m`) and `z` (the waterline `z = T`).
-const X: usize = 0;
-const Z: usize = 2;
+const X: Axis = Axis::X;
+const Z: Axis = Axis::Z;
 
 /// A rectangle of the parameter domain.
 #[derive(Clone, Copy, Debug)]
@@ -333,7 +333,7 @@ impl<'a> Integrator<'a> {
     }
 
     /// `S(u, v)[coord] - c`.
-    fn f(&self, coord: usize, c: f64, (u, v): (f64, f64)) -> f64 {
+    fn f(&self, coord: Axis, c: f64, (u, v): (f64, f64)) -> f64 {
         self.s.point(u, v)[coord] - c
     }
 
@@ -408,7 +408,7 @@ impl<'a> Integrator<'a> {
     /// larger smallest `|df| * width` on a grid of interior samples), with the outer breaks:
     /// the outer range split at the level set's crossings of the two inner ends. `None` if `f`
     /// is monotone along neither parameter (unless `force`).
-    fn plan(&self, r: Rect, coord: usize, c: f64, force: bool) -> Option<(Direction, Vec<f64>)> {
+    fn plan(&self, r: Rect, coord: Axis, c: f64, force: bool) -> Option<(Direction, Vec<f64>)> {
         let mut pos = [0usize; 2];
         let mut neg = [0usize; 2];
         let mut min = [f64::INFINITY; 2];
@@ -472,7 +472,7 @@ impl<'a> Integrator<'a> {
     /// [`Integrator::plan`] as strips: the outer intervals `(s0, s1)` between the breaks, each
     /// with whether the level set's low side `S[coord] <= c` holds at the two inner ends at its
     /// middle, `(low at the first end, low at the second)`. `None` as `plan`.
-    fn strips(&self, r: Rect, coord: usize, c: f64, force: bool) -> Option<(Direction, Vec<Strip>)> {
+    fn strips(&self, r: Rect, coord: Axis, c: f64, force: bool) -> Option<(Direction, Vec<Strip>)> {
         let (inner, breaks) = self.plan(r, coord, c, force)?;
         let (ia, ib) = r.range(inner);
         let strips = breaks

@@ -1,6 +1,7 @@
 //! Shape analysis against closed forms: planar cuts (stations, waterlines, buttocks),
-//! curvature maps and fairness measures on the exact Wigley hull, a cylinder, a sphere, a
-//! flat-bottomed hull and the fitted Series 60 sample.
+//! curvature maps and fairness measures on the exact Wigley hull, a cylinder, a sphere and the
+//! fitted Series 60 sample. The cuts of the cylinder, the sphere and a flat-bottomed patch,
+//! which need no hull type, are the kernel's tests (`crates/nurbs/src/cut/tests.rs`).
 
 use hull::{
     bending_energy, curvature_map, cut_surface, cut_surface_many, default_quadrature, fairness_report, gauss_legendre,
@@ -8,7 +9,8 @@ use hull::{
 };
 
 use hull::{fit_offsets, series60_sample, FitConfig};
-use nurbs::{KnotVector, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
+use nurbs::fixtures::half_cylinder_along_x as half_cylinder;
+use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 
 // ---------------------------------------------------------------------------------------
 // Test surfaces
@@ -40,24 +42,6 @@ fn wigley_f(x: f64, z: f64) -> [f64; 6] {
     [a * g * h, a * g1 * h, a * g * h1, a * g2 * h, a * g1 * h1, a * g * h2]
 }
 
-/// Half a circular cylinder along x: radius `r`, axis at `(y, z) = (0, r)`, the section from
-/// the keel `(0, 0)` through `(r, r)` to the deck `(0, 2r)`, two rational quadratic quarter
-/// arcs in u; linear in v from x = 0 to `len`.
-fn half_cylinder(r: f64, len: f64) -> NurbsSurface {
-    let ku = KnotVector::try_new(2, vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.]).expect("valid");
-    let kv = KnotVector::try_new(1, vec![0., 0., 1., 1.]).expect("valid");
-    let s = std::f64::consts::FRAC_1_SQRT_2;
-    let section = [(0.0, 0.0, 1.0), (r, 0.0, s), (r, r, 1.0), (r, 2.0 * r, s), (0.0, 2.0 * r, 1.0)];
-    let (mut pts, mut w) = (Vec::new(), Vec::new());
-    for (y, z, wi) in section {
-        for x in [0.0, len] {
-            pts.push(Vec3::new(x, y, z));
-            w.push(wi);
-        }
-    }
-    NurbsSurface::try_new(ku, kv, &pts, Some(&w)).expect("valid")
-}
-
 /// The octant `x, y, z >= 0` of a sphere of radius `r` about the origin, as a surface of
 /// revolution: u along the meridian quarter circle from the equator `(r, 0, 0)` to the pole
 /// `(0, 0, r)` (the edge `u = 1` collapses to the pole), v around z from the xz-plane to the
@@ -65,28 +49,6 @@ fn half_cylinder(r: f64, len: f64) -> NurbsSurface {
 /// (pole at u = 0) with u reversed: the same numbers, rows in the other order.
 fn sphere_octant(r: f64) -> NurbsSurface {
     nurbs::fixtures::sphere_octant(r).reversed_u()
-}
-
-/// A hull-like cubic patch whose first knot span in u is exactly flat at z = 0 (the flat of
-/// bottom, out to the knot line `u = 0.4`), then a bilge and a vertical side; its breadth
-/// varies along x.
-fn flat_bottom_hull() -> NurbsSurface {
-    let ku = KnotVector::try_new(3, vec![0., 0., 0., 0., 0.4, 0.7, 1., 1., 1., 1.]).expect("valid");
-    let kv = KnotVector::try_new(3, vec![0., 0., 0., 0., 1., 1., 1., 1.]).expect("valid");
-    let section = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (4.0, 1.0), (4.0, 3.0)];
-    let breadth = [0.6, 1.0, 1.0, 0.7];
-    let mut pts = Vec::new();
-    for (y, z) in section {
-        for (j, b) in breadth.iter().enumerate() {
-            pts.push(Vec3::new(10.0 * j as f64 / 3.0, y * b, z));
-        }
-    }
-    NurbsSurface::try_new(ku, kv, &pts, None).expect("valid")
-}
-
-fn size_of(s: &NurbsSurface) -> f64 {
-    let (lo, hi) = s.control_bounds();
-    (hi - lo).norm()
 }
 
 /// Every point of every branch lies on the plane to `rel` of the model size.
@@ -128,7 +90,7 @@ fn discrete_vs_analytic(c: &CutCurve, floor: f64) -> f64 {
 #[test]
 fn wigley_stations_are_parabolas_with_the_closed_form_curvature() {
     let s = wigley();
-    let size = size_of(&s);
+    let size = s.model_size().expect("a finite net");
     let (mut worst_k, mut worst_y, mut worst_disc): (f64, f64, f64) = (0.0, 0.0, 0.0);
     for x in [5.0, 20.0, 37.5, 50.0, 71.0, 96.0] {
         let cuts = cut_surface(&s, CutPlane::Station(x), &CutOptions::default());
@@ -163,7 +125,7 @@ fn wigley_stations_are_parabolas_with_the_closed_form_curvature() {
 #[test]
 fn wigley_waterlines_are_parabolas_with_the_closed_form_curvature() {
     let s = wigley();
-    let size = size_of(&s);
+    let size = s.model_size().expect("a finite net");
     let (mut worst_k, mut worst_disc): (f64, f64) = (0.0, 0.0);
     // z = T is the top edge: the surface lies on one side of the plane only.
     for z in [0.3, 1.0, 3.125, 5.0, 6.0, T] {
@@ -191,7 +153,7 @@ fn wigley_waterlines_are_parabolas_with_the_closed_form_curvature() {
 #[test]
 fn wigley_buttocks_follow_the_implicit_curve_curvature() {
     let s = wigley();
-    let size = size_of(&s);
+    let size = s.model_size().expect("a finite net");
     let mut worst_k: f64 = 0.0;
     for y in [0.5, 2.0, 4.0, 4.9] {
         let cuts = cut_surface(&s, CutPlane::Buttock(y), &CutOptions::default());
@@ -217,85 +179,6 @@ fn wigley_buttocks_follow_the_implicit_curve_curvature() {
     }
     eprintln!("wigley buttocks: kappa {worst_k:e} (rel)");
     assert!(worst_k <= 1e-9, "{worst_k:e}");
-}
-
-#[test]
-fn cylinder_station_is_a_counter_clockwise_half_circle_of_curvature_one_over_r() {
-    let r = 2.5;
-    let s = half_cylinder(r, 12.0);
-    let size = size_of(&s);
-    let cuts = cut_surface(&s, CutPlane::Station(4.0), &CutOptions::default());
-    assert_eq!(cuts.len(), 1);
-    let c = &cuts[0];
-    assert_on_plane(&cuts, size, 1e-12);
-    let (mut worst_r, mut worst_k): (f64, f64) = (0.0, 0.0);
-    for p in &c.points {
-        worst_r = worst_r.max(((p.point.y).hypot(p.point.z - r) - r).abs());
-        worst_k = worst_k.max((p.curvature - 1.0 / r).abs() * r);
-    }
-    eprintln!("cylinder station: radius {worst_r:e}, kappa {worst_k:e} (rel), {} points", c.points.len());
-    // Exact rational arcs: round-off only.
-    assert!(worst_r <= 1e-12 && worst_k <= 1e-10, "{worst_r:e} {worst_k:e}");
-    // Keel to deck, and the polyline turns by at most the asked 2 degrees per point.
-    assert!(c.points[0].point.z.abs() <= 1e-12 && (c.points[c.points.len() - 1].point.z - 2.0 * r).abs() <= 1e-12);
-    let xy = c.coords();
-    for w in xy.windows(3) {
-        let (a, b) = ([w[1][0] - w[0][0], w[1][1] - w[0][1]], [w[2][0] - w[1][0], w[2][1] - w[1][1]]);
-        let turn = (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1]);
-        assert!(turn > 0.0 && turn <= 2f64.to_radians() + 1e-12, "turn {}", turn.to_degrees());
-    }
-    // Half a circle: pi r, to the chord sag of 2-degree segments (1 - sinc(1 deg) ~ 5e-5).
-    assert!((c.length() - std::f64::consts::PI * r).abs() <= 1e-4 * r, "{}", c.length());
-}
-
-#[test]
-fn sphere_sections_have_curvature_of_their_circle_even_through_the_pole() {
-    let r = 3.0;
-    let s = sphere_octant(r);
-    let size = size_of(&s);
-    let opts = CutOptions::default();
-    // x = c cuts the octant in an arc of radius sqrt(r^2 - c^2); x = 0 and y = 0 are the
-    // boundary meridians, which end at the pole (the collapsed edge u = 1).
-    for plane in [CutPlane::Station(1.0), CutPlane::Station(2.9), CutPlane::Station(0.0), CutPlane::Buttock(0.0)] {
-        let cuts = cut_surface(&s, plane, &opts);
-        assert_eq!(cuts.len(), 1, "{plane:?}");
-        assert_on_plane(&cuts, size, 1e-12);
-        let rc = (r * r - plane.value().powi(2)).sqrt();
-        let mut worst: f64 = 0.0;
-        for p in &cuts[0].points {
-            assert!((p.point.norm() - r).abs() <= 1e-12, "{:?} off the sphere", p.point);
-            assert!(p.curvature.is_finite());
-            worst = worst.max((p.curvature.abs() - 1.0 / rc).abs() * rc);
-        }
-        eprintln!("sphere {plane:?}: |kappa| r_c - 1 <= {worst:e}, {} points", cuts[0].points.len());
-        // Analytic away from the pole, discrete (2-degree circle fit: exact on a circle up to
-        // round-off) at it.
-        assert!(worst <= 1e-6, "{plane:?}: {worst:e}");
-    }
-    // The tangent plane at the pole touches the patch at one point: no branch.
-    assert!(cut_surface(&s, CutPlane::Waterline(r), &opts).is_empty());
-}
-
-#[test]
-fn baseline_waterline_of_a_flat_bottom_is_the_flat_of_bottom_line() {
-    let s = flat_bottom_hull();
-    let size = size_of(&s);
-    let cuts = cut_surface(&s, CutPlane::Waterline(0.0), &CutOptions::default());
-    assert_eq!(cuts.len(), 1);
-    let c = &cuts[0];
-    // The flat is exactly z = 0: the points are on the plane to round-off.
-    assert_on_plane(&cuts, size, 1e-15);
-    assert!(c.points.iter().all(|p| p.curvature.is_finite()));
-    // It is the edge of the flat: the knot line u = 0.4, where the bilge starts.
-    for p in &c.points {
-        assert!((p.uv.0 - 0.4).abs() <= 1e-9, "u = {}", p.uv.0);
-    }
-    let (first, last) = (c.points[0].point, c.points[c.points.len() - 1].point);
-    assert!(first.x.abs() <= 1e-12 && (last.x - 10.0).abs() <= 1e-12);
-    // A waterline just above: one branch on the bilge, outside the flat.
-    let above = cut_surface(&s, CutPlane::Waterline(0.01), &CutOptions::default());
-    assert_eq!(above.len(), 1);
-    assert!(above[0].points.iter().all(|p| p.uv.0 > 0.4));
 }
 
 #[test]
@@ -352,7 +235,7 @@ fn series60_stations_run_keel_to_deck_through_the_offsets() {
 fn series60_lines_plan_cuts_are_on_their_planes_oriented_and_dense() {
     let out = fit_offsets(&series60_sample(), &FitConfig::default()).expect("the sample fits");
     let s = &out.surface;
-    let size = size_of(s);
+    let size = s.model_size().expect("a finite net");
     let (lpp, b2, d) = (121.92, 8.13, 9.75);
     let mut planes: Vec<CutPlane> = (0..=20).map(|k| CutPlane::Station(lpp * k as f64 / 20.0)).collect();
     planes.extend((1..=10).map(|k| CutPlane::Waterline(d * k as f64 / 11.0)));

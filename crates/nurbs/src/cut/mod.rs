@@ -693,7 +693,7 @@ fn orient(plane: AxisPlane, pts: &mut [Node], closed: bool, eps: f64) {
     }
     let (first, last) = (pts[0].point, pts[pts.len() - 1].point);
     let (a, b) = plane.run_axes();
-    let (primary, secondary) = (last[a.index()] - first[a.index()], last[b.index()] - first[b.index()]);
+    let (primary, secondary) = (last[a] - first[a], last[b] - first[b]);
     if primary < -eps || (primary.abs() <= eps && secondary < 0.0) {
         pts.reverse();
     }

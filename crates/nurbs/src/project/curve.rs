@@ -1,6 +1,6 @@
 //! Point inversion on a curve: [`CurveProjector`] and [`project_point_to_curve`].
 
-use super::sampling::{breaks, intervals_by_turning, sample_params_by_span};
+use super::sampling::{intervals_by_turning, sample_params_by_span};
 use super::surface::Seed;
 use super::MAX_HALVINGS;
 use super::{abs_tolerance, held_at_bound, step_1d, tangential, CurveProjection, ProjectionOptions};
@@ -60,7 +60,7 @@ impl<'a> CurveProjector<'a> {
     /// Sample `curve` and prepare the span bounds.
     pub fn new(curve: &'a NurbsCurve, options: ProjectionOptions) -> Self {
         let base = 4 * options.grid.max(curve.degree()).max(1);
-        let br = breaks(curve.knots());
+        let br = curve.knots().span_breaks();
         let counts = intervals_by_turning(&br, base, |u| curve_ders2(curve, u)[1]);
         let (us, starts, counts) = sample_params_by_span(&br, &counts, (false, false));
         let samples: Vec<[Vec3; 3]> = us.iter().map(|&u| curve_ders2(curve, u)).collect();

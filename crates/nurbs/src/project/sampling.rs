@@ -1,28 +1,7 @@
 //! Where the projectors sample before Newton starts: parameters by knot span, graded and
 //! denser where the tangent turns, and a bounding sphere per span.
 
-use crate::{KnotVector, Vec3};
-
-/// Distinct knot values bounding the non-empty spans of `k`, from domain start to end.
-pub(super) fn breaks(k: &KnotVector) -> Vec<f64> {
-    let (a, b) = k.domain();
-    let mut out = vec![a];
-    out.extend(k.interior_breaks().into_iter().map(|(t, _)| t));
-    out.push(b);
-    out
-}
-
-/// Sample parameters: `g` equal intervals in every span of `br`, `g * spans + 1` values.
-pub(super) fn sample_params(br: &[f64], g: usize) -> Vec<f64> {
-    let mut out = Vec::with_capacity(g * (br.len() - 1) + 1);
-    for w in br.windows(2) {
-        for k in 0..g {
-            out.push(w[0] + (w[1] - w[0]) * k as f64 / g as f64);
-        }
-    }
-    out.push(br[br.len() - 1]);
-    out
-}
+use crate::Vec3;
 
 /// Sample parameters with `counts[i]` equal intervals in span `i` of `br`, plus, when `grade`
 /// says so for the first (last) end, [`GRADED_LEVELS`] extra samples halving the first (last)

@@ -2,12 +2,10 @@
 //! with bounds, collapsed edges and backtracking (see the module documentation).
 
 use super::sampling::TURN_STEPS;
-use super::sampling::{
-    breaks, fine_params, intervals_for_turning, sample_params, sample_params_by_span, span_radius, turning_params,
-};
+use super::sampling::{fine_params, intervals_for_turning, sample_params_by_span, span_radius, turning_params};
 use super::{abs_tolerance, held_at_bound, step_1d, tangential, ProjectionOptions, SurfaceProjection, SINGULAR_REL};
 use super::{GN_DAMPING, MAX_HALVINGS};
-use crate::{NurbsSurface, SurfaceDerivatives, Vec3};
+use crate::{split_spans, NurbsSurface, SurfaceDerivatives, Vec3};
 
 /// The Newton (or safeguarded) step `(du, dv)` at a surface point, given which parameters are
 /// held at a bound.
@@ -178,9 +176,10 @@ impl<'a> SurfaceProjector<'a> {
     pub fn new(surface: &'a NurbsSurface, options: ProjectionOptions) -> Self {
         let base_u = options.grid.max(surface.degree_u()).max(1);
         let base_v = options.grid.max(surface.degree_v()).max(1);
-        let (bu, bv) = (breaks(surface.knots_u()), breaks(surface.knots_v()));
+        let (bu, bv) = (surface.knots_u().span_breaks(), surface.knots_v().span_breaks());
         // Intervals per span: the base count, more where some iso-line bends sharply.
-        let (lines_u, lines_v) = (sample_params(&bu, base_u), sample_params(&bv, base_v));
+        let lines_u = split_spans(&bu, &vec![base_u; bu.len() - 1]);
+        let lines_v = split_spans(&bv, &vec![base_v; bv.len() - 1]);
         // The tangents along each line sampled on one grid per direction.
         let per_span = TURN_STEPS + 1;
         let tu = turning_params(&bu);

@@ -2,7 +2,7 @@
 //! per knot span, with normals, Gaussian and mean curvature at every vertex, and the distance
 //! of every offset to the surface.
 
-use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
+use nurbs::{split_spans, KnotVector, NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use rayon::prelude::*;
 
 use hull::Offsets;
@@ -33,7 +33,10 @@ impl Default for Resolution {
     }
 }
 
-/// The sampled surface: an `nu x nv` vertex grid, u-major (`i * nv + j`).
+/// The sampled surface: an `nu x nv` vertex grid, u-major (`i * nv + j`), with fields at every
+/// vertex. A structured grid, not a triangle mesh ([`nurbs::TriMesh`]): the page makes the
+/// triangles of the grid (and of the mirrored half) itself, so none are stored; its vertices
+/// keep the grid's parameters for the error field and the grid's shape for the page.
 #[derive(Clone, Debug)]
 pub(crate) struct Mesh {
     pub nu: usize,
@@ -59,18 +62,13 @@ impl Mesh {
     }
 }
 
-/// The parameters at which one direction is sampled: every distinct knot of the domain, and
-/// `n_s` equal steps inside each span `[a, b]` with
+/// The parameters at which one direction is sampled: the knot vector's span breaks (every
+/// distinct knot of the domain, [`KnotVector::span_breaks`]) and `n_s` equal steps inside each
+/// span `[a, b]` ([`nurbs::split_spans`]) with
 /// `n_s = max(per_span, ceil((min - 1) (b - a) / (end - start)))`, the sum capped near `max`.
-pub(crate) fn sample_params(knots: &[f64], domain: (f64, f64), per_span: usize, min: usize, max: usize) -> Vec<f64> {
-    let (start, end) = domain;
-    let mut breaks: Vec<f64> = vec![start];
-    for &k in knots {
-        if k > start && k < end && breaks.last().is_some_and(|&last| k > last) {
-            breaks.push(k);
-        }
-    }
-    breaks.push(end);
+pub(crate) fn sample_params(knots: &KnotVector, per_span: usize, min: usize, max: usize) -> Vec<f64> {
+    let breaks = knots.span_breaks();
+    let (start, end) = knots.domain();
     let len = end - start;
     let spans = breaks.len() - 1;
     let counts = |per: usize, min: usize| -> Vec<usize> {
@@ -89,14 +87,7 @@ pub(crate) fn sample_params(knots: &[f64], domain: (f64, f64), per_span: usize, 
         min = (min * 9 / 10).max(spans + 1);
         n = counts(per, min);
     }
-    let mut out = Vec::with_capacity(n.iter().sum::<usize>() + 1);
-    for (w, &k) in breaks.windows(2).zip(&n) {
-        for s in 0..k {
-            out.push(w[0] + (w[1] - w[0]) * s as f64 / k as f64);
-        }
-    }
-    out.push(end);
-    out
+    split_spans(&breaks, &n)
 }
 
 /// Length of the control polygon along u (summed over the rows, averaged) and along v.
@@ -117,14 +108,6 @@ fn polygon_lengths(s: &NurbsSurface) -> (f64, f64) {
     (lu / nv as f64, lv / nu as f64)
 }
 
-/// A point slightly inside the domain, toward its middle, where the curvature of a degenerate
-/// point (a collapsed stem or keel edge) is taken as a limit.
-fn nudged(s: &NurbsSurface, u: f64, v: f64) -> (f64, f64) {
-    let ((u0, u1), (v0, v1)) = (s.domain_u(), s.domain_v());
-    let (eu, ev) = (1e-6 * (u1 - u0), 1e-6 * (v1 - v0));
-    (u.clamp(u0 + eu, u1 - eu), v.clamp(v0 + ev, v1 - ev))
-}
-
 /// Tessellate `s` and evaluate its normals and curvatures at every vertex.
 ///
 /// The outward side is the one whose normals point away from the hull's centre line, where the
@@ -136,8 +119,8 @@ fn nudged(s: &NurbsSurface, u: f64, v: f64) -> (f64, f64) {
 pub(crate) fn tessellate(s: &NurbsSurface, res: &Resolution) -> Mesh {
     let (lu, lv) = polygon_lengths(s);
     let (min_u, min_v) = if lu >= lv { (res.min_long, res.min_short) } else { (res.min_short, res.min_long) };
-    let params_u = sample_params(s.knots_u().as_slice(), s.domain_u(), res.per_span, min_u, res.max);
-    let params_v = sample_params(s.knots_v().as_slice(), s.domain_v(), res.per_span, min_v, res.max);
+    let params_u = sample_params(s.knots_u(), res.per_span, min_u, res.max);
+    let params_v = sample_params(s.knots_v(), res.per_span, min_v, res.max);
     let (nu, nv) = (params_u.len(), params_v.len());
     struct Sample {
         p: Vec3,
@@ -151,7 +134,8 @@ pub(crate) fn tessellate(s: &NurbsSurface, res: &Resolution) -> Mesh {
             let (u, v) = (params_u[idx / nv], params_v[idx % nv]);
             let d = s.derivatives(u, v);
             let curv = d.curvature().or_else(|| {
-                let (uu, vv) = nudged(s, u, v);
+                // The curvature of a degenerate point (a collapsed stem or keel edge) as a limit.
+                let (uu, vv) = s.nudged_inside(u, v, 1e-6);
                 s.curvature(uu, vv)
             });
             let n = s.normal(u, v).or(curv.map(|c| c.normal)).unwrap_or(Vec3::new(0.0, 1.0, 0.0));
@@ -247,7 +231,7 @@ pub(crate) fn interpolate_errors(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nurbs::{assert_near, KnotVector};
+    use nurbs::assert_near;
 
     /// A half cylinder of radius `r` around the x axis, `y >= 0`, length `l`: rational
     /// quadratic in u (from the bottom `(0, 0, -r)` round to the top `(0, 0, r)`), linear in v.
@@ -269,8 +253,9 @@ mod tests {
 
     #[test]
     fn params_contain_every_knot_and_meet_the_minimum() {
-        let knots = [0.0, 0.0, 0.0, 0.0, 0.1, 0.15, 0.6, 1.0, 1.0, 1.0, 1.0];
-        let p = sample_params(&knots, (0.0, 1.0), 8, 60, 600);
+        let knots =
+            KnotVector::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 0.1, 0.15, 0.6, 1.0, 1.0, 1.0, 1.0]).expect("valid");
+        let p = sample_params(&knots, 8, 60, 600);
         for k in [0.0, 0.1, 0.15, 0.6, 1.0] {
             assert!(p.contains(&k), "knot {k} missing from {p:?}");
         }
@@ -285,7 +270,8 @@ mod tests {
     #[test]
     fn params_respect_the_cap() {
         let knots: Vec<f64> = [0.0; 4].into_iter().chain((1..50).map(|i| i as f64 / 50.0)).chain([1.0; 4]).collect();
-        let p = sample_params(&knots, (0.0, 1.0), 8, 60, 200);
+        let knots = KnotVector::try_new(3, knots).expect("valid");
+        let p = sample_params(&knots, 8, 60, 200);
         assert!(p.len() <= 200 && p.len() >= 51, "{}", p.len());
     }
 
