@@ -654,6 +654,14 @@ mod tests {
         assert!(graph["report_html"].contains_key("render"), "the reader sees report_html's imports");
     }
 
+    /// The same guard over the kernel below (`crates/nurbs/src`), read as text from here.
+    #[test]
+    fn no_module_of_the_kernel_imports_one_that_imports_it_back() {
+        let graph = acyclic_graph_of("nurbs");
+        assert!(graph.len() >= 15, "read {} modules", graph.len());
+        assert!(graph["cut"].contains_key("surface"), "the reader sees cut's imports");
+    }
+
     /// `pub mod` and glob re-exports (`pub use x::*`) in a `lib.rs`, as `lib.rs:line: code`.
     fn second_paths(lib: &str) -> Vec<String> {
         let tokens = tokenize(lib);

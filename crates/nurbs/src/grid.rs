@@ -11,8 +11,8 @@
 //! [`NurbsSurface::derivatives`], so the results are bit-identical to it.
 
 use crate::basis::{ders_basis_funs, BasisRow};
-use crate::curve::Homogeneous;
 use crate::knots::MAX_DEGREE;
+use crate::surface::{add_row, rational_first, rational_surface_derivatives, row_sums};
 use crate::{NurbsSurface, SurfaceDerivatives, Vec3};
 
 /// Basis functions and their first two derivatives at one parameter, with its span.
@@ -87,7 +87,7 @@ impl NurbsSurface {
     /// The homogeneous derivatives `a[k][l]` (`k + l <= ORDER`, the rest left 0) at every
     /// node, v-major, handed to `emit` in order: the sums of
     /// [`derivatives`](NurbsSurface::derivatives), with each control row's sums
-    /// ([`row_sums`]) made once per v.
+    /// (`row_sums` in `surface.rs`) made once per v.
     fn homogeneous_grid<const ORDER: usize>(&self, us: &[f64], vs: &[f64], mut emit: impl FnMut(&[[[f64; 4]; 3]; 3])) {
         if us.is_empty() || vs.is_empty() {
             return;
@@ -114,59 +114,6 @@ impl NurbsSurface {
             }
         }
     }
-}
-
-/// The sums of one control row `row` (its `q + 1` homogeneous points) against the v basis
-/// functions and their derivatives `dv`: `t[l] = sum_s dv[l][s] P_s`, `l <= ORDER`.
-#[inline]
-pub(crate) fn row_sums<const ORDER: usize>(row: &[Homogeneous], dv: &[BasisRow; 3]) -> [[f64; 4]; 3] {
-    let mut t = [[0.0f64; 4]; 3];
-    for (s, c) in row.iter().enumerate() {
-        for l in 0..=ORDER {
-            let b = dv[l][s];
-            for c4 in 0..4 {
-                t[l][c4] += b * c[c4];
-            }
-        }
-    }
-    t
-}
-
-/// `a[k][l] += du[k][r] t[l]` for `k + l <= ORDER`: row `r`'s share (its [`row_sums`] `t`)
-/// of the homogeneous derivatives, `du` the u basis functions and their derivatives.
-#[inline]
-pub(crate) fn add_row<const ORDER: usize>(a: &mut [[[f64; 4]; 3]; 3], du: &[BasisRow; 3], r: usize, t: &[[f64; 4]; 3]) {
-    for k in 0..=ORDER {
-        for l in 0..=ORDER - k {
-            let b = du[k][r];
-            for c4 in 0..4 {
-                a[k][l][c4] += b * t[l][c4];
-            }
-        }
-    }
-}
-
-/// A4.4 to first order: the point, `S_u` and `S_v` from the homogeneous derivatives.
-fn rational_first(a: &[[[f64; 4]; 3]; 3]) -> (Vec3, Vec3, Vec3) {
-    let w = |k: usize, l: usize| a[k][l][3];
-    let av = |k: usize, l: usize| Vec3::new(a[k][l][0], a[k][l][1], a[k][l][2]);
-    let w0 = w(0, 0);
-    let s00 = av(0, 0) / w0;
-    let s10 = (av(1, 0) - s00 * w(1, 0)) / w0;
-    let s01 = (av(0, 1) - s00 * w(0, 1)) / w0;
-    (s00, s10, s01)
-}
-
-/// A4.4 up to second order from the homogeneous derivatives `a[k][l]` (`k + l <= 2`).
-pub(crate) fn rational_surface_derivatives(a: &[[[f64; 4]; 3]; 3]) -> SurfaceDerivatives {
-    let w = |k: usize, l: usize| a[k][l][3];
-    let av = |k: usize, l: usize| Vec3::new(a[k][l][0], a[k][l][1], a[k][l][2]);
-    let w0 = w(0, 0);
-    let (s00, s10, s01) = rational_first(a);
-    let s20 = (av(2, 0) - s10 * (2.0 * w(1, 0)) - s00 * w(2, 0)) / w0;
-    let s02 = (av(0, 2) - s01 * (2.0 * w(0, 1)) - s00 * w(0, 2)) / w0;
-    let s11 = (av(1, 1) - s10 * w(0, 1) - s01 * w(1, 0) - s00 * w(1, 1)) / w0;
-    SurfaceDerivatives { point: s00, su: s10, sv: s01, suu: s20, suv: s11, svv: s02 }
 }
 
 #[cfg(test)]

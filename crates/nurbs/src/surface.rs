@@ -227,10 +227,10 @@ impl NurbsSurface {
         // a[k][l] homogeneous derivative d^(k+l)/du^k dv^l, k + l <= 2.
         let mut a = [[[0.0f64; 4]; 3]; 3];
         for r in 0..=p {
-            let t = crate::grid::row_sums::<2>(&self.cw[(su - p + r) * nvn + sv - q..][..=q], &dv);
-            crate::grid::add_row::<2>(&mut a, &du, r, &t);
+            let t = row_sums::<2>(&self.cw[(su - p + r) * nvn + sv - q..][..=q], &dv);
+            add_row::<2>(&mut a, &du, r, &t);
         }
-        crate::grid::rational_surface_derivatives(&a)
+        rational_surface_derivatives(&a)
     }
 
     /// The unit normal `S_u x S_v / |S_u x S_v|`. At a degenerate point (a collapsed edge, as at
@@ -358,6 +358,63 @@ impl NurbsSurface {
         let cw = self.cw.iter().map(|&h| to_homogeneous(from_homogeneous(h) * k, h[3])).collect();
         NurbsSurface { ku: self.ku.clone(), kv: self.kv.clone(), cw }
     }
+}
+
+// The tensor-product sums of the evaluation (A3.5 on homogeneous points, A4.4), shared by the
+// pointwise [`NurbsSurface::derivatives`] and the grid evaluation (`grid.rs`), which imports
+// them from here (so the two modules do not import each other).
+
+/// The sums of one control row `row` (its `q + 1` homogeneous points) against the v basis
+/// functions and their derivatives `dv`: `t[l] = sum_s dv[l][s] P_s`, `l <= ORDER`.
+#[inline]
+pub(crate) fn row_sums<const ORDER: usize>(row: &[Homogeneous], dv: &[BasisRow; 3]) -> [[f64; 4]; 3] {
+    let mut t = [[0.0f64; 4]; 3];
+    for (s, c) in row.iter().enumerate() {
+        for l in 0..=ORDER {
+            let b = dv[l][s];
+            for c4 in 0..4 {
+                t[l][c4] += b * c[c4];
+            }
+        }
+    }
+    t
+}
+
+/// `a[k][l] += du[k][r] t[l]` for `k + l <= ORDER`: row `r`'s share (its [`row_sums`] `t`)
+/// of the homogeneous derivatives, `du` the u basis functions and their derivatives.
+#[inline]
+pub(crate) fn add_row<const ORDER: usize>(a: &mut [[[f64; 4]; 3]; 3], du: &[BasisRow; 3], r: usize, t: &[[f64; 4]; 3]) {
+    for k in 0..=ORDER {
+        for l in 0..=ORDER - k {
+            let b = du[k][r];
+            for c4 in 0..4 {
+                a[k][l][c4] += b * t[l][c4];
+            }
+        }
+    }
+}
+
+/// A4.4 to first order: the point, `S_u` and `S_v` from the homogeneous derivatives.
+pub(crate) fn rational_first(a: &[[[f64; 4]; 3]; 3]) -> (Vec3, Vec3, Vec3) {
+    let w = |k: usize, l: usize| a[k][l][3];
+    let av = |k: usize, l: usize| Vec3::new(a[k][l][0], a[k][l][1], a[k][l][2]);
+    let w0 = w(0, 0);
+    let s00 = av(0, 0) / w0;
+    let s10 = (av(1, 0) - s00 * w(1, 0)) / w0;
+    let s01 = (av(0, 1) - s00 * w(0, 1)) / w0;
+    (s00, s10, s01)
+}
+
+/// A4.4 up to second order from the homogeneous derivatives `a[k][l]` (`k + l <= 2`).
+pub(crate) fn rational_surface_derivatives(a: &[[[f64; 4]; 3]; 3]) -> SurfaceDerivatives {
+    let w = |k: usize, l: usize| a[k][l][3];
+    let av = |k: usize, l: usize| Vec3::new(a[k][l][0], a[k][l][1], a[k][l][2]);
+    let w0 = w(0, 0);
+    let (s00, s10, s01) = rational_first(a);
+    let s20 = (av(2, 0) - s10 * (2.0 * w(1, 0)) - s00 * w(2, 0)) / w0;
+    let s02 = (av(0, 2) - s01 * (2.0 * w(0, 1)) - s00 * w(0, 2)) / w0;
+    let s11 = (av(1, 1) - s10 * w(0, 1) - s01 * w(1, 0) - s00 * w(1, 1)) / w0;
+    SurfaceDerivatives { point: s00, su: s10, sv: s01, suu: s20, suv: s11, svv: s02 }
 }
 
 #[cfg(test)]
