@@ -1,6 +1,6 @@
 //! A guard of the crates' layering (issue 13): no top-level module of `src/` imports one that
-//! imports it back, directly or through others; run over this crate and the presentation crate
-//! above it (`crates/view`).
+//! imports it back, directly or through others; run over this crate, the kernel below it
+//! (`crates/nurbs`) and the presentation crate above it (`crates/view`).
 //!
 //! It reads the sources as text: every `use` path and every `crate::` path in code (comments,
 //! strings and `#[cfg(test)]` items left out, since tests may use what sits above them) is
