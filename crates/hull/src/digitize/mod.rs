@@ -141,8 +141,9 @@ impl Sketch {
 ///    ends meet, the curves are assigned to stations (by layer, by a text label next to them,
 ///    or by their order), each is checked to stay on one side of the centreline, and ordered
 ///    from keel to deck.
-/// 3. **Write** ([`crate::write_sections_csv`], [`crate::Notation::Plain`]) the [`Offsets`](crate::Offsets) as a sections CSV
-///    (`section,x,y,z`), which [`crate::read_offsets`] reads.
+/// 3. **Write** ([`crate::write_sections_csv`], [`crate::Notation::Plain`]) the
+///    [`Offsets`](crate::Offsets) as a sections CSV (`section,x,y,z`), which
+///    [`crate::read_offsets`] reads.
 ///
 /// # Errors
 /// [`HullError::Io`] when the file cannot be read, and those of [`parse_drawing`].

@@ -17,9 +17,10 @@ pub const ON_CENTRE_PLANE_REL: f64 = 1e-9;
 /// # The join
 ///
 /// The two halves are joined along the keel line: of the half's edges running along the ship,
-/// the one nearest the centre plane (`y = 0`). Along the parameter across that edge (say `u`, with the edge at `u = a` and the half on
-/// `[a, b]`), the port half is the mirrored net in reverse order and the starboard half follows
-/// (The NURBS Book 5.2, curves joined at a common end point, C0 there):
+/// the one nearest the centre plane (`y = 0`). Along the parameter across that edge (say `u`,
+/// with the edge at `u = a` and the half on `[a, b]`), the port half is the mirrored net in
+/// reverse order and the starboard half follows (The NURBS Book 5.2, curves joined at a common
+/// end point, C0 there):
 ///
 /// * when the edge's control points lie on the centre plane (within 1e-9 of the net's size,
 ///   `ON_CENTRE_PLANE_REL`; by the convex hull property the edge curve lies there too), the two
@@ -72,7 +73,7 @@ pub fn mirrored_full_hull(surface: &NurbsSurface) -> Result<NurbsSurface, HullEr
 }
 
 /// The mirror image of `s` in `y = 0` joined to `s` along its `u = a` edge, across a flat
-/// strip when `bridge` (the module docs).
+/// strip when `bridge` (see [`mirrored_full_hull`]).
 fn join_mirror_u(s: &NurbsSurface, bridge: bool) -> Result<NurbsSurface, HullError> {
     let p = s.degree_u();
     let k = s.knots_u().as_slice();

@@ -69,7 +69,7 @@ fn span_of(breaks: &[f64], t: f64) -> usize {
     breaks[1..breaks.len() - 1].partition_point(|&b| b <= t)
 }
 
-/// Least-squares polynomial net on `ku` x `kv` through samples of `s` (see the module docs).
+/// Least-squares polynomial net on `ku` x `kv` through samples of `s` (see [`polynomial_approximation`]).
 fn fit(s: &NurbsSurface, ku: &KnotVector, kv: &KnotVector) -> Result<NurbsSurface, HullError> {
     let fail = |e: nurbs::NurbsError| HullError::Fit { method: "polynomial approximation", reason: e };
     let pu = spread(&breaks(ku), ku.degree() + 1);

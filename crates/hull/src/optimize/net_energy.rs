@@ -28,7 +28,7 @@ impl Stencil {
     }
 }
 
-/// The difference operator `D` of a control net (see the module docs).
+/// The difference operator `D` of a control net (see [`WeightOptions::fair`](super::WeightOptions::fair)).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct NetEnergy {
     rows: Vec<Stencil>,
@@ -57,7 +57,7 @@ fn crease_rows(knots: &KnotVector) -> Vec<usize> {
 
 impl NetEnergy {
     /// The operator of an `n_u x n_v` net on knots `ku` (along u, index `i`) and `kv` (index
-    /// `j`), creases left out (module docs).
+    /// `j`), creases left out (see [`WeightOptions::fair`](super::WeightOptions::fair)).
     pub fn new(n_u: usize, n_v: usize, ku: &KnotVector, kv: &KnotVector) -> Self {
         let c = |i: usize, j: usize| i * n_v + j;
         let (cu, cv) = (crease_rows(ku), crease_rows(kv));
