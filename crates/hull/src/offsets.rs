@@ -1,17 +1,6 @@
 //! The offset data model: a hull given as a list of sections, each a list of points.
 //!
-//! # Axes
-//!
-//! hullskin uses one right-handed convention everywhere:
-//!
-//! - **x forward**, along the length, from aft to fore (e.g. x = 0 at the aft perpendicular);
-//! - **y to starboard**, as the half-breadth: y >= 0 for the one side of a symmetric hull that
-//!   offsets describe;
-//! - **z up**, from the baseline.
-//!
-//! A section is normally a transverse station (all its points at one x), ordered from keel to
-//! deck; sections follow each other along the length. Coordinates stay in the user's
-//! [`Units`]; nothing is converted.
+//! The rest of this module's documentation is on [`Offsets`], where the library's users read it.
 
 use nurbs::Vec3;
 
@@ -82,6 +71,19 @@ impl Section {
 }
 
 /// A hull's offsets: sections in order along the length, in the user's units.
+///
+/// # Axes
+///
+/// hullskin uses one right-handed convention everywhere:
+///
+/// - **x forward**, along the length, from aft to fore (e.g. x = 0 at the aft perpendicular);
+/// - **y to starboard**, as the half-breadth: y >= 0 for the one side of a symmetric hull that
+///   offsets describe;
+/// - **z up**, from the baseline.
+///
+/// A section is normally a transverse station (all its points at one x), ordered from keel to
+/// deck; sections follow each other along the length. Coordinates stay in the user's
+/// [`Units`]; nothing is converted.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Offsets {
     /// Where the data came from: a file path, or `built-in sample: ...`.

@@ -1,19 +1,6 @@
-//! Writing outputs so that nothing is lost:
+//! Writing outputs so that nothing is lost: one file atomically, or a run's files all or none.
 //!
-//! - [`write_atomic`]: one file, written to a temporary sibling and renamed over the target, so
-//!   a reader sees the old file or the complete new one, never half a file.
-//! - [`OutputDir`]: the files of one run, written into a fresh hidden staging directory beside
-//!   the output directory and moved into it only when the whole run succeeded
-//!   ([`OutputDir::commit`]). A run that fails at any point (bad input, a fit or draft error, a
-//!   write error, a signal) leaves the output directory as it was, byte for byte; dropping an
-//!   uncommitted [`OutputDir`] removes its staging directory.
-//! - [`check_finite`]: a surface is checked before any file of it is created.
-//!
-//! The guarantee's limit: the commit moves the files one by one (each by an atomic rename), so a
-//! crash or power loss in the middle of the commit itself can leave a mix of old and new
-//! files, each of them complete; never a half-written one. A process killed outright (SIGKILL)
-//! before its commit can leave a hidden `.NAME.hullskin-staging-PID-N` directory beside the
-//! output directory; it holds nothing of the outputs and may be deleted.
+//! The rest of this module's documentation is on [`OutputDir`], where the library's users read it.
 
 use std::fs;
 use std::io::{self, BufWriter, Write};
@@ -65,6 +52,23 @@ fn staged() -> MutexGuard<'static, Vec<PathBuf>> {
 
 /// The files of one run, staged in a hidden sibling of the output directory until
 /// [`OutputDir::commit`] moves them in.
+///
+/// # Writing outputs so that nothing is lost
+///
+/// - [`write_atomic`]: one file, written to a temporary sibling and renamed over the target, so
+///   a reader sees the old file or the complete new one, never half a file.
+/// - [`OutputDir`]: the files of one run, written into a fresh hidden staging directory beside
+///   the output directory and moved into it only when the whole run succeeded
+///   ([`OutputDir::commit`]). A run that fails at any point (bad input, a fit or draft error, a
+///   write error, a signal) leaves the output directory as it was, byte for byte; dropping an
+///   uncommitted [`OutputDir`] removes its staging directory.
+/// - [`check_finite`]: a surface is checked before any file of it is created.
+///
+/// The guarantee's limit: the commit moves the files one by one (each by an atomic rename), so a
+/// crash or power loss in the middle of the commit itself can leave a mix of old and new
+/// files, each of them complete; never a half-written one. A process killed outright (SIGKILL)
+/// before its commit can leave a hidden `.NAME.hullskin-staging-PID-N` directory beside the
+/// output directory; it holds nothing of the outputs and may be deleted.
 ///
 /// ```no_run
 /// # fn main() -> Result<(), hull::HullError> {

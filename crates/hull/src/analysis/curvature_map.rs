@@ -1,26 +1,7 @@
 //! Gaussian, mean and principal curvatures of a surface on a parameter grid, with the
 //! statistics a colour scale and a report need.
 //!
-//! At each grid node, from the first and second fundamental forms (`E, F, G` and `L, M, N`
-//! with the unit normal `n = S_u x S_v / |S_u x S_v|`; The NURBS Book / do Carmo 3-3, the
-//! kernel's [`nurbs::Curvature`]):
-//!
-//! ```text
-//! K = (L N - M^2) / (E G - F^2),   H = (E N - 2 F M + G L) / (2 (E G - F^2)),
-//! k1,2 = H +- sqrt(H^2 - K)        (k1 >= k2; H^2 - K < 0 from round-off is taken as 0)
-//! ```
-//!
-//! Signs follow the surface's own normal `S_u x S_v`: `H` and `k1, k2` are positive where
-//! the surface bends toward it (a sphere with an inward normal has `H = +1/R`), `K` does not
-//! depend on it. A hull fitted by hullskin (u keel to deck, v aft to fore) has its normal
-//! pointing outboard, so a convex bilge has `H < 0`.
-//!
-//! Nodes where the normal is undefined or the fundamental forms are round-off (a collapsed
-//! edge: a pole, a pointed stem; see [`Degeneracy`]) are flagged (`None`) and left out of the
-//! statistics, so nothing is NaN.
-//!
-//! This is the one sampling of curvature over a surface: the report's tables read its
-//! statistics, and the curvature picture (`view::curvature_map`, in the crate above) paints its nodes.
+//! The rest of this module's documentation is on [`curvature_map()`], where the library's users read it.
 
 use nurbs::{KnotVector, NurbsSurface, Vec3};
 use rayon::prelude::*;
@@ -230,6 +211,29 @@ pub struct CurvatureSummary {
 }
 
 /// The curvature map of `surface` on the grid of `options`.
+///
+/// # Definitions
+///
+/// At each grid node, from the first and second fundamental forms (`E, F, G` and `L, M, N`
+/// with the unit normal `n = S_u x S_v / |S_u x S_v|`; The NURBS Book / do Carmo 3-3, the
+/// kernel's [`nurbs::Curvature`]):
+///
+/// ```text
+/// K = (L N - M^2) / (E G - F^2),   H = (E N - 2 F M + G L) / (2 (E G - F^2)),
+/// k1,2 = H +- sqrt(H^2 - K)        (k1 >= k2; H^2 - K < 0 from round-off is taken as 0)
+/// ```
+///
+/// Signs follow the surface's own normal `S_u x S_v`: `H` and `k1, k2` are positive where
+/// the surface bends toward it (a sphere with an inward normal has `H = +1/R`), `K` does not
+/// depend on it. A hull fitted by hullskin (u keel to deck, v aft to fore) has its normal
+/// pointing outboard, so a convex bilge has `H < 0`.
+///
+/// Nodes where the normal is undefined or the fundamental forms are round-off (a collapsed
+/// edge: a pole, a pointed stem; see [`Degeneracy`]) are flagged (`None`) and left out of the
+/// statistics, so nothing is NaN.
+///
+/// This is the one sampling of curvature over a surface: the report's tables read its
+/// statistics, and the curvature picture (`view::curvature_map`, in the crate above) paints its nodes.
 pub fn curvature_map(surface: &NurbsSurface, options: &CurvatureMapOptions) -> CurvatureMap {
     let grid = |knots: &KnotVector, n| match options.lines {
         GridLines::Uniform => knots.param_grid(n, options.refine_at_knots, 2),

@@ -1,20 +1,6 @@
 //! Folds of a skinned hull surface: where it runs backwards across its sections.
 //!
-//! A hull skinned over stations advances in x from one section to the next, so the derivative
-//! across the sections keeps one sign: `x_v = ∂x/∂v` of `S(u, v)`. Where it turns the other way
-//! and the normal `S_u × S_v` turns over with it (faces inwards there), the surface doubles
-//! back on itself and a CAD system sees a self-intersecting skin. Where `x_v` turns but the
-//! normal keeps its side, the surface does not double back: along a steep stern or stem
-//! profile the sections' v lines run mostly up and down, and the keel line may run a little
-//! aft as it drops (the MATLAB trawler's data itself does, 9 mm between its 3rd and 4th
-//! sections); that is no fold. Uneven spacing of the sections' parameters causes it
-//! (a deck line jumping several metres between two close stations, R/V Gunnerus's forecastle
-//! step): the cure is a parameterization across the sections less driven by those jumps
-//! (centripetal) or fewer control points across.
-//!
-//! [`find_folds`] samples `x_v` and the normal on a grid refined at every knot span and reports
-//! the bands of x where `x_v` has the sign opposite to the surface's majority and the normal
-//! faces the other way.
+//! The rest of this module's documentation is on [`find_folds`], where the library's users read it.
 
 use nurbs::NurbsSurface;
 use serde::Serialize;
@@ -40,9 +26,27 @@ pub(crate) const PER_SPAN: usize = 8;
 /// v lines on which some sample has `x_v` of the sign opposite to the majority's, larger than
 /// 1e-9 of the surface's x extent per unit parameter (where sections share an x, as at a
 /// transom, `x_v` is zero to round-off and is not a fold), and faces the other way there (its
-/// normal turned over with it: see the module docs). Empty for a surface that advances in x
+/// normal turned over with it: see below). Empty for a surface that advances in x
 /// everywhere, or one with no extent in x. The folds that
 /// [`check_validity`](super::check_validity) reports, on the same grid.
+///
+/// # What a fold is
+///
+/// A hull skinned over stations advances in x from one section to the next, so the derivative
+/// across the sections keeps one sign: `x_v = ∂x/∂v` of `S(u, v)`. Where it turns the other way
+/// and the normal `S_u × S_v` turns over with it (faces inwards there), the surface doubles
+/// back on itself and a CAD system sees a self-intersecting skin. Where `x_v` turns but the
+/// normal keeps its side, the surface does not double back: along a steep stern or stem
+/// profile the sections' v lines run mostly up and down, and the keel line may run a little
+/// aft as it drops (the MATLAB trawler's data itself does, 9 mm between its 3rd and 4th
+/// sections); that is no fold. Uneven spacing of the sections' parameters causes it
+/// (a deck line jumping several metres between two close stations, R/V Gunnerus's forecastle
+/// step): the cure is a parameterization across the sections less driven by those jumps
+/// (centripetal) or fewer control points across.
+///
+/// [`find_folds`] samples `x_v` and the normal on a grid refined at every knot span and reports
+/// the bands of x where `x_v` has the sign opposite to the surface's majority and the normal
+/// faces the other way.
 pub fn find_folds(surface: &NurbsSurface) -> Vec<Fold> {
     super::validity::validity_and_folds(surface, &super::Envelope::unbounded(), &[]).1
 }

@@ -1,22 +1,6 @@
 //! Drawn curve pieces in drawing coordinates, and their flattening into polylines.
 //!
-//! A drawn piece ([`Segment`]) is one of
-//!
-//! - a straight line;
-//! - an elliptical arc `p(t) = c + u cos t + v sin t`, `t` from `t0` to `t1`: circles, DXF
-//!   `ARC`/`CIRCLE`/`ELLIPSE`, polyline bulges and SVG `A` commands. `u` and `v` are conjugate
-//!   semi-diameters, so the form survives any affine map (SVG transforms, the mirrored DXF
-//!   object coordinate system);
-//! - a Bézier curve of any degree (SVG `C`, `S`, `Q`, `T`), evaluated by de Casteljau's
-//!   algorithm;
-//! - a rational B-spline with any knot vector ([`Spline`], DXF `SPLINE`), evaluated by de Boor's
-//!   algorithm in homogeneous coordinates (The NURBS Book, 2nd ed., section 4.2 and the
-//!   algorithm of section 3.2 lifted to 4-D).
-//!
-//! Flattening samples each piece at points *on* the curve: the chord between two neighbouring
-//! samples is accepted when the curve at 1/4, 1/2 and 3/4 of its parameter interval lies
-//! within the flatness tolerance of that chord, otherwise the interval is halved (at most
-//! [`MAX_DEPTH`] times). Every returned point is a point of the drawn curve, to round-off.
+//! The rest of this module's documentation is on [`Segment`], where the library's users read it.
 
 use std::f64::consts::PI;
 
@@ -192,6 +176,24 @@ impl Spline {
 }
 
 /// One drawn piece of a curve, in drawing coordinates.
+///
+/// A drawn piece ([`Segment`]) is one of
+///
+/// - a straight line;
+/// - an elliptical arc `p(t) = c + u cos t + v sin t`, `t` from `t0` to `t1`: circles, DXF
+///   `ARC`/`CIRCLE`/`ELLIPSE`, polyline bulges and SVG `A` commands. `u` and `v` are conjugate
+///   semi-diameters, so the form survives any affine map (SVG transforms, the mirrored DXF
+///   object coordinate system);
+/// - a Bézier curve of any degree (SVG `C`, `S`, `Q`, `T`), evaluated by de Casteljau's
+///   algorithm;
+/// - a rational B-spline with any knot vector ([`Spline`], DXF `SPLINE`), evaluated by de Boor's
+///   algorithm in homogeneous coordinates (The NURBS Book, 2nd ed., section 4.2 and the
+///   algorithm of section 3.2 lifted to 4-D).
+///
+/// Flattening samples each piece at points *on* the curve: the chord between two neighbouring
+/// samples is accepted when the curve at 1/4, 1/2 and 3/4 of its parameter interval lies
+/// within the flatness tolerance of that chord, otherwise the interval is halved (at most
+/// 14 times, `MAX_DEPTH`). Every returned point is a point of the drawn curve, to round-off.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Segment {
     /// A straight line from the first point to the second.

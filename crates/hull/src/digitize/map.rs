@@ -48,7 +48,7 @@ pub(super) struct Found {
     pub(super) chains: Vec<Chain>,
 }
 
-/// Digitise the station curves of `sketch` into offsets (see the module docs).
+/// Digitise the station curves of `sketch` into offsets (see below).
 ///
 /// # The mapping
 ///

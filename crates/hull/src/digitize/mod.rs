@@ -1,27 +1,6 @@
 //! Digitising a lines plan: a body plan drawn as DXF or SVG, read back into offsets.
 //!
-//! A body plan draws each station (the hull's cut by a plane `x = const`) as a curve from the
-//! keel up to the deck, the half-breadth `y` across and the height `z` up the sheet, the aft
-//! stations to the LEFT of the centreline and the fore stations to the right (mirrored, so
-//! that one side of the hull shows the aft body and the other the fore body). Digitising it
-//! takes three steps:
-//!
-//! 1. **Read** ([`read_drawing`], [`parse_dxf`], [`parse_svg`]) the drawing into a [`Sketch`]:
-//!    its curves as exact pieces ([`Segment`]: lines, arcs, Béziers, B-splines), each with its
-//!    layer, name and place in the file, and its text labels. DXF (ASCII, R12 and later):
-//!    `LINE`, `ARC`, `CIRCLE`, `ELLIPSE`, `LWPOLYLINE` and `POLYLINE` (with bulges),
-//!    `SPLINE` (control points, knots and weights, or fit points), `TEXT` and `MTEXT`; SVG:
-//!    `<path>` (every command, relative forms included), `<polyline>`, `<polygon>`, `<line>`
-//!    and `<text>`, under any nesting of `transform`s.
-//! 2. **Map** ([`digitize`]) with the user's scale and datum (the drawing point where the
-//!    centreline meets the baseline): a drawing point `(X, Y)` becomes
-//!    `y = |X - X0| s`, `z = (Y - Y0) s` (`(Y0 - Y) s` in SVG, whose y axis points down),
-//!    `s` the model length of one drawing unit. Pieces are joined into curves where their
-//!    ends meet, the curves are assigned to stations (by layer, by a text label next to them,
-//!    or by their order), each is checked to stay on one side of the centreline, and ordered
-//!    from keel to deck.
-//! 3. **Write** ([`crate::write_sections_csv`], [`crate::float::Notation::Plain`]) the [`Offsets`](crate::Offsets) as a sections CSV
-//!    (`section,x,y,z`), which [`crate::read_offsets`] reads.
+//! The rest of this module's documentation is on [`read_drawing`], where the library's users read it.
 
 mod dxf_in;
 mod geom;
@@ -139,6 +118,32 @@ impl Sketch {
 
 /// Read a DXF or SVG drawing from `path` (the format is told by the content, see
 /// [`parse_drawing`]).
+///
+/// # Digitising a body plan
+///
+/// A body plan draws each station (the hull's cut by a plane `x = const`) as a curve from the
+/// keel up to the deck, the half-breadth `y` across and the height `z` up the sheet, the aft
+/// stations to the LEFT of the centreline and the fore stations to the right (mirrored, so
+/// that one side of the hull shows the aft body and the other the fore body). Digitising it
+/// takes three steps:
+///
+/// 1. **Read** ([`read_drawing`], [`parse_dxf`], [`parse_svg`]) the drawing into a [`Sketch`]:
+///    its curves as exact pieces ([`Segment`]: lines, arcs, Béziers, B-splines), each with its
+///    layer, name and place in the file, and its text labels. DXF (ASCII, R12 and later):
+///    `LINE`, `ARC`, `CIRCLE`, `ELLIPSE`, `LWPOLYLINE` and `POLYLINE` (with bulges),
+///    `SPLINE` (control points, knots and weights, or fit points), `TEXT` and `MTEXT`; SVG:
+///    `<path>` (every command, relative forms included), `<polyline>`, `<polygon>`, `<line>`
+///    and `<text>`, under any nesting of `transform`s.
+/// 2. **Map** ([`digitize`]) with the user's scale and datum (the drawing point where the
+///    centreline meets the baseline): a drawing point `(X, Y)` becomes
+///    `y = |X - X0| s`, `z = (Y - Y0) s` (`(Y0 - Y) s` in SVG, whose y axis points down),
+///    `s` the model length of one drawing unit. Pieces are joined into curves where their
+///    ends meet, the curves are assigned to stations (by layer, by a text label next to them,
+///    or by their order), each is checked to stay on one side of the centreline, and ordered
+///    from keel to deck.
+/// 3. **Write** ([`crate::write_sections_csv`], [`crate::Notation::Plain`]) the
+///    [`Offsets`](crate::Offsets) as a sections CSV (`section,x,y,z`), which
+///    [`crate::read_offsets`] reads.
 ///
 /// # Errors
 /// [`HullError::Io`] when the file cannot be read, and those of [`parse_drawing`].

@@ -1,27 +1,6 @@
 //! SVG reader for drawn body plans: paths, polylines, lines and texts, with their transforms.
 //!
-//! Coordinates are the root's user coordinates (the `viewBox` system, y down): every element's
-//! geometry is mapped through the `transform`s of its ancestors and its own (SVG 1.1 section
-//! 7.5: the child's matrix is applied first). Read:
-//!
-//! - `<path d>` with every command of SVG 1.1 section 8.3 (`M L H V C S Q T A Z` and their
-//!   relative forms; `S` and `T` reflect the previous control point; arcs by the endpoint to
-//!   centre conversion of appendix F.6.5, kept exact rather than approximated); each subpath
-//!   is one [`Curve`];
-//! - `<polyline>`, `<polygon>` (closed), `<line>`;
-//! - `<text>` (with its `<tspan>`s) as a [`Label`] at its first `x`, `y`;
-//! - a curve's name: its `<title>` child, else its `id` unless that is an editor's automatic
-//!   one (`path123`, `g7`);
-//! - a curve's layer: the innermost Inkscape layer around it (`inkscape:groupmode="layer"`,
-//!   named by `inkscape:label`), else the innermost `<g>` with an `inkscape:label` or a
-//!   non-automatic `id`.
-//!
-//! Skipped, and listed in [`Sketch::notes`]: `<rect>`, `<circle>`, `<ellipse>`, `<use>`,
-//! `<image>`, and anything under `display="none"`; `<defs>`, `<symbol>`, `<clipPath>`,
-//! `<mask>`, `<pattern>`, `<marker>` and non-SVG elements silently.
-//!
-//! [`Sketch::unit_mm`]: the root's `width` in an absolute unit over the `viewBox` width; one
-//! CSS pixel (25.4 / 96 mm) without a `viewBox`; unknown when `width` is missing or relative.
+//! The rest of this module's documentation is on [`parse_svg`], where the library's users read it.
 
 use std::collections::BTreeMap;
 
@@ -42,6 +21,31 @@ const INKSCAPE_NS: &str = "http://www.inkscape.org/namespaces/inkscape";
 pub const MAX_GROUP_DEPTH: usize = 256;
 
 /// Parse an SVG held in `text`; `source` names it in messages.
+///
+/// # What is read
+///
+/// Coordinates are the root's user coordinates (the `viewBox` system, y down): every element's
+/// geometry is mapped through the `transform`s of its ancestors and its own (SVG 1.1 section
+/// 7.5: the child's matrix is applied first). Read:
+///
+/// - `<path d>` with every command of SVG 1.1 section 8.3 (`M L H V C S Q T A Z` and their
+///   relative forms; `S` and `T` reflect the previous control point; arcs by the endpoint to
+///   centre conversion of appendix F.6.5, kept exact rather than approximated); each subpath
+///   is one [`Curve`];
+/// - `<polyline>`, `<polygon>` (closed), `<line>`;
+/// - `<text>` (with its `<tspan>`s) as a [`Label`] at its first `x`, `y`;
+/// - a curve's name: its `<title>` child, else its `id` unless that is an editor's automatic
+///   one (`path123`, `g7`);
+/// - a curve's layer: the innermost Inkscape layer around it (`inkscape:groupmode="layer"`,
+///   named by `inkscape:label`), else the innermost `<g>` with an `inkscape:label` or a
+///   non-automatic `id`.
+///
+/// Skipped, and listed in [`Sketch::notes`]: `<rect>`, `<circle>`, `<ellipse>`, `<use>`,
+/// `<image>`, and anything under `display="none"`; `<defs>`, `<symbol>`, `<clipPath>`,
+/// `<mask>`, `<pattern>`, `<marker>` and non-SVG elements silently.
+///
+/// [`Sketch::unit_mm`]: the root's `width` in an absolute unit over the `viewBox` width; one
+/// CSS pixel (25.4 / 96 mm) without a `viewBox`; unknown when `width` is missing or relative.
 ///
 /// # Errors
 /// [`HullError::Input`] with [`crate::InputErrorKind::Drawing`] at the line and column of:
@@ -89,7 +93,7 @@ pub fn parse_svg(text: &str, source: &str) -> Result<Sketch, HullError> {
     Ok(r.sketch)
 }
 
-/// Millimetres per user unit (see the module docs).
+/// Millimetres per user unit (see [`parse_svg`]).
 fn unit_mm(root: Node<'_, '_>) -> Option<f64> {
     let vb = root.attribute("viewBox").and_then(|v| v.parse::<ViewBox>().ok()).filter(|v| v.w > 0.0);
     let width = root.attribute("width").and_then(|v| v.parse::<Length>().ok()).and_then(length_mm);

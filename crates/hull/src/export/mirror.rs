@@ -2,20 +2,7 @@
 //! (`y -> -y`) joined along the keel line: of the half's edges running along the ship, the one
 //! nearest the centre plane.
 //!
-//! Along the parameter across that edge (say `u`, with the edge at `u = a` and the half on
-//! `[a, b]`), the port half is the mirrored net in reverse order and the starboard half follows
-//! (The NURBS Book 5.2, curves joined at a common end point, C0 there):
-//!
-//! * when the edge's control points lie on the centre plane (within [`ON_CENTRE_PLANE_REL`]
-//!   of the net's size; by the convex hull property the edge curve lies there too), the two
-//!   halves share them: port on `[2a - b, a]`, the junction `a` of multiplicity `p`;
-//! * otherwise (a flat of keel left open, as the offsets of a flat-bottomed hull give it) a
-//!   flat strip across the centre plane bridges the edge and its mirror image: one Bezier span
-//!   of degree `p` on `[a - d, a]` whose control points run evenly along the straight line
-//!   from each mirrored edge point to the edge point (a straight line, at the edge point's
-//!   weight: linear precision), port on `[a - d - (b - a), a - d]`.
-//!
-//! Either way each half of the result is the half (or its mirror) point for point.
+//! The rest of this module's documentation is on [`mirrored_full_hull`], where the library's users read it.
 
 use nurbs::{KnotVector, NurbsSurface, Vec3};
 
@@ -26,6 +13,25 @@ use crate::error::{HullError, MirrorKind};
 pub const ON_CENTRE_PLANE_REL: f64 = 1e-9;
 
 /// The full hull of the starboard half `surface`: one surface, port and starboard.
+///
+/// # The join
+///
+/// The two halves are joined along the keel line: of the half's edges running along the ship,
+/// the one nearest the centre plane (`y = 0`). Along the parameter across that edge (say `u`,
+/// with the edge at `u = a` and the half on `[a, b]`), the port half is the mirrored net in
+/// reverse order and the starboard half follows (The NURBS Book 5.2, curves joined at a common
+/// end point, C0 there):
+///
+/// * when the edge's control points lie on the centre plane (within 1e-9 of the net's size,
+///   `ON_CENTRE_PLANE_REL`; by the convex hull property the edge curve lies there too), the two
+///   halves share them: port on `[2a - b, a]`, the junction `a` of multiplicity `p`;
+/// * otherwise (a flat of keel left open, as the offsets of a flat-bottomed hull give it) a
+///   flat strip across the centre plane bridges the edge and its mirror image: one Bezier span
+///   of degree `p` on `[a - d, a]` whose control points run evenly along the straight line
+///   from each mirrored edge point to the edge point (a straight line, at the edge point's
+///   weight: linear precision), port on `[a - d - (b - a), a - d]`.
+///
+/// Either way each half of the result is the half (or its mirror) point for point.
 ///
 /// # Errors
 /// [`HullError::Mirror`] when no edge of the surface runs along the ship, or the surface lies
@@ -67,7 +73,7 @@ pub fn mirrored_full_hull(surface: &NurbsSurface) -> Result<NurbsSurface, HullEr
 }
 
 /// The mirror image of `s` in `y = 0` joined to `s` along its `u = a` edge, across a flat
-/// strip when `bridge` (the module docs).
+/// strip when `bridge` (see [`mirrored_full_hull`]).
 fn join_mirror_u(s: &NurbsSurface, bridge: bool) -> Result<NurbsSurface, HullError> {
     let p = s.degree_u();
     let k = s.knots_u().as_slice();

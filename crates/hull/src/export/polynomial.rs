@@ -1,27 +1,7 @@
 //! A polynomial (non-rational) B-spline surface within a tolerance of a rational one, for
 //! receiving systems that drop the weights of IGES entity 128 or STEP's rational B-splines.
 //!
-//! When every weight is the same, `S(u, v) = sum N_i N_j w P_ij / sum N_i N_j w = sum N_i N_j
-//! P_ij` (partition of unity), so the same net with unit weights is the same surface: exact.
-//!
-//! Otherwise the rational surface is approximated by least squares on its own parameters,
-//! keeping its degrees and starting from its knots (The NURBS Book 9.4.1, fitted first along u
-//! for every sampled v, then along v through the resulting control points, as in the
-//! tensor-product fits of 9.4.3; the boundary curves' end points are interpolated):
-//!
-//! 1. sample `S` at `p + 2` equally spaced parameters per knot span in u (ends shared), the
-//!    same in v with `q + 2`, and fit the polynomial net `P_ij` with the current knots;
-//! 2. measure `e = |S(u, v) - P(u, v)|` on a check grid with three points between every two
-//!    samples, an upper bound on the distance between the surfaces at those points (the
-//!    same parameters on both; the closest points can only be nearer);
-//! 3. insert the midpoint of every knot span in which the error exceeds the tolerance (in u
-//!    where the fit along u alone errs by more than half of it, likewise in v, or both
-//!    directions of the offending cells when neither does), and fit again, until no check
-//!    point exceeds `tolerance / sqrt 2` ([`SAMPLED_FACTOR`]: the margin for the peaks between
-//!    check points).
-//!
-//! The error of a degree-`p` fit falls as `h^(p+1)` with the span length `h`, so each round
-//! halves the offending spans and divides their error by about `2^(p+1)`.
+//! The rest of this module's documentation is on [`polynomial_approximation`], where the library's users read it.
 
 use nurbs::fit::LeastSquaresSolver;
 use nurbs::{KnotVector, NurbsSurface};
@@ -89,7 +69,7 @@ fn span_of(breaks: &[f64], t: f64) -> usize {
     breaks[1..breaks.len() - 1].partition_point(|&b| b <= t)
 }
 
-/// Least-squares polynomial net on `ku` x `kv` through samples of `s` (see the module docs).
+/// Least-squares polynomial net on `ku` x `kv` through samples of `s` (see [`polynomial_approximation`]).
 fn fit(s: &NurbsSurface, ku: &KnotVector, kv: &KnotVector) -> Result<NurbsSurface, HullError> {
     let fail = |e: nurbs::NurbsError| HullError::Fit { method: "polynomial approximation", reason: e };
     let pu = spread(&breaks(ku), ku.degree() + 1);
@@ -162,8 +142,32 @@ fn directional_errors(
     Ok((eu, ev))
 }
 
-/// A polynomial surface within `tolerance` (a length in the surface's unit) of `s` (see the
-/// module docs).
+/// A polynomial surface within `tolerance` (a length in the surface's unit) of `s` (see
+/// [Method](#method) below).
+///
+/// # Method
+///
+/// When every weight is the same, `S(u, v) = sum N_i N_j w P_ij / sum N_i N_j w = sum N_i N_j
+/// P_ij` (partition of unity), so the same net with unit weights is the same surface: exact.
+///
+/// Otherwise the rational surface is approximated by least squares on its own parameters,
+/// keeping its degrees and starting from its knots (The NURBS Book 9.4.1, fitted first along u
+/// for every sampled v, then along v through the resulting control points, as in the
+/// tensor-product fits of 9.4.3; the boundary curves' end points are interpolated):
+///
+/// 1. sample `S` at `p + 2` equally spaced parameters per knot span in u (ends shared), the
+///    same in v with `q + 2`, and fit the polynomial net `P_ij` with the current knots;
+/// 2. measure `e = |S(u, v) - P(u, v)|` on a check grid with three points between every two
+///    samples, an upper bound on the distance between the surfaces at those points (the
+///    same parameters on both; the closest points can only be nearer);
+/// 3. insert the midpoint of every knot span in which the error exceeds the tolerance (in u
+///    where the fit along u alone errs by more than half of it, likewise in v, or both
+///    directions of the offending cells when neither does), and fit again, until no check
+///    point exceeds `tolerance / sqrt 2` (`SAMPLED_FACTOR`: the margin for the peaks between
+///    check points).
+///
+/// The error of a degree-`p` fit falls as `h^(p+1)` with the span length `h`, so each round
+/// halves the offending spans and divides their error by about `2^(p+1)`.
 ///
 /// # Errors
 /// [`HullError::ExportTolerance`] if `tolerance` is not a positive finite number or would need more

@@ -1,25 +1,6 @@
 //! STL, ASCII and binary: reader and writers.
 //!
-//! # The two forms
-//!
-//! - **Binary**: an 80-byte header, a little-endian `u32` triangle count `n`, then `n`
-//!   records of 50 bytes: the normal and the three vertices as 12 little-endian `f32`, and a
-//!   `u16` attribute. The file is exactly `84 + 50 n` bytes.
-//! - **ASCII**: `solid name`, then facets
-//!   `facet normal nx ny nz / outer loop / vertex x y z (x3) / endloop / endfacet`, then
-//!   `endsolid name`. Keywords are read case-insensitively, separated by any white space
-//!   (line breaks included); several solids may follow each other. A loop of more than
-//!   three vertices is taken as a convex polygon and split into a fan of triangles.
-//!
-//! Some binary files start with `solid` too (their header is free text), so the form is told
-//! by the size: a file of exactly `84 + 50 n` bytes, `n` read at byte 80, is binary; otherwise
-//! a file starting with `solid` is ASCII; anything else is a damaged binary file, reported
-//! with its size and the count its header claims (never allocated for before the size is
-//! checked).
-//!
-//! Facet normals are not used (they are often wrong or zero): orientation, where it matters,
-//! comes from the vertices' order. Non-finite vertex coordinates are errors; normals are not
-//! checked.
+//! The rest of this module's documentation is on [`parse_stl`], where the library's users read it.
 
 use std::io::{self, Write};
 
@@ -58,8 +39,29 @@ pub fn looks_binary(bytes: &[u8]) -> bool {
     claimed_count(bytes).is_some_and(|n| binary_size(n) == bytes.len() as u64)
 }
 
-/// Parses an STL file, ASCII or binary (see the module docs for how they are told apart);
+/// Parses an STL file, ASCII or binary (see below for how they are told apart);
 /// `source` names it in messages.
+///
+/// # The two forms of STL
+///
+/// - **Binary**: an 80-byte header, a little-endian `u32` triangle count `n`, then `n`
+///   records of 50 bytes: the normal and the three vertices as 12 little-endian `f32`, and a
+///   `u16` attribute. The file is exactly `84 + 50 n` bytes.
+/// - **ASCII**: `solid name`, then facets
+///   `facet normal nx ny nz / outer loop / vertex x y z (x3) / endloop / endfacet`, then
+///   `endsolid name`. Keywords are read case-insensitively, separated by any white space
+///   (line breaks included); several solids may follow each other. A loop of more than
+///   three vertices is taken as a convex polygon and split into a fan of triangles.
+///
+/// Some binary files start with `solid` too (their header is free text), so the form is told
+/// by the size: a file of exactly `84 + 50 n` bytes, `n` read at byte 80, is binary; otherwise
+/// a file starting with `solid` is ASCII; anything else is a damaged binary file, reported
+/// with its size and the count its header claims (never allocated for before the size is
+/// checked).
+///
+/// Facet normals are not used (they are often wrong or zero): orientation, where it matters,
+/// comes from the vertices' order. Non-finite vertex coordinates are errors; normals are not
+/// checked.
 ///
 /// # Errors
 /// [`crate::InputErrorKind::Mesh`]: for ASCII files at the line of the first unexpected

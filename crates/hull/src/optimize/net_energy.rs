@@ -3,19 +3,8 @@
 //! (P-splines: Eilers and Marx, *Flexible smoothing with B-splines and penalties*, Statistical
 //! Science 11 (1996); the surface form in The NURBS Book's fairing references).
 //!
-//! For a net `P_ij`, `0 <= i < n_u`, `0 <= j < n_v`:
-//!
-//! `E(P) = sum |P_{i-1,j} - 2 P_ij + P_{i+1,j}|^2 + sum |P_{i,j-1} - 2 P_ij + P_{i,j+1}|^2
-//!        + 2 sum |P_ij - P_{i+1,j} - P_{i,j+1} + P_{i+1,j+1}|^2`,
-//!
-//! a quadratic form `|D P|^2` whose rows are the stencils below. A planar net of evenly spaced
-//! points (a bilinear patch) has `E = 0`; so has any net linear in `(i, j)`.
-//!
-//! Creases stay sharp: where a knot vector has an interior knot of multiplicity `>= degree`
-//! (a knuckle or chine kept by the fit: the surface passes through the control row `s - 1`,
-//! `s` the knot's first index, and is only C0 there), the second differences centred on that
-//! row are left out, so the penalty does not round the crease off. A direction of degree 1
-//! (a ruled direction) uses first differences instead: its control polygon is the surface.
+//! The rest of this module's documentation is on [`WeightOptions::fair`](super::WeightOptions::fair),
+//! where the library's users read it.
 
 use nurbs::KnotVector;
 
@@ -39,7 +28,7 @@ impl Stencil {
     }
 }
 
-/// The difference operator `D` of a control net (see the module docs).
+/// The difference operator `D` of a control net (see [`WeightOptions::fair`](super::WeightOptions::fair)).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct NetEnergy {
     rows: Vec<Stencil>,
@@ -68,7 +57,7 @@ fn crease_rows(knots: &KnotVector) -> Vec<usize> {
 
 impl NetEnergy {
     /// The operator of an `n_u x n_v` net on knots `ku` (along u, index `i`) and `kv` (index
-    /// `j`), creases left out (module docs).
+    /// `j`), creases left out (see [`WeightOptions::fair`](super::WeightOptions::fair)).
     pub fn new(n_u: usize, n_v: usize, ku: &KnotVector, kv: &KnotVector) -> Self {
         let c = |i: usize, j: usize| i * n_v + j;
         let (cu, cv) = (crease_rows(ku), crease_rows(kv));

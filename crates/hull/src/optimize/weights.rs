@@ -123,6 +123,24 @@ pub struct WeightOptions {
     /// see `gauge`) so that scaling all weights together does not lower it. Dimensionless: a
     /// mean squared second difference of the net costs `λ` times as much as a mean squared
     /// residual. `0` (the default) is the plain least squares.
+    ///
+    /// `D` is the discrete surrogate of the thin-plate energy `∫∫ |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2`
+    /// (P-splines: Eilers and Marx, *Flexible smoothing with B-splines and penalties*, Statistical
+    /// Science 11 (1996)).
+    ///
+    /// For a net `P_ij`, `0 <= i < n_u`, `0 <= j < n_v`:
+    ///
+    /// `E(P) = sum |P_{i-1,j} - 2 P_ij + P_{i+1,j}|^2 + sum |P_{i,j-1} - 2 P_ij + P_{i,j+1}|^2
+    ///        + 2 sum |P_ij - P_{i+1,j} - P_{i,j+1} + P_{i+1,j+1}|^2`,
+    ///
+    /// a quadratic form `|D P|^2` whose rows are the stencils of the three sums. A planar net of evenly spaced
+    /// points (a bilinear patch) has `E = 0`; so has any net linear in `(i, j)`.
+    ///
+    /// Creases stay sharp: where a knot vector has an interior knot of multiplicity `>= degree`
+    /// (a knuckle or chine kept by the fit: the surface passes through the control row `s - 1`,
+    /// `s` the knot's first index, and is only C0 there), the second differences centred on that
+    /// row are left out, so the penalty does not round the crease off. A direction of degree 1
+    /// (a ruled direction) uses first differences instead: its control polygon is the surface.
     pub fair: f64,
     /// Smoothness of the log-weights, `σ / model size`: the objective gains
     /// `σ^2 (1/e) sum (θ_a - θ_b)^2` over the `e` pairs of neighbouring weights (grid

@@ -1,23 +1,6 @@
 //! The offset table: the naval architect's table of half-breadths.
 //!
-//! ```text
-//! z\x,  0,   10,  20
-//! 0,    0,   1.8, 0.2
-//! 1,    0.5, 2.4, 1.1
-//! 2,    1.0, 2.6,
-//! ```
-//!
-//! - First row: a corner cell (blank, or a label such as `z\x` or `wl`), then the station
-//!   positions x, strictly increasing or strictly decreasing from left to right.
-//! - Then one row per waterline: its height z in the first column, strictly increasing or
-//!   strictly decreasing from top to bottom, then the half-breadth y >= 0 at each station.
-//!   An empty cell is a missing offset (the station does not reach that waterline, or it was
-//!   not measured).
-//!
-//! Each station (column) becomes one [`Section`] labelled with the header cell as written, in
-//! the column order; its points `(x_station, y, z)` run keel to deck (z ascending) and skip
-//! the missing cells. Each point records the line of its cell, and the section its column, so
-//! that [`crate::Offsets::validate`] can point at them.
+//! The rest of this module's documentation is on [`parse_offset_table`], where the library's users read it.
 
 use nurbs::Vec3;
 
@@ -27,6 +10,25 @@ use crate::offsets::{Offsets, Section};
 use crate::units::Units;
 
 /// Parses an offset table held in `text`; `source` names it in messages.
+///
+/// ```text
+/// z\x,  0,   10,  20
+/// 0,    0,   1.8, 0.2
+/// 1,    0.5, 2.4, 1.1
+/// 2,    1.0, 2.6,
+/// ```
+///
+/// - First row: a corner cell (blank, or a label such as `z\x` or `wl`), then the station
+///   positions x, strictly increasing or strictly decreasing from left to right.
+/// - Then one row per waterline: its height z in the first column, strictly increasing or
+///   strictly decreasing from top to bottom, then the half-breadth y >= 0 at each station.
+///   An empty cell is a missing offset (the station does not reach that waterline, or it was
+///   not measured).
+///
+/// Each station (column) becomes one [`Section`] labelled with the header cell as written, in
+/// the column order; its points `(x_station, y, z)` run keel to deck (z ascending) and skip
+/// the missing cells. Each point records the line of its cell, and the section its column, so
+/// that [`crate::Offsets::validate`] can point at them.
 ///
 /// # Errors
 ///

@@ -1,24 +1,6 @@
 //! The sections CSV: one row per point.
 //!
-//! ```text
-//! section,x,y,z
-//! 0,0,0,0
-//! 0,0,1.2,0.4
-//! ...
-//! 1,5,0,0
-//! ```
-//!
-//! - Header `section,x,y,z` (case-insensitive, fields trimmed): `section` first, then `x`, `y`
-//!   and `z` in any order, each name possibly with its unit (`x_m`, `y [mm]`, `z (ft)`: the
-//!   sense checks warn when that unit is not the one read in).
-//! - Each row is a point `(x, y, z)` of the section named in the first field (any text or
-//!   number). The rows of a section are consecutive and in order along it (keel to deck);
-//!   sections follow each other along the length. A label that comes back after another
-//!   section started is an error.
-//! - Blank lines and `#` comment lines are allowed anywhere (see [`crate::read`]).
-//!
-//! [`write_sections_csv`] writes this layout (for `hullskin slice` and `hullskin digitize`),
-//! quoting labels as RFC 4180 says and as the reader needs.
+//! The rest of this module's documentation is on [`parse_sections_csv`], where the library's users read it.
 
 use std::collections::HashMap;
 use std::io::{self, Write};
@@ -36,6 +18,26 @@ const HEADER: [&str; 4] = ["section", "x", "y", "z"];
 const LAYOUT: &str = "section,x,y,z";
 
 /// Parses a sections CSV held in `text`; `source` names it in messages (a path, `<stdin>`).
+///
+/// ```text
+/// section,x,y,z
+/// 0,0,0,0
+/// 0,0,1.2,0.4
+/// ...
+/// 1,5,0,0
+/// ```
+///
+/// - Header `section,x,y,z` (case-insensitive, fields trimmed): `section` first, then `x`, `y`
+///   and `z` in any order, each name possibly with its unit (`x_m`, `y [mm]`, `z (ft)`: the
+///   sense checks warn when that unit is not the one read in).
+/// - Each row is a point `(x, y, z)` of the section named in the first field (any text or
+///   number). The rows of a section are consecutive and in order along it (keel to deck);
+///   sections follow each other along the length. A label that comes back after another
+///   section started is an error.
+/// - Blank lines and `#` comment lines are allowed anywhere (see [`crate::read_offsets`]).
+///
+/// [`write_sections_csv`] writes this layout (for `hullskin slice` and `hullskin digitize`),
+/// quoting labels as RFC 4180 says and as the reader needs.
 ///
 /// # Errors
 ///

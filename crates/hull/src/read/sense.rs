@@ -1,19 +1,7 @@
 //! Sense checks on offsets as read: the plausible mistakes a parser cannot see, each a
 //! warning at its place with the value, what was expected and the flag that settles it.
 //!
-//! * **Units named in the header** (`x_mm`, `y [mm]`, `z (ft)`, `halfbreadth_in` ...) that are
-//!   not the units the offsets are read in (`--units`).
-//! * **Size**: a hull longer than any ship afloat (more than [`LONGEST_SHIP_M`] in metres: the
-//!   offsets are likely millimetres or inches read as metres), a beam larger than the length,
-//!   a depth larger than the length (a transposed table: waterlines read as stations).
-//! * **End spacing**: an end station (or an offset table's end waterline) lying more than
-//!   [`END_GAP`] median spacings beyond its neighbour: a typo in its x or z.
-//! * **Outlier cells**: a half-breadth that stands out from its neighbours both along its
-//!   station and along its waterline ([`find_outliers`]): a typo, a shifted decimal point, a
-//!   missing digit. What is done with them is [`OutlierPolicy`].
-//!
-//! The checks only read: the offsets are never changed, so a clean table gives the same
-//! offsets, bits for bits, as without them.
+//! The rest of this module's documentation is on [`SenseKind`], where the library's users read it.
 
 use std::fmt;
 
@@ -54,6 +42,22 @@ impl std::str::FromStr for OutlierPolicy {
 }
 
 /// What a warning is about.
+///
+/// # The checks
+///
+/// * **Units named in the header** (`x_mm`, `y [mm]`, `z (ft)`, `halfbreadth_in` ...) that are
+///   not the units the offsets are read in (`--units`).
+/// * **Size**: a hull longer than any ship afloat (more than 500 m, `LONGEST_SHIP_M`: the
+///   offsets are likely millimetres or inches read as metres), a beam larger than the length,
+///   a depth larger than the length (a transposed table: waterlines read as stations).
+/// * **End spacing**: an end station (or an offset table's end waterline) lying more than
+///   5 (`END_GAP`) median spacings beyond its neighbour: a typo in its x or z.
+/// * **Outlier cells**: a half-breadth that stands out from its neighbours both along its
+///   station and along its waterline (`find_outliers`): a typo, a shifted decimal point, a
+///   missing digit. What is done with them is [`OutlierPolicy`].
+///
+/// The checks only read: the offsets are never changed, so a clean table gives the same
+/// offsets, bits for bits, as without them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SenseKind {
