@@ -45,7 +45,7 @@ pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.
 /// least squares before `plain` was held within the offsets' envelope, if it was: its fairness
 /// figures are the ones to keep (the report's `before`; else `plain`'s).
 ///
-/// [`Fairing::Auto`] (module docs): when the plain fit is sound (no fold), the largest `ν` of
+/// [`Fairing::Auto`] (see [`Fairing`]): when the plain fit is sound (no fold), the largest `ν` of
 /// [`AUTO_LAMBDAS`] whose fit is sound, within the tolerance, with no more thin-plate energy,
 /// no larger curvature extreme `max |K|` and no more inflections than the plain least squares
 /// ([`FairnessFigures::no_less_fair_than`]); when the plain fit has validity findings (a fold, the
@@ -280,7 +280,7 @@ mod tests {
 
     #[test]
     fn auto_keeps_the_plain_fit_and_says_so_when_nothing_qualifies() {
-        // The exact Wigley table: any smoothing costs accuracy at the offsets (module docs), so
+        // The exact Wigley table: any smoothing costs accuracy at the offsets (see `Fairing`), so
         // within the plain fit's own max error nothing is accepted.
         let offsets = testdata("wigley_offsets.csv");
         let plain = fit_offsets(&offsets, &FitConfig::default()).expect("fits");

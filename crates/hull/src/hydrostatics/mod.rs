@@ -378,7 +378,7 @@ pub struct Hydrostatics<'a> {
 }
 
 impl<'a> Hydrostatics<'a> {
-    /// Prepare `surface` (the starboard half hull, axes of the module docs).
+    /// Prepare `surface` (the starboard half hull, axes as documented on [`Hydrostatics`]).
     ///
     /// # Errors
     /// [`HullError::Setting`] if the density is not a positive finite number or the order or
@@ -492,7 +492,7 @@ impl<'a> Hydrostatics<'a> {
     }
 
     /// The area of the centre-plane webs below `draft`, both sides, `L²`: left out of
-    /// [`HydrostaticsRow::s`] (see the module docs, "Centre-plane webs"); 0 on a surface
+    /// [`HydrostaticsRow::s`] (see [`Hydrostatics`], "Centre-plane webs"); 0 on a surface
     /// without webs or at a draft at or below the bottom.
     ///
     /// # Errors
@@ -604,7 +604,7 @@ impl<'a> Hydrostatics<'a> {
     }
 }
 
-/// The figures of `surface` at `draft` (see the module docs).
+/// The figures of `surface` at `draft` (see [`Hydrostatics`]).
 ///
 /// # Errors
 /// As [`Hydrostatics::new`] and [`Hydrostatics::at`].
