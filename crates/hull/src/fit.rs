@@ -211,6 +211,9 @@ pub struct FitOutcome {
     /// The fairness figures the fairing measured, with the surface they are of: reused by
     /// [`FitOutcome::fairness_figures`] for that very surface only.
     pub(crate) measured_fairness: Option<(NurbsSurface, FairnessFigures)>,
+    /// The surface before the envelope hold refitted it (`envelope_held > 0`): the plain least
+    /// squares whose fairness `--fair auto` keeps.
+    pub(crate) unheld: Option<NurbsSurface>,
 }
 
 impl FitOutcome {

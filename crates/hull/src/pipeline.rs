@@ -180,12 +180,10 @@ fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Resul
     // The plain least squares before the envelope hold, whose fairness `auto` is to keep
     // (issue 11's fairness floor compares with it).
     let free = match config.fair {
-        Fairing::Auto { .. } if plain.envelope_held > 0 => {
-            Some(fit_skin(offsets, &FitConfig { envelope: EnvelopeHold::Free, ..*config }, Measure::Lean)?.surface)
-        }
+        Fairing::Auto { .. } => plain.unheld.as_ref(),
         _ => None,
     };
-    Ok(match crate::fairing::fair(&plain, free.as_ref(), config.fair, skin)? {
+    Ok(match crate::fairing::fair(&plain, free, config.fair, skin)? {
         Some((mut out, report)) => {
             // The time of the whole choice, the plain fit and every smoothed one measured.
             let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
@@ -279,6 +277,7 @@ fn assembled(
         validity,
         envelope_held: 0,
         measured_fairness: None,
+        unheld: None,
     })
 }
 
@@ -412,6 +411,7 @@ fn within_envelope(
         }
     };
     let mut out = out;
+    let unheld = out.surface.clone();
     // Each face crossed, with how far past it the net may go: HOLD_SHARE of the allowance the
     // surface exceeded (the least, where several findings cross one face).
     let mut faces: BTreeMap<(usize, bool), f64> = BTreeMap::new();
@@ -467,6 +467,7 @@ fn within_envelope(
         out.flat_lines = prev.flat_lines;
         out.fairing = prev.fairing;
         out.rejected = prev.rejected;
+        out.unheld = Some(unheld.clone());
     }
     Ok(out)
 }
