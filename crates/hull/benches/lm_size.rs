@@ -5,7 +5,12 @@
 //! layout of the largest table (`n_u + n_v` variables: always the dense step).
 //!
 //! Each table also runs with the step forced dense and forced matrix-free at the same budget
-//! (`lm_dense`, `lm_matrix_free`), which shows where the choice flips. Whole-command timings
+//! (`lm_dense`, `lm_matrix_free`), which shows where the choice flips. On the fair objective
+//! (`fair_*`: the net's second differences at [`hull::NET_FAIR`] and the log-weights'
+//! smoothing at [`hull::WEIGHT_SMOOTHING`], what `hullskin fit --method lm` optimises) each
+//! table runs LM as chosen (`lm`) and, up to 256 weights, with the matrix-free step's
+//! preconditioner forced to the first point's factored normal matrix (`lm_stale`) or to
+//! Jacobi's diagonal (`lm_jacobi`), which shows where the stale factor pays. Whole-command timings
 //! (foot-point start, both starts, error measurement) are `tools/lm_speed.sh`'s table in the
 //! README.
 //!
@@ -17,12 +22,14 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use hull::{
     fit_offsets, quiet, read_offsets, run_lm, FitConfig, LmOptions, Units, WeightLayout, WeightOptions, WeightProblem,
+    NET_FAIR, WEIGHT_SMOOTHING,
 };
 
 /// The tables swept, by size: (name, file in testdata/).
-const TABLES: [(&str, &str); 5] = [
+const TABLES: [(&str, &str); 6] = [
     ("series60", "series60_cb065_offsets.csv"),
     ("cargo116", "cargo116_offsets.csv"),
+    ("dtmb5415_main", "matlab_dtmb5415_main.csv"),
     ("frigate", "matlab_frigate.csv"),
     ("gunnerus", "gunnerus_offsets.csv"),
     ("yacht", "matlab_yacht.csv"),
@@ -53,6 +60,18 @@ fn bench(c: &mut Criterion) {
                 let o = LmOptions { matrix_free: forced, ..LmOptions::default() };
                 g.bench_function(BenchmarkId::new(label, &id), |b| b.iter(|| quiet(|c| run_lm(&problem, &o, c))));
             }
+        }
+        let fair = WeightProblem::from_fit(&plain, &offsets, WeightOptions::default())
+            .and_then(|p| p.with_fairness(NET_FAIR, WEIGHT_SMOOTHING))
+            .expect("shapes match");
+        let d = hull::Objective::dim(&fair);
+        let id = format!("fair_{name}_d{d}");
+        for (label, forced) in [("lm", None), ("lm_stale", Some(true)), ("lm_jacobi", Some(false))] {
+            if forced.is_some() && d > 256 {
+                continue;
+            }
+            let o = LmOptions { stale_factor: forced, ..LmOptions::default() };
+            g.bench_function(BenchmarkId::new(label, &id), |b| b.iter(|| quiet(|c| run_lm(&fair, &o, c))));
         }
     }
     g.finish();

@@ -4,6 +4,7 @@
 //! The rest of this module's documentation is on [`run`], where the library's users read it.
 
 use std::cell::RefCell;
+use std::rc::Rc;
 
 use super::linalg::dot;
 use super::weights::{Evaluation, JacobianKind, Linearization, ParamFreedom, WeightProblem};
@@ -11,7 +12,7 @@ use super::{Control, Objective, OptimResult, Progress, StopReason};
 
 mod model;
 
-use model::{forcing, step_path, Dense, MatrixFree, Model, StepPath};
+use model::{forcing, stale_factor_pays, step_path, Dense, MatrixFree, Model, StaleFactor, StepPath};
 
 /// Settings of [`run`] (and of the polish and the parameter correction of [`super::optimize_weights`]).
 ///
@@ -92,6 +93,12 @@ pub struct LmOptions {
     /// `Some(true)`: the matrix-free step; `Some(false)`: the dense normal equations; `None`:
     /// the cheaper by an estimate of the cost (see `lm/model.rs`).
     pub matrix_free: Option<bool>,
+    /// Matrix-free step: `Some(true)` preconditions CG with the normal matrix `J^T J + R` formed
+    /// at the run's first point and factored (refactored as the damping moves), `Some(false)`
+    /// with Jacobi's diagonal; `None`: the former on the fair objective where forming it costs
+    /// at most 120 products of `J^T J` (the grids of up to 256 weights of `testdata/`; see
+    /// `lm/model.rs`).
+    pub stale_factor: Option<bool>,
 }
 
 impl Default for LmOptions {
@@ -121,6 +128,7 @@ impl Default for LmOptions {
             cg_tolerance_min: CG_TOLERANCE_MIN,
             max_cg: MAX_CG,
             matrix_free: None,
+            stale_factor: None,
         }
     }
 }
@@ -229,6 +237,11 @@ fn polish_from(problem: &WeightProblem, x0: &[f64], opts: &LmOptions, control: &
         // (models at rejected trial points are not built: `engine` asks only for accepted
         // ones and the start).
         let eta: RefCell<Option<(f64, f64)>> = RefCell::new(None);
+        // The preconditioner, formed at the first model (the run's start) and shared by the
+        // later ones.
+        let stale_on = stale_factor_pays(problem, opts);
+        // (`None` until tried: a start where it cannot be formed keeps Jacobi's.)
+        let stale: RefCell<Option<Option<Rc<RefCell<StaleFactor>>>>> = RefCell::new(None);
         return engine(
             x,
             &lo,
@@ -246,6 +259,16 @@ fn polish_from(problem: &WeightProblem, x0: &[f64], opts: &LmOptions, control: &
                     _ => problem.evaluate(z),
                 };
                 let mut m = MatrixFree::new(problem, problem.jacobian_op_at(ev)?, z, opts.cg_tolerance, opts.max_cg)?;
+                if stale_on {
+                    let mut slot = stale.borrow_mut();
+                    let factor = slot.get_or_insert_with(|| {
+                        let ne = problem.normal_equations(z)?;
+                        Some(Rc::new(RefCell::new(StaleFactor::new(ne.jtj, z.len()))))
+                    });
+                    if let Some(s) = factor {
+                        m.set_preconditioner(Rc::clone(s));
+                    }
+                }
                 let g = dot(m.gradient(), m.gradient()).sqrt();
                 let tol = forcing(*eta.borrow(), g, opts.cg_tolerance, opts.cg_tolerance_min);
                 m.set_tolerance(tol);
