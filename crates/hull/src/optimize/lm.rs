@@ -219,11 +219,19 @@ pub fn run(problem: &WeightProblem, opts: &LmOptions, control: &Control<'_>) -> 
 /// evolutionary search: the hybrid "global search, then local polish". The result is never
 /// worse than `x0`.
 pub fn polish(problem: &WeightProblem, x0: &[f64], opts: &LmOptions, control: &Control<'_>) -> OptimResult {
-    polish_from(problem, x0, opts, control).0
+    polish_from(problem, x0, opts, control, None).0
 }
 
-/// [`polish`], also returning the damping `μ` at the end (to go on where it stopped).
-fn polish_from(problem: &WeightProblem, x0: &[f64], opts: &LmOptions, control: &Control<'_>) -> (OptimResult, f64) {
+/// [`polish`], also returning the damping `μ` at the end (to go on where it stopped). `normal`:
+/// the normal matrix `J^T J + R` the matrix-free step's preconditioner starts from (see
+/// [`LmOptions::stale_factor`]), or `None` to form it at `x0` if it is used.
+fn polish_from(
+    problem: &WeightProblem,
+    x0: &[f64],
+    opts: &LmOptions,
+    control: &Control<'_>,
+    normal: Option<&[f64]>,
+) -> (OptimResult, f64) {
     let mut x = x0.to_vec();
     x.resize(problem.dim(), 0.0);
     let (lo, hi) = (problem.lower().to_vec(), problem.upper().to_vec());
@@ -262,8 +270,11 @@ fn polish_from(problem: &WeightProblem, x0: &[f64], opts: &LmOptions, control: &
                 if stale_on {
                     let mut slot = stale.borrow_mut();
                     let factor = slot.get_or_insert_with(|| {
-                        let ne = problem.normal_equations(z)?;
-                        Some(Rc::new(RefCell::new(StaleFactor::new(ne.jtj, z.len()))))
+                        let jtj = match normal {
+                            Some(a) if a.len() == z.len() * z.len() => a.to_vec(),
+                            _ => problem.normal_equations(z)?.jtj,
+                        };
+                        Some(Rc::new(RefCell::new(StaleFactor::new(jtj, z.len()))))
                     });
                     if let Some(s) = factor {
                         m.set_preconditioner(Rc::clone(s));
@@ -329,7 +340,7 @@ pub fn run_best_of(
     let left = opts.max_iterations.saturating_sub(result.iterations);
     if result.stop == StopReason::Iterations && left > 0 && !control.stopped() {
         let go_on = LmOptions { max_iterations: left, initial_damping: mu, ..*opts };
-        let (more, _) = polish_from(problems[best], &result.x, &go_on, control);
+        let (more, _) = polish_from(problems[best], &result.x, &go_on, control, None);
         history.extend(more.history.iter().skip(1).map(|&v| {
             low = low.min(v);
             low
@@ -351,16 +362,38 @@ pub fn run_best_of(
 /// The probes of [`run_best_of`], one per problem, in order: run side by side (`rayon::join`,
 /// so on as many threads as the pool has), each the same sequential run whatever the thread
 /// count, so the results do not depend on it. Only the first reports progress (two runs'
-/// iterations interleaved would be meaningless); all stop on the stop flag.
+/// iterations interleaved would be meaningless); all stop on the stop flag. Where the
+/// matrix-free step is preconditioned by a [`StaleFactor`], its normal matrix is formed once,
+/// at the first problem's start, for all of them (the same weights at other data parameters).
 fn probes(problems: &[&WeightProblem], opts: &LmOptions, control: &Control<'_>) -> Vec<(OptimResult, f64)> {
+    let shared = match problems {
+        [first, _, ..]
+            if opts.jacobian == JacobianKind::Kaufman
+                && step_path(first, opts) == StepPath::MatrixFree
+                && stale_factor_pays(first, opts) =>
+        {
+            first.normal_equations(&first.start()).map(|ne| ne.jtj)
+        }
+        _ => None,
+    };
+    probes_from(problems, opts, control, shared.as_deref())
+}
+
+/// [`probes`] with the shared normal matrix.
+fn probes_from(
+    problems: &[&WeightProblem],
+    opts: &LmOptions,
+    control: &Control<'_>,
+    normal: Option<&[f64]>,
+) -> Vec<(OptimResult, f64)> {
     match problems {
         [] => Vec::new(),
-        [p] => vec![polish_from(p, &p.start(), opts, control)],
+        [p] => vec![polish_from(p, &p.start(), opts, control, normal)],
         [first, rest @ ..] => {
             let stop = control.stop;
             let (head, tail) = rayon::join(
-                || polish_from(first, &first.start(), opts, control),
-                || probes(rest, opts, &Control { stop, progress: &|_| {} }),
+                || polish_from(first, &first.start(), opts, control, normal),
+                || probes_from(rest, opts, &Control { stop, progress: &|_| {} }, normal),
             );
             let mut runs = Vec::with_capacity(problems.len());
             runs.push(head);

@@ -393,7 +393,9 @@ fn dense_cost(problem: &WeightProblem) -> usize {
 /// The most products of `J^T J` that forming and factoring a [`StaleFactor`] may cost. On the
 /// grids of 176 to 256 weights of `testdata/` it costs 42 to 72 products and cut LM's
 /// iterations on the fair objective 2x-5x (DTMB 5415 main 105 -> 23, MATLAB Series 60 120 ->
-/// 24); the tables of 495 to 780 weights (245 to 481 products) ran 1.1x-3.5x slower with it.
+/// 24); on Gunnerus, WPB and the yacht (564 to 780 weights, 367 to 481 products) `hullskin
+/// fit --method lm` took 1.1x, 1.9x and 3.5x the time with it (one run each), the frigate
+/// (495 weights, 245 products) 0.9x.
 const STALE_FACTOR_PRODUCTS: usize = 120;
 
 /// Whether the matrix-free step of `problem` is preconditioned by a [`StaleFactor`] formed at

@@ -155,26 +155,30 @@ fn the_best_of_two_starts_goes_on_from_where_its_probe_stopped() {
 }
 
 /// The matrix-free step with its forcing sequence (Series 60 sample, 6 x 16 = 96 weights,
-/// with and without the fairness term): bit-identical results on 1 and 2 threads, and the
-/// run lowers the objective.
+/// with and without the fairness term, with the fair objective's stale factor and with
+/// Jacobi's preconditioner): bit-identical results on 1 and 2 threads, alone and as two
+/// starts sharing the first one's normal matrix, and the run lowers the objective.
 #[test]
 fn matrix_free_runs_are_identical_across_thread_counts() {
     let o = series60_sample();
     let out = fit(&o, (3, 3), (6, 16));
-    for fair in [0.0, 0.05] {
+    for (fair, stale_factor) in [(0.0, None), (0.05, None), (0.05, Some(false))] {
         let p = problem(&o, &out, WeightMode::Resolved, WeightLayout::Full)
             .with_fairness(fair, fair / 10.0)
             .expect("usable");
-        let opts = LmOptions { max_iterations: 15, matrix_free: Some(true), ..LmOptions::default() };
+        let moved: Vec<(f64, f64)> = p.params().iter().map(|&(u, v)| (u, 0.98 * v + 0.01)).collect();
+        let q = p.with_params(&moved).expect("ok");
+        let opts = LmOptions { max_iterations: 15, matrix_free: Some(true), stale_factor, ..LmOptions::default() };
         let on = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a rayon pool");
-            pool.install(|| quiet(|c| run(&p, &opts, c)))
+            pool.install(|| (quiet(|c| run(&p, &opts, c)), quiet(|c| run_best_of(&[&p, &q], &opts, 5, c))))
         };
         let (one, two) = (on(1), on(2));
-        assert_eq!(one, two, "fair {fair}");
+        assert_eq!(one, two, "fair {fair} {stale_factor:?}");
         let f0 = p.value(&p.start());
-        assert_history(&one, f0);
-        assert!(one.value < f0, "fair {fair}: {f0} -> {}", one.value);
+        assert_history(&one.0, f0);
+        assert!(one.0.value < f0, "fair {fair}: {f0} -> {}", one.0.value);
+        assert!(one.1 .1.value < f0, "fair {fair}, two starts: {f0} -> {}", one.1 .1.value);
     }
 }
 
