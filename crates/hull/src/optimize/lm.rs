@@ -30,7 +30,10 @@ use model::{forcing, stale_factor_pays, step_path, Dense, MatrixFree, Model, Sta
 ///   every CG iterate from zero lowers the quadratic model, so a truncated step still
 ///   descends). `D = diag(A^T A) / m + diag(R)`, the fixed-point part of the diagonal, an upper
 ///   bound of `diag(J^T J + R)` that costs nothing (the exact one needs `d` band solves), is
-///   the damping's scaling and, with `μ`, the Jacobi preconditioner.
+///   the damping's scaling and, with `μ`, the Jacobi preconditioner. On the fair objective,
+///   where forming `J^T J + R` once costs at most 120 products, CG is preconditioned instead
+///   by that matrix at the run's first point (shared by the starts of `run_best_of`),
+///   factored with the damping (`lm/model.rs`, `StaleFactor`; [`LmOptions::stale_factor`]).
 ///
 /// `step_path` picks the cheaper by an estimate of the multiply-adds of one iteration.
 ///

@@ -139,7 +139,7 @@ pub(super) struct StaleFactor {
 
 /// [`StaleFactor`] refactors when `μ` has moved by more than this factor either way. Measured
 /// on the DTMB 5415 main hull, the fair objective: 10 gives 23 iterations (7 factorizations in
-/// the first 20), 100 gives 24, never refactoring 36 (and 1.3x-1.8x the time).
+/// the first 20), 100 gives 24, never refactoring 36 (and on the five grids of 176 to 256 weights 1.1x-1.8x the time).
 const REFACTOR_RATIO: f64 = 10.0;
 
 impl StaleFactor {
