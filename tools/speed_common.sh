@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 cargo build --release -q -p hullskin
-bin=${BIN:-target/release/hullskin}
+bin=${BIN:-${CARGO_TARGET_DIR:-target}/release/hullskin}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 if [ $# -gt 0 ]; then tables=("$@"); else tables=(testdata/*.csv); fi
