@@ -115,9 +115,8 @@ pub fn fair(
                     let mut accepted = findings == 0 && max <= limit;
                     let mut after = None;
                     if accepted {
-                        let a = FairnessFigures::of(&out.surface);
-                        accepted = a.no_less_fair_than(&before);
-                        after = Some(a);
+                        after = FairnessFigures::of_no_less_fair(&out.surface, &before);
+                        accepted = after.is_some();
                     }
                     tried.push(FairTry { lambda: l, max, findings, accepted });
                     if let (true, Some(after)) = (accepted, after) {
@@ -129,7 +128,9 @@ pub fn fair(
                 // findings of any kind), fewer than the plain fit's, within the slack.
                 // Among those, one no less fair than the plain fit ([`FairnessFigures::no_less_fair_than`])
                 // before one that is not.
-                let mut best: Option<(usize, FitOutcome, FairnessFigures, bool)> = None;
+                // The figures are kept of a fit no less fair only (the cuts of the others are
+                // skipped): the chosen fit's are measured at the end if missing.
+                let mut best: Option<(usize, FitOutcome, Option<FairnessFigures>, bool)> = None;
                 // Every weight is tried here: the fits run in parallel, the choice is made in
                 // their order, so it does not depend on the thread count.
                 let fits: Vec<Result<FitOutcome, HullError>> = AUTO_LAMBDAS.par_iter().map(|&l| skin(l)).collect();
@@ -137,8 +138,8 @@ pub fn fair(
                     let Ok(out) = fit else { continue };
                     let (max, findings) = (out.error.overall.max, out.validity.len());
                     if out.defects() < plain.defects() && max <= UNSOUND_SLACK * limit {
-                        let figures = FairnessFigures::of(&out.surface);
-                        let fairer = figures.no_less_fair_than(&before);
+                        let figures = FairnessFigures::of_no_less_fair(&out.surface, &before);
+                        let fairer = figures.is_some();
                         let rank = |d: (usize, usize), fairer: bool| (d, !fairer);
                         if best
                             .as_ref()
@@ -150,6 +151,7 @@ pub fn fair(
                     tried.push(FairTry { lambda: l, max, findings, accepted: false });
                 }
                 if let Some((k, out, after, _)) = best {
+                    let after = after.unwrap_or_else(|| FairnessFigures::of(&out.surface));
                     tried[k].accepted = true;
                     return Ok(Some((out.with_fairness(after), report(tried[k].lambda, Some(limit), tried, after))));
                 }
@@ -310,5 +312,35 @@ mod tests {
         other.surface = other.surface.scaled(2.0);
         assert_eq!(other.fairness_figures(), FairnessFigures::of(&other.surface));
         assert_ne!(other.fairness_figures(), fresh);
+    }
+
+    #[test]
+    fn the_cheap_first_comparison_gives_the_figures_and_verdict_of_the_full_one() {
+        // Fits of the sample at several smoothing weights, each compared with each: the
+        // inflections are skipped where the energy or the curvature already fails, never the
+        // verdict or the figures changed (both outcomes met).
+        let offsets = series60_sample();
+        let fits: Vec<NurbsSurface> = [0.0, 1e-3, 1e-2, 1e-1, 1.0]
+            .iter()
+            .map(|&l| {
+                let cfg = FitConfig { fair: Fairing::Lambda(l), ..FitConfig::default() };
+                fit_offsets(&offsets, &cfg).expect("fits").surface
+            })
+            .collect();
+        let figures: Vec<FairnessFigures> = fits.iter().map(FairnessFigures::of).collect();
+        let (mut fairer, mut not) = (0, 0);
+        for (s, f) in fits.iter().zip(&figures) {
+            for other in &figures {
+                let cheap = FairnessFigures::of_no_less_fair(s, other);
+                if f.no_less_fair_than(other) {
+                    assert_eq!(cheap, Some(*f));
+                    fairer += 1;
+                } else {
+                    assert_eq!(cheap, None);
+                    not += 1;
+                }
+            }
+        }
+        assert!(fairer > 0 && not > 0, "{fairer} {not}");
     }
 }

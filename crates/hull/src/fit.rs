@@ -14,7 +14,7 @@ use crate::units::Units;
 use nurbs::NurbsSurface;
 use serde::Serialize;
 
-use crate::analysis::{fairness_report, FairnessOptions, PlaneFairness};
+use crate::analysis::{bending_energy, default_quadrature, plane_fairness, FairnessOptions, PlaneFairness};
 use crate::curvature_range::{gaussian_curvature_range, CURVATURE_GRID};
 use crate::fit_error::FitError;
 use crate::optimize::{Algorithm, OptimReport, OptimSettings};
@@ -316,15 +316,35 @@ pub struct FairnessFigures {
 impl FairnessFigures {
     /// The figures of `surface`.
     pub fn of(surface: &nurbs::NurbsSurface) -> Self {
-        let report = fairness_report(surface, &FairnessOptions::default());
-        let gaussian = gaussian_curvature_range(surface, CURVATURE_GRID).map_or([f64::NAN; 2], |k| [k.min, k.max]);
-        let count = |planes: &[PlaneFairness]| planes.iter().map(|p| p.inflections).sum();
-        FairnessFigures {
-            thin_plate: report.energy.thin_plate,
-            gaussian,
-            station_inflections: count(&report.stations),
-            waterline_inflections: count(&report.waterlines),
+        Self::with_inflections(surface, Self::without_inflections(surface))
+    }
+
+    /// The figures of `surface` if it is no less fair than `other`
+    /// ([`FairnessFigures::no_less_fair_than`]), else `None`; the inflections (the planar cuts,
+    /// most of the cost) are counted only for a surface whose thin-plate energy and curvature
+    /// extreme pass. The same figures and verdict as [`FairnessFigures::of`] followed by the
+    /// comparison.
+    pub(crate) fn of_no_less_fair(surface: &nurbs::NurbsSurface, other: &FairnessFigures) -> Option<Self> {
+        let cheap = Self::without_inflections(surface);
+        if !(cheap.thin_plate <= other.thin_plate && cheap.curvature_extreme() <= other.curvature_extreme()) {
+            return None;
         }
+        Some(Self::with_inflections(surface, cheap)).filter(|f| f.no_less_fair_than(other))
+    }
+
+    /// The thin-plate energy (as [`crate::analysis::fairness_report`] with its default options
+    /// integrates it) and the curvature range, the inflections left 0.
+    fn without_inflections(surface: &nurbs::NurbsSurface) -> Self {
+        let thin_plate = bending_energy(surface, default_quadrature(surface)).thin_plate;
+        let gaussian = gaussian_curvature_range(surface, CURVATURE_GRID).map_or([f64::NAN; 2], |k| [k.min, k.max]);
+        FairnessFigures { thin_plate, gaussian, station_inflections: 0, waterline_inflections: 0 }
+    }
+
+    /// `figures` with the inflections of `surface`'s stations and waterlines counted.
+    fn with_inflections(surface: &nurbs::NurbsSurface, figures: Self) -> Self {
+        let (_, stations, waterlines, _) = plane_fairness(surface, &FairnessOptions::default());
+        let count = |planes: &[PlaneFairness]| planes.iter().map(|p| p.inflections).sum();
+        FairnessFigures { station_inflections: count(&stations), waterline_inflections: count(&waterlines), ..figures }
     }
 
     /// Inflections of the stations and waterlines together.

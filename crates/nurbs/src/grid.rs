@@ -16,6 +16,7 @@ use crate::surface::{add_row, rational_first, rational_surface_derivatives, row_
 use crate::{NurbsSurface, SurfaceDerivatives, Vec3};
 
 /// Basis functions and their first two derivatives at one parameter, with its span.
+#[derive(Clone, Debug)]
 struct Basis {
     span: usize,
     ders: [BasisRow; 3],
@@ -29,6 +30,21 @@ impl Basis {
         ders_basis_funs(knots.as_slice(), span, t, knots.degree(), 2, &mut ders);
         Basis { span, ders }
     }
+
+    /// [`Basis::at`] to the first derivative only (the second left 0): the values and first
+    /// derivatives are the same to the bit (A2.3 finds each order from the lower ones).
+    fn first_at(knots: &crate::KnotVector, t: f64) -> Self {
+        let mut b = Basis { span: 0, ders: [[0.0; MAX_DEGREE + 1]; 3] };
+        b.first_into(knots, t);
+        b
+    }
+
+    /// [`Basis::first_at`] in place.
+    fn first_into(&mut self, knots: &crate::KnotVector, t: f64) {
+        let t = knots.clamp(t);
+        self.span = knots.find_span(t);
+        ders_basis_funs(knots.as_slice(), self.span, t, knots.degree(), 1, &mut self.ders);
+    }
 }
 
 /// The point and first partial derivatives at one `(u, v)`: what a validity grid or a
@@ -38,6 +54,70 @@ pub struct FirstDerivatives {
     pub point: Vec3,
     pub su: Vec3,
     pub sv: Vec3,
+}
+
+/// The point and first partial derivatives of one surface at a sequence of parameters, each
+/// bit-identical to [`NurbsSurface::first_derivatives`], reusing what a repeated parameter
+/// shares with the previous call: the basis functions of a `u` or a `v` equal (to the bit) to
+/// the last one, and the control rows' sums against the `v` basis while `v` and the `u` span
+/// stay. A search along an iso-line (a root on a grid edge, a line search in `u`) then costs
+/// one set of basis functions and `p + 1` row additions per point.
+#[derive(Clone, Debug)]
+pub struct FirstDerivativesCache<'a> {
+    surface: &'a NurbsSurface,
+    /// The bits of the last `u` and `v` (`None` before the first call) and their basis functions.
+    u: Option<u64>,
+    v: Option<u64>,
+    bu: Basis,
+    bv: Basis,
+    /// `(v bits, u span)` of `rows`, the sums of the control rows of that span against the
+    /// basis of that `v`.
+    rows_of: Option<(u64, usize)>,
+    rows: [[[f64; 4]; 3]; MAX_DEGREE + 1],
+}
+
+impl<'a> FirstDerivativesCache<'a> {
+    /// An empty cache for `surface`.
+    pub fn new(surface: &'a NurbsSurface) -> Self {
+        let empty = Basis { span: 0, ders: [[0.0; MAX_DEGREE + 1]; 3] };
+        FirstDerivativesCache {
+            surface,
+            u: None,
+            v: None,
+            bu: empty.clone(),
+            bv: empty,
+            rows_of: None,
+            rows: [[[0.0; 4]; 3]; MAX_DEGREE + 1],
+        }
+    }
+
+    /// The point and first derivatives at `(u, v)`, as [`NurbsSurface::first_derivatives`].
+    pub fn at(&mut self, u: f64, v: f64) -> FirstDerivatives {
+        let s = self.surface;
+        let (p, q) = (s.degree_u(), s.degree_v());
+        let (ub, vb) = (u.to_bits(), v.to_bits());
+        if self.u != Some(ub) {
+            self.bu.first_into(s.knots_u(), u);
+            self.u = Some(ub);
+        }
+        if self.v != Some(vb) {
+            self.bv.first_into(s.knots_v(), v);
+            self.v = Some(vb);
+        }
+        if self.rows_of != Some((vb, self.bu.span)) {
+            let (nvn, cw) = (s.n_v(), s.homogeneous());
+            for (r, tr) in self.rows.iter_mut().enumerate().take(p + 1) {
+                *tr = row_sums::<1>(&cw[(self.bu.span - p + r) * nvn + self.bv.span - q..][..=q], &self.bv.ders);
+            }
+            self.rows_of = Some((vb, self.bu.span));
+        }
+        let mut a = [[[0.0f64; 4]; 3]; 3];
+        for (r, tr) in self.rows.iter().enumerate().take(p + 1) {
+            add_row::<1>(&mut a, &self.bu.ders, r, tr);
+        }
+        let (point, su, sv) = rational_first(&a);
+        FirstDerivatives { point, su, sv }
+    }
 }
 
 impl NurbsSurface {
@@ -73,6 +153,23 @@ impl NurbsSurface {
             out.push(FirstDerivatives { point: s00, su: s10, sv: s01 });
         });
         out
+    }
+
+    /// The point and first partial derivatives at one `(u, v)`: bit-identical to the `point`,
+    /// `su` and `sv` of [`derivatives`](NurbsSurface::derivatives) (the same sums in the same
+    /// order, without the second-order ones), at about half its cost. For searches that need
+    /// no curvature (roots on a plane, Newton steps).
+    pub fn first_derivatives(&self, u: f64, v: f64) -> FirstDerivatives {
+        let (bu, bv) = (Basis::first_at(self.knots_u(), u), Basis::first_at(self.knots_v(), v));
+        let (p, q) = (self.degree_u(), self.degree_v());
+        let (nvn, cw) = (self.n_v(), self.homogeneous());
+        let mut a = [[[0.0f64; 4]; 3]; 3];
+        for r in 0..=p {
+            let t = row_sums::<1>(&cw[(bu.span - p + r) * nvn + bv.span - q..][..=q], &bv.ders);
+            add_row::<1>(&mut a, &bu.ders, r, &t);
+        }
+        let (point, su, sv) = rational_first(&a);
+        FirstDerivatives { point, su, sv }
     }
 
     /// The points at every `(us[i], vs[j])`, v-major as
@@ -154,12 +251,18 @@ mod tests {
         let first = s.first_derivatives_grid(&us, &vs);
         let points = s.points_grid(&us, &vs);
         assert_eq!((grid.len(), first.len()), (us.len() * vs.len(), us.len() * vs.len()));
+        // The cache sees each v repeated along a row, then a new v with the last u repeated.
+        let mut cache = crate::FirstDerivativesCache::new(&s);
         for (j, &v) in vs.iter().enumerate() {
             for (i, &u) in us.iter().enumerate() {
                 let d = s.derivatives(u, v);
                 assert_eq!(grid[j * us.len() + i], d, "node ({u}, {v})");
                 let f = first[j * us.len() + i];
                 assert_eq!((f.point, f.su, f.sv), (d.point, d.su, d.sv), "first order at ({u}, {v})");
+                let f = s.first_derivatives(u, v);
+                assert_eq!((f.point, f.su, f.sv), (d.point, d.su, d.sv), "pointwise first order at ({u}, {v})");
+                let c = cache.at(u, v);
+                assert_eq!((c.point, c.su, c.sv), (d.point, d.su, d.sv), "cached first order at ({u}, {v})");
                 assert_eq!(points[j * us.len() + i], s.point(u, v), "point at ({u}, {v})");
             }
         }
@@ -169,6 +272,15 @@ mod tests {
         for (j, &v) in vs.iter().enumerate() {
             for (i, &u) in narrow.iter().enumerate() {
                 assert_eq!(g[j * narrow.len() + i], s.derivatives(u, v));
+            }
+        }
+        // Alternating searches along u and along v, crossing spans, as a root search does.
+        let mut cache = crate::FirstDerivativesCache::new(&s);
+        for k in 0..200 {
+            let t = f64::from(k) / 199.0;
+            for (u, v) in [(t, 0.45), (0.45, t), (t, 0.6), (0.5, 1.0 - t)] {
+                let (c, d) = (cache.at(u, v), s.derivatives(u, v));
+                assert_eq!((c.point, c.su, c.sv), (d.point, d.su, d.sv), "({u}, {v})");
             }
         }
         assert!(s.derivatives_grid(&[], &vs).is_empty());

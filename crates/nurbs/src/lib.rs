@@ -69,7 +69,7 @@ pub use curve::{Homogeneous, NurbsCurve};
 // Planar cuts of a surface by axis planes: ordered polylines with the cut curve's curvature.
 pub use cut::{cut_curvature, cut_surface, cut_surface_many, three_point_curvature, CutCurve, CutOptions, CutPoint};
 pub use error::NurbsError;
-pub use grid::FirstDerivatives;
+pub use grid::{FirstDerivatives, FirstDerivativesCache};
 pub use iso::{Direction, IsoCurve};
 pub use knots::{split_spans, KnotVector, MAX_DEGREE};
 pub use linalg::{band_cholesky, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu};

@@ -246,6 +246,16 @@ pub fn cut_fairness(curve: &CutCurve, tau: f64) -> CutFairness {
 pub fn fairness_report(surface: &NurbsSurface, options: &FairnessOptions) -> FairnessReport {
     let points = options.quadrature.unwrap_or_else(|| default_quadrature(surface));
     let energy = bending_energy(surface, points);
+    let (curvature_threshold, stations, waterlines, inflections) = plane_fairness(surface, options);
+    FairnessReport { energy, curvature_threshold, stations, waterlines, inflections }
+}
+
+/// The cuts' part of [`fairness_report`] (its most costly): `tau`, the stations', the
+/// waterlines' and the total inflections.
+pub(crate) fn plane_fairness(
+    surface: &NurbsSurface,
+    options: &FairnessOptions,
+) -> (f64, Vec<PlaneFairness>, Vec<PlaneFairness>, usize) {
     let size = surface.model_size().unwrap_or(1.0);
     let tau = options.inflection_threshold.abs() / size;
     let (lo, hi) = surface_bounds(surface);
@@ -268,7 +278,7 @@ pub fn fairness_report(surface: &NurbsSurface, options: &FairnessOptions) -> Fai
     let waterlines = per_plane.split_off(stations.len());
     let stations = per_plane;
     let inflections = stations.iter().chain(&waterlines).map(|p| p.inflections).sum();
-    FairnessReport { energy, curvature_threshold: tau, stations, waterlines, inflections }
+    (tau, stations, waterlines, inflections)
 }
 
 /// The bounding box of the surface's points on a 64 x 64 parameter grid with its knot lines.

@@ -25,6 +25,7 @@ pub use curvature_map::{
 };
 pub use cuts::CutPlane;
 // The kernel's planar cuts, taking a `CutPlane` as it is.
+pub(crate) use fairness::plane_fairness;
 pub use fairness::{
     bending_energy, default_quadrature, fairness_report, gauss_legendre, BendingEnergy, CutFairness, FairnessOptions,
     FairnessReport, PlaneFairness, PlaneSelection,

@@ -800,26 +800,38 @@ fn oriented(surface: &NurbsSurface, grid: &Grid) -> Option<Oriented> {
     // |S_u x S_v| at round-off of the model's area per unit parameter area: degenerate.
     let area_tol = COINCIDENT_REL * size * size / ((u1 - u0) * (v1 - v0));
     let normals: Vec<Vec3> = grid.nodes.iter().map(|n| n.su.cross(n.sv)).collect();
-    let valid: Vec<bool> = normals.iter().map(|n| n.norm() > area_tol && n.is_finite()).collect();
+    let norms: Vec<f64> = normals.iter().map(|n| n.norm()).collect();
+    let valid: Vec<bool> = normals.iter().zip(&norms).map(|(n, &l)| l > area_tol && n.is_finite()).collect();
+    // The grid edges between regular nodes, as (k, m).
+    let edge_ends = || {
+        (0..nu * nv).flat_map(move |k| {
+            [(k + 1, k % nu + 1 < nu), (k + nu, k / nu + 1 < nv)]
+                .into_iter()
+                .filter(|&(_, ok)| ok)
+                .map(move |(m, _)| (k, m))
+        })
+    };
+    // No edge flips (its normals' cosine below 0, which needs their dot product below 0):
+    // every component has one orientation, nothing to find (the tree below would give every
+    // node parity 0), and the areas and edges need not be formed.
+    if !edge_ends().any(|(k, m)| valid[k] && valid[m] && normals[k].dot(normals[m]) < 0.0) {
+        return None;
+    }
     let half_steps = |t: &[f64]| -> Vec<f64> {
         (0..t.len()).map(|k| 0.5 * (t[(k + 1).min(t.len() - 1)] - t[k.saturating_sub(1)])).collect()
     };
     let (du, dv) = (half_steps(&grid.us), half_steps(&grid.vs));
     let area: Vec<f64> =
-        (0..nu * nv).map(|k| if valid[k] { normals[k].norm() * du[k % nu] * dv[k / nu] } else { 0.0 }).collect();
+        (0..nu * nv).map(|k| if valid[k] { norms[k] * du[k % nu] * dv[k / nu] } else { 0.0 }).collect();
     let total: f64 = area.iter().sum();
     if !(total > 0.0) {
         return None;
     }
     // Grid edges between regular nodes, weighted 1 - |cos|, flipping where cos < 0.
     let mut edges: Vec<(f64, usize, usize, bool)> = Vec::with_capacity(2 * nu * nv);
-    for k in 0..nu * nv {
-        for (m, ok) in [(k + 1, k % nu + 1 < nu), (k + nu, k / nu + 1 < nv)] {
-            if ok && valid[k] && valid[m] {
-                let cos = normals[k].dot(normals[m]) / (normals[k].norm() * normals[m].norm());
-                edges.push((1.0 - cos.abs(), k, m, cos < 0.0));
-            }
-        }
+    for (k, m) in edge_ends().filter(|&(k, m)| valid[k] && valid[m]) {
+        let cos = normals[k].dot(normals[m]) / (norms[k] * norms[m]);
+        edges.push((1.0 - cos.abs(), k, m, cos < 0.0));
     }
     // With no edge flipping, every component has one orientation and no minority: nothing
     // to find (the tree below would give every node parity 0).

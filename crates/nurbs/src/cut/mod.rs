@@ -53,7 +53,7 @@ use rayon::prelude::*;
 
 #[cfg(doc)]
 use crate::KnotVector;
-use crate::{AxisPlane, NurbsSurface, SurfaceDerivatives, Vec3};
+use crate::{AxisPlane, FirstDerivatives, FirstDerivativesCache, NurbsSurface, SurfaceDerivatives, Vec3};
 
 /// One point of a cut curve.
 #[derive(Clone, Debug, PartialEq)]
@@ -254,12 +254,9 @@ impl<'a> Sampler<'a> {
         let size = surface.model_size()?;
         let us = surface.knots_u().param_grid(options.grid.0, true, 2);
         let vs = surface.knots_v().param_grid(options.grid.1, true, 2);
-        let mut points = Vec::with_capacity(us.len() * vs.len());
-        for &u in &us {
-            for &v in &vs {
-                points.push(surface.point(u, v));
-            }
-        }
+        // u-major from the v-major grid (each point bit-identical to `surface.point`).
+        let grid = surface.points_grid(&us, &vs);
+        let points: Vec<Vec3> = (0..us.len()).flat_map(|i| grid.iter().skip(i).step_by(us.len()).copied()).collect();
         let (u0, u1) = surface.domain_u();
         let (v0, v1) = surface.domain_v();
         let mut opts = options.clone();
@@ -400,6 +397,10 @@ impl<'a> Sampler<'a> {
         let ftol = self.ftol();
         let (mut lo, mut hi) = (0.0f64, 1.0f64);
         let mut best = if f_lo.abs() <= f_hi.abs() { (0.0, f_lo.abs()) } else { (1.0, f_hi.abs()) };
+        // The evaluation at the best t so far (none at the segment's ends), and a cache of the
+        // basis functions along the segment (a grid edge: one of u and v fixed).
+        let mut best_d: Option<FirstDerivatives> = None;
+        let mut eval = FirstDerivativesCache::new(self.surface);
         let mut t = if f_hi != f_lo { (f_lo / (f_lo - f_hi)).clamp(0.0, 1.0) } else { 0.5 };
         if !(t > 0.0 && t < 1.0) {
             t = 0.5;
@@ -408,10 +409,11 @@ impl<'a> Sampler<'a> {
         if best.1 > ftol {
             for _ in 0..200 {
                 let uv = at(t);
-                let d = self.surface.derivatives(uv.0, uv.1);
+                let d = eval.at(uv.0, uv.1);
                 let ft = plane.signed_distance(d.point);
                 if ft.abs() < best.1 {
                     best = (t, ft.abs());
+                    best_d = Some(d);
                 }
                 if ft.abs() <= ftol {
                     break;
@@ -435,11 +437,7 @@ impl<'a> Sampler<'a> {
             }
         }
         let uv = at(best.0);
-        self.node(plane, uv)
-    }
-
-    fn node(&self, plane: AxisPlane, uv: (f64, f64)) -> Node {
-        let d = self.surface.derivatives(uv.0, uv.1);
+        let d = best_d.unwrap_or_else(|| eval.at(uv.0, uv.1));
         Node { uv, point: d.point, tangent: raw_tangent(&d, plane.normal()), frozen: false }
     }
 
@@ -465,7 +463,7 @@ impl<'a> Sampler<'a> {
         };
         let mut uv = mid;
         for _ in 0..30 {
-            let d = self.surface.derivatives(uv.0, uv.1);
+            let d = self.surface.first_derivatives(uv.0, uv.1);
             let fv = plane.signed_distance(d.point);
             if fv.abs() <= ftol {
                 if let Some(node) = accept(Node { uv, point: d.point, tangent: raw_tangent(&d, n), frozen: false }) {
@@ -612,8 +610,9 @@ impl<'a> Sampler<'a> {
 
 /// The unit tangent `n x (S_u x S_v)` of the cut by a plane of normal `n`; `None` where the
 /// surface normal is undefined or the plane is tangent to the surface.
-fn raw_tangent(d: &SurfaceDerivatives, n: Vec3) -> Option<Vec3> {
-    let normal = d.regular_normal()?;
+fn raw_tangent(d: &FirstDerivatives, n: Vec3) -> Option<Vec3> {
+    let normal =
+        SurfaceDerivatives { point: d.point, su: d.su, sv: d.sv, ..SurfaceDerivatives::default() }.regular_normal()?;
     let t = n.cross(normal);
     (t.norm() >= TANGENT_SIN).then(|| t.normalized()).flatten()
 }
