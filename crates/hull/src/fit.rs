@@ -363,6 +363,10 @@ pub struct FairReport {
     /// and after.
     pub before: FairnessFigures,
     pub after: FairnessFigures,
+    /// The alternatives to the default fit's parameterization and counts, when `--fair auto`
+    /// replaced them for validity or tried to ([`crate::Alternatives`]; left out otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub alternatives: Option<crate::Alternatives>,
 }
 
 impl FairReport {
