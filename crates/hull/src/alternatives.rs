@@ -28,7 +28,8 @@ use crate::{Fairing, FitConfig, FitMethod, FitOutcome, HullError};
 /// against 181.3 and 665.4 mm with 0.085 m² facing inwards), 0.93 m² facing inwards with the
 /// third; on random hull-like tables (1,500 of the property test's, seeds 1 to 4 and 11) the
 /// default parameters left 4 unsound, the first removed 2 of them and the third another, a
-/// zero-width end's fold. Not tried, for they were no better on Gunnerus: centripetal along
+/// zero-width end's fold (the fourth goes at another count, [`ALTERNATIVE_COUNTS_ACROSS`]). Not
+/// tried, for they were no better on Gunnerus: centripetal along
 /// with uniform or universal across (1.7 and 1.8 m² facing inwards), uniform along (0.11 m²).
 pub const ALTERNATIVE_PARAMETERIZATIONS: [SkinParameterization; 3] = [
     SkinParameterization { u: Parameterization::Universal, v: Parameterization::ChordLength },
