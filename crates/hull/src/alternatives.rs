@@ -15,10 +15,10 @@
 //! table of three sections, which the net interpolates across, only the parameters can change.
 
 use nurbs::fit::{Parameterization, SkinParameterization};
-use serde::Serialize;
 
 use crate::analysis::FindingKind;
 use crate::fairing::UNSOUND_SLACK;
+use crate::fit::{AlternativeTry, Alternatives};
 use crate::{Fairing, FitConfig, FitMethod, FitOutcome, HullError};
 
 /// The parameterizations tried first, in order, at the default counts: universal along the sections (uniform knots, the parameters at the basis functions'
@@ -47,68 +47,6 @@ pub const ALTERNATIVE_PARAMETERIZATIONS: [SkinParameterization; 3] = [
 /// thin-plate energy is 23055 and its largest |K| 2748 1/m², against 294 and 16.6 on universal
 /// parameters at 12x47 (and 17206 and 101 for the plain least squares at 12x48).
 pub const ALTERNATIVE_COUNTS_ACROSS: [isize; 2] = [-1, 1];
-
-/// One alternative tried ([`Alternatives::tried`]).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct AlternativeTry {
-    /// Its parameterization, as `--param` takes it.
-    pub param: &'static str,
-    /// Its control-point counts `[NU, NV]`.
-    pub control_points: [usize; 2],
-    /// The faired fit's true max error at the offsets.
-    pub max: f64,
-    /// Its validity findings.
-    pub findings: usize,
-    /// The one used.
-    pub accepted: bool,
-}
-
-/// Why the default fit's parameterization and counts are what `report.json` says (the
-/// `fairing` block's `alternatives`): the default left a fold or inward-facing facets
-/// (`findings` validity findings in all), and `tried` lists the alternatives fitted, the sound
-/// one used marked (none when none was sound within `limit`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Alternatives {
-    /// The parameterization asked for (the default) and the default counts.
-    pub requested: &'static str,
-    pub control_points: [usize; 2],
-    /// Its faired fit's max error at the offsets and validity findings.
-    pub max: f64,
-    pub findings: usize,
-    /// The max error an alternative may have: [`UNSOUND_SLACK`] times the fairing's tolerance.
-    pub limit: f64,
-    pub tried: Vec<AlternativeTry>,
-}
-
-impl Alternatives {
-    /// One line for the summary table (`units`: the offsets' unit symbol).
-    pub fn summary(&self, units: &str) -> String {
-        let counts = |c: [usize; 2]| format!("{}x{}", c[0], c[1]);
-        let head = format!(
-            "alternatives: {} at {} leaves {} validity finding(s) (a fold or inward-facing facets) at a max error of \
-             {:.3e} {units}",
-            self.requested,
-            counts(self.control_points),
-            self.findings,
-            self.max
-        );
-        let name = |t: &AlternativeTry| format!("{} at {}", t.param, counts(t.control_points));
-        let tried = |t: &AlternativeTry| format!("{} {} finding(s) at {:.3e} {units}", name(t), t.findings, t.max);
-        let list = self.tried.iter().map(tried).collect::<Vec<_>>().join(", ");
-        match self.tried.iter().find(|t| t.accepted) {
-            Some(t) => format!(
-                "{head}; {} has none (max error {:.3e} {units}, within {:.3e} {units}) and is used (tried: {list})",
-                name(t),
-                t.max,
-                self.limit
-            ),
-            None => format!(
-                "{head}; no alternative is sound within max error {:.3e} {units} (tried: {list}), so it is kept",
-                self.limit
-            ),
-        }
-    }
-}
 
 /// Folds and inward-facing facets: what the envelope hold cannot remove.
 fn unsound(out: &FitOutcome) -> bool {
