@@ -95,6 +95,7 @@ pub fn fair(
         plain_findings: plain.validity.len(),
         before,
         after,
+        alternatives: None,
     };
     match fairing {
         Fairing::Off => Ok(None),

@@ -383,6 +383,10 @@ pub struct FairReport {
     /// and after.
     pub before: FairnessFigures,
     pub after: FairnessFigures,
+    /// The alternatives to the default fit's parameterization and counts, when `--fair auto`
+    /// replaced them for validity or tried to ([`Alternatives`]; left out otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub alternatives: Option<Alternatives>,
 }
 
 impl FairReport {
@@ -417,6 +421,70 @@ impl FairReport {
             )
         } else {
             format!("fairing ({}): smoothing {:.0e}{limit}, {figures}", self.setting, self.lambda)
+        }
+    }
+}
+
+/// One alternative tried ([`Alternatives::tried`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AlternativeTry {
+    /// Its parameterization, as `--param` takes it.
+    pub param: &'static str,
+    /// Its control-point counts `[NU, NV]`.
+    pub control_points: [usize; 2],
+    /// The faired fit's true max error at the offsets.
+    pub max: f64,
+    /// Its validity findings.
+    pub findings: usize,
+    /// The one used.
+    pub accepted: bool,
+}
+
+/// Why the default fit's parameterization and counts are what `report.json` says (the
+/// `fairing` block's `alternatives`, [`crate::ALTERNATIVE_PARAMETERIZATIONS`] and
+/// [`crate::ALTERNATIVE_COUNTS_ACROSS`]): the default left a fold or inward-facing facets
+/// (`findings` validity findings in all), and `tried` lists the alternatives fitted, the sound
+/// one used marked (none when none was sound within `limit`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Alternatives {
+    /// The parameterization asked for (the default) and the default counts.
+    pub requested: &'static str,
+    pub control_points: [usize; 2],
+    /// Its faired fit's max error at the offsets and validity findings.
+    pub max: f64,
+    pub findings: usize,
+    /// The max error an alternative may have: [`UNSOUND_SLACK`](crate::UNSOUND_SLACK) times the
+    /// fairing's tolerance.
+    pub limit: f64,
+    pub tried: Vec<AlternativeTry>,
+}
+
+impl Alternatives {
+    /// One line for the summary table (`units`: the offsets' unit symbol).
+    pub fn summary(&self, units: &str) -> String {
+        let counts = |c: [usize; 2]| format!("{}x{}", c[0], c[1]);
+        let head = format!(
+            "alternatives: {} at {} leaves {} validity finding(s) (a fold or inward-facing facets) at a max error of \
+             {:.3e} {units}",
+            self.requested,
+            counts(self.control_points),
+            self.findings,
+            self.max
+        );
+        let name = |t: &AlternativeTry| format!("{} at {}", t.param, counts(t.control_points));
+        let tried = |t: &AlternativeTry| format!("{} {} finding(s) at {:.3e} {units}", name(t), t.findings, t.max);
+        let list = self.tried.iter().map(tried).collect::<Vec<_>>().join(", ");
+        match self.tried.iter().find(|t| t.accepted) {
+            Some(t) => format!(
+                "{head}; {} has none (max error {:.3e} {units}, within {:.3e} {units}) and is used (tried: {list})",
+                name(t),
+                t.max,
+                self.limit
+            ),
+            None => format!(
+                "{head}; no alternative is sound within max error {:.3e} {units} (tried: {list}), so it is kept",
+                self.limit
+            ),
         }
     }
 }

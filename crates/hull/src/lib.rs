@@ -80,6 +80,7 @@
 // Every type that appears in a public signature is in the `pub use` list below.
 #![warn(unnameable_types)]
 
+mod alternatives;
 mod analysis;
 mod colormap;
 mod compare;
@@ -156,8 +157,12 @@ pub use export::{
 pub use export_format::{export_timestamp, ExportFormat};
 // Fairing: the control net's energy and the weights' smoothness traded against the error.
 pub use fairing::{FairReport, Fairing, NET_FAIR, UNSOUND_SLACK, WEIGHT_SMOOTHING};
+// The default fit made again on another parameterization or count, for validity.
+pub use alternatives::{ALTERNATIVE_COUNTS_ACROSS, ALTERNATIVE_PARAMETERIZATIONS};
 // The offsets -> surface pipeline: its settings and outcome.
-pub use fit::{EnvelopeHold, FairTry, FairnessFigures, FitConfig, FitMethod, FitOutcome, Knuckles};
+pub use fit::{
+    AlternativeTry, Alternatives, EnvelopeHold, FairTry, FairnessFigures, FitConfig, FitMethod, FitOutcome, Knuckles,
+};
 // Fit error at the offsets and held out of the fit.
 pub use fit_error::{measure_fit_error, overfit, ErrorStats, FitError, HeldOutError, SectionError, WorstPoint};
 // Flats of bottom and side.

@@ -108,7 +108,8 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     let mut candidates: Vec<FitOutcome> = Vec::new();
     if let Some((mut f, report)) = fair {
         f.fairing = Some(report);
-        candidates.push(f);
+        let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full);
+        candidates.push(crate::alternatives::sounder_alternative(f, &approx, refit));
     }
     candidates.push(plain);
     Ok(prefer_sound(config, out, candidates))
@@ -183,7 +184,7 @@ fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Resul
         Fairing::Auto { .. } => plain.unheld.as_ref(),
         _ => None,
     };
-    Ok(match crate::fairing::fair(&plain, free, config.fair, skin)? {
+    let chosen = match crate::fairing::fair(&plain, free, config.fair, skin)? {
         Some((mut out, report)) => {
             // The time of the whole choice, the plain fit and every smoothed one measured.
             let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
@@ -193,7 +194,10 @@ fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Resul
             out
         }
         None => plain,
-    })
+    };
+    // Still folded or facing inwards: another parameterization or count may be sound.
+    let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full);
+    Ok(crate::alternatives::sounder_alternative(chosen, config, refit))
 }
 
 /// `out` (an optimised fit) unless it has validity findings and one of `candidates` has
@@ -235,7 +239,8 @@ fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>
 /// `approx`, with `why` in its `rejected` list and the time spent on both.
 fn give_way(config: &FitConfig, mut kept: FitOutcome, rejected: &FitOutcome, why: String) -> FitOutcome {
     kept.rejected.push(why);
-    kept.config = FitConfig { method: FitMethod::Approx, ..*config };
+    // Its own parameterization and counts: the default fit may have chosen others for validity.
+    kept.config = FitConfig { method: FitMethod::Approx, param: kept.config.param, ctrl: kept.config.ctrl, ..*config };
     kept.fit_seconds += rejected.fit_seconds;
     kept
 }
@@ -553,10 +558,14 @@ mod tests {
         // The sample's fits have findings (the transom crosses the centre plane): judged by
         // their lists, with the approximation's cleared to stand for a sound one.
         assert!(!out.validity.is_empty());
-        let sound = FitOutcome { validity: Vec::new(), ..plain.clone() };
+        // On another parameterization, as the default fit may choose one for validity.
+        let other = crate::ALTERNATIVE_PARAMETERIZATIONS[0];
+        let sound =
+            FitOutcome { validity: Vec::new(), config: FitConfig { param: other, ..plain.config }, ..plain.clone() };
         let kept = prefer_sound(&lm, out.clone(), vec![plain.clone(), sound.clone()]);
         assert_eq!(kept.surface, sound.surface);
         assert_eq!(kept.config.method, FitMethod::Approx, "the summary names what was written");
+        assert_eq!(kept.config.param, other, "and the parameterization it was fitted on");
         assert_eq!(kept.rejected.len(), 1);
         assert!(kept.rejected[0].starts_with("the lm surface") && kept.rejected[0].contains("below_centre_plane"));
         assert!(kept.fit_seconds >= out.fit_seconds);

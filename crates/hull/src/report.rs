@@ -350,6 +350,10 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
         );
     }
     if let Some(f) = &outcome.fairing {
+        // The alternatives first: the fairing line's plain fit is the one used's.
+        if let Some(p) = &f.alternatives {
+            let _ = writeln!(t, "{}", p.summary(u));
+        }
         let _ = writeln!(t, "{}", f.summary(offsets.units));
     }
     if outcome.envelope_held > 0 {

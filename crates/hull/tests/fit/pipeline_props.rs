@@ -115,9 +115,10 @@ proptest! {
 }
 
 proptest! {
-    // A fixed seed: this property is known to fail on rare tables (at 300 random cases, three
-    // sections of which one is a pointed end: 0.012 m² of inward-facing facets at the sheer
-    // next to the point, where the plain fit folds and leaves the envelope), so random seeds
+    // A fixed seed: this property is known to fail on rare tables (tables of three sections of
+    // which one is a pointed end, whose held fit faces inwards at the sheer: 10 of 800 such
+    // tables measured; the default fit made again on another parameterization removes 9, see
+    // `a_pointed_end_facing_inwards_is_refitted_on_another_parameterization`), so random seeds
     // would make the suite flaky; these 64 cases pass, and a regression on them fails.
     #![proptest_config(ProptestConfig {
         cases: 64,
@@ -136,4 +137,57 @@ proptest! {
         let kinds: Vec<&str> = out.validity.iter().map(|f| f.kind.name()).collect();
         prop_assert!(out.validity.is_empty(), "findings {:?}: {:?}", kinds, out.validity);
     }
+}
+
+/// One of those rare tables (found at proptest seed 5, case 341 of a strategy of three or four
+/// sections with a pointed end): three sections, the first a point. Across three sections the
+/// net interpolates them (quadratic, three rows), and its sheer rises 0.18 m above the highest
+/// offset between the last two; the envelope hold pulls the top row's poles down within the
+/// box, below the row under them, and the surface faces inwards along the sheer beside the
+/// point (0.0018 m², u = 1, v = 0.44, measured). On universal parameters along the sections the
+/// default fit is sound (measured: max error 0.28 m against the held fit's 0.28 m), and is used.
+#[test]
+fn a_pointed_end_facing_inwards_is_refitted_on_another_parameterization() {
+    let section = |name: &str, x: f64, yz: &[(f64, f64)]| {
+        Section::new(name.to_string(), yz.iter().map(|&(y, z)| Vec3::new(x, y, z)).collect())
+    };
+    let offsets = Offsets::new(
+        "pointed end",
+        Units::Metre,
+        vec![
+            section("0", 0.6858800653162003, &[(0.0, 1.0); 4]),
+            section(
+                "1",
+                1.259192736308352,
+                &[
+                    (0.0, 0.0),
+                    (0.6009354150314464, 0.10555555555555554),
+                    (1.0432828144287705, 0.3222222222222222),
+                    (1.3447847757626483, 0.65),
+                    (1.5254695710536126, 1.0888888888888888),
+                    (1.6089788690194538, 1.638888888888889),
+                    (1.6264712120031901, 2.3),
+                ],
+            ),
+            section(
+                "2",
+                2.536854066500366,
+                &[
+                    (0.0, 0.0),
+                    (0.14014460921823418, 0.2),
+                    (0.22413079596044155, 0.65),
+                    (0.26294771734209643, 1.35),
+                    (0.2710785353338652, 2.3),
+                ],
+            ),
+        ],
+    );
+    let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
+    let out = fit_offsets(&offsets, &config).expect("fits");
+    assert!(out.validity.is_empty(), "{:?}", out.validity);
+    let choice = out.fairing.as_ref().and_then(|f| f.alternatives.as_ref()).expect("an alternative was needed");
+    assert_eq!(choice.findings, 1, "the default parameters face inwards: {choice:?}");
+    let used: Vec<&str> = choice.tried.iter().filter(|t| t.accepted).map(|t| t.param).collect();
+    assert_eq!(used, [out.config.param.name()]);
+    assert!(out.error.overall.max <= choice.limit);
 }

@@ -1,0 +1,121 @@
+//! The default fit made again for validity: when the faired approximation on the default
+//! parameterization ([`SkinParameterization::default`]) and the default control-point counts
+//! still folds or faces inwards, the two cures its warning names (another `--param`, another
+//! count across) are tried, each fitted and faired the same way, and the first sound one within
+//! [`UNSOUND_SLACK`](crate::UNSOUND_SLACK) of the tolerance replaces it.
+//!
+//! Why: where the sections change shape abruptly, the least squares across them rings, and
+//! where the ringing folds the net or turns it over depends on the knots, so on the count and
+//! the parameters; no smoothing removes it. R/V Gunnerus's forecastle step (the deck jumps
+//! 3.5 m between the stations at x = 16.24 and 16.82 m) keeps 0.085 m² of inward-facing facets
+//! at 47 control points across at every smoothing, none on universal parameters along the
+//! sections (nor at 48 across, but far less fair there). The DTMB 5415 mesh's net rings
+//! across the crease of its raked transom's lower edge, hooking 0.59 m behind the first station
+//! at the default 31 control points across, at none of 30 or 32 (README, Known defects). On a
+//! table of three sections, which the net interpolates across, only the parameters can change.
+
+use nurbs::fit::{Parameterization, SkinParameterization};
+
+use crate::analysis::FindingKind;
+use crate::fairing::UNSOUND_SLACK;
+use crate::fit::{AlternativeTry, Alternatives};
+use crate::{Fairing, FitConfig, FitMethod, FitOutcome, HullError};
+
+/// The parameterizations tried first, in order, at the default counts: universal along the sections (uniform knots, the parameters at the basis functions'
+/// maxima), then chord length along, both with chord length across, then centripetal in both
+/// directions. Measured on R/V Gunnerus's default fit (12x47, held within the envelope): no
+/// finding with the first two (max error 183.8 and 231.9 mm, held-out max 652.6 and 669.2 mm,
+/// against 181.3 and 665.4 mm with 0.085 m² facing inwards), 0.93 m² facing inwards with the
+/// third; on random hull-like tables (1,500 of the property test's, seeds 1 to 4 and 11) the
+/// default parameters left 4 unsound, the first removed 2 of them and the third another, a
+/// zero-width end's fold (the fourth goes at another count, [`ALTERNATIVE_COUNTS_ACROSS`]). Not
+/// tried, for they were no better on Gunnerus: centripetal along
+/// with uniform or universal across (1.7 and 1.8 m² facing inwards), uniform along (0.11 m²).
+pub const ALTERNATIVE_PARAMETERIZATIONS: [SkinParameterization; 3] = [
+    SkinParameterization { u: Parameterization::Universal, v: Parameterization::ChordLength },
+    SkinParameterization { u: Parameterization::ChordLength, v: Parameterization::ChordLength },
+    SkinParameterization { u: Parameterization::Centripetal, v: Parameterization::Centripetal },
+];
+
+/// The control-point counts across the sections tried after [`ALTERNATIVE_PARAMETERIZATIONS`],
+/// on the default parameterization: one fewer, then one more than the default count (within the
+/// kernel's range; fewer first, for the default fit's fewest control points). Measured: the
+/// DTMB 5415 mesh, which no parameterization makes sound, is sound at 23x30 (max error 691.6 mm
+/// against 693.3, and fairer: thin-plate energy 3050 against 54974). Not first, because a
+/// count can be sound and far less fair than a parameterization: R/V Gunnerus at 12x48 is
+/// sound and closer to the offsets (max error 145.7 mm, held-out max 483.5 mm) but its
+/// thin-plate energy is 23055 and its largest |K| 2748 1/m², against 294 and 16.6 on universal
+/// parameters at 12x47 (and 17206 and 101 for the plain least squares at 12x48).
+pub const ALTERNATIVE_COUNTS_ACROSS: [isize; 2] = [-1, 1];
+
+/// Folds and inward-facing facets: what the envelope hold cannot remove.
+fn unsound(out: &FitOutcome) -> bool {
+    out.validity.iter().any(|f| matches!(f.kind, FindingKind::Fold | FindingKind::InwardFacing))
+}
+
+/// `chosen`, the faired approximation of `config` (`--fair auto`, the default
+/// parameterization and counts), or, when it folds or faces inwards, the first fit of
+/// [`ALTERNATIVE_PARAMETERIZATIONS`] at the default counts, then of
+/// [`ALTERNATIVE_COUNTS_ACROSS`] on the default parameterization (`refit(config)`: the same
+/// fit, faired the same way, with those settings) that is sound (no validity finding at all) within [`UNSOUND_SLACK`] times
+/// the fairing's tolerance. With none, `chosen` stays: a fit with fewer findings but not none
+/// was not worth it where measured (the DTMB 5415 mesh's fold would give way to 1.6 m² of
+/// inward-facing facets at 1.5 times the max error). The outcome's fairing report records the
+/// choice ([`Alternatives`]) and its time includes every fit tried. Any other setting (a
+/// parameterization or counts asked for, a given `λ`, interpolation) returns `chosen` as it is.
+pub(crate) fn sounder_alternative(
+    chosen: FitOutcome,
+    config: &FitConfig,
+    refit: impl Fn(&FitConfig) -> Result<FitOutcome, HullError>,
+) -> FitOutcome {
+    let auto = matches!(config.fair, Fairing::Auto { .. });
+    let default = config.param == SkinParameterization::default() && config.ctrl.is_none();
+    if !auto || config.method != FitMethod::Approx || !default {
+        return chosen;
+    }
+    let Some(tolerance) = chosen.fairing.as_ref().and_then(|f| f.tolerance) else { return chosen };
+    if !unsound(&chosen) {
+        return chosen;
+    }
+    let limit = UNSOUND_SLACK * tolerance;
+    let (nu, nv) = (chosen.surface.n_u(), chosen.surface.n_v());
+    let params = ALTERNATIVE_PARAMETERIZATIONS.iter().map(|&param| FitConfig { param, ..*config });
+    let counts = ALTERNATIVE_COUNTS_ACROSS
+        .iter()
+        .filter_map(|&d| nv.checked_add_signed(d))
+        .map(|n| FitConfig { ctrl: Some((nu, n)), ..*config });
+    let mut tried = Vec::new();
+    let mut sound: Option<(usize, FitOutcome)> = None;
+    let mut seconds = chosen.fit_seconds + chosen.error_seconds;
+    for alternative in params.chain(counts) {
+        let Ok(out) = refit(&alternative) else { continue };
+        seconds += out.fit_seconds + out.error_seconds;
+        let (max, findings) = (out.error.overall.max, out.validity.len());
+        let control_points = [out.surface.n_u(), out.surface.n_v()];
+        tried.push(AlternativeTry { param: alternative.param.name(), control_points, max, findings, accepted: false });
+        if findings == 0 && max <= limit {
+            sound = Some((tried.len() - 1, out));
+            break;
+        }
+    }
+    let mut choice = Alternatives {
+        requested: config.param.name(),
+        control_points: [nu, nv],
+        max: chosen.error.overall.max,
+        findings: chosen.validity.len(),
+        limit,
+        tried,
+    };
+    let mut out = match sound {
+        Some((k, out)) => {
+            choice.tried[k].accepted = true;
+            out
+        }
+        None => chosen,
+    };
+    out.fit_seconds = seconds - out.error_seconds;
+    if let Some(f) = out.fairing.as_mut() {
+        f.alternatives = Some(choice);
+    }
+    out
+}
