@@ -5,8 +5,8 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use nurbs::fit::{
-    bounded_refit, find_knuckle_lines, held_refit, knuckle_indices, skin_approximate_with_knuckles,
-    skin_interpolate_with_knuckles, SkinOptions,
+    bounded_refit, find_knuckle_lines, knuckle_indices, skin_approximate_with_knuckles, skin_interpolate_with_knuckles,
+    SkinOptions,
 };
 use nurbs::{NurbsError, NurbsSurface};
 
@@ -384,17 +384,11 @@ fn kernel_sections(offsets: &Offsets) -> Vec<Vec<nurbs::Vec3>> {
 }
 
 /// An approximation or an optimised surface that leaves the offsets' envelope (or bulges
-/// through a flat, a face of it), refitted by least squares on its own knots and weights with
-/// its SURFACE held behind the faces it crossed ([`held_refit`]: the inequalities on sampled
-/// surface points, so that the net stays free wherever the surface is within the envelope); the
-/// end sections' planes and the planes of flats a fit was refitted within (`auto+flats`) are
-/// held on the control net, exactly, as [`bounded_refit`] does. Where the surface-held fit
-/// still has a validity finding, the control-net hold of every face ([`bounded_refit`], by the
-/// convex-hull property no point of it can leave) is fitted too and the one with fewer findings
-/// (folds first) kept, the surface-held on a tie, so validity is never worse than the net hold
-/// gives ([`FitConfig::envelope`]). Its coordinates inside stay least squares; the outcome records
-/// how many samples and coordinates were held ([`FitOutcome::envelope_held`]). A surface within
-/// the envelope is returned as it is.
+/// through a flat, a face of it), refitted with its control net held behind the faces it
+/// crossed, its weights kept ([`FitConfig::envelope`], [`bounded_refit`]), so that by the
+/// convex-hull property no point of it can leave. Its coordinates inside the box stay least
+/// squares; the outcome records how many were held
+/// ([`FitOutcome::envelope_held`]). A surface within the envelope is returned as it is.
 fn within_envelope(
     offsets: &Offsets,
     config: &FitConfig,
@@ -416,60 +410,24 @@ fn within_envelope(
             (b, Some(e))
         }
     };
-    let findings = |o: &FitOutcome| match &given {
-        None => o.validity.clone(),
-        Some(e) => crate::analysis::check_validity(&o.surface, e, &[]),
-    };
-    if findings(&out).iter().all(|f| f.envelope_face().is_none()) {
-        return Ok(out);
-    }
-    let held = held_within(offsets, config, sections, out.clone(), full, &findings, Hold::Surface)?;
-    let left = findings(&held);
-    if left.is_empty() {
-        return Ok(held);
-    }
-    let netted = held_within(offsets, config, sections, out, full, &findings, Hold::Net)?;
-    let defects = |f: &[crate::analysis::Finding]| {
-        (f.iter().filter(|f| f.kind == crate::analysis::FindingKind::Fold).count(), f.len())
-    };
-    Ok(if defects(&findings(&netted)) < defects(&left) { netted } else { held })
-}
-
-/// How [`held_within`] holds the faces other than the end sections' and the flats' planes.
-#[derive(Clone, Copy, PartialEq)]
-enum Hold {
-    /// The surface's points ([`held_refit`]).
-    Surface,
-    /// The control net ([`bounded_refit`]).
-    Net,
-}
-
-/// The rounds of [`within_envelope`] with one kind of hold: each face crossed is held
-/// (`HOLD_SHARE` of the allowance past it), and a refit that crosses another face (or leaves a
-/// flat's bulge within the envelope's allowance) holds that one too in the next round, up to 3.
-fn held_within(
-    offsets: &Offsets,
-    config: &FitConfig,
-    sections: &[Vec<nurbs::Vec3>],
-    mut out: FitOutcome,
-    full: nurbs::fit::ControlBox,
-    findings: &dyn Fn(&FitOutcome) -> Vec<crate::analysis::Finding>,
-    hold: Hold,
-) -> Result<FitOutcome, HullError> {
+    let mut out = out;
     let unheld = out.surface.clone();
-    // Each face crossed, with how far past it the surface (or net) may go: HOLD_SHARE of the
-    // allowance the surface exceeded (the least, where several findings cross one face).
+    // Each face crossed, with how far past it the net may go: HOLD_SHARE of the allowance the
+    // surface exceeded (the least, where several findings cross one face).
     let mut faces: BTreeMap<(usize, bool), f64> = BTreeMap::new();
-    // A fit refitted within its flats stays on their planes, held on its net.
-    let mut on_net: Vec<(usize, bool)> = vec![(0, false), (0, true)];
+    // A fit refitted within its flats stays on their planes.
     for kind in out.flat_lines.iter().map(|l| l.kind) {
-        let face = if kind == FlatKind::Side { (1, true) } else { (2, false) };
-        faces.insert(face, 0.0);
-        on_net.push(face);
+        faces.insert(if kind == FlatKind::Side { (1, true) } else { (2, false) }, 0.0);
     }
+    // A refit of one coordinate can push it across that coordinate's other face, or leave a
+    // flat's bulge within the envelope's allowance: later rounds hold those too.
     for _ in 0..3 {
+        let findings = match &given {
+            None => out.validity.clone(),
+            Some(e) => crate::analysis::check_validity(&out.surface, e, &[]),
+        };
         let mut changed = false;
-        for f in &findings(&out) {
+        for f in &findings {
             let Some(face) = f.envelope_face() else { continue };
             // The end sections' planes are held exactly: the surface meets them only along its
             // end curves, which need no pole beyond, and any run past them is a fold.
@@ -486,35 +444,24 @@ fn held_within(
         let start = Instant::now();
         let params: Vec<(f64, f64)> = out.params.iter().flatten().copied().collect();
         let points: Vec<nurbs::Vec3> = sections.iter().flatten().copied().collect();
-        let mut bounds = nurbs::fit::HeldBounds::default();
+        let mut bounds = nurbs::fit::ControlBox::default();
         for (&(axis, upper), &m) in &faces {
-            let b = if hold == Hold::Net || on_net.contains(&(axis, upper)) {
-                &mut bounds.net
-            } else {
-                &mut bounds.surface
-            };
             if upper {
-                b.hi[axis] = full.hi[axis] + m;
+                bounds.hi[axis] = full.hi[axis] + m;
             } else {
-                b.lo[axis] = full.lo[axis] - m;
+                bounds.lo[axis] = full.lo[axis] - m;
             }
         }
-        let refit = match hold {
-            Hold::Surface => {
-                held_refit(&out.surface, &params, &points, &bounds).map(|r| r.map(|(s, h)| (s, h.total())))
-            }
-            Hold::Net => {
-                bounded_refit(&out.surface, &params, &points, &bounds.net).map(|r| r.map(|(s, h)| (s, h.total())))
-            }
-        };
-        let Some((surface, held)) = refit.map_err(|e| fit_error(config, e))? else {
+        let Some((surface, held)) =
+            bounded_refit(&out.surface, &params, &points, &bounds).map_err(|e| fit_error(config, e))?
+        else {
             break;
         };
         let seconds = out.fit_seconds + start.elapsed().as_secs_f64();
         // The refitted surface, with its findings; what the fit did before carries over.
         let prev = out;
         out = assembled(offsets, config, surface, prev.params, seconds, None)?;
-        out.envelope_held = prev.envelope_held + held;
+        out.envelope_held = prev.envelope_held + held.total();
         out.optimization = prev.optimization;
         out.knuckle_lines = prev.knuckle_lines;
         out.flat_lines = prev.flat_lines;
