@@ -106,68 +106,19 @@ pub fn bounded_refit(
     points: &[Vec3],
     bounds: &ControlBox,
 ) -> Result<Option<(NurbsSurface, BoundedRefit)>, NurbsError> {
-    let weights = surface.weights();
-    if weights.iter().any(|&w| !(w > 0.0)) {
-        return Err(NurbsError::Incompatible { what: "bounded refit of a surface with a weight <= 0".into() });
-    }
-    if (0..3).any(|c| !(bounds.lo[c] <= bounds.hi[c])) {
-        return Err(NurbsError::Incompatible {
-            what: format!("bounded refit: the box {:?}..{:?} is empty (expected lo <= hi)", bounds.lo, bounds.hi),
-        });
-    }
-    if params.len() != points.len() {
-        return Err(NurbsError::Incompatible {
-            what: format!("bounded refit: {} parameters for {} points", params.len(), points.len()),
-        });
-    }
-    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-        return Err(NurbsError::NonFinitePoint { index });
-    }
-    let ((u0, u1), (v0, v1)) = (surface.domain_u(), surface.domain_v());
-    if params.iter().any(|&(u, v)| !(u >= u0 && u <= u1 && v >= v0 && v <= v1)) {
-        return Err(NurbsError::Incompatible { what: "bounded refit: a parameter outside the domain".into() });
-    }
+    check_refit_input(surface, params, points, &[bounds], "bounded refit")?;
     let mut net = surface.control_points();
     let crossed: Vec<usize> =
         (0..3).filter(|&c| net.iter().any(|p| bounds.crossed(c, p.to_array()[c]).is_some())).collect();
     if crossed.is_empty() {
         return Ok(None);
     }
-    // The sparse rows of the collocation matrix: (control index, R_ij(u, v)), the rational
-    // basis `N_i(u) N_j(v) w_ij / sum N N w` of the fixed weights (`N_i(u) N_j(v)` when all
-    // are 1).
-    let (ku, kv) = (surface.knots_u(), surface.knots_v());
-    let (p, q, n_v, n_ctrl) = (ku.degree(), kv.degree(), surface.n_v(), net.len());
-    let mut rows: Vec<Vec<(usize, f64)>> = Vec::with_capacity(points.len());
-    let (mut bu, mut bv): (BasisRow, BasisRow) = ([0.0; crate::MAX_DEGREE + 1], [0.0; crate::MAX_DEGREE + 1]);
-    for &(u, v) in params {
-        let (su, sv) = (ku.find_span(u), kv.find_span(v));
-        basis_funs(ku.as_slice(), su, u, p, &mut bu);
-        basis_funs(kv.as_slice(), sv, v, q, &mut bv);
-        let mut row = Vec::with_capacity((p + 1) * (q + 1));
-        for (a, &nu) in bu[..=p].iter().enumerate() {
-            for (b, &nv) in bv[..=q].iter().enumerate() {
-                let i = (su - p + a) * n_v + (sv - q + b);
-                row.push((i, nu * nv * weights[i]));
-            }
-        }
-        let sum: f64 = row.iter().map(|(_, w)| w).sum();
-        row.iter_mut().for_each(|(_, w)| *w /= sum);
-        rows.push(row);
-    }
+    let rows = rational_rows(surface, params);
+    let (n_v, n_ctrl) = (surface.n_v(), net.len());
     let mut diag = vec![0.0; n_ctrl];
     rows.iter().flatten().for_each(|&(i, w)| diag[i] += w * w);
     let pinned = collapsed_edges(&net, surface.n_u(), n_v);
-    // The unknowns' order: two control points interact only within p + 1 rows and q + 1
-    // columns, so u-major (as the net) the normal matrix has half-bandwidth p n_v + q, v-major
-    // q n_u + p; the smaller is taken (Gunnerus, 12 x 47 poles: 39 against 144, a 14th of the
-    // factorization's work), and holding some only narrows it.
-    let n_u = surface.n_u();
-    let (order, bandwidth): (Vec<usize>, usize) = if p * n_v + q <= q * n_u + p {
-        ((0..n_ctrl).collect(), p * n_v + q)
-    } else {
-        ((0..n_v).flat_map(|j| (0..n_u).map(move |i| i * n_v + j)).collect(), q * n_u + p)
-    };
+    let (order, bandwidth) = unknown_order(surface);
     let mu = BOUNDED_REFIT_PULL * diag.iter().copied().fold(0.0, f64::max);
     let mut report = BoundedRefit::default();
     for c in crossed {
@@ -247,15 +198,100 @@ pub fn bounded_refit(
             *pt = Vec3::from_array(arr);
         }
     }
-    let out = NurbsSurface::try_new(ku.clone(), kv.clone(), &net, surface.is_rational().then_some(&weights[..]))?;
-    Ok(Some((out, report)))
+    Ok(Some((with_net(surface, &net)?, report)))
+}
+
+/// The checks [`bounded_refit`] and [`held_refit`](super::held_refit) make of their input
+/// (`what` names the caller in the error): positive weights, boxes that are not empty, as many
+/// parameters as points, finite points, parameters within the domain.
+pub(super) fn check_refit_input(
+    surface: &NurbsSurface,
+    params: &[(f64, f64)],
+    points: &[Vec3],
+    boxes: &[&ControlBox],
+    what: &str,
+) -> Result<(), NurbsError> {
+    if surface.weights().iter().any(|&w| !(w > 0.0)) {
+        return Err(NurbsError::Incompatible { what: format!("{what} of a surface with a weight <= 0") });
+    }
+    if let Some(b) = boxes.iter().find(|b| (0..3).any(|c| !(b.lo[c] <= b.hi[c]))) {
+        return Err(NurbsError::Incompatible {
+            what: format!("{what}: the box {:?}..{:?} is empty (expected lo <= hi)", b.lo, b.hi),
+        });
+    }
+    if params.len() != points.len() {
+        return Err(NurbsError::Incompatible {
+            what: format!("{what}: {} parameters for {} points", params.len(), points.len()),
+        });
+    }
+    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+        return Err(NurbsError::NonFinitePoint { index });
+    }
+    let ((u0, u1), (v0, v1)) = (surface.domain_u(), surface.domain_v());
+    if params.iter().any(|&(u, v)| !(u >= u0 && u <= u1 && v >= v0 && v <= v1)) {
+        return Err(NurbsError::Incompatible { what: format!("{what}: a parameter outside the domain") });
+    }
+    Ok(())
+}
+
+/// The sparse rows of the collocation matrix at `params`: (control index, `R_ij(u, v)`), the
+/// rational basis `N_i(u) N_j(v) w_ij / sum N N w` of the surface's fixed weights
+/// (`N_i(u) N_j(v)` when all are 1), control points u-major.
+pub(super) fn rational_rows(surface: &NurbsSurface, params: &[(f64, f64)]) -> Vec<Vec<(usize, f64)>> {
+    let weights = surface.weights();
+    let (ku, kv) = (surface.knots_u(), surface.knots_v());
+    let (p, q, n_v) = (ku.degree(), kv.degree(), surface.n_v());
+    let mut rows: Vec<Vec<(usize, f64)>> = Vec::with_capacity(params.len());
+    let (mut bu, mut bv): (BasisRow, BasisRow) = ([0.0; crate::MAX_DEGREE + 1], [0.0; crate::MAX_DEGREE + 1]);
+    for &(u, v) in params {
+        let (su, sv) = (ku.find_span(u), kv.find_span(v));
+        basis_funs(ku.as_slice(), su, u, p, &mut bu);
+        basis_funs(kv.as_slice(), sv, v, q, &mut bv);
+        let mut row = Vec::with_capacity((p + 1) * (q + 1));
+        for (a, &nu) in bu[..=p].iter().enumerate() {
+            for (b, &nv) in bv[..=q].iter().enumerate() {
+                let i = (su - p + a) * n_v + (sv - q + b);
+                row.push((i, nu * nv * weights[i]));
+            }
+        }
+        let sum: f64 = row.iter().map(|(_, w)| w).sum();
+        row.iter_mut().for_each(|(_, w)| *w /= sum);
+        rows.push(row);
+    }
+    rows
+}
+
+/// The order of the unknowns (control indices) for banded normal equations, with its
+/// half-bandwidth: two control points interact only within `p + 1` rows and `q + 1` columns,
+/// so u-major (as the net) the normal matrix has half-bandwidth `p n_v + q`, v-major
+/// `q n_u + p`; the smaller is taken (Gunnerus, 12 x 47 poles: 39 against 144, a 14th of the
+/// factorization's work), and leaving some unknowns out only narrows it.
+pub(super) fn unknown_order(surface: &NurbsSurface) -> (Vec<usize>, usize) {
+    let (p, q) = (surface.knots_u().degree(), surface.knots_v().degree());
+    let (n_u, n_v) = (surface.n_u(), surface.n_v());
+    if p * n_v + q <= q * n_u + p {
+        ((0..n_u * n_v).collect(), p * n_v + q)
+    } else {
+        ((0..n_v).flat_map(|j| (0..n_u).map(move |i| i * n_v + j)).collect(), q * n_u + p)
+    }
+}
+
+/// `surface` with the control points `net` (u-major), its knots and weights kept.
+pub(super) fn with_net(surface: &NurbsSurface, net: &[Vec3]) -> Result<NurbsSurface, NurbsError> {
+    let weights = surface.weights();
+    NurbsSurface::try_new(
+        surface.knots_u().clone(),
+        surface.knots_v().clone(),
+        net,
+        surface.is_rational().then_some(&weights[..]),
+    )
 }
 
 /// The control points of the net's collapsed boundary rows and columns (all of one row or
 /// column at one place: a pointed end, a degenerate edge), u-major with `n_v` per row: a
 /// refit moving them apart would open the point into a tiny curve whose normals are noise, so
 /// [`bounded_refit`] keeps them where they are (a point within the box stays within it).
-fn collapsed_edges(net: &[Vec3], n_u: usize, n_v: usize) -> Vec<bool> {
+pub(super) fn collapsed_edges(net: &[Vec3], n_u: usize, n_v: usize) -> Vec<bool> {
     let mut pinned = vec![false; net.len()];
     let lines: [Vec<usize>; 4] = [
         (0..n_v).collect(),

@@ -15,6 +15,7 @@ mod constrained;
 mod continuity;
 mod corners;
 mod extent;
+mod held;
 mod interp;
 mod knots;
 mod lsq;
@@ -29,6 +30,7 @@ pub use corners::{
     find_knuckle_lines, knuckle_indices, section_corners, turning_angles, CornerOptions, KnuckleLine, SectionCorner,
 };
 pub use extent::{bounding_diagonal, has_extent};
+pub use held::{held_refit, HeldBounds, HeldRefit, HELD_PULL, HELD_SAMPLES_PER_SPAN, HELD_TOLERANCE};
 pub use interp::{interpolate_curve, interpolate_curve_auto, InterpolationSolver};
 pub use knots::{
     approximation_knots, averaging_knots, centred_approximation_knots, knots_for_approximation,

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Issue 11's held-out floor, per table in testdata/: the default fit (`hullskin fit T`, which
+# cross-validates with 4 folds) against the plain approximation at the same control points
+# (`--fair 0 --envelope free --ctrl NU,NV`, cross-validated the same way), by report.json's
+# `error.held_out.max`: the default fit's held-out max error no worse than the plain one's
+# (`holds`). Also the max error at the offsets of both and the default fit's validity
+# findings (count and kinds). Errors in mm (the tables are in metres).
+#
+#   tools/held_out_floor.sh                    # every table; about 1 min
+#   tools/held_out_floor.sh testdata/matlab_trawler.csv ...
+#
+# Prints a Markdown table. Needs jq. Deterministic: no timing.
+source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
+fig() { jq -r "$2" "$1/report.json"; }
+
+echo "| table | ctrl | plain max | default max | plain held-out max | default held-out max | holds | default findings |"
+echo "|---|--:|--:|--:|--:|--:|:-:|---|"
+for t in "${tables[@]}"; do
+  name=$(basename "$t" .csv)
+  "$bin" fit "$t" -o "$out/d" >/dev/null 2>&1
+  ctrl=$(fig "$out/d" '.surface.control_points | map(tostring) | join(",")')
+  "$bin" fit "$t" --fair 0 --envelope free --ctrl "$ctrl" -o "$out/p" >/dev/null 2>&1
+  awk -v n="$name" -v c="${ctrl/,/x}" \
+    -v pm="$(fig "$out/p" .error.max)" -v dm="$(fig "$out/d" .error.max)" \
+    -v ph="$(fig "$out/p" .error.held_out.max)" -v dh="$(fig "$out/d" .error.held_out.max)" \
+    -v f="$(fig "$out/d" '.validity | length')" -v k="$(fig "$out/d" '[.validity[].kind] | unique | join(" ")')" \
+    'function yes(d, p) { return d <= p ? "yes" : "**no**" }
+     BEGIN { printf "| %s | %s | %.1f | %.1f | %.1f | %.1f | %s | %d%s |\n",
+             n, c, 1e3 * pm, 1e3 * dm, 1e3 * ph, 1e3 * dh, yes(dh, ph), f, (f > 0 ? " (" k ")" : "") }'
+done
