@@ -248,6 +248,7 @@ impl SkinArgs {
             } else {
                 hull::EnvelopeHold::Free
             },
+            hold_on: hull::HoldOn::Net,
         }
     }
 }

@@ -140,6 +140,36 @@ pub struct FitConfig {
     /// leaves the envelope is held too (its weights kept), or gives way to the held
     /// approximation where that is closer to the offsets.
     pub envelope: EnvelopeHold,
+    /// What that hold holds behind the envelope's faces: the control net (the default) or
+    /// the surface's points ([`HoldOn`]; the surface hold is the first alternative the default
+    /// fit tries when it is unsound, [`crate::alternatives`]).
+    pub hold_on: HoldOn,
+}
+
+/// What [`FitConfig::envelope`] holds behind the faces of the envelope a surface crossed. The
+/// end sections' planes and the planes of the flats a fit was refitted within (`auto+flats`)
+/// are held on the control net either way.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum HoldOn {
+    /// The control net ([`nurbs::fit::bounded_refit`]): by the convex-hull property no point
+    /// of the surface can cross a face held.
+    #[default]
+    Net,
+    /// Sampled points of the surface ([`nurbs::fit::held_refit`]: 8, then 16 per knot span
+    /// each way), the net free wherever the surface is within; where that still has a
+    /// validity finding, the net hold is fitted too and the one with fewer findings (folds
+    /// first) kept, the surface hold on a tie.
+    Surface,
+}
+
+impl HoldOn {
+    /// `net` or `surface`, as `report.json` names it.
+    pub fn name(self) -> &'static str {
+        match self {
+            HoldOn::Net => "net",
+            HoldOn::Surface => "surface",
+        }
+    }
 }
 
 /// How [`FitConfig::envelope`] holds a surface that leaves the offsets' envelope: a refit of
@@ -170,6 +200,7 @@ impl Default for FitConfig {
             fair: Fairing::Off,
             smoothing: 0.0,
             envelope: EnvelopeHold::Own,
+            hold_on: HoldOn::Net,
         }
     }
 }
@@ -205,8 +236,9 @@ pub struct FitOutcome {
     /// for a valid surface.
     pub validity: Vec<crate::analysis::Finding>,
     /// Control-point coordinates held on the offsets' envelope: an approximation that left it
-    /// is refitted with its net within the envelope ([`nurbs::fit::bounded_refit`]); 0 when
-    /// none was needed.
+    /// is refitted with its net within the envelope ([`nurbs::fit::bounded_refit`]), or with
+    /// its surface's samples and some of its net ([`HoldOn::Surface`], the count is of both);
+    /// 0 when none was needed.
     pub envelope_held: usize,
     /// The fairness figures the fairing measured, with the surface they are of: reused by
     /// [`FitOutcome::fairness_figures`] for that very surface only.
@@ -430,6 +462,8 @@ impl FairReport {
 pub struct AlternativeTry {
     /// Its parameterization, as `--param` takes it.
     pub param: &'static str,
+    /// What its envelope hold held: `net` or `surface` ([`HoldOn::name`]).
+    pub hold: &'static str,
     /// Its control-point counts `[NU, NV]`.
     pub control_points: [usize; 2],
     /// The faired fit's true max error at the offsets.
@@ -471,7 +505,10 @@ impl Alternatives {
             self.findings,
             self.max
         );
-        let name = |t: &AlternativeTry| format!("{} at {}", t.param, counts(t.control_points));
+        let name = |t: &AlternativeTry| match t.hold {
+            "net" => format!("{} at {}", t.param, counts(t.control_points)),
+            hold => format!("{} held on the {hold} at {}", t.param, counts(t.control_points)),
+        };
         let tried = |t: &AlternativeTry| format!("{} {} finding(s) at {:.3e} {units}", name(t), t.findings, t.max);
         let list = self.tried.iter().map(tried).collect::<Vec<_>>().join(", ");
         match self.tried.iter().find(|t| t.accepted) {

@@ -5,14 +5,14 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use nurbs::fit::{
-    bounded_refit, find_knuckle_lines, knuckle_indices, skin_approximate_with_knuckles, skin_interpolate_with_knuckles,
-    SkinOptions,
+    bounded_refit, find_knuckle_lines, held_refit, knuckle_indices, skin_approximate_with_knuckles,
+    skin_interpolate_with_knuckles, SkinOptions,
 };
 use nurbs::{NurbsError, NurbsSurface};
 
 use crate::analysis::Envelope;
 use crate::fairing::Fairing;
-use crate::fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, Knuckles};
+use crate::fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, HoldOn, Knuckles};
 use crate::fit_error::{measure_fit_error, FitError};
 use crate::flats::{find_flat_lines, refit_within_flats, FlatKind, FlatOptions};
 use crate::optimize::{optimize_weights, quiet, Control, OptimReport};
@@ -239,8 +239,10 @@ fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>
 /// `approx`, with `why` in its `rejected` list and the time spent on both.
 fn give_way(config: &FitConfig, mut kept: FitOutcome, rejected: &FitOutcome, why: String) -> FitOutcome {
     kept.rejected.push(why);
-    // Its own parameterization and counts: the default fit may have chosen others for validity.
-    kept.config = FitConfig { method: FitMethod::Approx, param: kept.config.param, ctrl: kept.config.ctrl, ..*config };
+    // Its own parameterization, counts and hold: the default fit may have chosen others for
+    // validity.
+    let FitConfig { param, ctrl, hold_on, .. } = kept.config;
+    kept.config = FitConfig { method: FitMethod::Approx, param, ctrl, hold_on, ..*config };
     kept.fit_seconds += rejected.fit_seconds;
     kept
 }
@@ -389,11 +391,18 @@ fn kernel_sections(offsets: &Offsets) -> Vec<Vec<nurbs::Vec3>> {
 }
 
 /// An approximation or an optimised surface that leaves the offsets' envelope (or bulges
-/// through a flat, a face of it), refitted with its control net held behind the faces it
-/// crossed, its weights kept ([`FitConfig::envelope`], [`bounded_refit`]), so that by the
-/// convex-hull property no point of it can leave. Its coordinates inside the box stay least
-/// squares; the outcome records how many were held
-/// ([`FitOutcome::envelope_held`]). A surface within the envelope is returned as it is.
+/// through a flat, a face of it), refitted by least squares on its own knots and weights, held
+/// behind the faces it crossed ([`FitConfig::envelope`]). With [`HoldOn::Net`] (the default)
+/// its control net is held ([`bounded_refit`]), so that by the convex-hull property no point of
+/// it can leave. With [`HoldOn::Surface`] its SURFACE is held ([`held_refit`]: the inequalities
+/// on sampled surface points, so that the net stays free wherever the surface is within the
+/// envelope); the end sections' planes and the planes of flats a fit was refitted within
+/// (`auto+flats`) are held on the control net, exactly, as [`bounded_refit`] does; where the
+/// surface-held fit still has a validity finding, the net hold is fitted too and the one with
+/// fewer findings (folds first) kept, the surface-held on a tie, so validity is never worse
+/// than the net hold gives. Its coordinates inside stay least squares; the outcome records how
+/// many samples and coordinates were held ([`FitOutcome::envelope_held`]). A surface within
+/// the envelope is returned as it is.
 fn within_envelope(
     offsets: &Offsets,
     config: &FitConfig,
@@ -415,24 +424,56 @@ fn within_envelope(
             (b, Some(e))
         }
     };
-    let mut out = out;
+    let findings = |o: &FitOutcome| match &given {
+        None => o.validity.clone(),
+        Some(e) => crate::analysis::check_validity(&o.surface, e, &[]),
+    };
+    if config.hold_on == HoldOn::Net {
+        return held_within(offsets, config, sections, out, full, &findings, HoldOn::Net);
+    }
+    if findings(&out).iter().all(|f| f.envelope_face().is_none()) {
+        return Ok(out);
+    }
+    let held = held_within(offsets, config, sections, out.clone(), full, &findings, HoldOn::Surface)?;
+    let left = findings(&held);
+    if left.is_empty() {
+        return Ok(held);
+    }
+    let netted = held_within(offsets, config, sections, out, full, &findings, HoldOn::Net)?;
+    let defects = |f: &[crate::analysis::Finding]| {
+        (f.iter().filter(|f| f.kind == crate::analysis::FindingKind::Fold).count(), f.len())
+    };
+    Ok(if defects(&findings(&netted)) < defects(&left) { netted } else { held })
+}
+
+/// The rounds of [`within_envelope`] with one kind of hold: each face crossed is held
+/// (`HOLD_SHARE` of the allowance past it), and a refit that crosses another face (or leaves a
+/// flat's bulge within the envelope's allowance) holds that one too in the next round, up to 3.
+fn held_within(
+    offsets: &Offsets,
+    config: &FitConfig,
+    sections: &[Vec<nurbs::Vec3>],
+    mut out: FitOutcome,
+    full: nurbs::fit::ControlBox,
+    findings: &dyn Fn(&FitOutcome) -> Vec<crate::analysis::Finding>,
+    hold: HoldOn,
+) -> Result<FitOutcome, HullError> {
     let unheld = out.surface.clone();
-    // Each face crossed, with how far past it the net may go: HOLD_SHARE of the allowance the
-    // surface exceeded (the least, where several findings cross one face).
+    // Each face crossed, with how far past it the surface (or net) may go: HOLD_SHARE of the
+    // allowance the surface exceeded (the least, where several findings cross one face).
     let mut faces: BTreeMap<(usize, bool), f64> = BTreeMap::new();
-    // A fit refitted within its flats stays on their planes.
+    // A fit refitted within its flats stays on their planes, held on its net.
+    let mut on_net: Vec<(usize, bool)> = vec![(0, false), (0, true)];
     for kind in out.flat_lines.iter().map(|l| l.kind) {
-        faces.insert(if kind == FlatKind::Side { (1, true) } else { (2, false) }, 0.0);
+        let face = if kind == FlatKind::Side { (1, true) } else { (2, false) };
+        faces.insert(face, 0.0);
+        on_net.push(face);
     }
     // A refit of one coordinate can push it across that coordinate's other face, or leave a
     // flat's bulge within the envelope's allowance: later rounds hold those too.
     for _ in 0..3 {
-        let findings = match &given {
-            None => out.validity.clone(),
-            Some(e) => crate::analysis::check_validity(&out.surface, e, &[]),
-        };
         let mut changed = false;
-        for f in &findings {
+        for f in &findings(&out) {
             let Some(face) = f.envelope_face() else { continue };
             // The end sections' planes are held exactly: the surface meets them only along its
             // end curves, which need no pole beyond, and any run past them is a fold.
@@ -449,24 +490,35 @@ fn within_envelope(
         let start = Instant::now();
         let params: Vec<(f64, f64)> = out.params.iter().flatten().copied().collect();
         let points: Vec<nurbs::Vec3> = sections.iter().flatten().copied().collect();
-        let mut bounds = nurbs::fit::ControlBox::default();
+        let mut bounds = nurbs::fit::HeldBounds::default();
         for (&(axis, upper), &m) in &faces {
-            if upper {
-                bounds.hi[axis] = full.hi[axis] + m;
+            let b = if hold == HoldOn::Net || on_net.contains(&(axis, upper)) {
+                &mut bounds.net
             } else {
-                bounds.lo[axis] = full.lo[axis] - m;
+                &mut bounds.surface
+            };
+            if upper {
+                b.hi[axis] = full.hi[axis] + m;
+            } else {
+                b.lo[axis] = full.lo[axis] - m;
             }
         }
-        let Some((surface, held)) =
-            bounded_refit(&out.surface, &params, &points, &bounds).map_err(|e| fit_error(config, e))?
-        else {
+        let refit = match hold {
+            HoldOn::Surface => {
+                held_refit(&out.surface, &params, &points, &bounds).map(|r| r.map(|(s, h)| (s, h.total())))
+            }
+            HoldOn::Net => {
+                bounded_refit(&out.surface, &params, &points, &bounds.net).map(|r| r.map(|(s, h)| (s, h.total())))
+            }
+        };
+        let Some((surface, held)) = refit.map_err(|e| fit_error(config, e))? else {
             break;
         };
         let seconds = out.fit_seconds + start.elapsed().as_secs_f64();
         // The refitted surface, with its findings; what the fit did before carries over.
         let prev = out;
         out = assembled(offsets, config, surface, prev.params, seconds, None)?;
-        out.envelope_held = prev.envelope_held + held.total();
+        out.envelope_held = prev.envelope_held + held;
         out.optimization = prev.optimization;
         out.knuckle_lines = prev.knuckle_lines;
         out.flat_lines = prev.flat_lines;

@@ -76,7 +76,8 @@ pub struct SurfaceSummary {
 /// `surface_source`, the surface's file (left out for a fit).
 ///
 /// `envelope_held` (left out when 0) counts the control-point coordinates held on the offsets'
-/// envelope by `--envelope hold`.
+/// envelope by `--envelope hold` (with the surface samples held, when the surface hold was the
+/// alternative used: [`crate::HoldOn::Surface`]).
 ///
 /// `folds` is left out when the surface does not fold. `validity` is always there: one finding
 /// per defect ([`crate::analysis::Finding`]; kinds `fold`, `below_centre_plane`,
@@ -127,8 +128,9 @@ pub struct Report {
     /// The surface's fairness: thin-plate energy, Gaussian-curvature range, inflections of its
     /// stations and waterlines (always present).
     pub fairness: crate::fairing::FairnessFigures,
-    /// Control-point coordinates held on the offsets' envelope by `--envelope hold`
-    /// ([`FitOutcome::envelope_held`]; left out when none was).
+    /// Control-point coordinates (and surface samples, [`crate::HoldOn::Surface`]) held on the
+    /// offsets' envelope by `--envelope hold` ([`FitOutcome::envelope_held`]; left out when
+    /// none was).
     #[serde(skip_serializing_if = "is_zero")]
     pub envelope_held: usize,
     /// The file of a surface measured as it is ([`Report::measured`], method `given`); left
@@ -357,10 +359,14 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
         let _ = writeln!(t, "{}", f.summary(offsets.units));
     }
     if outcome.envelope_held > 0 {
+        let held = match outcome.config.hold_on {
+            crate::HoldOn::Net => "control-point coordinates",
+            crate::HoldOn::Surface => "surface samples and control-point coordinates",
+        };
         let _ = writeln!(
             t,
-            "envelope: the least squares left the offsets' envelope; refitted with {} control-point coordinates held \
-             on its faces, so the surface stays within it (--envelope free keeps the plain fit)",
+            "envelope: the least squares left the offsets' envelope; refitted with {} {held} held on its faces, so \
+             the surface stays within it (--envelope free keeps the plain fit)",
             outcome.envelope_held
         );
     }

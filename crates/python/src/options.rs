@@ -120,6 +120,7 @@ impl FitArgs<'_> {
             fair: fairing(self.fair)?,
             smoothing: 0.0,
             envelope,
+            hold_on: hull::HoldOn::Net,
         })
     }
 }

@@ -115,11 +115,14 @@ proptest! {
 }
 
 proptest! {
-    // A fixed seed: this property is known to fail on rare tables (tables of three sections of
-    // which one is a pointed end, whose held fit faces inwards at the sheer: 10 of 800 such
-    // tables measured; the default fit made again on another parameterization removes 9, see
-    // `a_pointed_end_facing_inwards_is_refitted_on_another_parameterization`), so random seeds
-    // would make the suite flaky; these 64 cases pass, and a regression on them fails.
+    // A fixed seed: this property has failed on rare tables (tables of three sections of which
+    // one is a pointed end, whose net-held fit faces inwards at the sheer; see
+    // `a_pointed_end_facing_inwards_is_refitted_held_on_its_surface`). Measured since the
+    // surface hold is the first alternative: of 3,300 tables of this strategy (300 cases of
+    // each of 11 seeds) the default parameters left 8 unsound and the alternatives none (7 by
+    // the surface hold), of 800 of three or four sections with a pointed end 11 and none (all
+    // by the surface hold; the parameterizations and counts alone left 2). Random seeds could
+    // still make the suite flaky; these 64 cases pass, and a regression on them fails.
     #![proptest_config(ProptestConfig {
         cases: 64,
         rng_seed: proptest::test_runner::RngSeed::Fixed(11),
@@ -142,12 +145,14 @@ proptest! {
 /// One of those rare tables (found at proptest seed 5, case 341 of a strategy of three or four
 /// sections with a pointed end): three sections, the first a point. Across three sections the
 /// net interpolates them (quadratic, three rows), and its sheer rises 0.18 m above the highest
-/// offset between the last two; the envelope hold pulls the top row's poles down within the
-/// box, below the row under them, and the surface faces inwards along the sheer beside the
-/// point (0.0018 m², u = 1, v = 0.44, measured). On universal parameters along the sections the
-/// default fit is sound (measured: max error 0.28 m against the held fit's 0.28 m), and is used.
+/// offset between the last two; the envelope hold of the net pulls the top row's poles down
+/// within the box, below the row under them, and the surface faces inwards along the sheer
+/// beside the point (0.0018 m², u = 1, v = 0.44, measured). Held on its surface instead
+/// (`HoldOn::Surface`, the first alternative) the default fit is sound, and is used (measured:
+/// max error 0.137 m against the net-held fit's 0.278 m); so is the next alternative, universal
+/// parameters along the sections with the net held, at 0.283 m.
 #[test]
-fn a_pointed_end_facing_inwards_is_refitted_on_another_parameterization() {
+fn a_pointed_end_facing_inwards_is_refitted_held_on_its_surface() {
     let section = |name: &str, x: f64, yz: &[(f64, f64)]| {
         Section::new(name.to_string(), yz.iter().map(|&(y, z)| Vec3::new(x, y, z)).collect())
     };
@@ -187,7 +192,12 @@ fn a_pointed_end_facing_inwards_is_refitted_on_another_parameterization() {
     assert!(out.validity.is_empty(), "{:?}", out.validity);
     let choice = out.fairing.as_ref().and_then(|f| f.alternatives.as_ref()).expect("an alternative was needed");
     assert_eq!(choice.findings, 1, "the default parameters face inwards: {choice:?}");
-    let used: Vec<&str> = choice.tried.iter().filter(|t| t.accepted).map(|t| t.param).collect();
-    assert_eq!(used, [out.config.param.name()]);
+    let used: Vec<(&str, &str)> = choice.tried.iter().filter(|t| t.accepted).map(|t| (t.param, t.hold)).collect();
+    assert_eq!(used, [("centripetal,chord", "surface")]);
+    assert_eq!(out.config.hold_on, hull::HoldOn::Surface);
     assert!(out.error.overall.max <= choice.limit);
+    let param = hull::ALTERNATIVE_PARAMETERIZATIONS[0];
+    let universal = fit_offsets(&offsets, &FitConfig { param, ..config }).expect("fits");
+    assert!(universal.validity.is_empty(), "{:?}", universal.validity);
+    assert!(out.error.overall.max < 0.6 * universal.error.overall.max);
 }
