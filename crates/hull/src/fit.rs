@@ -142,7 +142,7 @@ pub struct FitConfig {
     pub envelope: EnvelopeHold,
     /// What that hold holds behind the envelope's faces: the control net (the default) or
     /// the surface's points ([`HoldOn`]; the surface hold is the first alternative the default
-    /// fit tries when it is unsound, [`crate::alternatives`]).
+    /// fit tries when it is unsound, before [`crate::ALTERNATIVE_PARAMETERIZATIONS`]).
     pub hold_on: HoldOn,
 }
 
