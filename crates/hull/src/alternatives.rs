@@ -27,9 +27,9 @@ use crate::fairing::UNSOUND_SLACK;
 use crate::fit::{AlternativeTry, Alternatives};
 use crate::{Fairing, FitConfig, FitMethod, FitOutcome, HoldOn, HullError};
 
-/// The parameterizations tried first, in order, at the default counts: universal along the sections (uniform knots, the parameters at the basis functions'
+/// The parameterizations tried after the surface hold, in order, at the default counts: universal along the sections (uniform knots, the parameters at the basis functions'
 /// maxima), then chord length along, both with chord length across, then centripetal in both
-/// directions. Measured on R/V Gunnerus's default fit (12x47, held within the envelope): no
+/// directions. Measured on R/V Gunnerus's default fit (12x47, its net held within the envelope): no
 /// finding with the first two (max error 183.8 and 231.9 mm, held-out max 652.6 and 669.2 mm,
 /// against 181.3 and 665.4 mm with 0.085 m² facing inwards), 0.93 m² facing inwards with the
 /// third; on random hull-like tables (1,500 of the property test's, seeds 1 to 4 and 11) the
@@ -76,9 +76,9 @@ fn unsound(out: &FitOutcome) -> bool {
 /// Gunnerus is sound with it at max error 112.6 mm, held-out max 560.6 mm, thin-plate energy
 /// 132 and largest |K| 3.15 1/m², against 183.8 mm, 652.6 mm, 294 and 16.6 1/m² on universal
 /// parameters (the net hold's 0.085 m² facing inwards at 181.3 mm, 665.4 mm); one faired fit
-/// either way. On the DTMB 5415 mesh it keeps the fold (max 693.3 mm), so the five fits before
-/// 23x30 are six now, the same surface at the end (3.2 -> 5.7 s of `fit_seconds`, loaded
-/// machine). Of random hull-like tables the default left 8 of 3,300 unsound (property test
+/// either way. On the DTMB 5415 mesh it keeps the fold (max 693.3 mm), so the four fits tried
+/// before 23x30 are five now, the same surface at the end (3.40 -> 4.52 s wall, best of 3,
+/// loaded machine). Of random hull-like tables the default left 8 of 3,300 unsound (property test
 /// strategy, 11 seeds), 7 of them sound held on the surface and the eighth at one count more
 /// across; of 800 of three or four sections with a pointed end 11, all sound held on the
 /// surface, where the parameterizations and counts alone left 2.
