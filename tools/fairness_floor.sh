@@ -3,7 +3,8 @@
 # the plain approximation at the same control points (`--fair 0 --envelope free --ctrl NU,NV`),
 # by report.json's `fairness`: thin-plate energy, the largest |K| (Gaussian curvature) and the
 # inflections of 21 stations and 10 waterlines. A column is `yes` when the default fit is no
-# worse than the plain one by that figure.
+# worse than the plain one by that figure. The last column lists the plain fit's validity
+# findings (kinds): the floor's comparator is not held within the envelope and may fold.
 #
 #   tools/fairness_floor.sh                    # every table; about 30 s
 #   tools/fairness_floor.sh testdata/matlab_trawler.csv ...
@@ -14,8 +15,8 @@ fig() { jq -r "$2" "$1/report.json"; }
 kmax='.fairness.gaussian | map(fabs) | max'
 infl='.fairness.station_inflections + .fairness.waterline_inflections'
 
-echo "| table | ctrl | plain energy | default energy | holds | plain max abs K | default max abs K | holds | plain inflections | default inflections | holds |"
-echo "|---|--:|--:|--:|:-:|--:|--:|:-:|--:|--:|:-:|"
+echo "| table | ctrl | plain energy | default energy | holds | plain max abs K | default max abs K | holds | plain inflections | default inflections | holds | plain findings |"
+echo "|---|--:|--:|--:|:-:|--:|--:|:-:|--:|--:|:-:|---|"
 for t in "${tables[@]}"; do
   name=$(basename "$t" .csv)
   "$bin" fit "$t" --held-out 0 -o "$out/d" >/dev/null 2>&1
@@ -26,7 +27,8 @@ for t in "${tables[@]}"; do
     -v pk="$(fig "$out/p" "$kmax")" -v dk="$(fig "$out/d" "$kmax")" \
     -v pi="$(fig "$out/p" "$infl")" -v di="$(fig "$out/d" "$infl")" \
     -v ps="$(fig "$out/p" .fairness.station_inflections)" -v ds="$(fig "$out/d" .fairness.station_inflections)" \
+    -v pf="$(fig "$out/p" '[.validity[].kind] | unique | join(" ")')" \
     'function yes(d, p) { return d <= p ? "yes" : "**no**" }
-     BEGIN { printf "| %s | %s | %.4g | %.4g | %s | %.4g | %.4g | %s | %d (%d st) | %d (%d st) | %s |\n",
-             n, c, pe, de, yes(de, pe), pk, dk, yes(dk, pk), pi, ps, di, ds, yes(di, pi) }'
+     BEGIN { printf "| %s | %s | %.4g | %.4g | %s | %.4g | %.4g | %s | %d (%d st) | %d (%d st) | %s | %s |\n",
+             n, c, pe, de, yes(de, pe), pk, dk, yes(dk, pk), pi, ps, di, ds, yes(di, pi), (pf == "" ? "none" : pf) }'
 done

@@ -144,6 +144,10 @@ pub struct CompareRow {
     pub failure: Option<String>,
     /// `[NU, NV]` of the surface (asked for, if the method failed).
     pub control_points: [usize; 2],
+    /// The parameterization the surface was fitted on (asked for, if the method failed): a
+    /// fair row's may be another than the comparison's when the default one was unsound
+    /// ([`crate::ALTERNATIVE_PARAMETERIZATIONS`]).
+    pub parameterization: &'static str,
     /// `None` if the method failed.
     pub error: Option<RowError>,
     /// `None` if the method failed or the whole surface is degenerate.
@@ -187,6 +191,7 @@ impl CompareRow {
             },
             failure: None,
             control_points: [s.n_u(), s.n_v()],
+            parameterization: outcome.config.param.name(),
             error: Some(RowError { max: e.max, mean: e.mean, rms: e.rms, parametric_rms }),
             gaussian_curvature: gaussian_curvature_range(s, CURVATURE_GRID),
             seconds: outcome.fit_seconds,
@@ -203,12 +208,19 @@ impl CompareRow {
     }
 
     /// The row of a method that failed with `error`.
-    pub fn failed(method: FitMethod, control_points: (usize, usize), seed: Option<u64>, error: &HullError) -> Self {
+    pub fn failed(
+        method: FitMethod,
+        control_points: (usize, usize),
+        parameterization: &'static str,
+        seed: Option<u64>,
+        error: &HullError,
+    ) -> Self {
         CompareRow {
             method: method.name(),
             status: RowStatus::Failed,
             failure: Some(error.to_string()),
             control_points: [control_points.0, control_points.1],
+            parameterization,
             error: None,
             gaussian_curvature: None,
             seconds: 0.0,
@@ -394,6 +406,7 @@ pub struct Comparison {
 ///  "curvature_sampling": {"grid": 41, "knot_lines": true},
 ///  "complete": true, "not_run": [],
 ///  "methods": [{"method": "interp", "status": "done", "control_points": [8, 25],
+///               "parameterization": "centripetal,chord",
 ///               "error": {"max": .., "mean": .., "rms": .., "parametric_rms": ..},
 ///               "gaussian_curvature": {"max": .., "min": .., "max_at": [u, v], "min_at": [u, v],
 ///                                      "samples": n, "skipped": n},
@@ -504,7 +517,7 @@ pub fn compare_offsets_with(
                     // What interpolation would have used: one pole per offset of the largest
                     // section, one per section.
                     let n_max = offsets.sections.iter().map(|s| s.points.len()).max().unwrap_or(0);
-                    CompareRow::failed(method, (n_max, offsets.sections.len()), None, &e)
+                    CompareRow::failed(method, (n_max, offsets.sections.len()), config.param.name(), None, &e)
                 }
             },
             FitMethod::Optimized(algorithm) => {
@@ -521,7 +534,7 @@ pub fn compare_offsets_with(
                 match result {
                     Ok(out) => CompareRow::from_outcome(offsets, &out),
                     Err(e) if e.is_setting() => return Err(e),
-                    Err(e) => CompareRow::failed(method, ctrl, Some(config.optim.seed), &e),
+                    Err(e) => CompareRow::failed(method, ctrl, config.param.name(), Some(config.optim.seed), &e),
                 }
             }
         };
@@ -557,7 +570,9 @@ pub fn compare_offsets_with(
         let mut row = match result {
             Ok(out) => CompareRow::from_outcome(offsets, &out),
             Err(e) if e.is_setting() => return Err(e),
-            Err(e) => CompareRow::failed(method, ctrl, method.algorithm().map(|_| config.optim.seed), &e),
+            Err(e) => {
+                CompareRow::failed(method, ctrl, config.param.name(), method.algorithm().map(|_| config.optim.seed), &e)
+            }
         };
         row.method = name;
         rows.push(row);
@@ -640,11 +655,15 @@ pub fn comparison_table(c: &Comparison) -> String {
     );
     let _ = writeln!(t, "|---|---|--:|--:|--:|--:|--:|:-:|--:|--:|--:|--:|--:|---|");
     for r in &c.methods {
-        let name = match r.status {
+        let mut name = match r.status {
             RowStatus::Done => r.method.to_string(),
             RowStatus::Interrupted => format!("{} (interrupted)", r.method),
             RowStatus::Failed => format!("{} (failed)", r.method),
         };
+        // A fair row fitted on another parameterization than the heading's (for validity).
+        if r.parameterization != c.parameterization {
+            name = format!("{name} on {}", r.parameterization);
+        }
         let (max, mean, rms) = match r.error {
             Some(e) => (sci(e.max), sci(e.mean), sci(e.rms)),
             None => ("-".into(), "-".into(), "-".into()),
@@ -760,6 +779,7 @@ mod tests {
             status,
             failure: None,
             control_points: [4, 4],
+            parameterization: "centripetal,chord",
             error: (status != RowStatus::Failed).then_some(RowError { max: rms, mean: rms, rms, parametric_rms: rms }),
             gaussian_curvature: None,
             seconds: 0.0,
@@ -883,6 +903,17 @@ mod tests {
             assert!(row.ends_with(&format!("| {} |", v.label())), "{row}");
         }
         assert_eq!(json["floors"]["checks"].as_array().map(Vec::len), Some(4));
+        // Counts given: every row is on the comparison's parameterization, and says so.
+        for (r, j) in c.methods.iter().zip(json["methods"].as_array().into_iter().flatten()) {
+            assert_eq!(r.parameterization, c.parameterization, "{}", r.method);
+            assert_eq!(j["parameterization"].as_str(), Some(c.parameterization), "{}", r.method);
+        }
+        // A fair row made on another parameterization for validity names it in the table.
+        let mut other = c.clone();
+        other.methods[7].parameterization = "universal,chord";
+        let md = comparison_markdown(&other);
+        assert!(md.lines().any(|l| l.starts_with("| approx+fair on universal,chord |")), "{md}");
+        assert!(md.lines().any(|l| l.starts_with("| lm+fair |")), "{md}");
     }
 
     #[test]
