@@ -148,6 +148,10 @@ pub struct CompareRow {
     /// fair row's may be another than the comparison's when the default one was unsound
     /// ([`crate::ALTERNATIVE_PARAMETERIZATIONS`]).
     pub parameterization: &'static str,
+    /// What its envelope hold held, `net` or `surface` ([`crate::HoldOn::name`]): a fair row's
+    /// surface is held when the net-held one was unsound (left out for `net`).
+    #[serde(skip_serializing_if = "is_net")]
+    pub hold: &'static str,
     /// `None` if the method failed.
     pub error: Option<RowError>,
     /// `None` if the method failed or the whole surface is degenerate.
@@ -192,6 +196,7 @@ impl CompareRow {
             failure: None,
             control_points: [s.n_u(), s.n_v()],
             parameterization: outcome.config.param.name(),
+            hold: outcome.config.hold_on.name(),
             error: Some(RowError { max: e.max, mean: e.mean, rms: e.rms, parametric_rms }),
             gaussian_curvature: gaussian_curvature_range(s, CURVATURE_GRID),
             seconds: outcome.fit_seconds,
@@ -221,6 +226,7 @@ impl CompareRow {
             failure: Some(error.to_string()),
             control_points: [control_points.0, control_points.1],
             parameterization,
+            hold: crate::HoldOn::Net.name(),
             error: None,
             gaussian_curvature: None,
             seconds: 0.0,
@@ -392,6 +398,11 @@ pub struct Comparison {
     pub floors: Floors,
 }
 
+/// Whether a row's hold is the default one (left out of `compare.json`).
+fn is_net(hold: &&'static str) -> bool {
+    *hold == crate::HoldOn::Net.name()
+}
+
 /// Run every method of [`COMPARE_METHODS`] on `offsets` without progress reports or stops.
 ///
 /// `compare.json` layout (stable; later features add fields):
@@ -406,7 +417,8 @@ pub struct Comparison {
 ///  "curvature_sampling": {"grid": 41, "knot_lines": true},
 ///  "complete": true, "not_run": [],
 ///  "methods": [{"method": "interp", "status": "done", "control_points": [8, 25],
-///               "parameterization": "centripetal,chord",
+///               "parameterization": "centripetal,chord", ("hold": "surface", for a fair row
+///               held on its surface, `CompareRow::hold`)
 ///               "error": {"max": .., "mean": .., "rms": .., "parametric_rms": ..},
 ///               "gaussian_curvature": {"max": .., "min": .., "max_at": [u, v], "min_at": [u, v],
 ///                                      "samples": n, "skipped": n},
@@ -664,6 +676,10 @@ pub fn comparison_table(c: &Comparison) -> String {
         if r.parameterization != c.parameterization {
             name = format!("{name} on {}", r.parameterization);
         }
+        // A fair row held on its surface instead of its net (for validity).
+        if r.hold != crate::HoldOn::Net.name() {
+            name = format!("{name} held on the {}", r.hold);
+        }
         let (max, mean, rms) = match r.error {
             Some(e) => (sci(e.max), sci(e.mean), sci(e.rms)),
             None => ("-".into(), "-".into(), "-".into()),
@@ -780,6 +796,7 @@ mod tests {
             failure: None,
             control_points: [4, 4],
             parameterization: "centripetal,chord",
+            hold: "net",
             error: (status != RowStatus::Failed).then_some(RowError { max: rms, mean: rms, rms, parametric_rms: rms }),
             gaussian_curvature: None,
             seconds: 0.0,
@@ -913,6 +930,16 @@ mod tests {
         other.methods[7].parameterization = "universal,chord";
         let md = comparison_markdown(&other);
         assert!(md.lines().any(|l| l.starts_with("| approx+fair on universal,chord |")), "{md}");
+        // One held on its surface says so, and compare.json records it (only then).
+        let mut held = c.clone();
+        held.methods[7].hold = "surface";
+        let md = comparison_markdown(&held);
+        assert!(md.lines().any(|l| l.starts_with("| approx+fair held on the surface |")), "{md}");
+        let json = serde_json::to_value(&held).expect("serialises");
+        let holds: Vec<Option<&str>> =
+            json["methods"].as_array().into_iter().flatten().map(|m| m["hold"].as_str()).collect();
+        assert_eq!(holds.iter().filter(|h| h.is_some()).count(), 1, "{holds:?}");
+        assert_eq!(holds[7], Some("surface"));
         assert!(md.lines().any(|l| l.starts_with("| lm+fair |")), "{md}");
     }
 
