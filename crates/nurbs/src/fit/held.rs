@@ -120,7 +120,7 @@ pub fn held_refit(
         .filter(|&c| {
             let x: Vec<f64> = net.iter().map(|p| p[c]).collect();
             let net_past = (0..net.len()).any(|i| !pinned[i] && past(&bounds.net, c, x[i]) > tol);
-            net_past || (0..coarse.len()).any(|s| past(&bounds.surface, c, coarse.value(s, &x)) > tol)
+            net_past || coarse.values(&x).iter().any(|&v| past(&bounds.surface, c, v) > tol)
         })
         .collect();
     if crossed.is_empty() {
@@ -179,8 +179,7 @@ pub fn held_refit(
                 let grids: &[(usize, &SampleGrid)] =
                     if refined { &[(0, &coarse), (1, &fine)] } else { &[(0, &coarse)] };
                 for &(level, grid) in grids {
-                    for s in 0..grid.len() {
-                        let value = grid.value(s, &x);
+                    for (s, value) in grid.values(&x).into_iter().enumerate() {
                         let e = past(&bounds.surface, c, value);
                         if e > tol && !keys.contains(&(level, s)) {
                             let cell = grid.cell(s);
@@ -213,7 +212,7 @@ pub fn held_refit(
         report.net[c] = (0..x.len())
             .filter(|&i| (x[i] == bounds.net.lo[c] || x[i] == bounds.net.hi[c]) && start[i] != x[i])
             .count();
-        let still = |g: &SampleGrid| (0..g.len()).filter(|&s| past(&bounds.surface, c, g.value(s, &x)) > tol).count();
+        let still = |g: &SampleGrid| g.values(&x).iter().filter(|&&v| past(&bounds.surface, c, v) > tol).count();
         report.unresolved += still(&coarse) + still(&fine);
         for (pt, &xi) in net.iter_mut().zip(&x) {
             let mut a = pt.to_array();
@@ -294,8 +293,7 @@ impl SampleGrid {
             weights: surface.weights(),
             denominators: Vec::new(),
         };
-        let ones = vec![1.0; surface.n_u() * surface.n_v()];
-        grid.denominators = (0..grid.len()).map(|s| grid.numerator(s, &ones)).collect();
+        grid.denominators = grid.numerators(&vec![1.0; surface.n_u() * surface.n_v()]);
         grid
     }
 
@@ -303,9 +301,34 @@ impl SampleGrid {
         self.us.len() * self.vs.len()
     }
 
-    /// `sum N_i(u) N_j(v) w_ij x_ij` at sample `s` (v-major over the grid).
-    fn numerator(&self, s: usize, x: &[f64]) -> f64 {
-        self.terms(s).map(|(i, nn)| nn * self.weights[i] * x[i]).sum()
+    /// `sum N_i(u) N_j(v) w_ij x_ij` at every sample (v-major over the grid), as a tensor
+    /// product: first along v for each row of the net, then along u (`(p + 1) + (q + 1)`
+    /// products a sample instead of `(p + 1)(q + 1)`; the active set evaluates the grid every
+    /// round).
+    fn numerators(&self, x: &[f64]) -> Vec<f64> {
+        let (p, q) = self.degrees;
+        let n_u = self.weights.len() / self.n_v;
+        let wx: Vec<f64> = self.weights.iter().zip(x).map(|(w, x)| w * x).collect();
+        // along[j * n_u + i]: row i of the net against the v basis of sample column j.
+        let mut along = vec![0.0; self.vs.len() * n_u];
+        for (j, (sv, bv)) in self.vs.iter().enumerate() {
+            for i in 0..n_u {
+                let first = i * self.n_v + sv - q;
+                along[j * n_u + i] = bv[..=q].iter().zip(&wx[first..=first + q]).map(|(n, y)| n * y).sum();
+            }
+        }
+        let mut out = Vec::with_capacity(self.len());
+        for column in along.chunks_exact(n_u) {
+            for (su, bu) in &self.us {
+                out.push(bu[..=p].iter().zip(&column[su - p..=*su]).map(|(n, y)| n * y).sum());
+            }
+        }
+        out
+    }
+
+    /// The coordinates `S(u_s, v_s)` of control values `x` at every sample.
+    fn values(&self, x: &[f64]) -> Vec<f64> {
+        self.numerators(x).iter().zip(&self.denominators).map(|(n, d)| n / d).collect()
     }
 
     /// The non-zero products `N_i(u) N_j(v)` of sample `s` with their control indices.
@@ -315,11 +338,6 @@ impl SampleGrid {
         bu[..=p].iter().enumerate().flat_map(move |(a, &nu)| {
             bv[..=q].iter().enumerate().map(move |(b, &nv)| ((su - p + a) * self.n_v + (sv - q + b), nu * nv))
         })
-    }
-
-    /// The coordinate `S(u_s, v_s)` of control values `x`.
-    fn value(&self, s: usize, x: &[f64]) -> f64 {
-        self.numerator(s, x) / self.denominators[s]
     }
 
     /// The knot spans `(u, v)` of sample `s`.
