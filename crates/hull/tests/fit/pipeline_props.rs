@@ -10,7 +10,13 @@ use proptest::prelude::*;
 /// deck, half-breadths from a smooth random shape; `end` makes the first station zero-width
 /// (1) or a single point, repeated (2: a pointed stem).
 fn hull_sections() -> impl Strategy<Value = Offsets> {
-    (prop::collection::vec((0.3f64..2.0, 4usize..12), 3..14), 0.5f64..3.0, 0.1f64..1.0, 0u8..3).prop_map(
+    hull_sections_of(3..14, 0..3)
+}
+
+/// [`hull_sections`] with `stations` sections and the first section's `end` kind drawn from
+/// the given ranges (`3..5, 2..3`: three or four sections, the first a point).
+fn hull_sections_of(stations: std::ops::Range<usize>, ends: std::ops::Range<u8>) -> impl Strategy<Value = Offsets> {
+    (prop::collection::vec((0.3f64..2.0, 4usize..12), stations), 0.5f64..3.0, 0.1f64..1.0, ends).prop_map(
         |(stations, beam, fullness, end)| {
             let mut x = 0.0;
             let n = stations.len();
@@ -122,9 +128,10 @@ proptest! {
     // each of 11 seeds) the default parameters left 8 unsound and the alternatives none (7 by
     // the surface hold), of 800 of three or four sections with a pointed end 11 and none (all
     // by the surface hold; the parameterizations and counts alone left 2). Random seeds could
-    // still make the suite flaky; these 64 cases pass, and a regression on them fails.
+    // still make the suite flaky; these 512 cases pass (about 40 s in the test profile), and a
+    // regression on them fails.
     #![proptest_config(ProptestConfig {
-        cases: 64,
+        cases: 512,
         rng_seed: proptest::test_runner::RngSeed::Fixed(11),
         failure_persistence: None,
         ..ProptestConfig::default()
@@ -135,6 +142,27 @@ proptest! {
     /// the offsets' envelope or a flat, no inward-facing facets.
     #[test]
     fn the_default_fit_of_hull_like_sections_is_valid(offsets in hull_sections()) {
+        let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
+        let out = fit_offsets(&offsets, &config).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let kinds: Vec<&str> = out.validity.iter().map(|f| f.kind.name()).collect();
+        prop_assert!(out.validity.is_empty(), "findings {:?}: {:?}", kinds, out.validity);
+    }
+}
+
+proptest! {
+    // The tables that failed the property above most: three or four sections, the first a
+    // point (of 800, 11 had a finding before the alternatives, 2 with the parameterizations
+    // and counts alone, none with the surface hold first). A fixed seed, as above.
+    #![proptest_config(ProptestConfig {
+        cases: 256,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(6),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    /// The same floor on tables of three or four sections with a pointed end.
+    #[test]
+    fn the_default_fit_of_a_short_table_with_a_pointed_end_is_valid(offsets in hull_sections_of(3..5, 2..3)) {
         let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
         let out = fit_offsets(&offsets, &config).map_err(|e| TestCaseError::fail(e.to_string()))?;
         let kinds: Vec<&str> = out.validity.iter().map(|f| f.kind.name()).collect();
