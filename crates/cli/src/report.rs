@@ -166,10 +166,13 @@ fn load(args: &ReportArgs) -> anyhow::Result<Loaded> {
     }
     let (outcome, search) =
         args.fit.fit(&args.skin, &offsets).with_context(|| format!("cannot fit {}", offsets.source))?;
-    let notes = search
+    let mut notes: Vec<String> = search
         .iter()
         .map(|s| format!("Fitted with the fewest control points within --tolerance: {}.", s.summary(offsets.units)))
         .collect();
+    // What the fit decided (the fairing, an alternative made for validity, the envelope hold,
+    // what was rejected), as the summary prints it.
+    notes.extend(hull::fit_decisions(&offsets, &outcome).into_iter().map(|l| format!("Fit: {l}.")));
     Ok(Loaded {
         surface: outcome.surface.clone(),
         units: offsets.units,
@@ -336,9 +339,15 @@ mod tests {
         assert_eq!(search.control_points, [fit.surface.n_u(), fit.surface.n_v()]);
         assert!(search.ratio < 1.0, "fewer control points than interpolation: {}", search.ratio);
         assert!(loaded.notes.iter().any(|n| n.contains(&search.summary(Units::Metre))), "{:?}", loaded.notes);
-        // No flags fits the default count: no search.
+        // No flags fits the default count: no search; the notes are the fit's decisions, as the
+        // summary prints them (the sample is faired and held within its envelope).
         let plain = load(&Wrap::try_parse_from(["x"]).expect("no flags").args).expect("fits");
-        assert!(plain.search.is_none() && plain.notes.is_empty());
+        let fit = plain.fit.as_ref().expect("offsets are fitted");
+        let offsets = plain.offsets.as_ref().expect("offsets");
+        let decided: Vec<String> = hull::fit_decisions(offsets, fit).iter().map(|l| format!("Fit: {l}.")).collect();
+        assert!(plain.search.is_none() && plain.notes == decided, "{:?}", plain.notes);
+        assert!(decided.iter().any(|n| n.starts_with("Fit: fairing (auto)")), "{decided:?}");
+        assert!(decided.iter().any(|n| n.starts_with("Fit: envelope:")), "{decided:?}");
         // `--tolerance default`: the search, noted with its default tolerance.
         let default = load(&Wrap::try_parse_from(["x", "--tolerance", "default"]).expect("valid").args).expect("fits");
         let search = default.search.as_ref().expect("the default tolerance searches");

@@ -228,7 +228,7 @@ pub use read::{
 };
 // The fit's report: summary, warnings, report.json and the output files.
 pub use report::{
-    measured_summary_table, measured_warnings, summary_table, summary_warnings, write_fit_outputs,
+    fit_decisions, measured_summary_table, measured_warnings, summary_table, summary_warnings, write_fit_outputs,
     write_fit_outputs_with_report, write_report_json, InputSummary, Measured, Report, SurfaceSummary,
 };
 // The built-in Series 60 sample.

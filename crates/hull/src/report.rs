@@ -336,9 +336,21 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
     if let Some(h) = &e.held_out {
         let _ = writeln!(t, "{}", held_out_line(h, u));
     }
+    for line in fit_decisions(offsets, outcome) {
+        let _ = writeln!(t, "{line}");
+    }
+    worst_line(&mut t, e, u);
+    t
+}
+
+/// What the fit decided, a line each, as the summary table prints them under its row: the
+/// weight optimisation, the alternative made for validity, the fairing, the envelope hold and
+/// every surface rejected with why (the report page lists them as notes).
+pub fn fit_decisions(offsets: &Offsets, outcome: &FitOutcome) -> Vec<String> {
+    let u = offsets.units.symbol();
+    let mut lines = Vec::new();
     if let Some(o) = &outcome.optimization {
-        let _ = writeln!(
-            t,
+        lines.push(format!(
             "weights by {}: objective {:.4e} -> {:.4e} {u} in {} evaluations, {} iterations ({}), weights {:.3}..{:.3}, {:.2} s",
             o.algorithm,
             o.start_value,
@@ -349,32 +361,28 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
             o.weight_range[0],
             o.weight_range[1],
             o.seconds,
-        );
+        ));
     }
     if let Some(f) = &outcome.fairing {
         // The alternatives first: the fairing line's plain fit is the one used's.
         if let Some(p) = &f.alternatives {
-            let _ = writeln!(t, "{}", p.summary(u));
+            lines.push(p.summary(u));
         }
-        let _ = writeln!(t, "{}", f.summary(offsets.units));
+        lines.push(f.summary(offsets.units));
     }
     if outcome.envelope_held > 0 {
         let held = match outcome.config.hold_on {
             crate::HoldOn::Net => "control-point coordinates",
             crate::HoldOn::Surface => "surface samples and control-point coordinates",
         };
-        let _ = writeln!(
-            t,
+        lines.push(format!(
             "envelope: the least squares left the offsets' envelope; refitted with {} {held} held on its faces, so \
              the surface stays within it (--envelope free keeps the plain fit)",
             outcome.envelope_held
-        );
+        ));
     }
-    for r in &outcome.rejected {
-        let _ = writeln!(t, "rejected: {r}");
-    }
-    worst_line(&mut t, e, u);
-    t
+    lines.extend(outcome.rejected.iter().map(|r| format!("rejected: {r}")));
+    lines
 }
 
 /// The summary table of a surface measured as it is: the surface's file, then the table of
