@@ -82,8 +82,12 @@ pub struct SkinArgs {
     /// held just past the faces it crossed (half the allowance), so that the surface stays
     /// within the allowance (the convex-hull property); an optimised surface that leaves it is
     /// held the same way (its weights kept), or gives way to the held approximation where that
-    /// is closer to the offsets. `free` keeps the plain least squares and reports where it
-    /// leaves.
+    /// is closer to the offsets. `hold-surface` holds the surface's points instead of its
+    /// net (sampled 8, then 16 per knot span; the end sections' planes on the net), which
+    /// lets poles go past a face where the surface stays within it: closer to the offsets
+    /// where a rounded section meets a face (the default fit takes it by itself when the
+    /// net-held fit folds or faces inwards). `free` keeps the plain least squares and reports
+    /// where it leaves.
     #[arg(long, value_enum, default_value = "hold")]
     pub envelope: EnvelopeMode,
     /// How a mesh input (`.stl`, `.stl.gz`, `.obj`) is sliced into sections first.
@@ -106,8 +110,10 @@ pub enum KnuckleMode {
 /// The values of `--envelope`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum EnvelopeMode {
-    /// Hold the surface within the offsets' envelope.
+    /// Hold the surface within the offsets' envelope by its control net.
     Hold,
+    /// Hold the surface within the offsets' envelope by its sampled points.
+    HoldSurface,
     /// Keep the plain least squares, its findings reported.
     Free,
 }
@@ -243,12 +249,12 @@ impl SkinArgs {
             knuckles,
             fair: self.fair,
             smoothing: 0.0,
-            envelope: if self.envelope == EnvelopeMode::Hold {
-                hull::EnvelopeHold::Own
-            } else {
+            envelope: if self.envelope == EnvelopeMode::Free {
                 hull::EnvelopeHold::Free
+            } else {
+                hull::EnvelopeHold::Own
             },
-            hold_on: hull::HoldOn::Net,
+            hold_on: if self.envelope == EnvelopeMode::HoldSurface { hull::HoldOn::Surface } else { hull::HoldOn::Net },
         }
     }
 }

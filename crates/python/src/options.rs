@@ -87,10 +87,11 @@ impl FitArgs<'_> {
             "off" => Knuckles::Off,
             k => return Err(bad_arg(format!("knuckles: unknown `{k}` (expected auto, auto+flats or off)"))),
         };
-        let envelope = match self.envelope {
-            "hold" => EnvelopeHold::Own,
-            "free" => EnvelopeHold::Free,
-            e => return Err(bad_arg(format!("envelope: unknown `{e}` (expected hold or free)"))),
+        let (envelope, hold_on) = match self.envelope {
+            "hold" => (EnvelopeHold::Own, hull::HoldOn::Net),
+            "hold-surface" => (EnvelopeHold::Own, hull::HoldOn::Surface),
+            "free" => (EnvelopeHold::Free, hull::HoldOn::Net),
+            e => return Err(bad_arg(format!("envelope: unknown `{e}` (expected hold, hold-surface or free)"))),
         };
         let layout = match self.weights {
             "full" => WeightLayout::Full,
@@ -120,7 +121,7 @@ impl FitArgs<'_> {
             fair: fairing(self.fair)?,
             smoothing: 0.0,
             envelope,
-            hold_on: hull::HoldOn::Net,
+            hold_on,
         })
     }
 }

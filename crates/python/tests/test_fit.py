@@ -43,8 +43,9 @@ def test_the_sample_fits_with_no_argument(sample_fit):
              "--held-out", "0"],
             {"method": "pso", "iterations": 4, "population": 6, "seed": 7, "ctrl": (5, 8), "held_out": 0},
         ),
+        (["--envelope", "hold-surface", "--held-out", "0"], {"envelope": "hold-surface", "held_out": 0}),
     ],
-    ids=["sample", "wigley", "s60-cb070-ctrl", "interp", "tolerance", "lm", "pso-seeded"],
+    ids=["sample", "wigley", "s60-cb070-ctrl", "interp", "tolerance", "lm", "pso-seeded", "hold-surface"],
 )
 def test_the_report_equals_the_command_lines(cli, tmp_path, args, kwargs):
     out = tmp_path / "out"
