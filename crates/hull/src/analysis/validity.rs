@@ -833,11 +833,6 @@ fn oriented(surface: &NurbsSurface, grid: &Grid) -> Option<Oriented> {
         let cos = normals[k].dot(normals[m]) / (norms[k] * norms[m]);
         edges.push((1.0 - cos.abs(), k, m, cos < 0.0));
     }
-    // With no edge flipping, every component has one orientation and no minority: nothing
-    // to find (the tree below would give every node parity 0).
-    if !edges.iter().any(|e| e.3) {
-        return None;
-    }
     // Equal weights in the grid's order (the nodes break ties), so the tree does not depend
     // on the sort.
     edges.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
