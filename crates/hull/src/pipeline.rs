@@ -428,36 +428,45 @@ fn within_envelope(
         None => o.validity.clone(),
         Some(e) => crate::analysis::check_validity(&o.surface, e, &[]),
     };
+    // The findings of `out`, measured once (against a given envelope, a validity check) for
+    // every hold below to start from.
+    let first = findings(&out);
     if config.hold_on == HoldOn::Net {
-        return held_within(offsets, config, sections, out, full, &findings, HoldOn::Net);
+        return Ok(held_within(offsets, config, sections, out, first, full, &findings, HoldOn::Net)?.0);
     }
-    if findings(&out).iter().all(|f| f.envelope_face().is_none()) {
+    if first.iter().all(|f| f.envelope_face().is_none()) {
         return Ok(out);
     }
-    let held = held_within(offsets, config, sections, out.clone(), full, &findings, HoldOn::Surface)?;
-    let left = findings(&held);
+    let (held, left) =
+        held_within(offsets, config, sections, out.clone(), first.clone(), full, &findings, HoldOn::Surface)?;
+    let left = left.unwrap_or_else(|| findings(&held));
     if left.is_empty() {
         return Ok(held);
     }
-    let netted = held_within(offsets, config, sections, out, full, &findings, HoldOn::Net)?;
+    let (netted, net_left) = held_within(offsets, config, sections, out, first, full, &findings, HoldOn::Net)?;
+    let net_left = net_left.unwrap_or_else(|| findings(&netted));
     let defects = |f: &[crate::analysis::Finding]| {
         (f.iter().filter(|f| f.kind == crate::analysis::FindingKind::Fold).count(), f.len())
     };
-    Ok(if defects(&findings(&netted)) < defects(&left) { netted } else { held })
+    Ok(if defects(&net_left) < defects(&left) { netted } else { held })
 }
 
 /// The rounds of [`within_envelope`] with one kind of hold: each face crossed is held
 /// (`HOLD_SHARE` of the allowance past it), and a refit that crosses another face (or leaves a
 /// flat's bulge within the envelope's allowance) holds that one too in the next round, up to 3.
+/// `first` are the findings of `out`; the outcome is returned with its own findings when a
+/// round measured them (not after a third refit, which no round looks at).
+#[allow(clippy::too_many_arguments)]
 fn held_within(
     offsets: &Offsets,
     config: &FitConfig,
     sections: &[Vec<nurbs::Vec3>],
     mut out: FitOutcome,
+    first: Vec<crate::analysis::Finding>,
     full: nurbs::fit::ControlBox,
     findings: &dyn Fn(&FitOutcome) -> Vec<crate::analysis::Finding>,
     hold: HoldOn,
-) -> Result<FitOutcome, HullError> {
+) -> Result<(FitOutcome, Option<Vec<crate::analysis::Finding>>), HullError> {
     let unheld = out.surface.clone();
     // Each face crossed, with how far past it the surface (or net) may go: HOLD_SHARE of the
     // allowance the surface exceeded (the least, where several findings cross one face).
@@ -471,9 +480,11 @@ fn held_within(
     }
     // A refit of one coordinate can push it across that coordinate's other face, or leave a
     // flat's bulge within the envelope's allowance: later rounds hold those too.
+    let mut found = Some(first);
     for _ in 0..3 {
+        let current = found.take().unwrap_or_else(|| findings(&out));
         let mut changed = false;
-        for f in &findings(&out) {
+        for f in &current {
             let Some(face) = f.envelope_face() else { continue };
             // The end sections' planes are held exactly: the surface meets them only along its
             // end curves, which need no pole beyond, and any run past them is a fold.
@@ -485,6 +496,7 @@ fn held_within(
             }
         }
         if !changed {
+            found = Some(current);
             break;
         }
         let start = Instant::now();
@@ -512,6 +524,7 @@ fn held_within(
             }
         };
         let Some((surface, held)) = refit.map_err(|e| fit_error(config, e))? else {
+            found = Some(current);
             break;
         };
         let seconds = out.fit_seconds + start.elapsed().as_secs_f64();
@@ -526,7 +539,7 @@ fn held_within(
         out.rejected = prev.rejected;
         out.unheld = Some(unheld.clone());
     }
-    Ok(out)
+    Ok((out, found))
 }
 
 /// Where `within_envelope` holds a face the surface crossed (but the end sections' planes,
