@@ -19,6 +19,13 @@
 //! control points across, at none of 30 or 32, with either hold (README, Known defects). On a
 //! table of three sections, which the net interpolates across, only the parameters and the
 //! hold can change.
+//!
+//! And made again for fairness: when that fit is sound but, its net held, less fair than the
+//! plain least squares before the hold (issue 11's fairness floor: thin-plate energy, largest
+//! |K|, inflections), it is made with its surface held instead, and used when that one is
+//! sound, within the tolerance and no less fair. The net hold flattens poles as above, and
+//! can bend the net where the plain fit was smooth: the Series 60 Cb 0.80 parent's largest |K|
+//! rises from 2.42 to 3.09 1/m² by the net hold alone, and is 2.33 held on the surface.
 
 use nurbs::fit::{Parameterization, SkinParameterization};
 
@@ -68,8 +75,11 @@ fn unsound(out: &FitOutcome) -> bool {
 /// (`refit(config)`: the same fit, faired the same way, with those settings). With none,
 /// `chosen` stays: a fit with fewer findings but not none was not worth it where measured (the
 /// DTMB 5415 mesh's fold would give way to 1.6 m² of inward-facing facets at 1.5 times the max
-/// error). The outcome's fairing report records the choice ([`Alternatives`]) and its time
-/// includes every fit tried. Any other setting (a parameterization, counts or hold asked for, a
+/// error). When `chosen` is sound but less fair than the plain least squares for its net hold
+/// ([`AlternativeReason::Fairness`]), the surface hold alone is tried: its least squares first,
+/// and where that is sound and closer than the tolerance, the fit faired on it, used when sound,
+/// within the tolerance and no less fair by every figure. The outcome's fairing report records
+/// the choice ([`Alternatives`]) and its time includes every fit tried. Any other setting (a parameterization, counts or hold asked for, a
 /// given `λ`, interpolation) returns `chosen` as it is.
 ///
 /// The surface hold first, measured (release, `hullskin fit`, default cross-validation): R/V
