@@ -34,8 +34,9 @@ use crate::fairing::UNSOUND_SLACK;
 use crate::fit::{AlternativeReason, AlternativeTry, Alternatives, FairReport};
 use crate::{Fairing, FitConfig, FitMethod, FitOutcome, HoldOn, HullError};
 
-/// The parameterizations tried after the surface hold, in order, at the default counts: universal along the sections (uniform knots, the parameters at the basis functions'
-/// maxima), then chord length along, both with chord length across, then centripetal in both
+/// The parameterizations tried after the surface hold, in order, at the default counts:
+/// universal along the sections (uniform knots, the parameters at the basis functions' maxima),
+/// then chord length along, both with chord length across, then centripetal in both
 /// directions. Measured on R/V Gunnerus's default fit (12x47, its net held within the envelope): no
 /// finding with the first two (max error 183.8 and 231.9 mm, held-out max 652.6 and 669.2 mm,
 /// against 181.3 and 665.4 mm with 0.085 m² facing inwards), 0.93 m² facing inwards with the
@@ -79,8 +80,9 @@ fn unsound(out: &FitOutcome) -> bool {
 /// ([`AlternativeReason::Fairness`]), the surface hold alone is tried: its least squares first,
 /// and where that is sound and closer than the tolerance, the fit faired on it, used when sound,
 /// within the tolerance and no less fair by every figure. The outcome's fairing report records
-/// the choice ([`Alternatives`]) and its time includes every fit tried. Any other setting (a parameterization, counts or hold asked for, a
-/// given `λ`, interpolation) returns `chosen` as it is.
+/// the choice ([`Alternatives`]) and its time includes every fit tried. Any other setting (a
+/// parameterization, counts or hold asked for, a given `λ`, interpolation) returns `chosen` as
+/// it is.
 ///
 /// The surface hold first, measured (release, `hullskin fit`, default cross-validation): R/V
 /// Gunnerus is sound with it at max error 112.6 mm, held-out max 560.6 mm, thin-plate energy
