@@ -160,7 +160,7 @@ pub(crate) fn sounder_alternative(
         seconds += out.fit_seconds + out.error_seconds;
         let (max, findings) = (out.error.overall.max, out.validity.len());
         let control_points = [out.surface.n_u(), out.surface.n_v()];
-        let (param, hold) = (alternative.param.name(), alternative.hold_on.name());
+        let (param, hold) = (alternative.param.name(), alternative.hold_on);
         let mut accepted = passed && findings == 0 && max <= limit;
         let mut no_less_fair = None;
         if accepted && reason == AlternativeReason::Fairness {

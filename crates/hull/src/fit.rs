@@ -148,8 +148,9 @@ pub struct FitConfig {
 
 /// What [`FitConfig::envelope`] holds behind the faces of the envelope a surface crossed. The
 /// end sections' planes and the planes of the flats a fit was refitted within (`auto+flats`)
-/// are held on the control net either way.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// are held on the control net either way. Serialised as its [`HoldOn::name`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum HoldOn {
     /// The control net ([`nurbs::fit::bounded_refit`]): by the convex-hull property no point
     /// of the surface can cross a face held.
@@ -462,8 +463,8 @@ impl FairReport {
 pub struct AlternativeTry {
     /// Its parameterization, as `--param` takes it.
     pub param: &'static str,
-    /// What its envelope hold held: `net` or `surface` ([`HoldOn::name`]).
-    pub hold: &'static str,
+    /// What its envelope hold held: `net` or `surface`.
+    pub hold: HoldOn,
     /// Its control-point counts `[NU, NV]`.
     pub control_points: [usize; 2],
     /// The faired fit's true max error at the offsets.
@@ -539,8 +540,8 @@ impl Alternatives {
             ),
         };
         let name = |t: &AlternativeTry| match t.hold {
-            "net" => format!("{} at {}", t.param, counts(t.control_points)),
-            hold => format!("{} held on the {hold} at {}", t.param, counts(t.control_points)),
+            HoldOn::Net => format!("{} at {}", t.param, counts(t.control_points)),
+            hold => format!("{} held on the {} at {}", t.param, hold.name(), counts(t.control_points)),
         };
         let tried = |t: &AlternativeTry| {
             let fair = match t.no_less_fair {

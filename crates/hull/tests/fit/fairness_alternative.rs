@@ -55,9 +55,9 @@ fn a_fit_less_fair_for_its_net_hold_is_held_on_its_surface() {
     assert!(requested.curvature_extreme() > plain.curvature_extreme(), "{requested:?} {plain:?}");
     let used = out.fairness_figures();
     assert!(used.no_less_fair_than(&plain), "{used:?} against {plain:?}");
-    let tried: Vec<(&str, [usize; 2], Option<bool>, bool)> =
+    let tried: Vec<(HoldOn, [usize; 2], Option<bool>, bool)> =
         choice.tried.iter().map(|t| (t.hold, t.control_points, t.no_less_fair, t.accepted)).collect();
-    assert_eq!(tried, [("surface", [6, 19], Some(true), true)]);
+    assert_eq!(tried, [(HoldOn::Surface, [6, 19], Some(true), true)]);
     // Within the net-held fit's max error (the tolerance `auto` kept it within).
     assert!(out.error.overall.max <= choice.max, "{} > {}", out.error.overall.max, choice.max);
     assert_eq!(choice.limit, choice.max);
@@ -81,9 +81,9 @@ fn a_fit_less_fair_for_its_net_hold_is_held_on_its_surface() {
 fn an_alternative_no_fairer_is_reported_and_not_used() {
     let (o, out) = made_again_for_fairness("sections_example.csv", HoldOn::Net);
     let choice = out.fairing.as_ref().and_then(|f| f.alternatives.as_ref()).expect("the choice is reported");
-    let tried: Vec<(&str, Option<bool>, bool)> =
+    let tried: Vec<(HoldOn, Option<bool>, bool)> =
         choice.tried.iter().map(|t| (t.hold, t.no_less_fair, t.accepted)).collect();
-    assert_eq!(tried, [("surface", None, false)]);
+    assert_eq!(tried, [(HoldOn::Surface, None, false)]);
     assert!(choice.tried[0].max >= choice.limit, "{:?}", choice.tried);
     assert!(out.fairness_figures().thin_plate > plain_figures(&o, (4, 3)).thin_plate);
     let summary = hull::summary_table(&o, &out);
