@@ -109,9 +109,14 @@ pub fn fair(
             let sound = plain.validity.is_empty();
             let mut tried = Vec::new();
             if sound {
-                // From the smoothest down, the first sound, accurate enough and fairer fit.
-                for &l in AUTO_LAMBDAS.iter().rev() {
-                    let Ok(out) = skin(l) else { continue };
+                // From the smoothest down, the first sound, accurate enough and fairer fit. The
+                // fits run in parallel (most tables try every weight: none qualifies, or a small
+                // one), the choice is made in their order, so it does not depend on the thread
+                // count.
+                let fits: Vec<Result<FitOutcome, HullError>> =
+                    AUTO_LAMBDAS.par_iter().rev().map(|&l| skin(l)).collect();
+                for (&l, fit) in AUTO_LAMBDAS.iter().rev().zip(fits) {
+                    let Ok(out) = fit else { continue };
                     let (max, findings) = (out.error.overall.max, out.validity.len());
                     let mut accepted = findings == 0 && max <= limit;
                     let mut after = None;

@@ -3,6 +3,8 @@
 
 use std::fs;
 
+use serde_json::Value;
+
 use crate::common::*;
 
 #[test]
@@ -455,4 +457,40 @@ fn hold_surface_holds_the_sample_within_its_envelope_closer_to_its_offsets() {
     let max = |r: &serde_json::Value| r["error"]["max"].as_f64().expect("number");
     assert!(max(&s) < max(&n), "surface hold {} against net hold {}", max(&s), max(&n));
     assert!(text(&surface).0.contains("surface samples and control-point coordinates held"), "{:?}", text(&surface));
+}
+
+/// `v` without its timings (keys naming seconds or a time), which differ from run to run.
+fn without_timings(v: Value) -> Value {
+    match v {
+        Value::Object(map) => Value::Object(
+            map.into_iter()
+                .filter(|(k, _)| !(k.contains("seconds") || k.contains("time")))
+                .map(|(k, v)| (k, without_timings(v)))
+                .collect(),
+        ),
+        Value::Array(items) => Value::Array(items.into_iter().map(without_timings).collect()),
+        other => other,
+    }
+}
+
+/// The default fit's choices are made from fits run in parallel (the smoothing weights, the
+/// surface hold for fairness, the cross-validation's refits) in a fixed order: the same bytes
+/// with one thread or three, on a table whose fairing takes a smoothed fit (Series 60 Cb 0.65,
+/// `ν` 0.003) and on one made again held on its surface (Cb 0.80).
+#[test]
+fn the_default_fit_is_the_same_whatever_the_thread_count() {
+    let dir = temp_dir();
+    for table in ["series60_cb065_offsets.csv", "series60_cb080_offsets.csv"] {
+        let path = testdata(table);
+        let run = |out: &str, threads: &str| {
+            let args = ["fit", path.to_str().expect("UTF-8 path"), "-o", out];
+            let o = hullskin_env(dir.path(), &args, &[("HULLSKIN_THREADS", threads)]);
+            assert!(o.status.success(), "{table}: {:?}", text(&o));
+            let surface = fs::read(dir.path().join(out).join("surface.json")).expect("surface.json");
+            (surface, without_timings(read_json(&dir.path().join(out).join("report.json"))))
+        };
+        let (one, three) = (run("one", "1"), run("three", "3"));
+        assert!(one.1["fairing"]["lambda"].as_f64().is_some_and(|l| l > 0.0), "{table}: a smoothed fit");
+        assert!(one == three, "{table}: one thread and three differ");
+    }
 }
