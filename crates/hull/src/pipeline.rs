@@ -107,7 +107,11 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     // plain one.
     let approx = FitConfig { method: FitMethod::Approx, ..*config };
     let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx }, Measure::Full, &memo);
-    let fair = if plain.flat_lines.is_empty() { crate::fairing::fair(&plain, None, config.fair, skin)? } else { None };
+    let fair = if plain.flat_lines.is_empty() {
+        crate::fairing::fair(&plain, None, config.fair, skin, |s| memo.fairness(s))?
+    } else {
+        None
+    };
     let mut candidates: Vec<FitOutcome> = Vec::new();
     if let Some((mut f, report)) = fair {
         f.fairing = Some(report);
@@ -195,7 +199,7 @@ fn fit_skinned(
         Fairing::Auto { .. } => plain.unheld.as_ref(),
         _ => None,
     };
-    let chosen = match crate::fairing::fair(&plain, free, config.fair, skin)? {
+    let chosen = match crate::fairing::fair(&plain, free, config.fair, skin, |s| memo.fairness(s))? {
         Some((mut out, report)) => {
             // The time of the whole choice, the plain fit and every smoothed one measured.
             let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();

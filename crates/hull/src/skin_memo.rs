@@ -6,15 +6,17 @@
 //! the same smoothing weights, held differently. Neither the skin (the unheld least squares,
 //! its findings, its knuckle and flat lines) nor its net hold depends on what the hold holds,
 //! so the second search takes both from here instead of fitting them again (the net hold is
-//! the surface hold's fallback where that one keeps a finding). What is taken is what the
+//! the surface hold's fallback where that one keeps a finding), nor the fairness figures of
+//! the unheld least squares the search is to be no less fair than. What is taken is what the
 //! fit would give, bit for bit; only its time is that spent now (none).
 
 use std::sync::{Mutex, MutexGuard};
 
 use nurbs::fit::KnuckleLine;
+use nurbs::NurbsSurface;
 
 use crate::analysis::Finding;
-use crate::fit::{FitConfig, FitOutcome, HoldOn};
+use crate::fit::{FairnessFigures, FitConfig, FitOutcome, HoldOn};
 use crate::HullError;
 
 /// A skin: the unheld fit, assembled ([`crate::pipeline`]), with the knuckle lines it kept.
@@ -32,10 +34,12 @@ struct Kept {
 }
 
 /// The skins and net holds fitted so far in one call of the pipeline, by their settings but
-/// the hold ([`FitConfig::hold_on`]). Shared by the fits a fairing search runs in parallel.
+/// the hold ([`FitConfig::hold_on`]), and the fairness figures measured of surfaces. Shared by
+/// the fits a fairing search runs in parallel.
 #[derive(Default)]
 pub(crate) struct SkinMemo {
     fits: Mutex<Vec<(FitConfig, Kept)>>,
+    figures: Mutex<Vec<(NurbsSurface, FairnessFigures)>>,
 }
 
 impl SkinMemo {
@@ -73,6 +77,18 @@ impl SkinMemo {
             (held.0.config, held.0.fit_seconds) = (*config, seconds);
         }
         Ok(held)
+    }
+
+    /// The fairness figures of `surface` ([`FairnessFigures::of`]): those measured of it
+    /// before, else measured now and kept.
+    pub(crate) fn fairness(&self, surface: &NurbsSurface) -> FairnessFigures {
+        let lock = || self.figures.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some(&(_, f)) = lock().iter().find(|(s, _)| s == surface) {
+            return f;
+        }
+        let f = FairnessFigures::of(surface);
+        lock().push((surface.clone(), f));
+        f
     }
 
     /// The `slot` kept for `config`'s settings (but the hold) and `true`, else `make()`'s,
