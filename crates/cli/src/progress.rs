@@ -6,8 +6,9 @@
 //! 130 for SIGINT, 143 for SIGTERM ([`stop_status`]). Any other signal (a second one, or one
 //! while nothing can stop early, e.g. while the outputs are written) quits at once with the
 //! same status: the outputs being staged are discarded ([`hull::discard_staged_outputs`], which
-//! waits for a commit in progress to end), so an output directory holds its earlier results
-//! or the complete new ones, never a mix of a half-done run.
+//! waits for a commit in progress to end and then holds the run until the exit, so that it
+//! cannot end first with an error of its own), so an output directory holds its earlier
+//! results or the complete new ones, never a mix of a half-done run.
 //!
 //! On Unix the signals are told apart with `signal-hook`; elsewhere `ctrlc` (with its
 //! `termination` feature) reports both as an interrupt, status 130.

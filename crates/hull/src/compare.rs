@@ -148,10 +148,10 @@ pub struct CompareRow {
     /// fair row's may be another than the comparison's when the default one was unsound
     /// ([`crate::ALTERNATIVE_PARAMETERIZATIONS`]).
     pub parameterization: &'static str,
-    /// What its envelope hold held, `net` or `surface` ([`crate::HoldOn::name`]): a fair row's
-    /// surface is held when the net-held one was unsound (left out for `net`).
+    /// What its envelope hold held, `net` or `surface`: a fair row's surface is held when the
+    /// net-held one was unsound or less fair for its hold (left out for `net`).
     #[serde(skip_serializing_if = "is_net")]
-    pub hold: &'static str,
+    pub hold: crate::HoldOn,
     /// `None` if the method failed.
     pub error: Option<RowError>,
     /// `None` if the method failed or the whole surface is degenerate.
@@ -196,7 +196,7 @@ impl CompareRow {
             failure: None,
             control_points: [s.n_u(), s.n_v()],
             parameterization: outcome.config.param.name(),
-            hold: outcome.config.hold_on.name(),
+            hold: outcome.config.hold_on,
             error: Some(RowError { max: e.max, mean: e.mean, rms: e.rms, parametric_rms }),
             gaussian_curvature: gaussian_curvature_range(s, CURVATURE_GRID),
             seconds: outcome.fit_seconds,
@@ -226,7 +226,7 @@ impl CompareRow {
             failure: Some(error.to_string()),
             control_points: [control_points.0, control_points.1],
             parameterization,
-            hold: crate::HoldOn::Net.name(),
+            hold: crate::HoldOn::Net,
             error: None,
             gaussian_curvature: None,
             seconds: 0.0,
@@ -399,8 +399,8 @@ pub struct Comparison {
 }
 
 /// Whether a row's hold is the default one (left out of `compare.json`).
-fn is_net(hold: &&'static str) -> bool {
-    *hold == crate::HoldOn::Net.name()
+fn is_net(hold: &crate::HoldOn) -> bool {
+    *hold == crate::HoldOn::Net
 }
 
 /// Run every method of [`COMPARE_METHODS`] on `offsets` without progress reports or stops.
@@ -676,9 +676,9 @@ pub fn comparison_table(c: &Comparison) -> String {
         if r.parameterization != c.parameterization {
             name = format!("{name} on {}", r.parameterization);
         }
-        // A fair row held on its surface instead of its net (for validity).
-        if r.hold != crate::HoldOn::Net.name() {
-            name = format!("{name} held on the {}", r.hold);
+        // A fair row held on its surface instead of its net (for validity or fairness).
+        if r.hold != crate::HoldOn::Net {
+            name = format!("{name} held on the {}", r.hold.name());
         }
         let (max, mean, rms) = match r.error {
             Some(e) => (sci(e.max), sci(e.mean), sci(e.rms)),
@@ -796,7 +796,7 @@ mod tests {
             failure: None,
             control_points: [4, 4],
             parameterization: "centripetal,chord",
-            hold: "net",
+            hold: crate::HoldOn::Net,
             error: (status != RowStatus::Failed).then_some(RowError { max: rms, mean: rms, rms, parametric_rms: rms }),
             gaussian_curvature: None,
             seconds: 0.0,
@@ -932,7 +932,7 @@ mod tests {
         assert!(md.lines().any(|l| l.starts_with("| approx+fair on universal,chord |")), "{md}");
         // One held on its surface says so, and compare.json records it (only then).
         let mut held = c.clone();
-        held.methods[7].hold = "surface";
+        held.methods[7].hold = crate::HoldOn::Surface;
         let md = comparison_markdown(&held);
         assert!(md.lines().any(|l| l.starts_with("| approx+fair held on the surface |")), "{md}");
         let json = serde_json::to_value(&held).expect("serialises");

@@ -148,8 +148,9 @@ pub struct FitConfig {
 
 /// What [`FitConfig::envelope`] holds behind the faces of the envelope a surface crossed. The
 /// end sections' planes and the planes of the flats a fit was refitted within (`auto+flats`)
-/// are held on the control net either way.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// are held on the control net either way. Serialised as its [`HoldOn::name`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum HoldOn {
     /// The control net ([`nurbs::fit::bounded_refit`]): by the convex-hull property no point
     /// of the surface can cross a face held.
@@ -462,67 +463,135 @@ impl FairReport {
 pub struct AlternativeTry {
     /// Its parameterization, as `--param` takes it.
     pub param: &'static str,
-    /// What its envelope hold held: `net` or `surface` ([`HoldOn::name`]).
-    pub hold: &'static str,
+    /// What its envelope hold held: `net` or `surface`.
+    pub hold: HoldOn,
     /// Its control-point counts `[NU, NV]`.
     pub control_points: [usize; 2],
     /// The faired fit's true max error at the offsets.
     pub max: f64,
     /// Its validity findings.
     pub findings: usize,
+    /// Made for fairness ([`AlternativeReason::Fairness`]): whether it is no less fair than
+    /// the plain least squares ([`FairnessFigures::no_less_fair_than`]; measured of a sound fit
+    /// within the tolerance only, left out otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub no_less_fair: Option<bool>,
     /// The one used.
     pub accepted: bool,
 }
 
-/// Why the default fit's parameterization and counts are what `report.json` says (the
+/// Why the default fit was made again ([`Alternatives`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AlternativeReason {
+    /// It folds or faces inwards.
+    Validity,
+    /// It is sound, but its envelope hold left it less fair than the plain least squares
+    /// (the report's `before`) by thin-plate energy, curvature extreme or inflections.
+    Fairness,
+}
+
+/// Why the default fit's parameterization, counts and hold are what `report.json` says (the
 /// `fairing` block's `alternatives`, [`crate::ALTERNATIVE_PARAMETERIZATIONS`] and
 /// [`crate::ALTERNATIVE_COUNTS_ACROSS`]): the default left a fold or inward-facing facets
-/// (`findings` validity findings in all), and `tried` lists the alternatives fitted, the sound
-/// one used marked (none when none was sound within `limit`).
+/// (`findings` validity findings in all), or was sound but less fair than the plain least
+/// squares once held (`reason`), and `tried` lists the alternatives fitted, the one used marked
+/// (none when none qualified within `limit`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Alternatives {
+    pub reason: AlternativeReason,
     /// The parameterization asked for (the default) and the default counts.
     pub requested: &'static str,
     pub control_points: [usize; 2],
     /// Its faired fit's max error at the offsets and validity findings.
     pub max: f64,
     pub findings: usize,
+    /// Its fairness figures ([`AlternativeReason::Fairness`]; those of the one used are the
+    /// fairing block's `after`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub figures: Option<FairnessFigures>,
     /// The max error an alternative may have: [`UNSOUND_SLACK`](crate::UNSOUND_SLACK) times the
-    /// fairing's tolerance.
+    /// fairing's tolerance for validity, the tolerance itself for fairness.
     pub limit: f64,
     pub tried: Vec<AlternativeTry>,
 }
 
 impl Alternatives {
-    /// One line for the summary table (`units`: the offsets' unit symbol).
-    pub fn summary(&self, units: &str) -> String {
+    /// One line for the summary table (`plain`: the plain least squares' figures, the fairing
+    /// block's `before`; `units`: the offsets' unit symbol).
+    pub fn summary(&self, plain: &FairnessFigures, units: &str) -> String {
         let counts = |c: [usize; 2]| format!("{}x{}", c[0], c[1]);
-        let head = format!(
-            "alternatives: {} at {} leaves {} validity finding(s) (a fold or inward-facing facets) at a max error of \
-             {:.3e} {units}",
-            self.requested,
-            counts(self.control_points),
-            self.findings,
-            self.max
-        );
-        let name = |t: &AlternativeTry| match t.hold {
-            "net" => format!("{} at {}", t.param, counts(t.control_points)),
-            hold => format!("{} held on the {hold} at {}", t.param, counts(t.control_points)),
+        let head = match (self.reason, &self.figures) {
+            (AlternativeReason::Fairness, Some(f)) => format!(
+                "alternatives: {} at {}, its control net held within the offsets' envelope, is sound but less fair \
+                 than the plain least squares ({}) at a max error of {:.3e} {units}",
+                self.requested,
+                counts(self.control_points),
+                less_fair_by(f, plain, units),
+                self.max
+            ),
+            _ => format!(
+                "alternatives: {} at {} leaves {} validity finding(s) (a fold or inward-facing facets) at a max error \
+                 of {:.3e} {units}",
+                self.requested,
+                counts(self.control_points),
+                self.findings,
+                self.max
+            ),
         };
-        let tried = |t: &AlternativeTry| format!("{} {} finding(s) at {:.3e} {units}", name(t), t.findings, t.max);
+        let name = |t: &AlternativeTry| match t.hold {
+            HoldOn::Net => format!("{} at {}", t.param, counts(t.control_points)),
+            hold => format!("{} held on the {} at {}", t.param, hold.name(), counts(t.control_points)),
+        };
+        let tried = |t: &AlternativeTry| {
+            let fair = match t.no_less_fair {
+                Some(true) => ", no less fair",
+                Some(false) => ", less fair",
+                None => "",
+            };
+            format!("{} {} finding(s) at {:.3e} {units}{fair}", name(t), t.findings, t.max)
+        };
         let list = self.tried.iter().map(tried).collect::<Vec<_>>().join(", ");
+        let qualifies = match self.reason {
+            AlternativeReason::Validity => "has none",
+            AlternativeReason::Fairness => "has none and is no less fair",
+        };
+        let wanted = match self.reason {
+            AlternativeReason::Validity => "sound within max error",
+            AlternativeReason::Fairness => "sound and no less fair with its least squares below max error",
+        };
         match self.tried.iter().find(|t| t.accepted) {
             Some(t) => format!(
-                "{head}; {} has none (max error {:.3e} {units}, within {:.3e} {units}) and is used (tried: {list})",
+                "{head}; {} {qualifies} (max error {:.3e} {units}, within {:.3e} {units}) and is used (tried: {list})",
                 name(t),
                 t.max,
                 self.limit
             ),
-            None => format!(
-                "{head}; no alternative is sound within max error {:.3e} {units} (tried: {list}), so it is kept",
-                self.limit
-            ),
+            None => {
+                format!("{head}; no alternative is {wanted} {:.3e} {units} (tried: {list}), so it is kept", self.limit)
+            }
         }
+    }
+}
+
+/// The figures by which `figures` are worse than `plain`'s, each with both values.
+fn less_fair_by(figures: &FairnessFigures, plain: &FairnessFigures, units: &str) -> String {
+    {
+        let mut worse = Vec::new();
+        if figures.thin_plate > plain.thin_plate {
+            worse.push(format!("thin-plate energy {:.4} against {:.4}", figures.thin_plate, plain.thin_plate));
+        }
+        if figures.curvature_extreme() > plain.curvature_extreme() {
+            worse.push(format!(
+                "largest |K| {:.3e} against {:.3e} 1/{units}^2",
+                figures.curvature_extreme(),
+                plain.curvature_extreme()
+            ));
+        }
+        if figures.inflections() > plain.inflections() {
+            worse.push(format!("inflections {} against {}", figures.inflections(), plain.inflections()));
+        }
+        worse.join(", ")
     }
 }
 

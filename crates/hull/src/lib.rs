@@ -162,8 +162,8 @@ pub use fairing::{FairReport, Fairing, NET_FAIR, UNSOUND_SLACK, WEIGHT_SMOOTHING
 pub use alternatives::{ALTERNATIVE_COUNTS_ACROSS, ALTERNATIVE_PARAMETERIZATIONS};
 // The offsets -> surface pipeline: its settings and outcome.
 pub use fit::{
-    AlternativeTry, Alternatives, EnvelopeHold, FairTry, FairnessFigures, FitConfig, FitMethod, FitOutcome, HoldOn,
-    Knuckles,
+    AlternativeReason, AlternativeTry, Alternatives, EnvelopeHold, FairTry, FairnessFigures, FitConfig, FitMethod,
+    FitOutcome, HoldOn, Knuckles,
 };
 // Fit error at the offsets and held out of the fit.
 pub use fit_error::{measure_fit_error, overfit, ErrorStats, FitError, HeldOutError, SectionError, WorstPoint};

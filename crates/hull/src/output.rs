@@ -254,23 +254,44 @@ impl Drop for OutputDir {
 /// Remove every staging directory of this process (for a signal handler about to exit): the
 /// output directories keep their earlier content. Waits for a commit in progress to end, so
 /// that one is never cut short. Returns how many were removed.
+///
+/// The registry of staging directories stays locked after it returns, until the process exits:
+/// the run can then neither stage, commit nor drop its outputs, so it cannot end first with an
+/// error of its own about a file it lost (measured under load: a report.json being written into
+/// the removed staging directory failed and the run exited with status 2, "No such file or
+/// directory", before the handler's 143). Call it once, just before exiting.
 pub fn discard_staged_outputs() -> usize {
-    discard_where(|_| true)
+    let (discarded, registry) = discard_where(|_| true);
+    std::mem::forget(registry);
+    discarded
 }
 
-/// Remove the staging directories that `which` selects; returns how many.
-fn discard_where(which: impl Fn(&Path) -> bool) -> usize {
+/// Remove the staging directories that `which` selects; returns how many, and the registry
+/// still locked.
+fn discard_where(which: impl Fn(&Path) -> bool) -> (usize, MutexGuard<'static, Vec<PathBuf>>) {
     let mut registry = staged();
     let before = registry.len();
     registry.retain(|p| {
         if which(p) {
-            let _ = fs::remove_dir_all(p);
+            remove_while_written(p);
             false
         } else {
             true
         }
     });
-    before - registry.len()
+    (before - registry.len(), registry)
+}
+
+/// Remove the staging directory `p`, into which the run may be writing a file this moment (the
+/// writes do not wait for the registry): a file it creates while the directory is emptied
+/// leaves it not empty, so it is emptied again, a few times at most; once it is gone, no write
+/// can create it again.
+fn remove_while_written(p: &Path) {
+    for _ in 0..20 {
+        if fs::remove_dir_all(p).is_ok() || !p.exists() {
+            return;
+        }
+    }
 }
 
 /// Check that `surface` can be written: every control point finite (in homogeneous and in
@@ -433,7 +454,7 @@ mod tests {
         staged.write_bytes("a.txt", b"a").expect("write");
         // What a signal handler does, limited to this run (other tests stage at the same time).
         let mine = staged.staging_path().to_path_buf();
-        assert_eq!(discard_where(|p| p == mine), 1);
+        assert_eq!(discard_where(|p| p == mine).0, 1);
         assert!(!staged.staging_path().exists());
         assert!(staged.commit().is_err());
         assert!(names(&out).is_empty(), "the directory is created, and stays empty");

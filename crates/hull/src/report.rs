@@ -366,7 +366,7 @@ pub fn fit_decisions(offsets: &Offsets, outcome: &FitOutcome) -> Vec<String> {
     if let Some(f) = &outcome.fairing {
         // The alternatives first: the fairing line's plain fit is the one used's.
         if let Some(p) = &f.alternatives {
-            lines.push(p.summary(u));
+            lines.push(p.summary(&f.before, u));
         }
         lines.push(f.summary(offsets.units));
     }

@@ -353,7 +353,7 @@ impl ToleranceSearch {
             format!("{which}: {nu}x{nv} = {} control points", nu * nv)
         } else {
             format!(
-                "{which} not reached by any count: the closest surface found, {nu}x{nv} = {} control points,",
+                "{which} not reached by any count: the closest surface found, {nu}x{nv} = {} control points",
                 nu * nv
             )
         };
@@ -858,6 +858,7 @@ mod tests {
         assert!(r.search.valid && r.outcome.validity.is_empty());
         let line = r.search.summary(Units::Metre);
         assert!(line.contains("not reached by any count: the closest surface found, 7x9"), "{line}");
+        assert!(line.contains("control points, ") && !line.contains(",,"), "one comma: {line}");
     }
 
     #[test]

@@ -10,6 +10,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod fairness_alternative;
 mod features;
 mod held_out;
 mod pipeline_props;

@@ -220,7 +220,8 @@ fn a_pointed_end_facing_inwards_is_refitted_held_on_its_surface() {
     assert!(out.validity.is_empty(), "{:?}", out.validity);
     let choice = out.fairing.as_ref().and_then(|f| f.alternatives.as_ref()).expect("an alternative was needed");
     assert_eq!(choice.findings, 1, "the default parameters face inwards: {choice:?}");
-    let used: Vec<(&str, &str)> = choice.tried.iter().filter(|t| t.accepted).map(|t| (t.param, t.hold)).collect();
+    let used: Vec<(&str, &str)> =
+        choice.tried.iter().filter(|t| t.accepted).map(|t| (t.param, t.hold.name())).collect();
     assert_eq!(used, [("centripetal,chord", "surface")]);
     assert_eq!(out.config.hold_on, hull::HoldOn::Surface);
     assert!(out.error.overall.max <= choice.limit);

@@ -200,9 +200,9 @@ fn gunnerus_default_fit_is_sound_held_on_its_surface() {
     let fairing = out.fairing.as_ref().expect("auto reports");
     let choice = fairing.alternatives.as_ref().expect("the choice is reported");
     assert_eq!((choice.requested, choice.control_points, choice.findings), ("centripetal,chord", [12, 47], 1));
-    let tried: Vec<(&str, &str, [usize; 2], bool)> =
+    let tried: Vec<(&str, HoldOn, [usize; 2], bool)> =
         choice.tried.iter().map(|t| (t.param, t.hold, t.control_points, t.accepted)).collect();
-    assert_eq!(tried, [("centripetal,chord", "surface", [12, 47], true)]);
+    assert_eq!(tried, [("centripetal,chord", HoldOn::Surface, [12, 47], true)]);
     assert!(out.error.overall.max <= choice.limit, "{} > {}", out.error.overall.max, choice.limit);
     let report = hull::summary_table(&o, &out);
     assert!(report.contains("centripetal,chord held on the surface at 12x47 has none (max error"), "{report}");

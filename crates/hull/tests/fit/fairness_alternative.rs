@@ -1,0 +1,106 @@
+//! The default fit made again for fairness: sound, but less fair than the plain least squares
+//! once its control net is held within the offsets' envelope, it is fitted and faired again
+//! with its SURFACE held instead, and that one is used where it is sound, within the
+//! tolerance and no less fair by every figure the fairness floor compares (thin-plate energy,
+//! the largest |K|, inflections).
+
+use hull::{
+    fit_offsets, read_offsets, AlternativeReason, EnvelopeHold, Fairing, FairnessFigures, FitConfig, FitOutcome,
+    HoldOn, Offsets, Report, Units,
+};
+
+use crate::common::workspace_root;
+
+fn read(name: &str) -> Offsets {
+    read_offsets(&workspace_root().join("testdata").join(name), Units::Metre).expect("reads")
+}
+
+/// The default fit (`hullskin fit`).
+fn default_config() -> FitConfig {
+    FitConfig { fair: Fairing::Auto { tolerance: None }, ..FitConfig::default() }
+}
+
+/// The default fit of the table `name`, sound, with the hold it ended on, made again for
+/// fairness: the offsets and the outcome.
+fn made_again_for_fairness(name: &str, hold: HoldOn) -> (Offsets, FitOutcome) {
+    let o = read(name);
+    let out = fit_offsets(&o, &default_config()).expect("fits");
+    assert!(out.validity.is_empty(), "{:?}", out.validity);
+    assert_eq!(out.config.hold_on, hold);
+    let choice = out.fairing.as_ref().and_then(|f| f.alternatives.as_ref()).expect("the choice is reported");
+    assert_eq!(choice.reason, AlternativeReason::Fairness);
+    (o, out)
+}
+
+/// The fairness floor's comparator: the plain least squares at `ctrl`, not held.
+fn plain_figures(o: &Offsets, ctrl: (usize, usize)) -> FairnessFigures {
+    let config = FitConfig { ctrl: Some(ctrl), envelope: EnvelopeHold::Free, ..FitConfig::default() };
+    FairnessFigures::of(&fit_offsets(o, &config).expect("fits").surface)
+}
+
+/// The Series 60 Cb 0.80 parent: held on its control net, its largest |K| rises from the plain
+/// least squares' 2.42 to 3.09 1/m²; held on its surface it is sound and no less fair (thin-plate
+/// energy 95.6 against 97.2, |K| 2.33, 123 inflections against 130, measured) and closer to the
+/// offsets (max 93 against 214 mm), and it is used.
+#[test]
+fn a_fit_less_fair_for_its_net_hold_is_held_on_its_surface() {
+    let (o, out) = made_again_for_fairness("series60_cb080_offsets.csv", HoldOn::Surface);
+    let fairing = out.fairing.as_ref().expect("auto reports");
+    let choice = fairing.alternatives.as_ref().expect("the choice is reported");
+    assert_eq!((choice.requested, choice.control_points, choice.findings), ("centripetal,chord", [6, 19], 0));
+    // Against the comparator measured independently of the fit's own report.
+    let plain = plain_figures(&o, (6, 19));
+    assert_eq!(fairing.before, plain, "the report's before is the plain least squares");
+    let requested = choice.figures.expect("the requested fit's figures");
+    assert!(requested.curvature_extreme() > plain.curvature_extreme(), "{requested:?} {plain:?}");
+    let used = out.fairness_figures();
+    assert!(used.no_less_fair_than(&plain), "{used:?} against {plain:?}");
+    let tried: Vec<(HoldOn, [usize; 2], Option<bool>, bool)> =
+        choice.tried.iter().map(|t| (t.hold, t.control_points, t.no_less_fair, t.accepted)).collect();
+    assert_eq!(tried, [(HoldOn::Surface, [6, 19], Some(true), true)]);
+    // Within the net-held fit's max error (the tolerance `auto` kept it within).
+    assert!(out.error.overall.max <= choice.max, "{} > {}", out.error.overall.max, choice.max);
+    assert_eq!(choice.limit, choice.max);
+    let summary = hull::summary_table(&o, &out);
+    assert!(
+        summary.contains("is sound but less fair than the plain least squares (largest |K| 3.088e0 against 2.423e0"),
+        "{summary}"
+    );
+    assert!(summary.contains("held on the surface at 6x19 has none and is no less fair"), "{summary}");
+    let json = serde_json::to_value(Report::new(&o, &out)).expect("serialises");
+    let alternatives = &json["fairing"]["alternatives"];
+    assert_eq!(alternatives["reason"], "fairness");
+    assert_eq!(alternatives["tried"][0]["no_less_fair"], true);
+}
+
+/// The 4 x 3 example: held on its net its thin-plate energy is 0.3 % above the plain least
+/// squares' (an interpolation at its count, which dips 138 mm below the baseline); held on its
+/// surface its least squares is no closer to the offsets (145.3 mm either way: held the same),
+/// so it is not faired again, the net hold stays and the summary says why.
+#[test]
+fn an_alternative_no_fairer_is_reported_and_not_used() {
+    let (o, out) = made_again_for_fairness("sections_example.csv", HoldOn::Net);
+    let choice = out.fairing.as_ref().and_then(|f| f.alternatives.as_ref()).expect("the choice is reported");
+    let tried: Vec<(HoldOn, Option<bool>, bool)> =
+        choice.tried.iter().map(|t| (t.hold, t.no_less_fair, t.accepted)).collect();
+    assert_eq!(tried, [(HoldOn::Surface, None, false)]);
+    assert!(choice.tried[0].max >= choice.limit, "{:?}", choice.tried);
+    assert!(out.fairness_figures().thin_plate > plain_figures(&o, (4, 3)).thin_plate);
+    let summary = hull::summary_table(&o, &out);
+    assert!(
+        summary.contains("no alternative is sound and no less fair with its least squares below max error"),
+        "{summary}"
+    );
+}
+
+/// A fit its hold leaves no less fair is not made again: the built-in sample's default fit,
+/// held on its net, no alternative tried.
+#[test]
+fn a_fit_no_less_fair_is_kept_as_it_is() {
+    let o = hull::series60_sample();
+    let out = fit_offsets(&o, &default_config()).expect("fits");
+    assert!(out.envelope_held > 0, "the sample is held");
+    let fairing = out.fairing.as_ref().expect("auto reports");
+    assert!(fairing.alternatives.is_none(), "{:?}", fairing.alternatives);
+    assert!(out.fairness_figures().no_less_fair_than(&fairing.before));
+}
