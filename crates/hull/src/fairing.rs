@@ -43,7 +43,8 @@ pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.
 /// `skin(ν)` (the skinning approximation of the same settings with smoothing `ν`): the fair
 /// outcome and the report, or `None` for [`Fairing::Off`] (and `λ = 0`). `free` is the plain
 /// least squares before `plain` was held within the offsets' envelope, if it was: its fairness
-/// figures are the ones to keep (the report's `before`; else `plain`'s).
+/// figures are the ones to keep (the report's `before`; else `plain`'s), as `figures` gives
+/// them ([`FairnessFigures::of`], or the same measured before).
 ///
 /// [`Fairing::Auto`] (see [`Fairing`]): when the plain fit is sound (no fold), the largest `ν` of
 /// [`AUTO_LAMBDAS`] whose fit is sound, within the tolerance, with no more thin-plate energy,
@@ -63,6 +64,7 @@ pub fn fair(
     free: Option<&NurbsSurface>,
     fairing: Fairing,
     skin: impl Fn(f64) -> Result<FitOutcome, HullError> + Sync,
+    figures: impl FnOnce(&NurbsSurface) -> FairnessFigures,
 ) -> Result<Option<(FitOutcome, FairReport)>, HullError> {
     let check = |name: &'static str, v: f64| {
         if v >= 0.0 && v.is_finite() {
@@ -86,7 +88,7 @@ pub fn fair(
             }
         }
     }
-    let before = FairnessFigures::of(free.unwrap_or(&plain.surface));
+    let before = figures(free.unwrap_or(&plain.surface));
     let report = |lambda: f64, tolerance: Option<f64>, tried: Vec<FairTry>, after: FairnessFigures| FairReport {
         setting: fairing.name(),
         lambda,
@@ -137,14 +139,28 @@ pub fn fair(
                 // The figures are kept of a fit no less fair only (the cuts of the others are
                 // skipped): the chosen fit's are measured at the end if missing.
                 let mut best: Option<(usize, FitOutcome, Option<FairnessFigures>, bool)> = None;
-                // Every weight is tried here: the fits run in parallel, the choice is made in
-                // their order, so it does not depend on the thread count.
-                let fits: Vec<Result<FitOutcome, HullError>> = AUTO_LAMBDAS.par_iter().map(|&l| skin(l)).collect();
+                let candidate = |out: &FitOutcome| {
+                    out.defects() < plain.defects() && out.error.overall.max <= UNSOUND_SLACK * limit
+                };
+                // Every weight is tried here: the fits, and the figures of each candidate, run
+                // in parallel, the choice is made in their order, so it does not depend on the
+                // thread count.
+                let fits: Vec<Result<(FitOutcome, Option<FairnessFigures>), HullError>> = AUTO_LAMBDAS
+                    .par_iter()
+                    .map(|&l| {
+                        let out = skin(l)?;
+                        let figures = if candidate(&out) {
+                            FairnessFigures::of_no_less_fair(&out.surface, &before)
+                        } else {
+                            None
+                        };
+                        Ok((out, figures))
+                    })
+                    .collect();
                 for (&l, fit) in AUTO_LAMBDAS.iter().zip(fits) {
-                    let Ok(out) = fit else { continue };
+                    let Ok((out, figures)) = fit else { continue };
                     let (max, findings) = (out.error.overall.max, out.validity.len());
-                    if out.defects() < plain.defects() && max <= UNSOUND_SLACK * limit {
-                        let figures = FairnessFigures::of_no_less_fair(&out.surface, &before);
+                    if candidate(&out) {
                         let fairer = figures.is_some();
                         let rank = |d: (usize, usize), fairer: bool| (d, !fairer);
                         if best

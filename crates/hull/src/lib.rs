@@ -109,6 +109,7 @@ mod pipeline;
 mod read;
 mod report;
 mod sample;
+mod skin_memo;
 mod surface_input;
 mod tolerance_search;
 mod units;

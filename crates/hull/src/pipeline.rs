@@ -16,6 +16,7 @@ use crate::fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, HoldOn, Knuckle
 use crate::fit_error::{measure_fit_error, FitError};
 use crate::flats::{find_flat_lines, refit_within_flats, FlatKind, FlatOptions};
 use crate::optimize::{optimize_weights, quiet, Control, OptimReport};
+use crate::skin_memo::{Skin, SkinMemo};
 use crate::{HullError, Offsets};
 
 /// The default control-point counts of `approx`: three quarters of the offsets of the largest
@@ -49,10 +50,12 @@ pub fn fit_offsets(offsets: &Offsets, config: &FitConfig) -> Result<FitOutcome, 
 /// # Errors
 /// As [`fit_offsets`].
 pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control<'_>) -> Result<FitOutcome, HullError> {
+    // The skins of this fit, for the alternative that holds them differently.
+    let memo = SkinMemo::default();
     let Some(algorithm) = config.method.algorithm() else {
-        return fit_skinned(offsets, config, Measure::Full);
+        return fit_skinned(offsets, config, Measure::Full, &memo);
     };
-    let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config }, Measure::Full)?;
+    let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config }, Measure::Full, &memo)?;
     crate::limits::check_optimization(&offsets.source, &config.optim, plain.surface.n_u(), plain.surface.n_v())?;
     let start = Instant::now();
     let mut optim = config.optim;
@@ -76,7 +79,7 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     let opt = optimize_weights(offsets, &plain, algorithm, &optim, control)?;
     let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
     let out = assembled(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
-    let out = within_envelope(offsets, config, &kernel_sections(offsets), out)?;
+    let out = within_envelope(offsets, config, &kernel_sections(offsets), out, None)?;
     let mut out = measured(offsets, config, out)?;
     if out.envelope_held > 0 && out.error.overall.rms > plain.error.overall.rms {
         // Held within the envelope, the optimised net (its weights kept, its control points
@@ -103,12 +106,16 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     // fair approximation (its choice, [`crate::fairing::fair`], removes a fold if it can) or the
     // plain one.
     let approx = FitConfig { method: FitMethod::Approx, ..*config };
-    let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx }, Measure::Full);
-    let fair = if plain.flat_lines.is_empty() { crate::fairing::fair(&plain, None, config.fair, skin)? } else { None };
+    let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx }, Measure::Full, &memo);
+    let fair = if plain.flat_lines.is_empty() {
+        crate::fairing::fair(&plain, None, config.fair, skin, |s| memo.fairness(s))?
+    } else {
+        None
+    };
     let mut candidates: Vec<FitOutcome> = Vec::new();
     if let Some((mut f, report)) = fair {
         f.fairing = Some(report);
-        let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full);
+        let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full, &memo);
         candidates.push(crate::alternatives::sounder_alternative(f, &approx, refit));
     }
     candidates.push(plain);
@@ -130,7 +137,9 @@ pub(crate) fn fit_surface_with(
     control: &Control<'_>,
 ) -> Result<NurbsSurface, HullError> {
     match (config.method.algorithm(), config.fair) {
-        (None, Fairing::Off | Fairing::Lambda(_)) => Ok(fit_skinned(offsets, config, Measure::Lean)?.surface),
+        (None, Fairing::Off | Fairing::Lambda(_)) => {
+            Ok(fit_skinned(offsets, config, Measure::Lean, &SkinMemo::default())?.surface)
+        }
         _ => Ok(fit_offsets_with(offsets, config, control)?.surface),
     }
 }
@@ -150,9 +159,15 @@ enum Measure {
 
 /// Interpolation or approximation, faired as `config.fair` says ([`crate::fairing::fair`],
 /// which measures every fit it tries in full); with [`Measure::Lean`] and no search to make
-/// (fairing off or a given weight), only the fit whose surface is the answer.
-fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<FitOutcome, HullError> {
-    let smoothed = |nu: f64, measure| fit_skin(offsets, &FitConfig { smoothing: nu, ..*config }, measure);
+/// (fairing off or a given weight), only the fit whose surface is the answer. The skins are
+/// taken from `memo` where it has them, and kept there.
+fn fit_skinned(
+    offsets: &Offsets,
+    config: &FitConfig,
+    measure: Measure,
+    memo: &SkinMemo,
+) -> Result<FitOutcome, HullError> {
+    let smoothed = |nu: f64, measure| fit_skin(offsets, &FitConfig { smoothing: nu, ..*config }, measure, memo);
     // The surface `fair` would choose for fairing off (weight 0) or a given weight, without
     // the fairness figures of its report: the smoothed fit, but for interpolation and a fit
     // within flats (which only `auto+flats` can find), which keep the plain one.
@@ -166,13 +181,13 @@ fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Resul
         if l > 0.0 && config.method == FitMethod::Approx && !flats {
             return smoothed(l, measure);
         }
-        let plain = fit_skin(offsets, config, measure)?;
+        let plain = fit_skin(offsets, config, measure, memo)?;
         if l == 0.0 || config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
             return Ok(plain);
         }
         return smoothed(l, measure);
     }
-    let plain = fit_skin(offsets, config, Measure::Full)?;
+    let plain = fit_skin(offsets, config, Measure::Full, memo)?;
     if config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
         return Ok(plain);
     }
@@ -184,7 +199,7 @@ fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Resul
         Fairing::Auto { .. } => plain.unheld.as_ref(),
         _ => None,
     };
-    let chosen = match crate::fairing::fair(&plain, free, config.fair, skin)? {
+    let chosen = match crate::fairing::fair(&plain, free, config.fair, skin, |s| memo.fairness(s))? {
         Some((mut out, report)) => {
             // The time of the whole choice, the plain fit and every smoothed one measured.
             let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
@@ -196,7 +211,7 @@ fn fit_skinned(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Resul
         None => plain,
     };
     // Still folded or facing inwards: another parameterization or count may be sound.
-    let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full);
+    let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full, memo);
     Ok(crate::alternatives::sounder_alternative(chosen, config, refit))
 }
 
@@ -311,8 +326,10 @@ fn finite(config: &FitConfig, error: FitError) -> Result<FitError, HullError> {
     }
 }
 
-/// Skinning interpolation or approximation.
-fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<FitOutcome, HullError> {
+/// Skinning interpolation or approximation, held within the envelope as `config` says; the
+/// skin and its net hold taken from `memo` where it has them (fitted for the same settings but
+/// the hold), and kept there.
+fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure, memo: &SkinMemo) -> Result<FitOutcome, HullError> {
     let (p, q) = config.degree;
     for (d, dir) in [(p, "u (along the sections)"), (q, "v (across the sections)")] {
         if d == 0 || d > nurbs::MAX_DEGREE {
@@ -330,26 +347,42 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<F
         (_, Some(ctrl)) => ctrl,
     };
     crate::limits::check_control_points(&offsets.source, nu, nv)?;
+    let (mut out, lines) = memo.skin(config, || skin(offsets, config, &sections))?;
+    if config.method != FitMethod::Interp {
+        out = within_envelope(offsets, config, &sections, out, Some(memo))?;
+    }
+    if measure == Measure::Full {
+        out = measured(offsets, config, out)?;
+    }
+    out.knuckle_lines = lines;
+    Ok(out)
+}
+
+/// The skin of [`fit_skin`], before any hold: the surface of `config` through or near the
+/// kernel's `sections` ([`assembled`]), with its flat lines (a fit refitted within its flats)
+/// and the knuckle lines it kept.
+fn skin(offsets: &Offsets, config: &FitConfig, sections: &[Vec<nurbs::Vec3>]) -> Result<Skin, HullError> {
+    let (p, q) = config.degree;
     let opts = SkinOptions { degree_u: p, degree_v: q, param: config.param, smoothing: config.smoothing };
     let start = Instant::now();
     let lines = match config.knuckles {
         Knuckles::Off => Vec::new(),
         Knuckles::Auto(corner) | Knuckles::AutoFlats(corner) => {
-            find_knuckle_lines(&sections, &corner).map_err(|e| fit_error(config, e))?
+            find_knuckle_lines(sections, &corner).map_err(|e| fit_error(config, e))?
         }
     };
     let knuckles = knuckle_indices(&lines, sections.len());
     let result = match config.method {
-        FitMethod::Interp => skin_interpolate_with_knuckles(&sections, &knuckles, &opts),
+        FitMethod::Interp => skin_interpolate_with_knuckles(sections, &knuckles, &opts),
         FitMethod::Approx | FitMethod::Optimized(_) => {
             let (nu, nv) = config.ctrl.unwrap_or_else(|| default_ctrl(offsets, config.degree));
-            match skin_approximate_with_knuckles(&sections, &knuckles, nu, nv, &opts) {
+            match skin_approximate_with_knuckles(sections, &knuckles, nu, nv, &opts) {
                 // The default count may be too few for the pieces between knuckles (each needs
                 // p + 1 poles) or too many (knuckle poles are shared): take the nearest that fits.
                 Err(NurbsError::BadControlPointCount { count, min, max, .. })
                     if config.ctrl.is_none() && !lines.is_empty() && count == nu && min <= max =>
                 {
-                    skin_approximate_with_knuckles(&sections, &knuckles, nu.clamp(min, max), nv, &opts)
+                    skin_approximate_with_knuckles(sections, &knuckles, nu.clamp(min, max), nv, &opts)
                 }
                 other => other,
             }
@@ -358,9 +391,9 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<F
     .map_err(|e| fit_error(config, e))?;
     let (mut surface, mut flat_lines) = (result.surface, Vec::new());
     if matches!(config.knuckles, Knuckles::AutoFlats(_)) && lines.is_empty() && config.method != FitMethod::Interp {
-        let flats = find_flat_lines(&sections, &FlatOptions::default()).map_err(|e| fit_error(config, e))?;
+        let flats = find_flat_lines(sections, &FlatOptions::default()).map_err(|e| fit_error(config, e))?;
         if let Some((refit, _)) =
-            refit_within_flats(&surface, &result.params, &sections, &flats).map_err(|e| fit_error(config, e))?
+            refit_within_flats(&surface, &result.params, sections, &flats).map_err(|e| fit_error(config, e))?
         {
             (surface, flat_lines) = (refit, flats);
         }
@@ -368,14 +401,7 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure) -> Result<F
     let fit_seconds = start.elapsed().as_secs_f64();
     let mut out = assembled(offsets, config, surface, result.params, fit_seconds, None)?;
     out.flat_lines = flat_lines;
-    if config.method != FitMethod::Interp {
-        out = within_envelope(offsets, config, &sections, out)?;
-    }
-    if measure == Measure::Full {
-        out = measured(offsets, config, out)?;
-    }
-    out.knuckle_lines = lines;
-    Ok(out)
+    Ok((out, lines))
 }
 
 /// The sections as the kernel fits them: a pointed end (all points within the validation
@@ -402,12 +428,14 @@ fn kernel_sections(offsets: &Offsets) -> Vec<Vec<nurbs::Vec3>> {
 /// fewer findings (folds first) kept, the surface-held on a tie, so validity is never worse
 /// than the net hold gives. Its coordinates inside stay least squares; the outcome records how
 /// many samples and coordinates were held ([`FitOutcome::envelope_held`]). A surface within
-/// the envelope is returned as it is.
+/// the envelope is returned as it is. `out`'s net hold is taken from `memo` where it has it
+/// (`out` the skin of `config`, [`fit_skin`]), and kept there.
 fn within_envelope(
     offsets: &Offsets,
     config: &FitConfig,
     sections: &[Vec<nurbs::Vec3>],
     out: FitOutcome,
+    memo: Option<&SkinMemo>,
 ) -> Result<FitOutcome, HullError> {
     let (full, given) = match config.envelope {
         EnvelopeHold::Free => return Ok(out),
@@ -431,8 +459,16 @@ fn within_envelope(
     // The findings of `out`, measured once (against a given envelope, a validity check) for
     // every hold below to start from.
     let first = findings(&out);
+    let net = |out: FitOutcome, first| {
+        let seconds = out.fit_seconds;
+        let hold = || held_within(offsets, config, sections, out, first, full, &findings, HoldOn::Net);
+        match memo {
+            Some(memo) => memo.net_held(config, seconds, hold),
+            None => hold(),
+        }
+    };
     if config.hold_on == HoldOn::Net {
-        return Ok(held_within(offsets, config, sections, out, first, full, &findings, HoldOn::Net)?.0);
+        return Ok(net(out, first)?.0);
     }
     if first.iter().all(|f| f.envelope_face().is_none()) {
         return Ok(out);
@@ -443,7 +479,7 @@ fn within_envelope(
     if left.is_empty() {
         return Ok(held);
     }
-    let (netted, net_left) = held_within(offsets, config, sections, out, first, full, &findings, HoldOn::Net)?;
+    let (netted, net_left) = net(out, first)?;
     let net_left = net_left.unwrap_or_else(|| findings(&netted));
     let defects = |f: &[crate::analysis::Finding]| {
         (f.iter().filter(|f| f.kind == crate::analysis::FindingKind::Fold).count(), f.len())
@@ -675,6 +711,27 @@ mod tests {
             }
         }
         assert_eq!(tried, 18);
+    }
+
+    /// The surface hold's search takes the skins and net holds the net hold's search kept: the
+    /// same outcome, bit for bit, as fitting them afresh, for every weight of the search.
+    #[test]
+    fn skins_kept_for_another_hold_give_the_fit_made_afresh() {
+        let offsets = series60_sample();
+        let net = FitConfig { fair: Fairing::Auto { tolerance: None }, ..FitConfig::default() };
+        let surface = FitConfig { hold_on: HoldOn::Surface, ..net };
+        let memo = SkinMemo::default();
+        fit_skinned(&offsets, &net, Measure::Full, &memo).expect("fits");
+        let kept = fit_skinned(&offsets, &surface, Measure::Full, &memo).expect("fits");
+        let afresh = fit_skinned(&offsets, &surface, Measure::Full, &SkinMemo::default()).expect("fits");
+        let fair = afresh.fairing.clone().expect("auto reports");
+        assert_eq!(fair.tried.len(), crate::fairing::AUTO_LAMBDAS.len(), "every weight tried");
+        assert!(afresh.envelope_held > 0, "the sample's fits are held");
+        assert_eq!(kept.surface, afresh.surface);
+        assert_eq!(kept.config, afresh.config);
+        assert_eq!((&kept.error, &kept.validity, &kept.fairing), (&afresh.error, &afresh.validity, &afresh.fairing));
+        assert_eq!((kept.envelope_held, &kept.unheld), (afresh.envelope_held, &afresh.unheld));
+        assert_eq!(kept.fairness_figures(), afresh.fairness_figures());
     }
 
     #[test]

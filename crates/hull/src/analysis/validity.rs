@@ -758,6 +758,22 @@ impl Orientation {
         self.size[big] += self.size[small];
     }
 
+    /// Join the trees of `edges` `(k, m, flip)` in their order, the parity across each its
+    /// `flip`, passing over an edge within one tree (Kruskal's algorithm, on edges sorted by
+    /// weight). With `even`, stop at the first such edge whose flip disagrees with the trees
+    /// (a cycle flipping an odd number of times) and return `false`; else `true`.
+    fn join_edges(&mut self, edges: impl Iterator<Item = (usize, usize, bool)>, even: bool) -> bool {
+        for (a, b, flip) in edges {
+            let ((ra, pa), (rb, pb)) = (self.find(a), self.find(b));
+            if ra != rb {
+                self.join(ra, rb, pa ^ pb ^ flip);
+            } else if even && pa ^ pb != flip {
+                return false;
+            }
+        }
+        true
+    }
+
     /// The root of `k` and the parity of `k` to it, compressing the path.
     fn find(&mut self, k: usize) -> (usize, bool) {
         // The root, and the parity of k to it (the xor of the parities on the path).
@@ -778,6 +794,23 @@ impl Orientation {
         }
         (r, to_root)
     }
+}
+
+/// A grid edge from node `k` as one number that sorts as the edges are to be joined: its
+/// `weight` (in the order of [`f64::total_cmp`]), then `k`, then whether it runs `across` to
+/// `k + nu` (after the edge to `k + 1`), with whether it flips in the lowest bit.
+fn edge_key(weight: f64, k: usize, across: bool, flip: bool) -> u128 {
+    // f64::total_cmp's key, as an unsigned number in the same order.
+    let bits = weight.to_bits() as i64;
+    let ordered = (bits ^ (((bits >> 63) as u64) >> 1) as i64) as u64 ^ (1 << 63);
+    (u128::from(ordered) << 64) | ((k as u128) << 2) | (u128::from(across) << 1) | u128::from(flip)
+}
+
+/// The edge `(k, m, flip)` of [`edge_key`] on a grid `nu` nodes wide.
+fn edge_of(key: u128, nu: usize) -> (usize, usize, bool) {
+    let k = ((key as u64) >> 2) as usize;
+    let m = if key & 2 != 0 { k + nu } else { k + 1 };
+    (k, m, key & 1 != 0)
 }
 
 /// The orientation of the sampled surface's normals `S_u x S_v`, propagated over the grid
@@ -828,20 +861,21 @@ fn oriented(surface: &NurbsSurface, grid: &Grid) -> Option<Oriented> {
         return None;
     }
     // Grid edges between regular nodes, weighted 1 - |cos|, flipping where cos < 0.
-    let mut edges: Vec<(f64, usize, usize, bool)> = Vec::with_capacity(2 * nu * nv);
+    let mut edges: Vec<u128> = Vec::with_capacity(2 * nu * nv);
     for (k, m) in edge_ends().filter(|&(k, m)| valid[k] && valid[m]) {
         let cos = normals[k].dot(normals[m]) / (norms[k] * norms[m]);
-        edges.push((1.0 - cos.abs(), k, m, cos < 0.0));
+        edges.push(edge_key(1.0 - cos.abs(), k, m != k + 1, cos < 0.0));
     }
-    // Equal weights in the grid's order (the nodes break ties), so the tree does not depend
-    // on the sort.
-    edges.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+    // Where no cycle of the grid flips an odd number of times, every spanning forest gives
+    // each node the same parity to the others of its component (a whole component flipped at
+    // most, which changes no minority below): the grid's order, no sort. Else the minimum
+    // spanning tree decides, equal weights in the grid's order (the nodes break ties), so the
+    // tree does not depend on the sort.
     let mut orient = Orientation::new(nu * nv);
-    for &(_, a, b, flip) in &edges {
-        let ((ra, pa), (rb, pb)) = (orient.find(a), orient.find(b));
-        if ra != rb {
-            orient.join(ra, rb, pa ^ pb ^ flip);
-        }
+    if !orient.join_edges(edges.iter().map(|&e| edge_of(e, nu)), true) {
+        edges.sort_unstable();
+        orient = Orientation::new(nu * nv);
+        orient.join_edges(edges.iter().map(|&e| edge_of(e, nu)), false);
     }
     let label: Vec<(usize, bool)> = (0..nu * nv).map(|k| orient.find(k)).collect();
     // Per component (root), the area of each orientation; the smaller is the inward one.
@@ -1085,6 +1119,25 @@ mod tests {
         assert!((f[0].size - want).abs() < 0.02 * want, "{} vs {want}", f[0].size);
         assert!(f[0].place.u > us, "{f:?}");
         assert!(f[0].message("m").contains("faces inwards"));
+    }
+
+    #[test]
+    fn edge_keys_sort_as_weights_then_nodes() {
+        // Weights of either sign (1 - |cos| is a little below 0 where round-off puts |cos|
+        // above 1), equal weights from several nodes, both directions from one node.
+        let nu = 5;
+        let weights = [0.5, 0.5, 0.0, -0.0, 1.0, 0.5, 1e-300, 0.0, -1e-16, -3.0];
+        let mut tuples: Vec<(f64, usize, usize, bool)> = Vec::new();
+        for (i, &w) in weights.iter().enumerate() {
+            let k = i / 2;
+            tuples.push((w, k, k + 1 + (nu - 1) * (i % 2), i % 3 == 0));
+        }
+        let mut keys: Vec<u128> = tuples.iter().map(|&(w, k, m, flip)| edge_key(w, k, m != k + 1, flip)).collect();
+        tuples.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+        keys.sort_unstable();
+        let edges: Vec<(usize, usize, bool)> = keys.iter().map(|&e| edge_of(e, nu)).collect();
+        let expected: Vec<(usize, usize, bool)> = tuples.iter().map(|&(_, k, m, flip)| (k, m, flip)).collect();
+        assert_eq!(edges, expected);
     }
 
     #[test]
