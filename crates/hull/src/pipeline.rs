@@ -732,6 +732,13 @@ mod tests {
         assert_eq!((&kept.error, &kept.validity, &kept.fairing), (&afresh.error, &afresh.validity, &afresh.fairing));
         assert_eq!((kept.envelope_held, &kept.unheld), (afresh.envelope_held, &afresh.unheld));
         assert_eq!(kept.fairness_figures(), afresh.fairness_figures());
+        // Its least squares alone (fairing off, as the surface hold for fairness fits it
+        // first) takes the search's plain skin, and is the fit made afresh too.
+        let plain = FitConfig { fair: Fairing::Off, ..surface };
+        let kept = fit_skinned(&offsets, &plain, Measure::Full, &memo).expect("fits");
+        let afresh = fit_skinned(&offsets, &plain, Measure::Full, &SkinMemo::default()).expect("fits");
+        assert_eq!((&kept.surface, kept.config, &kept.error), (&afresh.surface, afresh.config, &afresh.error));
+        assert_eq!((&kept.validity, kept.envelope_held), (&afresh.validity, afresh.envelope_held));
     }
 
     #[test]

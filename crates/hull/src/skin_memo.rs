@@ -16,7 +16,7 @@ use nurbs::fit::KnuckleLine;
 use nurbs::NurbsSurface;
 
 use crate::analysis::Finding;
-use crate::fit::{FairnessFigures, FitConfig, FitOutcome, HoldOn};
+use crate::fit::{Fairing, FairnessFigures, FitConfig, FitOutcome, HoldOn};
 use crate::HullError;
 
 /// A skin: the unheld fit, assembled ([`crate::pipeline`]), with the knuckle lines it kept.
@@ -34,7 +34,7 @@ struct Kept {
 }
 
 /// The skins and net holds fitted so far in one call of the pipeline, by their settings but
-/// the hold ([`FitConfig::hold_on`]), and the fairness figures measured of surfaces. Shared by
+/// the hold ([`FitConfig::hold_on`]) and the fairing setting ([`FitConfig::fair`]), and the fairness figures measured of surfaces. Shared by
 /// the fits a fairing search runs in parallel.
 #[derive(Default)]
 pub(crate) struct SkinMemo {
@@ -99,7 +99,10 @@ impl SkinMemo {
         slot: impl Fn(&mut Kept) -> &mut Option<T>,
         make: impl FnOnce() -> Result<T, HullError>,
     ) -> Result<(T, bool), HullError> {
-        let key = FitConfig { hold_on: HoldOn::Net, ..*config };
+        // Neither the skin nor its net hold reads the fairing setting (only the smoothing it
+        // chose), so a fit with fairing off (the surface hold for fairness fits its least
+        // squares so first) takes the skin of the search's plain fit.
+        let key = FitConfig { hold_on: HoldOn::Net, fair: Fairing::Off, ..*config };
         let found = self.lock().iter_mut().find(|(c, _)| *c == key).and_then(|(_, k)| slot(k).clone());
         if let Some(t) = found {
             return Ok((t, true));
