@@ -18,7 +18,8 @@ use crate::fit_error::parametric_residuals;
 use crate::optimize::{quiet, Algorithm, Control, OptimSettings, StopReason};
 use crate::Offsets;
 use crate::{
-    fit_offsets, fit_offsets_with, held_out_for_config_with, FitConfig, FitMethod, FitOutcome, HeldOutOptions,
+    fit_offsets, fit_offsets_with, held_out_for_config_with, held_out_refit_config, FitConfig, FitMethod, FitOutcome,
+    HeldOutOptions,
 };
 use crate::{HullError, InputSummary};
 
@@ -496,12 +497,14 @@ pub fn compare_offsets_with(
     // would fail every optimised row.
     let mut approx = fit_offsets(offsets, &config.fit_config(FitMethod::Approx))?;
     // A row's held-out error, `None` unless asked for, after a stop or if a refit fails (the
-    // row itself stands).
+    // row itself stands). The refits are those `fit` makes ([`held_out_refit_config`]): a fair
+    // row's at the smoothing its search chose, so the figure is that of the surface written, as
+    // `fit` reports it, not of a search made again in every refit.
     let held_out = |outcome: &mut FitOutcome, control: &Control<'_>| {
         if let Some(options) = &config.held_out {
             if !control.stopped() {
-                outcome.error.held_out =
-                    held_out_for_config_with(offsets, &outcome.config, options, control).ok().flatten();
+                let refits = held_out_refit_config(outcome);
+                outcome.error.held_out = held_out_for_config_with(offsets, &refits, options, control).ok().flatten();
             }
         }
     };
@@ -985,6 +988,20 @@ mod tests {
             crate::held_out_for_config(&offsets, &config.fit_config(FitMethod::Approx), &HeldOutOptions::default())
                 .expect("cross-validates");
         assert_eq!(c.methods[1].held_out_rms, Some(approx.rms));
+        // A fair row's is that `fit` reports of the same surface: the refits at the smoothing
+        // its search chose.
+        let fair = c.methods.iter().find(|r| r.method == "approx+fair").expect("a fair row");
+        let fair_config = FitConfig {
+            fair: crate::Fairing::Auto { tolerance: None },
+            envelope: crate::EnvelopeHold::Own,
+            ..config.fit_config(FitMethod::Approx)
+        };
+        let fit = fit_offsets(&offsets, &fair_config).expect("fits");
+        assert!(fit.fairing.as_ref().is_some_and(|f| f.lambda > 0.0) || fit.envelope_held > 0, "not the plain fit");
+        let fit_held =
+            crate::held_out_for_config(&offsets, &crate::held_out_refit_config(&fit), &HeldOutOptions::default())
+                .expect("cross-validates");
+        assert_eq!((fair.held_out_rms, fair.held_out_max), (Some(fit_held.rms), Some(fit_held.max)));
         let (interp, base) = (&c.methods[0], &c.methods[1]);
         let expected = crate::overfit(
             interp.error.expect("done").rms,
