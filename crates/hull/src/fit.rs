@@ -576,23 +576,21 @@ impl Alternatives {
 
 /// The figures by which `figures` are worse than `plain`'s, each with both values.
 fn less_fair_by(figures: &FairnessFigures, plain: &FairnessFigures, units: &str) -> String {
-    {
-        let mut worse = Vec::new();
-        if figures.thin_plate > plain.thin_plate {
-            worse.push(format!("thin-plate energy {:.4} against {:.4}", figures.thin_plate, plain.thin_plate));
-        }
-        if figures.curvature_extreme() > plain.curvature_extreme() {
-            worse.push(format!(
-                "largest |K| {:.3e} against {:.3e} 1/{units}^2",
-                figures.curvature_extreme(),
-                plain.curvature_extreme()
-            ));
-        }
-        if figures.inflections() > plain.inflections() {
-            worse.push(format!("inflections {} against {}", figures.inflections(), plain.inflections()));
-        }
-        worse.join(", ")
+    let mut worse = Vec::new();
+    if figures.thin_plate > plain.thin_plate {
+        worse.push(format!("thin-plate energy {:.4} against {:.4}", figures.thin_plate, plain.thin_plate));
     }
+    if figures.curvature_extreme() > plain.curvature_extreme() {
+        worse.push(format!(
+            "largest |K| {:.3e} against {:.3e} 1/{units}^2",
+            figures.curvature_extreme(),
+            plain.curvature_extreme()
+        ));
+    }
+    if figures.inflections() > plain.inflections() {
+        worse.push(format!("inflections {} against {}", figures.inflections(), plain.inflections()));
+    }
+    worse.join(", ")
 }
 
 impl crate::optimize::FittedSurface for FitOutcome {
