@@ -143,15 +143,21 @@ pub(crate) fn sounder_alternative(
             AlternativeReason::Fairness => Some(FitConfig { fair: Fairing::Off, ..alternative }),
             AlternativeReason::Validity => None,
         };
-        let screened = screen.map(|c| refit(&c)).transpose();
-        let Ok(screened) = screened else { continue };
-        let (out, passed) = match screened {
-            Some(plain) if !plain.validity.is_empty() || plain.error.overall.max >= limit => (plain, false),
-            Some(plain) => {
-                seconds += plain.fit_seconds + plain.error_seconds;
-                let Ok(out) = refit(&alternative) else { continue };
-                (out, true)
+        // The least squares where it is screened out (tried, not faired), else nothing.
+        let screened_out = match screen {
+            Some(screen) => {
+                let Ok(plain) = refit(&screen) else { continue };
+                if !plain.validity.is_empty() || plain.error.overall.max >= limit {
+                    Some(plain)
+                } else {
+                    seconds += plain.fit_seconds + plain.error_seconds;
+                    None
+                }
             }
+            None => None,
+        };
+        let (out, passed) = match screened_out {
+            Some(plain) => (plain, false),
             None => {
                 let Ok(out) = refit(&alternative) else { continue };
                 (out, true)
