@@ -7,4 +7,4 @@ pub mod surfaces;
 pub mod tables;
 
 #[allow(unused_imports)] // each test binary uses a subset of the helpers
-pub use root::workspace_root;
+pub use root::{testdata, workspace_root};

@@ -6,3 +6,8 @@ use std::path::{Path, PathBuf};
 pub fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
+
+/// The file `name` of the repository's `testdata/`.
+pub fn testdata(name: &str) -> PathBuf {
+    workspace_root().join("testdata").join(name)
+}

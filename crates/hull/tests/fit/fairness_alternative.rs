@@ -9,10 +9,10 @@ use hull::{
     HoldOn, Offsets, Report, Units,
 };
 
-use crate::common::workspace_root;
+use crate::common::testdata;
 
 fn read(name: &str) -> Offsets {
-    read_offsets(&workspace_root().join("testdata").join(name), Units::Metre).expect("reads")
+    read_offsets(&testdata(name), Units::Metre).expect("reads")
 }
 
 /// The default fit (`hullskin fit`).

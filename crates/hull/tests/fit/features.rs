@@ -2,15 +2,11 @@
 //! planing hull (made here, with its exact shape to measure against), the flats of the
 //! Series 60 Cb 0.80 parent and of the 116 m cargo ship, the transom and bulb of R/V Gunnerus.
 
-use std::path::{Path, PathBuf};
-
 use hull::{fit_offsets, read_offsets, FitConfig, FitMethod, Knuckles, Offsets, Section, Units};
 use nurbs::fit::CornerOptions;
 use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 
-fn testdata(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
-}
+use crate::common::testdata;
 
 /// A hard-chine planing hull, length 12 m, 13 stations from the transom (x = 0) forward, its
 /// exact shape given by [`planing_point`]: keel to chine a slightly convex bottom, chine to

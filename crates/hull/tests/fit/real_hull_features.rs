@@ -3,8 +3,6 @@
 //! and bulb of the DTC (sliced from its mesh) and of R/V Gunnerus, and the forecastle step of
 //! R/V Gunnerus.
 
-use std::path::{Path, PathBuf};
-
 use hull::{
     cut_surface, find_flat_lines, fit_offsets, read_mesh, read_offsets, slice_mesh, CutOptions, CutPlane, FitConfig,
     FitMethod, FitOutcome, FlatKind, FlatOptions, Knuckles, MeshReadOptions, Offsets, SliceOptions, Stations, Units,
@@ -12,9 +10,7 @@ use hull::{
 use nurbs::fit::CornerOptions;
 use nurbs::{NurbsSurface, Vec3};
 
-fn testdata(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
-}
+use crate::common::testdata;
 
 /// `(beyond, below)`: how far the surface reaches past the largest half-breadth of the offsets
 /// and below their lowest point, on a 201 x 201 parameter grid.

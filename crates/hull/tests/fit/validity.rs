@@ -2,8 +2,6 @@
 //! defects found where earlier sessions measured them, each checked against an independent
 //! dense sampling of the surface, and none on the exact Wigley hull.
 
-use std::path::{Path, PathBuf};
-
 use hull::{
     fit_offsets, read_offsets, series60_sample, summary_warnings, Finding, FindingKind, FitConfig, FitMethod,
     FitOutcome, Flat, HoldOn, Knuckles, Offsets, Report, Units,
@@ -11,9 +9,7 @@ use hull::{
 use nurbs::fit::CornerOptions;
 use nurbs::{NurbsSurface, Vec3};
 
-fn testdata(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
-}
+use crate::common::testdata;
 
 fn read(name: &str) -> Offsets {
     read_offsets(&testdata(name), Units::Metre).expect("reads")

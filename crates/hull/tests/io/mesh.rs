@@ -4,7 +4,6 @@
 //! the published ones.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
 
 use hull::{
     fit_offsets, mesh_distance, mesh_hydrostatics, parse_mesh, read_mesh, slice_mesh, weld, write_obj, write_stl_ascii,
@@ -13,9 +12,7 @@ use hull::{
 };
 use nurbs::{assert_near, Vec3};
 
-fn testdata(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
-}
+use crate::common::testdata;
 
 /// The Wigley hull `y = (B/2)(1 - xi^2)(1 - zeta^2)`, `xi = 2x/L - 1`, `zeta = 1 - z/T`, x from
 /// the aft end, z up from the keel (the design waterline, the top of the formula, at z = T).

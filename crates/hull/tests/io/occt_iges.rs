@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use crate::common::python::{assert_tool_passed, run_tool, tools_python};
 use crate::common::surfaces::{polynomial, rational_bicubic, samples, weights_changed};
-use crate::common::workspace_root;
+use crate::common::{testdata, workspace_root};
 use nurbs::fixtures::quarter_cylinder;
 
 use hull::{write_iges, IgesMeta, IgesUnits, SurfaceFile};
@@ -106,8 +106,7 @@ fn occt_reads_the_iges_export_exactly() {
 fn occt_reads_fitted_hull_surfaces() {
     let python = occt_python();
     let dir = tempfile::tempdir().expect("temp dir");
-    let gunnerus = hull::read_offsets(&workspace_root().join("testdata/gunnerus_offsets.csv"), hull::Units::Metre)
-        .expect("gunnerus reads");
+    let gunnerus = hull::read_offsets(&testdata("gunnerus_offsets.csv"), hull::Units::Metre).expect("gunnerus reads");
     let cases = [
         ("s60_interp", hull::series60_sample(), hull::FitMethod::Interp, None),
         ("s60_approx", hull::series60_sample(), hull::FitMethod::Approx, Some((6, 15))),
@@ -137,9 +136,7 @@ fn occt_reads_fitted_hull_surfaces() {
 fn occt_finds_the_default_fit_within_the_offsets_envelope() {
     let python = occt_python();
     let dir = tempfile::tempdir().expect("temp dir");
-    let table = |name: &str| {
-        hull::read_offsets(&workspace_root().join("testdata").join(name), hull::Units::Metre).expect("reads")
-    };
+    let table = |name: &str| hull::read_offsets(&testdata(name), hull::Units::Metre).expect("reads");
     let default = hull::FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..hull::FitConfig::default() };
     let free = hull::FitConfig { envelope: hull::EnvelopeHold::Free, ..default };
     let mut cases = vec![("s60_sample".to_string(), hull::series60_sample(), default, true)];

@@ -2,17 +2,13 @@
 //! `testdata/README.md`): each must reproduce the converted tables the generators in
 //! `testdata/` made from the same sources, point for point, and say what it left out.
 
-use std::path::{Path, PathBuf};
-
 use hull::{
     read_offsets, read_offsets_with, InputFormat, MainDimensions, Offsets, ReadOptions, ReadOutcome, SuspiciousPolicy,
     Units, View,
 };
 use nurbs::Vec3;
 
-fn testdata(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
-}
+use crate::common::testdata;
 
 fn read(name: &str, options: &ReadOptions) -> ReadOutcome {
     read_offsets_with(&testdata(name), options).unwrap_or_else(|e| panic!("{name}: {e}"))

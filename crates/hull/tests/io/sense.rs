@@ -2,15 +2,11 @@
 //! same offsets as before, and plausible mistakes made in them (units, transposition, one
 //! cell typed wrong) are each caught at the right file, line and field.
 
-use std::path::{Path, PathBuf};
-
 use crate::common::tables::TABLES;
 
 use hull::{parse_offsets_with, OutlierPolicy, ReadOptions, SenseKind, SenseWarning, Units};
 
-fn testdata(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
-}
+use crate::common::testdata;
 
 fn read_text(name: &str) -> String {
     std::fs::read_to_string(testdata(name)).unwrap_or_else(|e| panic!("{name}: {e}"))

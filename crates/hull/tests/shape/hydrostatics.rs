@@ -2,22 +2,18 @@
 //! forms (exact patch and fitted offsets), Todd's Series 60 parents, the DTMB 5415's published
 //! figures, and the relations `dV/dT = AW` that tie the volume to the waterplane.
 
-use std::path::Path;
-
 use hull::{
     fit_offsets, read_offsets, FitConfig, FitMethod, Hydrostatics, HydrostaticsOptions, HydrostaticsRow,
     Perpendiculars, Units, HYDROSTATICS_COLUMNS,
 };
 use nurbs::{assert_near, NurbsSurface, Vec3};
 
+use crate::common::testdata;
+
 /// The Wigley hull of `testdata/wigley_offsets.csv`: L/B = 10, L/T = 16.
 const L: f64 = 100.0;
 const B: f64 = 10.0;
 const T: f64 = 6.25;
-
-fn testdata(name: &str) -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata").join(name)
-}
 
 /// The Wigley hull as an exact degree (2, 2) Bezier patch ([`crate::common::surfaces::wigley_patch`]).
 fn wigley_patch() -> NurbsSurface {
