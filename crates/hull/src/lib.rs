@@ -238,8 +238,8 @@ pub use sample::{series60_sample, wigley_hull, Particulars, SAMPLE_PARTICULARS, 
 pub use surface_input::{detect_surface_input, holds_surface, is_mesh_path, strip_bom, SurfaceInput};
 // The search for the fewest control points within a tolerance.
 pub use tolerance_search::{
-    default_tolerance, fit_offsets_within, fit_to_tolerance, Goal, Referee, ToleranceFit, ToleranceSearch,
-    ToleranceSettings, TriedCount, DEFAULT_TOLERANCE_OF_BEAM,
+    default_tolerance, fit_offsets_within, fit_to_tolerance, Goal, Referee, RefereeBasis, ToleranceFit,
+    ToleranceSearch, ToleranceSettings, TriedCount, DEFAULT_TOLERANCE_OF_BEAM,
 };
 // Length units.
 pub use units::Units;

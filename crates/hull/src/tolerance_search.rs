@@ -137,27 +137,60 @@ fn refereed(
         // No valid count was found: the default count is kept, as `--method approx` fits it
         // (so it is never less sound than that).
         let kept = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
-        let (nu, nv) = (kept.surface.n_u(), kept.surface.n_v());
-        let [n, k] = search.interp_control_points;
-        search.control_points = [nu, nv];
-        search.ratio = (nu * nv) as f64 / (n * k) as f64;
-        search.valid = kept.validity.is_empty();
+        search.keep(&kept);
         search.kept_default_count = true;
         return Ok((kept, search));
     }
-    // The referee: the count found against the default count, by their held-out max error
-    // (the error where there are no offsets). The default count is fitted as `Goal::Count`
-    // fits it (faired within its own accuracy) if its plain fit, the quick search's first
-    // probe, is within the tolerance: fairing only smooths within the plain fit's max error,
-    // and a count outside the tolerance cannot be kept.
     let t = if search.reached { settings.tolerance } else { searched.error.overall.max };
     let counts = |o: &FitOutcome| [o.surface.n_u(), o.surface.n_v()];
     let (du, dv) = crate::default_ctrl(offsets, config.degree);
+    if [du, dv] == counts(&searched) || control.stopped() {
+        return Ok((searched, search));
+    }
+    // The default count is fitted as `Goal::Count` fits it where it could be the answer:
+    // its plain fit (the quick search's first probe) within `t`, for the held-out referee
+    // below; or the count found not within the tolerance, or larger than the default count.
+    // Then the default fit may be what the search's plain fits were not: it holds its surface
+    // where the net hold folds or is less fair, and fairs (measured: the Series 60 Cb 0.80's
+    // plain fit at its default count 6x19 misses the tolerance by 214.5 mm against 93.8, its
+    // default fit is at 93.5 mm).
     let anchor = search.tried.iter().find(|c| c.control_points == [du, dv]).and_then(|c| c.max);
-    if [du, dv] == counts(&searched) || anchor.is_none_or(|m| m > t) || control.stopped() {
+    let [nu, nv] = counts(&searched);
+    let fewer = du * dv < nu * nv;
+    let held_out_referee = anchor.is_some_and(|m| m <= t);
+    if !(held_out_referee || !search.reached || fewer) {
         return Ok((searched, search));
     }
     let usual = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
+    let sound = |o: &FitOutcome| o.validity.is_empty();
+    let within = |o: &FitOutcome| sound(o) && o.error.overall.max <= settings.tolerance;
+    let record = |basis, takes, hs: Option<f64>, hu: Option<f64>| Referee {
+        basis,
+        searched: counts(&searched),
+        searched_max: searched.error.overall.max,
+        searched_held_out_max: hs,
+        default_count: counts(&usual),
+        default_count_held_out_max: hu,
+        default_count_max: usual.error.overall.max,
+        default_count_valid: sound(&usual),
+        chose_default_count: takes,
+    };
+    // By accuracy at the offsets (the count found is valid here: the branch above kept the
+    // default count otherwise): the default fit within the tolerance where the count found is
+    // not, or within it with fewer control points; where neither reaches it, valid and closer.
+    let (u_max, s_max) = (usual.error.overall.max, searched.error.overall.max);
+    let by_accuracy = (within(&usual) && (!within(&searched) || fewer))
+        || (!search.reached && !within(&usual) && sound(&usual) && u_max < s_max);
+    if by_accuracy || !held_out_referee || control.stopped() {
+        search.referee = Some(record(RefereeBasis::Accuracy, by_accuracy, None, None));
+        if !by_accuracy {
+            return Ok((searched, search));
+        }
+        search.keep(&usual);
+        return Ok((usual, search));
+    }
+    // The held-out referee: both within the tolerance (or no farther from it than the count
+    // found), by their held-out max error (the error where there are no offsets).
     let options = crate::HeldOutOptions::default();
     let held = |o: &FitOutcome| {
         crate::held_out_for_config_with(offsets, &crate::held_out_refit_config(o), &options, control).ok().flatten()
@@ -168,35 +201,45 @@ fn refereed(
     };
     // The default count replaces the count found when it is as sound, within the tolerance
     // (or no farther from it) and closer to the offsets held out.
-    let sound = |o: &FitOutcome| o.validity.is_empty();
-    let takes = sound(&usual) >= sound(&searched) && usual.error.overall.max <= t && hu.max < hs.max;
-    search.referee = Some(Referee {
-        searched: counts(&searched),
-        searched_held_out_max: hs.max,
-        default_count: counts(&usual),
-        default_count_held_out_max: hu.max,
-        default_count_max: usual.error.overall.max,
-        default_count_valid: sound(&usual),
-        chose_default_count: takes,
-    });
+    let takes = sound(&usual) >= sound(&searched) && u_max <= t && hu.max < hs.max;
+    search.referee = Some(record(RefereeBasis::HeldOut, takes, Some(hs.max), Some(hu.max)));
     // The chosen fit's held-out error is the default cross-validation's: kept.
     let (mut chosen, held_out) = if takes { (usual, hu) } else { (searched, hs) };
+    search.keep(&chosen);
     chosen.error.held_out = Some(held_out);
     Ok((chosen, search))
 }
 
-/// The second opinion of `--tolerance default`: the count the tolerance search found and the default
-/// count ([`crate::default_ctrl`]), each with its held-out max error (the default
-/// cross-validation), and which was kept: the default count when it is as sound, within the
-/// tolerance and closer to the held-out offsets; else the count found.
+/// How `--tolerance default`'s referee compared the count found with the default count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RefereeBasis {
+    /// By accuracy at the offsets: the default count's default fit is kept when it is valid and
+    /// within the tolerance where the count found is not, or within it with fewer control
+    /// points, or (neither within it) valid and closer to the offsets.
+    Accuracy,
+    /// By the held-out max error: both within the tolerance (or the default count no farther
+    /// from it than the count found), the default count kept when it is as sound and closer to
+    /// the held-out offsets.
+    HeldOut,
+}
+
+/// The second opinion of `--tolerance default`: the count the tolerance search found against
+/// the default count ([`crate::default_ctrl`]) as the default fit makes it, compared as
+/// [`RefereeBasis`] says, and which was kept.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Referee {
-    /// The count the search found `[nu, nv]`.
+    pub basis: RefereeBasis,
+    /// The count the search found `[nu, nv]`, its max error at the offsets and (by the
+    /// held-out error only) its held-out max error.
     pub searched: [usize; 2],
-    pub searched_held_out_max: f64,
-    /// The default count `[nu, nv]`.
+    pub searched_max: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub searched_held_out_max: Option<f64>,
+    /// The default count `[nu, nv]`, its held-out max error (by the held-out error only).
     pub default_count: [usize; 2],
-    pub default_count_held_out_max: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub default_count_held_out_max: Option<f64>,
     /// The default count's max error at the offsets.
     pub default_count_max: f64,
     /// Whether the default count's fit has no validity finding.
@@ -333,6 +376,17 @@ pub struct ToleranceSearch {
 }
 
 impl ToleranceSearch {
+    /// Record `kept` as the chosen fit: its count, its ratio to interpolation's, whether it is
+    /// valid and within the tolerance.
+    fn keep(&mut self, kept: &FitOutcome) {
+        let (nu, nv) = (kept.surface.n_u(), kept.surface.n_v());
+        let [n, k] = self.interp_control_points;
+        self.control_points = [nu, nv];
+        self.ratio = (nu * nv) as f64 / (n * k) as f64;
+        self.valid = kept.validity.is_empty();
+        self.reached = kept.error.overall.max <= self.tolerance;
+    }
+
     /// One line for the terminal: the count chosen against interpolation's, e.g.
     /// `tolerance 1.000e-2 m: 6x12 = 72 control points, 36.0 % of interpolation's 8x25 = 200 (14 fits)`.
     pub fn summary(&self, units: Units) -> String {
@@ -345,9 +399,14 @@ impl ToleranceSearch {
         };
         let mut s = if self.kept_default_count {
             format!(
-                "{which}: no valid count found {}: the default count {nu}x{nv} = {} control points is kept",
-                if self.reached { "within it" } else { "within it or close to it" },
-                nu * nv
+                "{which}: no plain fit the search tried is valid: the default count {nu}x{nv} = {} \
+                 control points is kept as the default fit makes it, {}",
+                nu * nv,
+                match (self.valid, self.reached) {
+                    (true, true) => "valid and within the tolerance",
+                    (true, false) => "valid, not within the tolerance",
+                    (false, _) => "with validity findings",
+                }
             )
         } else if self.reached {
             format!("{which}: {nu}x{nv} = {} control points", nu * nv)
@@ -383,19 +442,34 @@ impl ToleranceSearch {
         if let Some(r) = &self.referee {
             let [a, b] = r.searched;
             let [c, d] = r.default_count;
-            s.push_str(&format!(
-                "\nheld-out max error {:.3e} {units} at {a}x{b} against {:.3e} {units} at the default count {c}x{d} \
-                 (max {:.3e} {units}{}): {}",
-                r.searched_held_out_max,
-                r.default_count_held_out_max,
+            let default = format!(
+                "the default count {c}x{d} (max {:.3e} {units}{})",
                 r.default_count_max,
-                if r.default_count_valid { "" } else { ", with validity findings" },
-                if r.chose_default_count {
-                    format!("{c}x{d} is kept, closer between the offsets within the tolerance")
-                } else {
-                    format!("{a}x{b} is kept")
-                }
-            ));
+                if r.default_count_valid { "" } else { ", with validity findings" }
+            );
+            s.push_str(&match (r.basis, r.searched_held_out_max, r.default_count_held_out_max) {
+                (RefereeBasis::HeldOut, Some(hs), Some(hu)) => format!(
+                    "\nheld-out max error {hs:.3e} {units} at {a}x{b} against {hu:.3e} {units} at {default}: {}",
+                    if r.chose_default_count {
+                        format!("{c}x{d} is kept, closer between the offsets within the tolerance")
+                    } else {
+                        format!("{a}x{b} is kept")
+                    }
+                ),
+                _ => format!(
+                    "\n{a}x{b} (max {:.3e} {units}) against {default}, as the default fit makes it: {}",
+                    r.searched_max,
+                    match (r.chose_default_count, r.default_count_valid && r.default_count_max <= self.tolerance) {
+                        (false, _) => format!("{a}x{b} is kept"),
+                        // The count found is valid wherever this basis is used.
+                        (true, true) if r.searched_max > self.tolerance => {
+                            format!("{c}x{d} is kept, within the tolerance where {a}x{b} is not")
+                        }
+                        (true, true) => format!("{c}x{d} is kept, within the tolerance with fewer control points"),
+                        (true, false) => format!("{c}x{d} is kept, valid and closer to the offsets"),
+                    }
+                ),
+            });
         }
         s
     }
@@ -906,7 +980,7 @@ mod tests {
             None => assert_eq!(search.control_points, [du, dv]),
             Some(r) => {
                 assert_eq!(r.default_count, [du, dv]);
-                assert_eq!(r.searched, search.control_points);
+                assert_eq!(counts, search.control_points);
                 assert_eq!(counts, if r.chose_default_count { r.default_count } else { r.searched });
                 // The held-out figure carried is the chosen fit's own, measured again here.
                 let again = crate::held_out_for_config(
@@ -918,7 +992,8 @@ mod tests {
                 let carried = out.error.held_out.as_ref().expect("carried");
                 assert_eq!(carried.max, again.max);
                 let kept = if r.chose_default_count { r.default_count_held_out_max } else { r.searched_held_out_max };
-                assert_eq!(kept, again.max);
+                assert_eq!(r.basis, RefereeBasis::HeldOut);
+                assert_eq!(kept, Some(again.max));
                 // The default count is only taken within the tolerance and when closer.
                 if r.chose_default_count {
                     assert!(r.default_count_max <= t && r.default_count_held_out_max < r.searched_held_out_max);
@@ -931,10 +1006,43 @@ mod tests {
             }
         }
         // The searched count is the least within T: no count with fewer control points is.
-        let [nu, nv] = search.control_points;
+        let [nu, nv] = search.referee.as_ref().map_or(search.control_points, |r| r.searched);
         for c in search.tried.iter().filter(|c| c.control_points[0] * c.control_points[1] < nu * nv) {
             assert!(!c.within, "{:?}", c.control_points);
         }
+    }
+
+    #[test]
+    fn the_kept_default_count_says_whether_the_default_fit_is_valid_and_within() {
+        // As on R/V Gunnerus (measured): every plain fit of the quick search has a finding, the
+        // default fit of the default count 12x47 is valid at 112.6 mm, outside 48.1 mm.
+        let mut search = ToleranceSearch {
+            tolerance: 0.0481,
+            control_points: [12, 47],
+            interp_control_points: [16, 62],
+            ratio: 564.0 / 992.0,
+            fits: 5,
+            complete: true,
+            valid: true,
+            reached: false,
+            default: true,
+            quick: true,
+            kept_default_count: true,
+            referee: None,
+            seconds: 0.9,
+            tried: Vec::new(),
+        };
+        let says = |s: &ToleranceSearch| s.summary(Units::Metre);
+        assert!(
+            says(&search).contains("no plain fit the search tried is valid: the default count 12x47 = 564 control points is kept as the default fit makes it, valid, not within the tolerance"),
+            "{}",
+            says(&search)
+        );
+        search.reached = true;
+        assert!(says(&search).contains("makes it, valid and within the tolerance,"), "{}", says(&search));
+        search.valid = false;
+        assert!(says(&search).contains("makes it, with validity findings,"), "{}", says(&search));
+        assert!(!says(&search).contains("the smallest within it is taken"), "{}", says(&search));
     }
 
     #[test]
