@@ -15,5 +15,5 @@ mod features;
 mod held_out;
 mod pipeline_props;
 mod real_hull_features;
-mod tolerance_default;
+mod tolerance_referee;
 mod validity;
