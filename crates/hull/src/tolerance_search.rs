@@ -137,7 +137,42 @@ fn refereed(
 ) -> Result<(FitOutcome, ToleranceSearch), HullError> {
     // `--tolerance default` replaces an unsound count found by the default count: no fairing for it.
     let (searched, mut search) =
-        searched_and_faired(offsets, config, settings, goal != Goal::DefaultTolerance, control)?;
+        match searched_and_faired(offsets, config, settings, goal != Goal::DefaultTolerance, control) {
+            // No plain fit reaches the tolerance: the default fit of the default count may.
+            Err(HullError::ToleranceNotReached { search: mut record, .. }) if !control.stopped() => {
+                let usual = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
+                let sound = usual.validity.is_empty();
+                if !(sound && usual.error.overall.max <= settings.tolerance) {
+                    let mut e = not_reached(record, offsets);
+                    // The default fit counts as a fit, and the error names it where it is valid
+                    // and closer than every count searched.
+                    if let HullError::ToleranceNotReached { best, control_points, fits, .. } = &mut e {
+                        *fits += 1;
+                        if sound && usual.error.overall.max < *best {
+                            *best = usual.error.overall.max;
+                            *control_points = (usual.surface.n_u(), usual.surface.n_v());
+                        }
+                    }
+                    return Err(e);
+                }
+                let (best, at) = closest_tried(&record.tried).unwrap_or((f64::INFINITY, record.control_points));
+                record.referee = Some(Referee {
+                    basis: RefereeBasis::Accuracy,
+                    searched: at,
+                    searched_max: best,
+                    searched_valid: record.tried.iter().any(|c| c.control_points == at && c.valid),
+                    searched_held_out_max: None,
+                    default_count: [usual.surface.n_u(), usual.surface.n_v()],
+                    default_count_held_out_max: None,
+                    default_count_max: usual.error.overall.max,
+                    default_count_valid: true,
+                    chose_default_count: true,
+                });
+                record.keep(&usual);
+                return Ok((usual, *record));
+            }
+            r => r?,
+        };
     if control.stopped() {
         return Ok((searched, search));
     }
@@ -646,22 +681,8 @@ pub fn fit_to_tolerance(
     let reached = s.best.is_some() || s.unsound.is_some();
     let outcome = s.best.or(s.unsound).or(s.closest);
     let valid = outcome.as_ref().is_some_and(|o| o.validity.is_empty());
-    let Some(outcome) = outcome else {
-        let (best, at) = s
-            .tried
-            .iter()
-            .filter_map(|c| c.max.map(|m| (m, c.control_points)))
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .unwrap_or((f64::INFINITY, [big_n, k]));
-        return Err(HullError::ToleranceNotReached {
-            tolerance: t,
-            best,
-            control_points: (at[0], at[1]),
-            fits,
-            units: offsets.units.symbol(),
-        });
-    };
-    let (nu, nv) = (outcome.surface.n_u(), outcome.surface.n_v());
+    let closest = closest_tried(&s.tried).map_or([big_n, k], |(_, at)| at);
+    let [nu, nv] = outcome.as_ref().map_or(closest, |o| [o.surface.n_u(), o.surface.n_v()]);
     let search = ToleranceSearch {
         tolerance: t,
         control_points: [nu, nv],
@@ -678,7 +699,29 @@ pub fn fit_to_tolerance(
         seconds: 0.0,
         tried: s.tried,
     };
+    let Some(outcome) = outcome else {
+        return Err(not_reached(Box::new(search), offsets));
+    };
     Ok(ToleranceFit { outcome, search })
+}
+
+/// The least max error of the counts tried, and its count.
+fn closest_tried(tried: &[TriedCount]) -> Option<(f64, [usize; 2])> {
+    tried.iter().filter_map(|c| c.max.map(|m| (m, c.control_points))).min_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+/// The error of a search that no count reached, from its record (`control_points` the
+/// closest count, or interpolation's when no fit was done).
+fn not_reached(search: Box<ToleranceSearch>, offsets: &Offsets) -> HullError {
+    let (best, at) = closest_tried(&search.tried).unwrap_or((f64::INFINITY, search.control_points));
+    HullError::ToleranceNotReached {
+        tolerance: search.tolerance,
+        best,
+        control_points: (at[0], at[1]),
+        fits: search.fits,
+        units: offsets.units.symbol(),
+        search,
+    }
 }
 
 /// `(N, K)`: points of the largest non-degenerate section (a pointed end carries no shape

@@ -70,3 +70,32 @@ fn an_explicit_tolerance_keeps_the_default_count_where_it_is_within_with_fewer_c
     assert!(line.contains("6x19 is kept, within the tolerance with fewer control points"), "{line}");
     assert!(!search.default && search.control_points == counts && search.valid && search.reached);
 }
+
+#[test]
+fn a_tolerance_no_plain_fit_reaches_is_met_by_the_default_fit_or_the_error_names_it() {
+    // Series 60 Cb 0.80: no plain fit of the exact search comes within 0.1 m (the closest is
+    // 8x22 at 126.7 mm, measured), the default fit at its default count 6x19 is at 93.5 mm.
+    let o = cb080();
+    let (out, search) = quiet(|c| fit_offsets_within(&o, &default_config(), Goal::Tolerance(0.1), c)).expect("met");
+    let search = search.expect("searched");
+    assert_eq!([out.surface.n_u(), out.surface.n_v()], [6, 19]);
+    assert!(out.validity.is_empty() && out.error.overall.max <= 0.1, "{}", out.error.overall.max);
+    let r = search.referee.as_ref().expect("refereed");
+    assert!(r.chose_default_count && r.basis == RefereeBasis::Accuracy, "{r:?}");
+    // The search's closest count is named, with its max error: the least of the counts tried.
+    let least = search.tried.iter().filter_map(|c| c.max).fold(f64::INFINITY, f64::min);
+    assert_eq!(r.searched_max, least);
+    assert!(least > 0.1 && !search.tried.iter().any(|c| c.within), "{least}");
+    assert!(search.reached && search.valid && search.control_points == [6, 19]);
+    // Within 0.05 m nothing is: the error names the default fit, the closest valid surface.
+    let e = quiet(|c| fit_offsets_within(&o, &default_config(), Goal::Tolerance(0.05), c)).expect_err("not met");
+    match &e {
+        hull::HullError::ToleranceNotReached { best, control_points, fits, search, .. } => {
+            assert_eq!((*best, *control_points), (out.error.overall.max, (6, 19)));
+            assert_eq!(*fits, search.fits + 1, "the default fit counts");
+            assert!(!search.valid && !search.reached);
+        }
+        other => panic!("unexpected {other}"),
+    }
+    assert!(e.to_string().contains("at 6x19 control points"), "{e}");
+}
