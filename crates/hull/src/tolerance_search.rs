@@ -144,10 +144,9 @@ fn refereed(
                 let sound = usual.validity.is_empty();
                 if !(sound && usual.error.overall.max <= settings.tolerance) {
                     let mut e = not_reached(record, offsets);
-                    // The default fit counts as a fit, and the error names it where it is valid
-                    // and closer than every count searched.
-                    if let HullError::ToleranceNotReached { best, control_points, fits, .. } = &mut e {
-                        *fits += 1;
+                    // The error names the default fit where it is valid and closer than every
+                    // count searched (its `fits` stay the search's, as in the record).
+                    if let HullError::ToleranceNotReached { best, control_points, .. } = &mut e {
                         if sound && usual.error.overall.max < *best {
                             *best = usual.error.overall.max;
                             *control_points = (usual.surface.n_u(), usual.surface.n_v());
