@@ -249,10 +249,12 @@ fn tolerance_picks_a_count_within_it_and_reports_the_search() {
     assert!(out.contains("4x4 = 16 control points") && out.contains("interpolation's 5x4 = 20"), "{out}");
     // Without --tolerance there is no such block.
     assert!(read_json(&dir.path().join("c44/report.json")).get("tolerance_search").is_none());
-    // Below interpolation's round-off: an error naming the best max error found.
+    // Below round-off: an error naming the closest valid surface found, here the default fit
+    // (faired, 4x4 at 186.0 mm, measured) rather than the search's best plain fit (held within
+    // the envelope, 5x4 at 275.7 mm).
     let o = hullskin(dir.path(), &["fit", input, "-o", "none", "--tolerance", "1e-30"]);
     let (_, err) = text(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.contains("best max error") && err.contains("5x4"), "{err}");
+    assert!(err.contains("best max error is 1.860e-1 m at 4x4 control points"), "{err}");
     assert!(!dir.path().join("none").exists());
 }
