@@ -280,9 +280,6 @@ pub enum HullError {
         fits: usize,
         /// Units of the distances.
         units: &'static str,
-        /// The record of the search (boxed to keep `Result<_, HullError>` small): every count
-        /// tried, `control_points` the closest, neither valid nor reached.
-        search: Box<crate::ToleranceSearch>,
     },
     /// A surface that must not be written: a non-finite control point, a weight that is not
     /// finite and positive, or a bad knot vector ([`crate::check_finite`]).

@@ -137,13 +137,15 @@ fn refereed(
 ) -> Result<(FitOutcome, ToleranceSearch), HullError> {
     // `--tolerance default` replaces an unsound count found by the default count: no fairing for it.
     let (searched, mut search) =
-        match searched_and_faired(offsets, config, settings, goal != Goal::DefaultTolerance, control) {
+        match searched_and_faired(offsets, config, settings, goal != Goal::DefaultTolerance, control)? {
+            Searched::Found(outcome, search) => (*outcome, search),
+            Searched::NotReached(record) if control.stopped() => return Err(not_reached(&record, offsets)),
             // No plain fit reaches the tolerance: the default fit of the default count may.
-            Err(HullError::ToleranceNotReached { search: mut record, .. }) if !control.stopped() => {
+            Searched::NotReached(mut record) => {
                 let usual = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
                 let sound = usual.validity.is_empty();
                 if !(sound && usual.error.overall.max <= settings.tolerance) {
-                    let mut e = not_reached(record, offsets);
+                    let mut e = not_reached(&record, offsets);
                     // The error names the default fit where it is valid and closer than every
                     // count searched (its `fits` stay the search's, as in the record).
                     if let HullError::ToleranceNotReached { best, control_points, .. } = &mut e {
@@ -168,9 +170,8 @@ fn refereed(
                     chose_default_count: true,
                 });
                 record.keep(&usual);
-                return Ok((usual, *record));
+                return Ok((usual, record));
             }
-            r => r?,
         };
     if control.stopped() {
         return Ok((searched, search));
@@ -299,18 +300,23 @@ pub struct Referee {
 /// within the tolerance (or, where it was not reached, within the max error reached). The
 /// faired fit is kept when it stays within that bound and is no less sound than the searched
 /// fit; otherwise the searched fit is kept, the faired one noted in [`FitOutcome::rejected`].
-/// Without `fair_unsound`, a searched fit with validity findings is returned unfaired.
+/// Without `fair_unsound`, a searched fit with validity findings is returned unfaired. Where no
+/// count reaches an explicit tolerance, the record of the search alone.
 fn searched_and_faired(
     offsets: &Offsets,
     config: &FitConfig,
     settings: &ToleranceSettings,
     fair_unsound: bool,
     control: &Control<'_>,
-) -> Result<(FitOutcome, ToleranceSearch), HullError> {
+) -> Result<Searched, HullError> {
     let plain = FitConfig { fair: crate::Fairing::Off, ..*config };
-    let r = fit_to_tolerance(offsets, &plain, settings, control)?;
+    let (outcome, search) = search_counts(offsets, &plain, settings, control)?;
+    let Some(outcome) = outcome else {
+        return Ok(Searched::NotReached(search));
+    };
+    let r = ToleranceFit { outcome, search };
     if !fair_unsound && !r.search.valid {
-        return Ok((r.outcome, r.search));
+        return Ok(Searched::Found(Box::new(r.outcome), r.search));
     }
     let t = if r.search.reached { settings.tolerance } else { r.outcome.error.overall.max };
     let fair = match config.fair {
@@ -318,7 +324,7 @@ fn searched_and_faired(
         f => f,
     };
     if fair == crate::Fairing::Off || control.stopped() {
-        return Ok((r.outcome, r.search));
+        return Ok(Searched::Found(Box::new(r.outcome), r.search));
     }
     let [nu, nv] = r.search.control_points;
     let faired = FitConfig { ctrl: Some((nu, nv)), fair, ..*config };
@@ -329,7 +335,7 @@ fn searched_and_faired(
         // The record is the faired fit's: fairing may have removed the searched fit's findings.
         let mut search = r.search;
         search.keep(&out);
-        return Ok((out, search));
+        return Ok(Searched::Found(Box::new(out), search));
     }
     let mut plain = r.outcome;
     plain.rejected.push(format!(
@@ -338,7 +344,14 @@ fn searched_and_faired(
         out.error.overall.max,
         out.validity.len()
     ));
-    Ok((plain, r.search))
+    Ok(Searched::Found(Box::new(plain), r.search))
+}
+
+/// What [`searched_and_faired`] gives: the count found with its fit and record, or, where no
+/// count reaches an explicit tolerance, the record alone (`control_points` the closest count).
+enum Searched {
+    Found(Box<FitOutcome>, ToleranceSearch),
+    NotReached(ToleranceSearch),
 }
 
 /// Settings of [`fit_to_tolerance`].
@@ -589,6 +602,20 @@ pub fn fit_to_tolerance(
     settings: &ToleranceSettings,
     control: &Control<'_>,
 ) -> Result<ToleranceFit, HullError> {
+    match search_counts(offsets, config, settings, control)? {
+        (Some(outcome), search) => Ok(ToleranceFit { outcome, search }),
+        (None, search) => Err(not_reached(&search, offsets)),
+    }
+}
+
+/// [`fit_to_tolerance`]'s search: the chosen fit (`None` when no count reaches the tolerance
+/// and the closest was not asked for) and the record (then `control_points` the closest count).
+fn search_counts(
+    offsets: &Offsets,
+    config: &FitConfig,
+    settings: &ToleranceSettings,
+    control: &Control<'_>,
+) -> Result<(Option<FitOutcome>, ToleranceSearch), HullError> {
     let t = settings.tolerance;
     if !(t > 0.0 && t.is_finite()) {
         return Err(HullError::FitSetting { name: "tolerance", value: t, expected: "a positive number" });
@@ -698,10 +725,7 @@ pub fn fit_to_tolerance(
         seconds: 0.0,
         tried: s.tried,
     };
-    let Some(outcome) = outcome else {
-        return Err(not_reached(Box::new(search), offsets));
-    };
-    Ok(ToleranceFit { outcome, search })
+    Ok((outcome, search))
 }
 
 /// The least max error of the counts tried, and its count.
@@ -711,7 +735,7 @@ fn closest_tried(tried: &[TriedCount]) -> Option<(f64, [usize; 2])> {
 
 /// The error of a search that no count reached, from its record (`control_points` the
 /// closest count, or interpolation's when no fit was done).
-fn not_reached(search: Box<ToleranceSearch>, offsets: &Offsets) -> HullError {
+fn not_reached(search: &ToleranceSearch, offsets: &Offsets) -> HullError {
     let (best, at) = closest_tried(&search.tried).unwrap_or((f64::INFINITY, search.control_points));
     HullError::ToleranceNotReached {
         tolerance: search.tolerance,
@@ -719,7 +743,6 @@ fn not_reached(search: Box<ToleranceSearch>, offsets: &Offsets) -> HullError {
         control_points: (at[0], at[1]),
         fits: search.fits,
         units: offsets.units.symbol(),
-        search,
     }
 }
 

@@ -90,10 +90,11 @@ fn a_tolerance_no_plain_fit_reaches_is_met_by_the_default_fit_or_the_error_names
     // Within 0.05 m nothing is: the error names the default fit, the closest valid surface.
     let e = quiet(|c| fit_offsets_within(&o, &default_config(), Goal::Tolerance(0.05), c)).expect_err("not met");
     match &e {
-        hull::HullError::ToleranceNotReached { best, control_points, fits, search, .. } => {
+        hull::HullError::ToleranceNotReached { best, control_points, fits, .. } => {
             assert_eq!((*best, *control_points), (out.error.overall.max, (6, 19)));
+            // The search's own fits: no plain fit reaches either tolerance, so both searches
+            // try every count (110 of them; the default fit is not counted).
             assert_eq!(*fits, search.fits);
-            assert!(!search.valid && !search.reached);
         }
         other => panic!("unexpected {other}"),
     }
