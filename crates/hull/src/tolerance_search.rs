@@ -135,40 +135,24 @@ fn refereed(
     settings: &ToleranceSettings,
     control: &Control<'_>,
 ) -> Result<(FitOutcome, ToleranceSearch), HullError> {
+    // The default count as `Goal::Count` fits it.
+    let default_fit = || fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control);
     // `--tolerance default` replaces an unsound count found by the default count: no fairing for it.
     let (searched, mut search) =
         match searched_and_faired(offsets, config, settings, goal != Goal::DefaultTolerance, control)? {
             Searched::Found(outcome, search) => (*outcome, search),
-            Searched::NotReached(record) if control.stopped() => return Err(not_reached(&record, offsets)),
+            Searched::NotReached(record) if control.stopped() => return Err(not_reached(&record, offsets, None)),
             // No plain fit reaches the tolerance: the default fit of the default count may.
             Searched::NotReached(mut record) => {
-                let usual = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
+                let usual = default_fit()?;
                 let sound = usual.validity.is_empty();
                 if !(sound && usual.error.overall.max <= settings.tolerance) {
-                    let mut e = not_reached(&record, offsets);
-                    // The error names the default fit where it is valid and closer than every
-                    // count searched (its `fits` stay the search's, as in the record).
-                    if let HullError::ToleranceNotReached { best, control_points, .. } = &mut e {
-                        if sound && usual.error.overall.max < *best {
-                            *best = usual.error.overall.max;
-                            *control_points = (usual.surface.n_u(), usual.surface.n_v());
-                        }
-                    }
-                    return Err(e);
+                    return Err(not_reached(&record, offsets, Some(&usual).filter(|_| sound)));
                 }
                 let (best, at) = closest_tried(&record.tried).unwrap_or((f64::INFINITY, record.control_points));
-                record.referee = Some(Referee {
-                    basis: RefereeBasis::Accuracy,
-                    searched: at,
-                    searched_max: best,
-                    searched_valid: record.tried.iter().any(|c| c.control_points == at && c.valid),
-                    searched_held_out_max: None,
-                    default_count: [usual.surface.n_u(), usual.surface.n_v()],
-                    default_count_held_out_max: None,
-                    default_count_max: usual.error.overall.max,
-                    default_count_valid: true,
-                    chose_default_count: true,
-                });
+                let valid = record.tried.iter().any(|c| c.control_points == at && c.valid);
+                let referee = Referee::against(RefereeBasis::Accuracy, (at, best, valid), &usual, true, None);
+                record.referee = Some(referee);
                 record.keep(&usual);
                 return Ok((usual, record));
             }
@@ -180,7 +164,7 @@ fn refereed(
     if default_goal && !search.valid {
         // No valid count was found: the default count is kept, as `--method approx` fits it
         // (so it is never less sound than that).
-        let kept = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
+        let kept = default_fit()?;
         search.keep(&kept);
         search.kept_default_count = true;
         return Ok((kept, search));
@@ -188,7 +172,7 @@ fn refereed(
     let t = if search.reached { settings.tolerance } else { searched.error.overall.max };
     let counts = |o: &FitOutcome| [o.surface.n_u(), o.surface.n_v()];
     let (du, dv) = crate::default_ctrl(offsets, config.degree);
-    if [du, dv] == counts(&searched) || control.stopped() {
+    if [du, dv] == counts(&searched) {
         return Ok((searched, search));
     }
     // The default count is fitted as `Goal::Count` fits it where it could be the answer:
@@ -205,21 +189,11 @@ fn refereed(
     if !held_out_referee && search.reached && search.valid && !fewer {
         return Ok((searched, search));
     }
-    let usual = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
+    let usual = default_fit()?;
     let sound = |o: &FitOutcome| o.validity.is_empty();
     let within = |o: &FitOutcome| sound(o) && o.error.overall.max <= settings.tolerance;
-    let record = |basis, takes, hs: Option<f64>, hu: Option<f64>| Referee {
-        basis,
-        searched: counts(&searched),
-        searched_max: searched.error.overall.max,
-        searched_valid: sound(&searched),
-        searched_held_out_max: hs,
-        default_count: counts(&usual),
-        default_count_held_out_max: hu,
-        default_count_max: usual.error.overall.max,
-        default_count_valid: sound(&usual),
-        chose_default_count: takes,
-    };
+    let found = (counts(&searched), searched.error.overall.max, sound(&searched));
+    let record = |basis, takes, held_out| Referee::against(basis, found, &usual, takes, held_out);
     // By accuracy at the offsets: the default fit valid and within the tolerance where the
     // count found is not (or has findings), or within it with fewer control points; where
     // neither reaches it (`--tolerance default`, whose count found is valid here), valid and
@@ -228,7 +202,7 @@ fn refereed(
     let by_accuracy = (within(&usual) && (!within(&searched) || fewer))
         || (!search.reached && !within(&usual) && sound(&usual) && u_max < s_max);
     if by_accuracy || !held_out_referee || control.stopped() {
-        search.referee = Some(record(RefereeBasis::Accuracy, by_accuracy, None, None));
+        search.referee = Some(record(RefereeBasis::Accuracy, by_accuracy, None));
         if !by_accuracy {
             return Ok((searched, search));
         }
@@ -248,12 +222,37 @@ fn refereed(
     // The default count replaces the count found when it is as sound, within the tolerance
     // (or no farther from it) and closer to the offsets held out.
     let takes = sound(&usual) >= sound(&searched) && u_max <= t && hu.max < hs.max;
-    search.referee = Some(record(RefereeBasis::HeldOut, takes, Some(hs.max), Some(hu.max)));
+    search.referee = Some(record(RefereeBasis::HeldOut, takes, Some((hs.max, hu.max))));
     // The chosen fit's held-out error is the default cross-validation's: kept.
     let (mut chosen, held_out) = if takes { (usual, hu) } else { (searched, hs) };
     search.keep(&chosen);
     chosen.error.held_out = Some(held_out);
     Ok((chosen, search))
+}
+
+impl Referee {
+    /// The count found `(counts, max error, valid)` against `usual`, the default fit of the
+    /// default count, by `basis`; `held_out` the held-out maxima `(found, usual)` where measured.
+    fn against(
+        basis: RefereeBasis,
+        found: ([usize; 2], f64, bool),
+        usual: &FitOutcome,
+        chose_default_count: bool,
+        held_out: Option<(f64, f64)>,
+    ) -> Self {
+        Referee {
+            basis,
+            searched: found.0,
+            searched_max: found.1,
+            searched_valid: found.2,
+            searched_held_out_max: held_out.map(|h| h.0),
+            default_count: [usual.surface.n_u(), usual.surface.n_v()],
+            default_count_held_out_max: held_out.map(|h| h.1),
+            default_count_max: usual.error.overall.max,
+            default_count_valid: usual.validity.is_empty(),
+            chose_default_count,
+        }
+    }
 }
 
 /// How the referee of a tolerance search compared the count found with the default count.
@@ -604,7 +603,7 @@ pub fn fit_to_tolerance(
 ) -> Result<ToleranceFit, HullError> {
     match search_counts(offsets, config, settings, control)? {
         (Some(outcome), search) => Ok(ToleranceFit { outcome, search }),
-        (None, search) => Err(not_reached(&search, offsets)),
+        (None, search) => Err(not_reached(&search, offsets, None)),
     }
 }
 
@@ -707,8 +706,10 @@ fn search_counts(
     let reached = s.best.is_some() || s.unsound.is_some();
     let outcome = s.best.or(s.unsound).or(s.closest);
     let valid = outcome.as_ref().is_some_and(|o| o.validity.is_empty());
-    let closest = closest_tried(&s.tried).map_or([big_n, k], |(_, at)| at);
-    let [nu, nv] = outcome.as_ref().map_or(closest, |o| [o.surface.n_u(), o.surface.n_v()]);
+    let [nu, nv] = match &outcome {
+        Some(o) => [o.surface.n_u(), o.surface.n_v()],
+        None => closest_tried(&s.tried).map_or([big_n, k], |(_, at)| at),
+    };
     let search = ToleranceSearch {
         tolerance: t,
         control_points: [nu, nv],
@@ -734,9 +735,13 @@ fn closest_tried(tried: &[TriedCount]) -> Option<(f64, [usize; 2])> {
 }
 
 /// The error of a search that no count reached, from its record (`control_points` the
-/// closest count, or interpolation's when no fit was done).
-fn not_reached(search: &ToleranceSearch, offsets: &Offsets) -> HullError {
-    let (best, at) = closest_tried(&search.tried).unwrap_or((f64::INFINITY, search.control_points));
+/// closest count, or interpolation's when no fit was done), naming `closer` instead where it is
+/// closer than every count tried (the referee's valid default fit; the fits stay the search's).
+fn not_reached(search: &ToleranceSearch, offsets: &Offsets, closer: Option<&FitOutcome>) -> HullError {
+    let (mut best, mut at) = closest_tried(&search.tried).unwrap_or((f64::INFINITY, search.control_points));
+    if let Some(o) = closer.filter(|o| o.error.overall.max < best) {
+        (best, at) = (o.error.overall.max, [o.surface.n_u(), o.surface.n_v()]);
+    }
     HullError::ToleranceNotReached {
         tolerance: search.tolerance,
         best,
