@@ -34,8 +34,8 @@ struct Kept {
 }
 
 /// The skins and net holds fitted so far in one call of the pipeline, by their settings but
-/// the hold ([`FitConfig::hold_on`]) and the fairing setting ([`FitConfig::fair`]), and the fairness figures measured of surfaces. Shared by
-/// the fits a fairing search runs in parallel.
+/// the hold ([`FitConfig::hold_on`]) and the fairing setting ([`FitConfig::fair`]), and the
+/// fairness figures measured of surfaces. Shared by the fits a fairing search runs in parallel.
 #[derive(Default)]
 pub(crate) struct SkinMemo {
     fits: Mutex<Vec<(FitConfig, Kept)>>,

@@ -41,3 +41,17 @@ pub fn text(o: &Output) -> (String, String) {
 pub fn read_json(p: &Path) -> Value {
     serde_json::from_str(&fs::read_to_string(p).expect("read json")).expect("valid json")
 }
+
+/// `v` without its timings (keys naming seconds or a time), which differ from run to run.
+pub fn without_timings(v: Value) -> Value {
+    match v {
+        Value::Object(map) => Value::Object(
+            map.into_iter()
+                .filter(|(k, _)| !(k.contains("seconds") || k.contains("time")))
+                .map(|(k, v)| (k, without_timings(v)))
+                .collect(),
+        ),
+        Value::Array(items) => Value::Array(items.into_iter().map(without_timings).collect()),
+        other => other,
+    }
+}

@@ -3,8 +3,6 @@
 
 use std::fs;
 
-use serde_json::Value;
-
 use crate::common::*;
 
 #[test]
@@ -457,20 +455,6 @@ fn hold_surface_holds_the_sample_within_its_envelope_closer_to_its_offsets() {
     let max = |r: &serde_json::Value| r["error"]["max"].as_f64().expect("number");
     assert!(max(&s) < max(&n), "surface hold {} against net hold {}", max(&s), max(&n));
     assert!(text(&surface).0.contains("surface samples and control-point coordinates held"), "{:?}", text(&surface));
-}
-
-/// `v` without its timings (keys naming seconds or a time), which differ from run to run.
-fn without_timings(v: Value) -> Value {
-    match v {
-        Value::Object(map) => Value::Object(
-            map.into_iter()
-                .filter(|(k, _)| !(k.contains("seconds") || k.contains("time")))
-                .map(|(k, v)| (k, without_timings(v)))
-                .collect(),
-        ),
-        Value::Array(items) => Value::Array(items.into_iter().map(without_timings).collect()),
-        other => other,
-    }
 }
 
 /// The default fit's choices are made from fits run in parallel (the smoothing weights, the
