@@ -255,6 +255,7 @@ impl SkinArgs {
                 hull::EnvelopeHold::Own
             },
             hold_on: if self.envelope == EnvelopeMode::HoldSurface { hull::HoldOn::Surface } else { hull::HoldOn::Net },
+            ..FitConfig::default()
         }
     }
 }

@@ -7,7 +7,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use nurbs::fit::{CornerOptions, KnuckleLine, SkinParameterization};
+use nurbs::fit::{AlongParameters, CornerOptions, KnuckleLine, SkinParameterization};
 
 use crate::flats::FlatLine;
 use crate::units::Units;
@@ -144,6 +144,11 @@ pub struct FitConfig {
     /// the surface's points ([`HoldOn`]; the surface hold is the first alternative the default
     /// fit tries when it is unsound, before [`crate::ALTERNATIVE_PARAMETERIZATIONS`]).
     pub hold_on: HoldOn,
+    /// [`SkinOptions::along`](nurbs::fit::SkinOptions::along): the parameters along the
+    /// sections (equal counts only) chosen by the least residual (the default), or imposed;
+    /// `--fair auto` imposes the plain fit's on a smoothed fit whose own choice differs
+    /// ([`crate::fairing::fair`]).
+    pub along: AlongParameters,
 }
 
 /// What [`FitConfig::envelope`] holds behind the faces of the envelope a surface crossed. The
@@ -202,6 +207,7 @@ impl Default for FitConfig {
             smoothing: 0.0,
             envelope: EnvelopeHold::Own,
             hold_on: HoldOn::Net,
+            along: AlongParameters::LeastResidual,
         }
     }
 }
@@ -247,6 +253,11 @@ pub struct FitOutcome {
     /// The surface before the envelope hold refitted it (`envelope_held > 0`): the plain least
     /// squares whose fairness `--fair auto` keeps.
     pub(crate) unheld: Option<NurbsSurface>,
+    /// The parameters the skin fitted the sections at along them
+    /// ([`SkinResult::along`](nurbs::fit::SkinResult::along)): the least-squares choice a
+    /// smoothed fit is compared with; [`AlongParameters::LeastResidual`] where none was made
+    /// (interpolation, an optimised surface).
+    pub(crate) along: AlongParameters,
 }
 
 impl FitOutcome {
@@ -329,6 +340,11 @@ pub struct FairTry {
     /// The one taken: sound, within the tolerance and fairer; or, for a plain fit with
     /// findings, the least smoothing with the fewest (within twice the tolerance).
     pub accepted: bool,
+    /// The parameters along the sections imposed on this fit: `own` or `mean`, the plain
+    /// fit's, where the smoothed fit's least residual chose the other (the same `λ` is then
+    /// tried both ways); left out where the fit chose them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub along: Option<&'static str>,
 }
 
 /// What a naval architect checks of a surface's fairness: its thin-plate energy, its

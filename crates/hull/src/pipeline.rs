@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use nurbs::fit::{
     bounded_refit, find_knuckle_lines, held_refit, knuckle_indices, skin_approximate_with_knuckles,
-    skin_interpolate_with_knuckles, SkinOptions,
+    skin_interpolate_with_knuckles, AlongParameters, SkinOptions,
 };
 use nurbs::{NurbsError, NurbsSurface};
 
@@ -106,7 +106,7 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     // fair approximation (its choice, [`crate::fairing::fair`], removes a fold if it can) or the
     // plain one.
     let approx = FitConfig { method: FitMethod::Approx, ..*config };
-    let skin = |nu: f64| fit_skin(offsets, &FitConfig { smoothing: nu, ..approx }, Measure::Full, &memo);
+    let skin = |nu: f64, along| fit_skin(offsets, &FitConfig { smoothing: nu, along, ..approx }, Measure::Full, &memo);
     let fair = if plain.flat_lines.is_empty() {
         crate::fairing::fair(&plain, None, config.fair, skin, |s| memo.fairness(s))?
     } else {
@@ -167,7 +167,8 @@ fn fit_skinned(
     measure: Measure,
     memo: &SkinMemo,
 ) -> Result<FitOutcome, HullError> {
-    let smoothed = |nu: f64, measure| fit_skin(offsets, &FitConfig { smoothing: nu, ..*config }, measure, memo);
+    let smoothed =
+        |nu: f64, along, measure| fit_skin(offsets, &FitConfig { smoothing: nu, along, ..*config }, measure, memo);
     // The surface `fair` would choose for fairing off (weight 0) or a given weight, without
     // the fairness figures of its report: the smoothed fit, but for interpolation and a fit
     // within flats (which only `auto+flats` can find), which keep the plain one.
@@ -179,19 +180,19 @@ fn fit_skinned(
     if let (Measure::Lean, Some(l)) = (measure, given) {
         let flats = matches!(config.knuckles, Knuckles::AutoFlats(_));
         if l > 0.0 && config.method == FitMethod::Approx && !flats {
-            return smoothed(l, measure);
+            return smoothed(l, config.along, measure);
         }
         let plain = fit_skin(offsets, config, measure, memo)?;
         if l == 0.0 || config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
             return Ok(plain);
         }
-        return smoothed(l, measure);
+        return smoothed(l, config.along, measure);
     }
     let plain = fit_skin(offsets, config, Measure::Full, memo)?;
     if config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
         return Ok(plain);
     }
-    let skin = |nu: f64| smoothed(nu, Measure::Full);
+    let skin = |nu: f64, along| smoothed(nu, along, Measure::Full);
     let start = Instant::now();
     // The plain least squares before the envelope hold, whose fairness `auto` is to keep
     // (issue 11's fairness floor compares with it).
@@ -204,7 +205,9 @@ fn fit_skinned(
             // The time of the whole choice, the plain fit and every smoothed one measured.
             let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
             out.fit_seconds = total - out.error_seconds;
-            out.config = *config;
+            // The caller's settings, with the parameters along the sections the search may
+            // have imposed (the held-out refits at its `λ` impose them too).
+            out.config = FitConfig { along: out.config.along, ..*config };
             out.fairing = Some(report);
             out
         }
@@ -300,6 +303,7 @@ fn assembled(
         envelope_held: 0,
         measured_fairness: None,
         unheld: None,
+        along: AlongParameters::LeastResidual,
     })
 }
 
@@ -363,7 +367,8 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure, memo: &Skin
 /// and the knuckle lines it kept.
 fn skin(offsets: &Offsets, config: &FitConfig, sections: &[Vec<nurbs::Vec3>]) -> Result<Skin, HullError> {
     let (p, q) = config.degree;
-    let opts = SkinOptions { degree_u: p, degree_v: q, param: config.param, smoothing: config.smoothing };
+    let opts =
+        SkinOptions { degree_u: p, degree_v: q, param: config.param, smoothing: config.smoothing, along: config.along };
     let start = Instant::now();
     let lines = match config.knuckles {
         Knuckles::Off => Vec::new(),
@@ -401,6 +406,7 @@ fn skin(offsets: &Offsets, config: &FitConfig, sections: &[Vec<nurbs::Vec3>]) ->
     let fit_seconds = start.elapsed().as_secs_f64();
     let mut out = assembled(offsets, config, surface, result.params, fit_seconds, None)?;
     out.flat_lines = flat_lines;
+    out.along = result.along;
     Ok((out, lines))
 }
 
@@ -583,6 +589,7 @@ fn held_within(
         out.fairing = prev.fairing;
         out.rejected = prev.rejected;
         out.unheld = Some(unheld.clone());
+        out.along = prev.along;
     }
     Ok((out, found))
 }
@@ -734,7 +741,9 @@ mod tests {
         let kept = fit_skinned(&offsets, &surface, Measure::Full, &memo).expect("fits");
         let afresh = fit_skinned(&offsets, &surface, Measure::Full, &SkinMemo::default()).expect("fits");
         let fair = afresh.fairing.clone().expect("auto reports");
-        assert_eq!(fair.tried.len(), crate::fairing::AUTO_LAMBDAS.len(), "every weight tried");
+        // (Some twice: with the parameters along the sections the plain fit chose imposed.)
+        let weights: std::collections::BTreeSet<u64> = fair.tried.iter().map(|t| t.lambda.to_bits()).collect();
+        assert_eq!(weights.len(), crate::fairing::AUTO_LAMBDAS.len(), "every weight tried");
         assert!(afresh.envelope_held > 0, "the sample's fits are held");
         assert_eq!(kept.surface, afresh.surface);
         assert_eq!(kept.config, afresh.config);

@@ -135,8 +135,13 @@ fn refereed(
     settings: &ToleranceSettings,
     control: &Control<'_>,
 ) -> Result<(FitOutcome, ToleranceSearch), HullError> {
-    // The default count as `Goal::Count` fits it.
-    let default_fit = || fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control);
+    // The default count as `Goal::Count` fits it, faired within the tolerance as the count
+    // searched is ([`faired_within`]): the fairest surface of the default count within it, not
+    // the fairest within the default fit's own error (the Series 60 Cb 0.80's default fit is
+    // held on its surface and faired within its net hold's 214.5 mm, at 141.1 mm; within 93.8
+    // mm, `--tolerance default`, it is at 93.5 mm).
+    let fair = faired_within(config.fair, settings.tolerance);
+    let default_fit = || fit_offsets_with(offsets, &FitConfig { ctrl: None, fair, ..*config }, control);
     // `--tolerance default` replaces an unsound count found by the default count: no fairing for it.
     let (searched, mut search) =
         match searched_and_faired(offsets, config, settings, goal != Goal::DefaultTolerance, control)? {
@@ -147,7 +152,15 @@ fn refereed(
                 let usual = default_fit()?;
                 let sound = usual.validity.is_empty();
                 if !(sound && usual.error.overall.max <= settings.tolerance) {
-                    return Err(not_reached(&record, offsets, Some(&usual).filter(|_| sound)));
+                    // The closest valid surface named: faired within its own error, the
+                    // default fit can be closer than faired within an unreachable tolerance
+                    // (Series 60 Cb 0.80 within 0.05 m: 93.5 mm against its net hold's 214.5).
+                    let own = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
+                    let closer = [usual, own]
+                        .into_iter()
+                        .filter(|o| o.validity.is_empty())
+                        .min_by(|a, b| a.error.overall.max.total_cmp(&b.error.overall.max));
+                    return Err(not_reached(&record, offsets, closer.as_ref()));
                 }
                 let (best, at) = closest_tried(&record.tried).unwrap_or((f64::INFINITY, record.control_points));
                 let valid = record.tried.iter().any(|c| c.control_points == at && c.valid);
@@ -295,6 +308,14 @@ pub struct Referee {
     pub chose_default_count: bool,
 }
 
+/// `fair` with `auto`'s tolerance, where it has none, `t`: the fairest surface within `t`.
+fn faired_within(fair: crate::Fairing, t: f64) -> crate::Fairing {
+    match fair {
+        crate::Fairing::Auto { tolerance: None } => crate::Fairing::Auto { tolerance: Some(t) },
+        f => f,
+    }
+}
+
 /// The fewest control points within `settings` on the plain fits, then that count faired
 /// within the tolerance (or, where it was not reached, within the max error reached). The
 /// faired fit is kept when it stays within that bound and is no less sound than the searched
@@ -318,10 +339,7 @@ fn searched_and_faired(
         return Ok(Searched::Found(Box::new(r.outcome), r.search));
     }
     let t = if r.search.reached { settings.tolerance } else { r.outcome.error.overall.max };
-    let fair = match config.fair {
-        crate::Fairing::Auto { tolerance: None } => crate::Fairing::Auto { tolerance: Some(t) },
-        f => f,
-    };
+    let fair = faired_within(config.fair, t);
     if fair == crate::Fairing::Off || control.stopped() {
         return Ok(Searched::Found(Box::new(r.outcome), r.search));
     }

@@ -122,6 +122,7 @@ impl FitArgs<'_> {
             smoothing: 0.0,
             envelope,
             hold_on,
+            ..FitConfig::default()
         })
     }
 }

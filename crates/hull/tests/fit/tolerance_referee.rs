@@ -74,7 +74,8 @@ fn an_explicit_tolerance_keeps_the_default_count_where_it_is_within_with_fewer_c
 #[test]
 fn a_tolerance_no_plain_fit_reaches_is_met_by_the_default_fit_or_the_error_names_it() {
     // Series 60 Cb 0.80: no plain fit of the exact search comes within 0.1 m (the closest is
-    // 8x22 at 126.7 mm, measured), the default fit at its default count 6x19 is at 93.5 mm.
+    // 8x22 at 126.7 mm, measured), the default fit at its default count 6x19, faired within
+    // 0.1 m, is at 93.5 mm.
     let o = cb080();
     let (out, search) = quiet(|c| fit_offsets_within(&o, &default_config(), Goal::Tolerance(0.1), c)).expect("met");
     let search = search.expect("searched");
@@ -87,16 +88,22 @@ fn a_tolerance_no_plain_fit_reaches_is_met_by_the_default_fit_or_the_error_names
     assert_eq!(r.searched_max, least);
     assert!(least > 0.1 && !search.tried.iter().any(|c| c.within), "{least}");
     assert!(search.reached && search.valid && search.control_points == [6, 19]);
-    // Within 0.05 m nothing is: the error names the default fit, the closest valid surface.
+    // Within 0.05 m nothing is: the error names the closest valid surface of the search's
+    // counts and the default fit (faired within its own error: at 141.1 mm since its surface
+    // hold is faired within its net hold's 214.5 mm; within 0.05 m it stays at 214.5 mm), here
+    // the search's 8x22 at 126.7 mm (measured).
+    let usual = hull::fit_offsets(&o, &default_config()).expect("fits");
+    assert!(usual.validity.is_empty() && usual.error.overall.max > least, "{}", usual.error.overall.max);
+    let closest = search.tried.iter().find(|c| c.max == Some(least)).expect("the closest count").control_points;
     let e = quiet(|c| fit_offsets_within(&o, &default_config(), Goal::Tolerance(0.05), c)).expect_err("not met");
     match &e {
         hull::HullError::ToleranceNotReached { best, control_points, fits, .. } => {
-            assert_eq!((*best, *control_points), (out.error.overall.max, (6, 19)));
+            assert_eq!((*best, *control_points), (least, (closest[0], closest[1])));
             // The search's own fits: no plain fit reaches either tolerance, so both searches
-            // try every count (110 of them; the default fit is not counted).
+            // try every count (110 of them; the default fits are not counted).
             assert_eq!(*fits, search.fits);
         }
         other => panic!("unexpected {other}"),
     }
-    assert!(e.to_string().contains("at 6x19 control points"), "{e}");
+    assert!(e.to_string().contains("at 8x22 control points"), "{e}");
 }

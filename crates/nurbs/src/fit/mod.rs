@@ -40,8 +40,8 @@ pub use lsq::{approximate_curve, approximate_curve_auto, LeastSquaresSolver};
 pub use param::{common_parameters, parameterize, Parameterization, SkinParameterization, UnknownParameterization};
 pub use plane_runs::{plane_run_ends, RunEnd};
 pub use skin::{
-    skin_approximate, skin_approximate_with_knuckles, skin_interpolate, skin_interpolate_with_knuckles, SkinOptions,
-    SkinResult,
+    skin_approximate, skin_approximate_with_knuckles, skin_interpolate, skin_interpolate_with_knuckles,
+    AlongParameters, SkinOptions, SkinResult,
 };
 
 /// The shared tail of every curve solver: check the points, solve for their coordinates and

@@ -4,8 +4,8 @@
 use super::across::fit_across;
 use super::compatible::fit_along;
 use super::compatible::least_score;
-use super::sections::{classify, data_params, max_count, own_params, Section};
-use super::{checked, SkinOptions, SkinResult};
+use super::sections::{classify, data_params, max_count, own_params, Section, UParams};
+use super::{checked, AlongParameters, SkinOptions, SkinResult};
 use crate::fit::common_parameters;
 use crate::fit::knots::check_ctrl_count;
 use crate::{NurbsError, NurbsSurface, Vec3};
@@ -87,23 +87,36 @@ pub fn skin_approximate(
     check_ctrl_count(nv, k_count, q, "skinning across the sections")?;
     let own = own_params(&secs, opts.param.u, p)?;
     let equal = secs.iter().all(|s| matches!(s, Section::Point(..)) || s.len() == n_max);
-    let mut candidates = vec![own.clone()];
-    if equal {
-        // All sections on the mean of their parameters (eq. 9.18).
-        let mean = common_parameters(&own.iter().flatten().cloned().collect::<Vec<_>>())?;
-        candidates.push(own.iter().map(|t| t.as_ref().map(|_| mean.clone())).collect());
-    }
-    let shared = [false, true];
-    let fits = candidates.into_iter().zip(shared).map(|(u_of, shared)| {
+    let fits = along_candidates(own, equal, opts.along)?.into_iter().map(|(u_of, choice)| {
+        let shared = choice == AlongParameters::Mean;
         let (_, along) = fit_along(&secs, u_of, nu, p, opts.param.u, shared, opts.smoothing)?;
         let across = fit_across(&along.rows, nv, q, opts.param.v, opts.smoothing)?;
         let surface = NurbsSurface::from_parts_unchecked(along.knots, across.knots, across.net);
         let params = data_params(&secs, &across.v, along.u_of);
         let score = surface_residual(&surface, &secs, &params);
-        Ok((score, SkinResult { surface, params }))
+        Ok((score, SkinResult { surface, params, along: choice }))
     });
     let (_, r) = least_score(fits, "the own-parameter candidate")?;
     checked(r)
+}
+
+/// The parameter candidates along the sections, each with the choice it is, from each
+/// section's own parameters `own`: own ones, and where the sections have `equal` counts all on
+/// their mean (eq. 9.18); only the one `along` imposes, where it can be had.
+pub(super) fn along_candidates(
+    own: UParams,
+    equal: bool,
+    along: AlongParameters,
+) -> Result<Vec<(UParams, AlongParameters)>, NurbsError> {
+    if !equal || along == AlongParameters::Own {
+        return Ok(vec![(own, AlongParameters::Own)]);
+    }
+    let mean = common_parameters(&own.iter().flatten().cloned().collect::<Vec<_>>())?;
+    let shared = (own.iter().map(|t| t.as_ref().map(|_| mean.clone())).collect(), AlongParameters::Mean);
+    Ok(match along {
+        AlongParameters::Mean => vec![shared],
+        _ => vec![(own, AlongParameters::Own), shared],
+    })
 }
 
 /// `sum |S(u, v) - Q|^2` over every input point at its parameters.

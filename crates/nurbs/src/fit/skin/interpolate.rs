@@ -3,7 +3,7 @@
 use super::across::{cross_params, interpolate_across};
 use super::compatible::{AlongFit, SectionFits};
 use super::sections::{classify, data_params, in_section, max_count, own_params, Section, UParams};
-use super::{checked, SkinOptions, SkinResult};
+use super::{checked, AlongParameters, SkinOptions, SkinResult};
 use crate::fit::interp::InterpolationSolver;
 use crate::fit::knots::knots_for_interpolation;
 use crate::fit::param::parameterize_labelled;
@@ -95,7 +95,9 @@ pub fn skin_interpolate(sections: &[Vec<Vec3>], opts: &SkinOptions) -> Result<Sk
     } else {
         interpolate_ragged(&secs, q, opts)
     }
-    .and_then(|(surface, v, u_of)| checked(SkinResult { params: data_params(&secs, &v, u_of), surface }))
+    .and_then(|(surface, v, u_of)| {
+        checked(SkinResult { params: data_params(&secs, &v, u_of), surface, along: AlongParameters::LeastResidual })
+    })
 }
 
 pub(super) fn interpolate_equal(

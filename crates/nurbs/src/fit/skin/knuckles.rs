@@ -2,14 +2,14 @@
 //! and joined with knots of multiplicity `p` at common breakpoints (a `C^0` line along `u`).
 
 use super::across::{cross_params, fit_across, interpolate_across};
-use super::approximate::skin_approximate;
+use super::approximate::{along_candidates, skin_approximate};
 use super::compatible::{fit_along, least_score, share_control_points, AlongFit};
 use super::interpolate::{interpolate_along, skin_interpolate};
 use super::sections::{classify, data_params, max_count, own_params, Section, UParams};
-use super::{checked, SkinOptions, SkinResult};
+use super::{checked, AlongParameters, SkinOptions, SkinResult};
 use crate::fit::continuity::join_knot_vectors;
 use crate::fit::knots::check_ctrl_count;
-use crate::fit::{common_parameters, Parameterization};
+use crate::fit::Parameterization;
 use crate::{NurbsError, NurbsSurface, Vec3};
 
 /// The sections cut at their knuckles: `cuts[k]` are section `k`'s knuckle indices (strictly
@@ -196,7 +196,7 @@ pub fn skin_interpolate_with_knuckles(
     let v = cross_params(n, secs.len(), |i, k| along.rows[k][i], opts.param.v, q)?;
     let (kv, net) = interpolate_across(&along.rows, &v, opts.param.v, q)?;
     let surface = NurbsSurface::from_parts_unchecked(along.knots, kv, net);
-    checked(SkinResult { params: data_params(&secs, &v, along.u_of), surface })
+    checked(SkinResult { params: data_params(&secs, &v, along.u_of), surface, along: AlongParameters::LeastResidual })
 }
 
 /// [`skin_approximate`] keeping knuckles (chines), `knuckles` as in
@@ -236,6 +236,7 @@ pub fn skin_approximate_with_knuckles(
     let counts: Vec<usize> = piece_secs.iter().map(|s| max_count(s)).collect();
     let shares = share_control_points(nu, &counts, p)?;
     let mut pieces = Vec::with_capacity(piece_secs.len());
+    let mut chosen = Vec::with_capacity(piece_secs.len());
     for (piece, (&n_j, &nu_j)) in piece_secs.iter().zip(counts.iter().zip(&shares)) {
         if nu_j == n_j.max(p + 1) {
             pieces.push(interpolate_along(piece, p, opts.param.u)?);
@@ -243,19 +244,22 @@ pub fn skin_approximate_with_knuckles(
         }
         let own = own_params(piece, opts.param.u, p)?;
         let equal = piece.iter().all(|s| matches!(s, Section::Point(..)) || s.len() == n_j);
-        let mut candidates = vec![(own.clone(), false)];
-        if equal {
-            let mean = common_parameters(&own.iter().flatten().cloned().collect::<Vec<_>>())?;
-            candidates.push((own.iter().map(|t| t.as_ref().map(|_| mean.clone())).collect(), true));
-        }
-        let fits = candidates
-            .into_iter()
-            .map(|(u_of, shared)| fit_along(piece, u_of, nu_j, p, opts.param.u, shared, opts.smoothing));
-        let (_, fit) = least_score(fits, "the own-parameter candidate")?;
+        let fits = along_candidates(own, equal, opts.along)?.into_iter().map(|(u_of, choice)| {
+            let shared = choice == AlongParameters::Mean;
+            fit_along(piece, u_of, nu_j, p, opts.param.u, shared, opts.smoothing).map(|(s, f)| (s, (f, choice)))
+        });
+        let (_, (fit, choice)) = least_score(fits, "the own-parameter candidate")?;
+        chosen.push(choice);
         pieces.push(fit);
     }
-    let along = plan.join(&secs, &breaks, pieces)?;
-    let across = fit_across(&along.rows, nv, q, opts.param.v, opts.smoothing)?;
-    let surface = NurbsSurface::from_parts_unchecked(along.knots, across.knots, across.net);
-    checked(SkinResult { params: data_params(&secs, &across.v, along.u_of), surface })
+    // One choice for the whole skin, or none where the pieces (fitted by least squares) differ.
+    let along = match chosen.split_first() {
+        Some((&first, rest)) if rest.iter().all(|&c| c == first) => first,
+        Some(_) => AlongParameters::LeastResidual,
+        None => AlongParameters::LeastResidual,
+    };
+    let joined = plan.join(&secs, &breaks, pieces)?;
+    let across = fit_across(&joined.rows, nv, q, opts.param.v, opts.smoothing)?;
+    let surface = NurbsSurface::from_parts_unchecked(joined.knots, across.knots, across.net);
+    checked(SkinResult { params: data_params(&secs, &across.v, joined.u_of), surface, along })
 }

@@ -305,6 +305,53 @@ fn approximation_keeps_the_best_fitting_candidate() {
     }
 }
 
+/// Either choice of parameters along the sections can be imposed on the approximation: the
+/// least-residual skin is the imposed skin of its own choice, bit for bit, and the other choice
+/// fits the points no better (the rule of step 3). Imposing the plain fit's choice keeps the
+/// smoothed skins continuous in the smoothing weight, which the free choice need not be. With
+/// unequal counts only own parameters exist, whatever is imposed.
+#[test]
+fn either_parameter_choice_along_can_be_imposed() {
+    let s = skewed(21, 11);
+    let secs = classify(&s, &SkinOptions::default()).expect("valid");
+    let residual = |r: &SkinResult| surface_residual(&r.surface, &secs, &r.params);
+    let skin = |smoothing: f64, along: AlongParameters| {
+        skin_approximate(&s, 8, 13, &SkinOptions { smoothing, along, ..SkinOptions::default() }).expect("valid")
+    };
+    for smoothing in [0.0, 1e-3, 1e-1] {
+        let best = skin(smoothing, AlongParameters::LeastResidual);
+        let (own, mean) = (skin(smoothing, AlongParameters::Own), skin(smoothing, AlongParameters::Mean));
+        assert_eq!((own.along, mean.along), (AlongParameters::Own, AlongParameters::Mean));
+        let (kept, other) = match best.along {
+            AlongParameters::Own => (own, mean),
+            AlongParameters::Mean => (mean, own),
+            AlongParameters::LeastResidual => panic!("the approximation chose no parameters"),
+        };
+        assert_eq!(kept, best, "ν = {smoothing}");
+        assert_ne!(other.surface, best.surface, "ν = {smoothing}: the two choices are two fits");
+        assert!(residual(&other) >= residual(&best), "ν = {smoothing}");
+    }
+    // The plain skin's choice imposed: a weight of 1e-9 moves no control point by more than
+    // 1e-6 of the model's length of 100 (the smoothing term is 1e-9 of the normal equations'
+    // largest diagonal; measured a few 1e-9).
+    let plain = skin(0.0, AlongParameters::LeastResidual);
+    let nearly = skin(1e-9, plain.along);
+    let moved = plain
+        .surface
+        .control_points()
+        .iter()
+        .zip(nearly.surface.control_points())
+        .map(|(a, b)| a.distance(b))
+        .fold(0.0, f64::max);
+    assert!(moved < 1e-6 * 100.0, "{moved}");
+    // Unequal counts: own parameters, imposed or not.
+    let r = ragged(17, 12);
+    let free = skin_approximate(&r, 8, 9, &SkinOptions::default()).expect("valid");
+    let mean = SkinOptions { along: AlongParameters::Mean, ..SkinOptions::default() };
+    let imposed = skin_approximate(&r, 8, 9, &mean).expect("valid");
+    assert_eq!((free.along, &imposed), (AlongParameters::Own, &free));
+}
+
 #[test]
 fn near_square_approximation_of_equal_sections_stays_on_the_data() {
     // nu = n - 1, nv = K - 1: the centred knots are then nearly singular, and the selection
