@@ -19,11 +19,11 @@ pub struct OptimArgs {
     pub population: Option<usize>,
     /// Weight layout: `full` (one weight per control point) or `rank1` (w_ij = a_i b_j, fewer
     /// variables, less over-fitting between the offsets).
-    #[arg(long, default_value = "full", value_parser = parse_layout)]
+    #[arg(long, default_value = "full", value_parser = str::parse::<WeightLayout>)]
     pub weights: WeightLayout,
     /// Control points while the weights move: `resolved` (least squares for every weight
     /// vector) or `fixed` (those of the plain approximation).
-    #[arg(long = "control-points", default_value = "resolved", value_parser = parse_mode)]
+    #[arg(long = "control-points", default_value = "resolved", value_parser = str::parse::<WeightMode>)]
     pub control_points: WeightMode,
     /// Finish with a joint fit of the weights and the offsets' parameters (moves each
     /// offset's parameters toward its foot point).
@@ -62,21 +62,5 @@ impl OptimArgs {
             parameter_correction: self.param_correction,
             foot_point_start: !self.fitted_params,
         }
-    }
-}
-
-fn parse_layout(s: &str) -> Result<WeightLayout, String> {
-    match s.trim().to_ascii_lowercase().as_str() {
-        "full" => Ok(WeightLayout::Full),
-        "rank1" | "rank-one" | "rank_one" => Ok(WeightLayout::RankOne),
-        _ => Err(format!("unknown weight layout `{s}` (expected full or rank1)")),
-    }
-}
-
-fn parse_mode(s: &str) -> Result<WeightMode, String> {
-    match s.trim().to_ascii_lowercase().as_str() {
-        "resolved" => Ok(WeightMode::Resolved),
-        "fixed" => Ok(WeightMode::Fixed),
-        _ => Err(format!("unknown control-point mode `{s}` (expected resolved or fixed)")),
     }
 }

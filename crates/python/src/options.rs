@@ -93,16 +93,8 @@ impl FitArgs<'_> {
             "free" => (EnvelopeHold::Free, hull::HoldOn::Net),
             e => return Err(bad_arg(format!("envelope: unknown `{e}` (expected hold, hold-surface or free)"))),
         };
-        let layout = match self.weights {
-            "full" => WeightLayout::Full,
-            "rank1" => WeightLayout::RankOne,
-            w => return Err(bad_arg(format!("weights: unknown weight layout `{w}` (expected full or rank1)"))),
-        };
-        let mode = match self.control_points {
-            "resolved" => WeightMode::Resolved,
-            "fixed" => WeightMode::Fixed,
-            m => return Err(bad_arg(format!("control_points: unknown `{m}` (expected resolved or fixed)"))),
-        };
+        let layout: WeightLayout = self.weights.parse().map_err(|e| bad_arg(format!("weights: {e}")))?;
+        let mode: WeightMode = self.control_points.parse().map_err(|e| bad_arg(format!("control_points: {e}")))?;
         let optim = OptimSettings {
             seed: self.seed,
             iterations: self.iterations,

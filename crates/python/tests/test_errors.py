@@ -26,6 +26,8 @@ def surface():
         ({"tolerance": 0.1, "ctrl": (5, 5)}, "tolerance or ctrl"),
         ({"held_out": 1}, "1 fold"),
         ({"knuckles": "some"}, "knuckles: unknown"),
+        ({"weights": "diagonal"}, "weights: unknown weight layout `diagonal`"),
+        ({"control_points": "free"}, "control_points: unknown control-point mode `free`"),
         ({"corner_angle": 200.0}, "corner_angle"),
         ({"units": "furlong"}, "unknown units"),
         ({"param": "wobbly"}, "param"),
@@ -37,6 +39,14 @@ def test_bad_fit_arguments_are_value_errors(kwargs, match):
     path = str(TESTDATA / "wigley_offsets.csv") if "units" in kwargs else None
     with pytest.raises(ValueError, match=match):
         hullskin.fit(path, **kwargs)
+
+
+def test_weight_settings_are_read_as_the_command_line_reads_them():
+    # One parser for both (hull's FromStr): any case, spaces around, and the layout's report
+    # name as well as `rank1`; the optimisation reports the settings it ran with.
+    r = hullskin.fit(method="lm", iterations=1, held_out=0, weights="Rank_One", control_points=" FIXED ")
+    opt = r.report["optimization"]
+    assert (opt["weight_layout"], opt["control_points"]) == ("rank_one", "fixed")
 
 
 def test_a_wrong_type_is_a_type_error():

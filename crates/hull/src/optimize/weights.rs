@@ -60,6 +60,20 @@ impl WeightMode {
     }
 }
 
+impl std::str::FromStr for WeightMode {
+    type Err = String;
+
+    /// `resolved` or `fixed` (any case, spaces around ignored), as `--control-points` and the
+    /// Python `control_points` take it.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "resolved" => Ok(WeightMode::Resolved),
+            "fixed" => Ok(WeightMode::Fixed),
+            _ => Err(format!("unknown control-point mode `{s}` (expected resolved or fixed)")),
+        }
+    }
+}
+
 /// How the weights are parameterised.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum WeightLayout {
@@ -77,6 +91,20 @@ impl WeightLayout {
         match self {
             WeightLayout::Full => "full",
             WeightLayout::RankOne => "rank_one",
+        }
+    }
+}
+
+impl std::str::FromStr for WeightLayout {
+    type Err = String;
+
+    /// `full`, or `rank1` (also `rank-one`, `rank_one`: [`WeightLayout::name`]'s), any case,
+    /// as `--weights` and the Python `weights` take it.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "full" => Ok(WeightLayout::Full),
+            "rank1" | "rank-one" | "rank_one" => Ok(WeightLayout::RankOne),
+            _ => Err(format!("unknown weight layout `{s}` (expected full or rank1)")),
         }
     }
 }

@@ -501,3 +501,23 @@ fn gsa_moves_off_a_sharp_start_only_in_the_sensitivity_box() {
     assert_eq!(whole, f0);
     assert!(boxed < 0.99 * f0, "{boxed} vs start {f0}");
 }
+
+/// The command line and Python read the weight settings with these: every name the reports
+/// print reads back as itself, case and spaces aside, and an unknown one names what was
+/// expected.
+#[test]
+fn weight_setting_names_read_back_and_unknown_ones_are_named() {
+    for layout in [WeightLayout::Full, WeightLayout::RankOne] {
+        assert_eq!(layout.name().parse::<WeightLayout>(), Ok(layout));
+        assert_eq!(format!(" {} ", layout.name().to_uppercase()).parse::<WeightLayout>(), Ok(layout));
+    }
+    assert_eq!("rank1".parse::<WeightLayout>(), Ok(WeightLayout::RankOne));
+    for mode in [WeightMode::Resolved, WeightMode::Fixed] {
+        assert_eq!(mode.name().parse::<WeightMode>(), Ok(mode));
+        assert_eq!(format!(" {} ", mode.name().to_uppercase()).parse::<WeightMode>(), Ok(mode));
+    }
+    let e = "diagonal".parse::<WeightLayout>().expect_err("unknown");
+    assert_eq!(e, "unknown weight layout `diagonal` (expected full or rank1)");
+    let e = "free".parse::<WeightMode>().expect_err("unknown");
+    assert_eq!(e, "unknown control-point mode `free` (expected resolved or fixed)");
+}
