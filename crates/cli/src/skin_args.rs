@@ -1,9 +1,11 @@
 //! The input and skinning flags shared by `fit`, `compare`, `hydrostatics` and `report`.
 
 use std::path::PathBuf;
+use std::sync::LazyLock;
 
-use clap::Args;
-use hull::{Fairing, FitConfig, FitMethod, Knuckles, Offsets, OptimSettings, Units};
+use clap::builder::PossibleValue;
+use clap::{Args, ValueEnum};
+use hull::{Fairing, FitConfig, FitMethod, Offsets, OptimSettings, Units};
 use nurbs::fit::{CornerOptions, SkinParameterization};
 
 use crate::parse::{parse_fair, parse_pair, parse_param, parse_units};
@@ -65,7 +67,7 @@ pub struct SkinArgs {
     /// ringing past B/2 or below the keel, at more control points); `off` fits one smooth
     /// surface.
     #[arg(long, value_enum, default_value = "auto")]
-    pub knuckles: KnuckleMode,
+    pub knuckles: KnuckleArg,
     /// Least turning angle, in degrees, of a section's corner for `--knuckles auto`.
     #[arg(long, default_value = "30", value_parser = parse_corner_angle)]
     pub corner_angle: f64,
@@ -89,33 +91,40 @@ pub struct SkinArgs {
     /// net-held fit folds or faces inwards). `free` keeps the plain least squares and reports
     /// where it leaves.
     #[arg(long, value_enum, default_value = "hold")]
-    pub envelope: EnvelopeMode,
+    pub envelope: EnvelopeArg,
     /// How a mesh input (`.stl`, `.stl.gz`, `.obj`) is sliced into sections first.
     #[command(flatten)]
     pub mesh: crate::slice::MeshArgs,
 }
 
-/// The values of `--knuckles`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum KnuckleMode {
-    /// Keep the knuckle lines found in the sections.
-    Auto,
-    /// As `auto`, and refit an approximation within the flats of side and bottom.
-    #[value(name = "auto+flats")]
-    AutoFlats,
-    /// One smooth surface.
-    Off,
+/// `--knuckles`: a [`hull::KnuckleChoice`] by its name, each listed with its description.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct KnuckleArg(pub hull::KnuckleChoice);
+
+impl ValueEnum for KnuckleArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        static ALL: LazyLock<[KnuckleArg; 3]> = LazyLock::new(|| hull::KnuckleChoice::ALL.map(KnuckleArg));
+        &*ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.0.name()).help(self.0.description()))
+    }
 }
 
-/// The values of `--envelope`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum EnvelopeMode {
-    /// Hold the surface within the offsets' envelope by its control net.
-    Hold,
-    /// Hold the surface within the offsets' envelope by its sampled points.
-    HoldSurface,
-    /// Keep the plain least squares, its findings reported.
-    Free,
+/// `--envelope`: a [`hull::EnvelopeChoice`] by its name, each listed with its description.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EnvelopeArg(pub hull::EnvelopeChoice);
+
+impl ValueEnum for EnvelopeArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        static ALL: LazyLock<[EnvelopeArg; 3]> = LazyLock::new(|| hull::EnvelopeChoice::ALL.map(EnvelopeArg));
+        &*ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.0.name()).help(self.0.description()))
+    }
 }
 
 /// An angle in degrees strictly between 0 and 180.
@@ -141,10 +150,10 @@ impl Default for SkinArgs {
             outliers: hull::OutlierPolicy::Warn,
             beam: None,
             design_draft: None,
-            knuckles: KnuckleMode::Auto,
+            knuckles: KnuckleArg(hull::KnuckleChoice::Auto),
             corner_angle: CornerOptions::default().min_angle_deg,
             fair: Fairing::Auto { tolerance: None },
-            envelope: EnvelopeMode::Hold,
+            envelope: EnvelopeArg(hull::EnvelopeChoice::Hold),
             mesh: crate::slice::MeshArgs::default(),
         }
     }
@@ -235,26 +244,18 @@ impl SkinArgs {
     /// optimisers' `optim`.
     pub fn fit_config(&self, method: FitMethod, optim: OptimSettings) -> FitConfig {
         let corner = CornerOptions { min_angle_deg: self.corner_angle, ..CornerOptions::default() };
-        let knuckles = match self.knuckles {
-            KnuckleMode::Off => Knuckles::Off,
-            KnuckleMode::Auto => Knuckles::Auto(corner),
-            KnuckleMode::AutoFlats => Knuckles::AutoFlats(corner),
-        };
+        let (envelope, hold_on) = self.envelope.0.settings();
         FitConfig {
             method,
             degree: self.degree,
             ctrl: self.ctrl,
             param: self.param,
             optim,
-            knuckles,
+            knuckles: self.knuckles.0.knuckles(corner),
             fair: self.fair,
             smoothing: 0.0,
-            envelope: if self.envelope == EnvelopeMode::Free {
-                hull::EnvelopeHold::Free
-            } else {
-                hull::EnvelopeHold::Own
-            },
-            hold_on: if self.envelope == EnvelopeMode::HoldSurface { hull::HoldOn::Surface } else { hull::HoldOn::Net },
+            envelope,
+            hold_on,
             ..FitConfig::default()
         }
     }

@@ -91,6 +91,7 @@ mod export;
 mod export_format;
 mod fairing;
 mod fit;
+mod fit_choices;
 mod fit_error;
 mod flats;
 mod float;
@@ -165,6 +166,8 @@ pub use fit::{
     AlternativeReason, AlternativeTry, Alternatives, EnvelopeHold, FairTry, FairnessFigures, FitConfig, FitMethod,
     FitOutcome, HoldOn, Knuckles,
 };
+// The hold and knuckle settings by the names the command line and Python take.
+pub use fit_choices::{EnvelopeChoice, KnuckleChoice};
 // Fit error at the offsets and held out of the fit.
 pub use fit_error::{measure_fit_error, overfit, ErrorStats, FitError, HeldOutError, SectionError, WorstPoint};
 // Flats of bottom and side.

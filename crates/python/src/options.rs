@@ -3,10 +3,7 @@
 //! `hullskin fit ...` with the same values fit the same surface. Every bad value is a
 //! `ValueError` naming the argument and what was expected.
 
-use hull::{
-    EnvelopeHold, Fairing, FitConfig, FitMethod, Knuckles, OptimSettings, Units, WeightLayout, WeightMode,
-    WeightOptions,
-};
+use hull::{Fairing, FitConfig, FitMethod, OptimSettings, Units, WeightLayout, WeightMode, WeightOptions};
 use nurbs::fit::{CornerOptions, SkinParameterization};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -81,18 +78,13 @@ impl FitArgs<'_> {
             )));
         }
         let corner = CornerOptions { min_angle_deg: self.corner_angle, ..CornerOptions::default() };
-        let knuckles = match self.knuckles {
-            "auto" => Knuckles::Auto(corner),
-            "auto+flats" => Knuckles::AutoFlats(corner),
-            "off" => Knuckles::Off,
-            k => return Err(bad_arg(format!("knuckles: unknown `{k}` (expected auto, auto+flats or off)"))),
-        };
-        let (envelope, hold_on) = match self.envelope {
-            "hold" => (EnvelopeHold::Own, hull::HoldOn::Net),
-            "hold-surface" => (EnvelopeHold::Own, hull::HoldOn::Surface),
-            "free" => (EnvelopeHold::Free, hull::HoldOn::Net),
-            e => return Err(bad_arg(format!("envelope: unknown `{e}` (expected hold, hold-surface or free)"))),
-        };
+        let knuckles = self
+            .knuckles
+            .parse::<hull::KnuckleChoice>()
+            .map_err(|e| bad_arg(format!("knuckles: {e}")))?
+            .knuckles(corner);
+        let (envelope, hold_on) =
+            self.envelope.parse::<hull::EnvelopeChoice>().map_err(|e| bad_arg(format!("envelope: {e}")))?.settings();
         let layout: WeightLayout = self.weights.parse().map_err(|e| bad_arg(format!("weights: {e}")))?;
         let mode: WeightMode = self.control_points.parse().map_err(|e| bad_arg(format!("control_points: {e}")))?;
         let optim = OptimSettings {

@@ -26,6 +26,7 @@ def surface():
         ({"tolerance": 0.1, "ctrl": (5, 5)}, "tolerance or ctrl"),
         ({"held_out": 1}, "1 fold"),
         ({"knuckles": "some"}, "knuckles: unknown"),
+        ({"envelope": "tight"}, "envelope: unknown `tight` \\(expected hold, hold-surface or free\\)"),
         ({"weights": "diagonal"}, "weights: unknown weight layout `diagonal`"),
         ({"control_points": "free"}, "control_points: unknown control-point mode `free`"),
         ({"corner_angle": 200.0}, "corner_angle"),
