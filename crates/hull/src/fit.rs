@@ -147,7 +147,7 @@ pub struct FitConfig {
     /// [`SkinOptions::along`](nurbs::fit::SkinOptions::along): the parameters along the
     /// sections (equal counts only) chosen by the least residual (the default), or imposed;
     /// `--fair auto` imposes the plain fit's on a smoothed fit whose own choice differs
-    /// ([`crate::fairing::fair`]).
+    /// ([`Fairing::Auto`]).
     pub along: AlongParameters,
 }
 

@@ -64,7 +64,8 @@ use crate::{NurbsError, NurbsSurface, Vec3};
 ///    factorization per placement for all columns, the first and last sections interpolated,
 ///    and again the placement with the least `sum over columns of (residual + λ E)` is kept.
 /// 3. Of the two parameter choices of step 1 (equal counts only), the surface with the least
-///    `sum |S(u_k, v_k) - Q_k|^2` over all offsets is returned.
+///    `sum |S(u_k, v_k) - Q_k|^2` over all offsets is returned, or only the one
+///    [`SkinOptions::along`] imposes is fitted ([`SkinResult::along`] says which it is).
 ///
 /// Degrees: `p = min(degree_u, N - 1)` with `N` the largest non-degenerate section (shorter
 /// sections do not lower it), `q = min(degree_v, K - 1)`.

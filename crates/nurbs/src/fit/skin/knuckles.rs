@@ -210,7 +210,8 @@ pub fn skin_interpolate_with_knuckles(
 /// A piece with `nu_j = max(N_j, p + 1)` is interpolated (as in
 /// [`skin_interpolate_with_knuckles`]); any other is fitted by least squares as in
 /// [`skin_approximate`] step 1 (its ends, the knuckle points, interpolated), on own and, with
-/// equal counts, on averaged parameters, keeping the fit with the least penalized residual.
+/// equal counts, on averaged parameters, keeping the fit with the least penalized residual
+/// (or only the one [`SkinOptions::along`] imposes).
 /// The pieces are joined as for interpolation, and the columns fitted across the sections as
 /// in [`skin_approximate`] step 2 with `nv` control points. With no knuckle it is
 /// [`skin_approximate`].
@@ -255,8 +256,7 @@ pub fn skin_approximate_with_knuckles(
     // One choice for the whole skin, or none where the pieces (fitted by least squares) differ.
     let along = match chosen.split_first() {
         Some((&first, rest)) if rest.iter().all(|&c| c == first) => first,
-        Some(_) => AlongParameters::LeastResidual,
-        None => AlongParameters::LeastResidual,
+        _ => AlongParameters::LeastResidual,
     };
     let joined = plan.join(&secs, &breaks, pieces)?;
     let across = fit_across(&joined.rows, nv, q, opts.param.v, opts.smoothing)?;

@@ -104,7 +104,8 @@ pub struct SkinResult {
     pub params: Vec<Vec<(f64, f64)>>,
     /// The parameters the approximation fitted the sections at along `u`: [`AlongParameters::Own`]
     /// or [`AlongParameters::Mean`]; [`AlongParameters::LeastResidual`] for interpolation, which
-    /// chooses none, and for a skin with knuckles whose pieces chose differently.
+    /// chooses none, and for a skin with knuckles whose pieces chose differently or were all
+    /// interpolated.
     pub along: AlongParameters,
 }
 
