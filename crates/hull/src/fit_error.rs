@@ -92,6 +92,10 @@ pub struct HeldOutError {
     pub refits: usize,
     /// Wall time of the refits and measurements.
     pub seconds: f64,
+    /// The held-out offset farthest from the refit that left it out (its section, its index
+    /// and input line in the whole table), where the surface is least sure between the
+    /// offsets; `None` when nothing was held out.
+    pub worst: Option<WorstPoint>,
 }
 
 impl HeldOutError {
@@ -140,7 +144,7 @@ pub(crate) fn parametric_fit_error(surface: &NurbsSurface, offsets: &Offsets, pa
 }
 
 /// The error of `offsets` from the feet `projections` of its points, in input order.
-fn fit_error_of(offsets: &Offsets, projections: &[SurfaceProjection]) -> FitError {
+pub(crate) fn fit_error_of(offsets: &Offsets, projections: &[SurfaceProjection]) -> FitError {
     let mut all = Vec::with_capacity(projections.len());
     let mut per_section = Vec::with_capacity(offsets.sections.len());
     let mut worst: Option<WorstPoint> = None;

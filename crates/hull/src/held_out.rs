@@ -10,7 +10,7 @@ use nurbs::{NurbsError, NurbsSurface};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::fit_error::{project_offsets, ErrorStats, HeldOutError};
+use crate::fit_error::{project_offsets, ErrorStats, HeldOutError, WorstPoint};
 use crate::optimize::{quiet, Control, Progress};
 use crate::pipeline::fit_surface_with;
 use crate::{default_ctrl, FitConfig, FitMethod, HeldOutKind, HullError, Offsets, Section};
@@ -216,16 +216,18 @@ pub fn held_out_error_with(
     // The largest distance so far, for the progress report: the bits of a non-negative float
     // order as the float does.
     let worst = AtomicU64::new(0);
-    let measured: Vec<Option<Result<Vec<f64>, HullError>>> = splits
+    let measured: Vec<Option<Result<Measured, HullError>>> = splits
         .par_iter()
         .map(|split| {
             if control.stopped() {
                 return None;
             }
             let result = fit(&split.train).map(|surface| {
-                project_offsets(&surface, &split.held, None).iter().map(|p| p.distance).collect::<Vec<f64>>()
+                let feet = project_offsets(&surface, &split.held, None);
+                let worst = worst_held(offsets, &split.held, &feet);
+                (feet.iter().map(|p| p.distance).collect::<Vec<f64>>(), worst)
             });
-            if let Ok(d) = &result {
+            if let Ok((d, _)) = &result {
                 worst
                     .fetch_max(d.iter().copied().filter(|d| *d >= 0.0).fold(0.0, f64::max).to_bits(), Ordering::SeqCst);
             }
@@ -236,9 +238,14 @@ pub fn held_out_error_with(
         })
         .collect();
     let (mut sections, mut points) = (Vec::new(), Vec::new());
+    let mut worst: Option<WorstPoint> = None;
     for (split, m) in splits.iter().zip(measured) {
-        let Some(distances) = m else { return Ok(None) };
-        let distances = distances?;
+        let Some(result) = m else { return Ok(None) };
+        let (distances, split_worst) = result?;
+        // The farthest of all, the first of the splits' order on a tie.
+        if let Some(w) = split_worst.filter(|w| worst.as_ref().is_none_or(|b| w.distance > b.distance)) {
+            worst = Some(w);
+        }
         if let Some(d) = distances.iter().find(|d| !d.is_finite()) {
             return Err(HullError::Fit {
                 method: "held-out refit",
@@ -263,7 +270,24 @@ pub fn held_out_error_with(
         folds: options.folds,
         refits: splits.len(),
         seconds: start.elapsed().as_secs_f64(),
+        worst,
     }))
+}
+
+/// What one refit left out measured: the held-out offsets' distances, in their order, and the
+/// farthest of them ([`worst_held`]).
+type Measured = (Vec<f64>, Option<WorstPoint>);
+
+/// The offset of `held` (a part of `offsets`) farthest from its foot in `feet` (in `held`'s
+/// order), named by its index and line in `offsets`: a point is found again in its section by
+/// its label and its coordinates, which the split copies bit for bit.
+fn worst_held(offsets: &Offsets, held: &Offsets, feet: &[nurbs::SurfaceProjection]) -> Option<WorstPoint> {
+    let mut w = crate::fit_error::fit_error_of(held, feet).worst?;
+    let whole = offsets.sections.iter().find(|s| s.label == w.section);
+    if let Some(i) = whole.and_then(|s| s.points.iter().position(|q| q.to_array() == w.point)) {
+        w.index = i;
+    }
+    Some(w)
 }
 
 /// Whether `outcome`'s held-out error must still be measured with `folds` folds (a caller
@@ -565,6 +589,26 @@ mod tests {
         assert!(matches!(r, Ok(None)), "{r:?}");
     }
 
+    /// A point held out among others of its section is named by its index in the whole
+    /// section, not in the part held out, with its own input line.
+    #[test]
+    fn the_worst_held_out_offset_is_named_by_its_place_in_the_whole_table() {
+        let offsets = series60_sample();
+        let surface = fit_offsets(&offsets, &FitConfig::default()).expect("fits").surface;
+        let k = offsets.sections.len() / 2;
+        // Every other point of one section from the third on, as a point fold holds them out.
+        let part = section_where(&offsets.sections[k], |i| i >= 2 && i.is_multiple_of(2));
+        let held = Offsets::new("part", offsets.units, vec![part]);
+        let feet = project_offsets(&surface, &held, None);
+        let w = worst_held(&offsets, &held, &feet).expect("a worst offset");
+        let whole = &offsets.sections[k];
+        assert!(w.index >= 2 && w.index.is_multiple_of(2), "{w:?}");
+        assert_eq!((w.section.as_str(), w.point), (whole.label.as_str(), whole.points[w.index].to_array()));
+        assert_eq!(w.line, whole.lines.get(w.index).copied());
+        let most = feet.iter().map(|p| p.distance).fold(0.0, f64::max);
+        assert_eq!(w.distance, most);
+    }
+
     #[test]
     fn overfitting_is_lower_at_the_offsets_and_higher_between() {
         assert!(overfit(0.0, 2.0, 1.0, 1.5));
@@ -578,6 +622,7 @@ mod tests {
             folds: 4,
             refits: 8,
             seconds: 0.0,
+            worst: None,
         };
         assert!(h(2.0).overfits(0.5, 1.0, &h(1.0)));
         assert!(!h(0.9).overfits(0.5, 1.0, &h(1.0)));

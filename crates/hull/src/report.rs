@@ -335,6 +335,16 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
     let mut t = summary_head(offsets, outcome.config.method.name(), &outcome.surface, e, seconds);
     if let Some(h) = &e.held_out {
         let _ = writeln!(t, "{}", held_out_line(h, u));
+        if let Some(w) = &h.worst {
+            let line = w.line.map(|l| format!(", line {l}")).unwrap_or_default();
+            let _ = writeln!(
+                t,
+                "worst held-out offset: section {} point {}{line}: {:.3e} {u} from the refit without it",
+                w.section,
+                w.index + 1,
+                w.distance
+            );
+        }
     }
     for line in fit_decisions(offsets, outcome) {
         let _ = writeln!(t, "{line}");
@@ -548,6 +558,12 @@ mod tests {
         let table = summary_table(&offsets, &out);
         let line = format!("held out (4 folds): RMS {:.3e} m, max {:.3e} m (sections: RMS", h.rms, h.max);
         assert!(table.contains(&line), "{table}");
+        // The worst held-out offset: the max, named by its place in the table.
+        let w = h.worst.as_ref().expect("a worst held-out offset");
+        assert_eq!(j["worst"]["distance"].as_f64(), Some(h.max));
+        assert_eq!(w.distance, h.max);
+        let named = format!("worst held-out offset: section {} point {}", w.section, w.index + 1);
+        assert!(table.contains(&named), "{table}");
     }
 
     #[test]

@@ -167,3 +167,29 @@ fn the_held_out_error_does_not_depend_on_the_thread_count() {
     };
     assert_eq!(timeless(run(1, &lm)), timeless(run(2, &lm)));
 }
+
+/// The worst held-out offset names its place: one offset of the Wigley table pushed out by 0.3 m
+/// (a misread cell, which the other offsets do not support) is the one farthest from the refit
+/// that leaves it out, named by its section, its index and its input line in the whole table
+/// (held out among the points of a section, it is the subset's index that must be mapped back).
+#[test]
+fn the_worst_held_out_offset_is_the_one_the_others_do_not_support() {
+    let mut o = wigley_offsets();
+    // Midship, half the draft (y = 3.75 m there: 4.05 m pushed out, inside the beam).
+    let (k, i) = (10, 5);
+    o.sections[k].points[i].y += 0.3;
+    let h = held_out_for_config(&o, &FitConfig::default(), &HeldOutOptions::default()).expect("cross-validates");
+    let w = h.worst.expect("a worst held-out offset");
+    assert_eq!((w.section.as_str(), w.index), (o.sections[k].label.as_str(), i), "{w:?}");
+    assert_eq!(w.line, o.sections[k].lines.get(i).copied());
+    assert_eq!(w.point, o.sections[k].points[i].to_array());
+    assert_eq!(w.distance, h.max);
+    // The refit without it follows the hull, so the distance is the push along the hull's
+    // normal there: `y = (B/2)(1 - s^2)(1 - t^2)` has `dy/dz = 0.8` at `s = 0`, `t = -1/2`, so
+    // 0.3 / sqrt(1 + 0.8^2) = 0.234 m (measured 0.236: the refits are within a few mm of the
+    // exact hull, the tests above).
+    let along_normal = 0.3 / (1.0_f64 + 0.8 * 0.8).sqrt();
+    assert!((w.distance - along_normal).abs() < 0.01, "{} against {along_normal}", w.distance);
+    let foot = Vec3::new(w.foot[0], w.foot[1], w.foot[2]);
+    assert!((foot.distance(Vec3::new(w.point[0], w.point[1], w.point[2])) - w.distance).abs() < 1e-12);
+}
