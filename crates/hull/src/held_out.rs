@@ -224,8 +224,8 @@ pub fn held_out_error_with(
             }
             let result = fit(&split.train).map(|surface| {
                 let feet = project_offsets(&surface, &split.held, None);
-                let worst = worst_held(offsets, &split.held, &feet);
-                (feet.iter().map(|p| p.distance).collect::<Vec<f64>>(), worst)
+                let farthest = worst_held(offsets, &split.held, &feet);
+                (feet.iter().map(|p| p.distance).collect::<Vec<f64>>(), farthest)
             });
             if let Ok((d, _)) = &result {
                 worst
