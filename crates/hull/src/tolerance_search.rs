@@ -155,10 +155,15 @@ fn refereed(
                     // The closest valid surface named: faired within its own error, the
                     // default fit can be closer than faired within an unreachable tolerance
                     // (the 4 x 4 example within 1e-30 m: 186.0 mm, against its net hold's
-                    // 276.5 mm faired within it and the search's 275.7 mm at 5x4).
-                    let own = fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?;
-                    let closer = [usual, own]
-                        .into_iter()
+                    // 276.5 mm faired within it and the search's 275.7 mm at 5x4). Where the
+                    // fairing had a tolerance of its own, that is the same fit: not fitted again.
+                    let own = if fair == config.fair {
+                        None
+                    } else {
+                        Some(fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?)
+                    };
+                    let closer = std::iter::once(usual)
+                        .chain(own)
                         .filter(|o| o.validity.is_empty())
                         .min_by(|a, b| a.error.overall.max.total_cmp(&b.error.overall.max));
                     return Err(not_reached(&record, offsets, closer.as_ref()));
