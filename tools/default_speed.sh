@@ -11,11 +11,18 @@
 # summary's `time`, i.e. report.json `seconds`, fit plus error measurement; best of 3,
 # interleaved), of the default fit without cross-validation (`--held-out 0`; best of 2) and
 # of the default fit (`hullskin fit T`: fairing search, envelope hold, validity and the
-# 4-fold cross-validation, report.json `seconds` + `error.held_out.seconds`; best of 2), and
+# 4-fold cross-validation and its held-out referee: report.json `seconds` + `error.held_out.seconds`,
+# or `held_out_referee.default_seconds` + `held_out_referee.seconds`; best of 2), and
 # the ratios. Process start and file writing are left out of every column. Prints a Markdown
 # table. Needs jq. Times depend on the machine and its load.
 source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
-secs() { jq '.seconds + (.error.held_out.seconds // 0)' "$1/report.json"; }
+# The default fit's whole cost: with its held-out referee, the default fit and its
+# cross-validation (`default_seconds`) and the referee's own (`seconds`: the plain fit and any
+# alternative, each cross-validated), whichever surface was written.
+secs() {
+  jq 'if .held_out_referee then .held_out_referee.default_seconds + .held_out_referee.seconds
+      else .seconds + (.error.held_out.seconds // 0) end' "$1/report.json"
+}
 
 echo "| table | ctrl | m | plain ms | default, no CV ms | ratio | default ms | ratio |"
 echo "|---|--:|--:|--:|--:|--:|--:|--:|"

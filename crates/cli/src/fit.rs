@@ -318,9 +318,11 @@ mod tests {
         // No flags: the default count, no search.
         let args = FitArgs::default();
         let (outcome, search) = args.fit.fit(&args.skin, &offsets).expect("the sample fits");
-        let direct = hull::fit_offsets(&offsets, &config).expect("the sample fits");
-        // The same deterministic least-squares fit: bit-identical surfaces.
+        let (direct, _) =
+            hull::quiet(|c| hull::fit_offsets_within(&offsets, &config, Goal::Count, c)).expect("the sample fits");
+        // The same deterministic fit, its held-out referee included: bit-identical surfaces.
         assert_eq!(outcome.surface, direct.surface);
+        assert!(outcome.held_out_referee.is_some());
         assert!(search.is_none());
         // `--tolerance default`: the library's search with the default tolerance.
         let goal = parse_tolerance("default").expect("a goal");

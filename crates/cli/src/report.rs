@@ -340,13 +340,14 @@ mod tests {
         assert!(search.ratio < 1.0, "fewer control points than interpolation: {}", search.ratio);
         assert!(loaded.notes.iter().any(|n| n.contains(&search.summary(Units::Metre))), "{:?}", loaded.notes);
         // No flags fits the default count: no search; the notes are the fit's decisions, as the
-        // summary prints them (the sample is faired and held within its envelope).
+        // summary prints them (the sample's default fit is refereed by its held-out error and
+        // held within its envelope).
         let plain = load(&Wrap::try_parse_from(["x"]).expect("no flags").args).expect("fits");
         let fit = plain.fit.as_ref().expect("offsets are fitted");
         let offsets = plain.offsets.as_ref().expect("offsets");
         let decided: Vec<String> = hull::fit_decisions(offsets, fit).iter().map(|l| format!("Fit: {l}.")).collect();
         assert!(plain.search.is_none() && plain.notes == decided, "{:?}", plain.notes);
-        assert!(decided.iter().any(|n| n.starts_with("Fit: fairing (auto)")), "{decided:?}");
+        assert!(decided.iter().any(|n| n.starts_with("Fit: held-out referee")), "{decided:?}");
         assert!(decided.iter().any(|n| n.starts_with("Fit: envelope:")), "{decided:?}");
         // `--tolerance default`: the search, noted with its default tolerance.
         let default = load(&Wrap::try_parse_from(["x", "--tolerance", "default"]).expect("valid").args).expect("fits");

@@ -96,6 +96,7 @@ mod fit_error;
 mod flats;
 mod float;
 mod held_out;
+mod held_out_referee;
 mod hydrostatics;
 #[cfg(test)]
 mod layering;
@@ -179,6 +180,8 @@ pub use held_out::{
     held_out_error, held_out_error_with, held_out_for_config, held_out_for_config_with, held_out_refit_config,
     held_out_wanted, overfitting_warning, HeldOutOptions,
 };
+// The default fit refereed by its held-out error against the plain approximation's.
+pub use held_out_referee::{refereed, HeldOutReferee, RefereeTry, HELD_OUT_ALTERNATIVES};
 // Hydrostatics of a surface, one draft or a table.
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, table_drafts, Hydrostatics,

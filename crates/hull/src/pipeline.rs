@@ -304,6 +304,7 @@ fn assembled(
         measured_fairness: None,
         unheld: None,
         along: AlongParameters::LeastResidual,
+        held_out_referee: None,
     })
 }
 

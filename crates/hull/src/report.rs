@@ -123,6 +123,11 @@ pub struct Report {
     /// command line's warning, set by the caller that cross-validated both.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub overfitting: Option<String>,
+    /// The default fit's held-out error against the plain approximation's, and the
+    /// alternatives tried where it was the farther ([`crate::HeldOutReferee`]; left out for any
+    /// other fit, or without cross-validation).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub held_out_referee: Option<crate::HeldOutReferee>,
     /// Every defect of the surface (always present; empty when valid).
     pub validity: Vec<crate::analysis::Finding>,
     /// The surface's fairness: thin-plate energy, Gaussian-curvature range, inflections of its
@@ -191,6 +196,7 @@ impl Report {
             fairing: outcome.fairing.clone(),
             rejected: outcome.rejected.clone(),
             overfitting: None,
+            held_out_referee: outcome.held_out_referee.clone(),
             validity: outcome.validity.clone(),
             fairness: outcome.fairness_figures(),
             envelope_held: outcome.envelope_held,
@@ -218,6 +224,7 @@ impl Report {
             fairing: None,
             rejected: Vec::new(),
             overfitting: None,
+            held_out_referee: None,
             validity: m.validity.clone(),
             fairness: crate::fairing::FairnessFigures::of(s),
             envelope_held: 0,
@@ -359,6 +366,9 @@ pub fn summary_table(offsets: &Offsets, outcome: &FitOutcome) -> String {
 pub fn fit_decisions(offsets: &Offsets, outcome: &FitOutcome) -> Vec<String> {
     let u = offsets.units.symbol();
     let mut lines = Vec::new();
+    if let Some(r) = &outcome.held_out_referee {
+        lines.push(r.summary(u));
+    }
     if let Some(o) = &outcome.optimization {
         lines.push(format!(
             "weights by {}: objective {:.4e} -> {:.4e} {u} in {} evaluations, {} iterations ({}), weights {:.3}..{:.3}, {:.2} s",

@@ -111,7 +111,11 @@ pub fn fit_offsets_within(
         }),
     };
     let Some(settings) = settings else {
-        return fit_offsets_with(offsets, config, control).map(|o| (o, None));
+        let mut outcome = fit_offsets_with(offsets, config, control)?;
+        if crate::refereed(config) {
+            crate::held_out_referee::referee_default_fit(offsets, &mut outcome, config, control);
+        }
+        return Ok((outcome, None));
     };
     let start = std::time::Instant::now();
     let (outcome, mut search) = refereed(offsets, config, goal, &settings, control)?;

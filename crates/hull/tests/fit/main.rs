@@ -13,6 +13,7 @@ mod common;
 mod fairness_alternative;
 mod features;
 mod held_out;
+mod held_out_referee;
 mod pipeline_props;
 mod real_hull_features;
 mod tolerance_referee;
