@@ -260,7 +260,7 @@ pub struct FitOutcome {
     pub(crate) along: AlongParameters,
     /// The default fit's held-out referee ([`crate::refereed`]; [`crate::fit_offsets_within`]
     /// with [`crate::Goal::Count`] sets it), `None` for any other fit.
-    pub held_out_referee: Option<crate::HeldOutReferee>,
+    pub held_out_referee: Option<HeldOutReferee>,
 }
 
 impl FitOutcome {
@@ -619,5 +619,92 @@ impl crate::optimize::FittedSurface for FitOutcome {
 
     fn params(&self) -> &[Vec<(f64, f64)>] {
         &self.params
+    }
+}
+
+/// What the referee found (`report.json` `held_out_referee`): the held-out max errors of the
+/// plain approximation and of the default fit, and the alternatives tried when the default
+/// fit was the farther.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct HeldOutReferee {
+    /// The folds of the cross-validations compared ([`crate::HeldOutOptions::DEFAULT_FOLDS`]).
+    pub folds: usize,
+    /// The held-out max error of the plain approximation at the default fit's control points
+    /// (the default parameterization, no fairing, not held within the envelope).
+    pub plain_max: f64,
+    /// The default fit's held-out max error (before any alternative replaced it).
+    pub default_max: f64,
+    /// The largest max error at the offsets an alternative may have: the default fit's
+    /// fairing tolerance.
+    pub limit: f64,
+    /// The alternatives tried, in order (none where the default fit was no farther).
+    pub tried: Vec<RefereeTry>,
+    /// Seconds of the default fit (fit and error at the offsets, its fairing search and
+    /// alternatives included) and of its cross-validation.
+    pub default_fit_seconds: f64,
+    pub default_held_out_seconds: f64,
+    /// Seconds of the referee itself: the plain approximation and its cross-validation, and
+    /// every alternative fitted and cross-validated.
+    pub seconds: f64,
+}
+
+/// One alternative the referee tried: as the default fit's alternatives are recorded
+/// (`no_less_fair` against the plain approximation, measured of a sound fit within the limit
+/// only; `max` that of its least squares, which is not faired), and its held-out max error.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RefereeTry {
+    #[serde(flatten)]
+    pub fit: AlternativeTry,
+    /// Its held-out max error (measured of a sound, no less fair fit within the limit only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub held_out_max: Option<f64>,
+}
+
+impl HeldOutReferee {
+    /// One line for the summary (`units`: the offsets' unit symbol).
+    pub fn summary(&self, units: &str) -> String {
+        let compared = |how: &str| {
+            format!(
+                "held-out referee ({} folds): {:.3e} {units}, {how} than the plain approximation's {:.3e} {units} (the \
+                 same control points, not held within the envelope)",
+                self.folds, self.default_max, self.plain_max
+            )
+        };
+        if self.default_max <= self.plain_max {
+            return compared("no farther");
+        }
+        let head = compared("farther");
+        let tried: Vec<String> = self
+            .tried
+            .iter()
+            .map(|RefereeTry { fit: t, held_out_max }| {
+                let what = format!(
+                    "{} held on the {} at {}x{}: max error {:.3e} {units}, {} finding(s)",
+                    t.param,
+                    t.hold.name(),
+                    t.control_points[0],
+                    t.control_points[1],
+                    t.max,
+                    t.findings
+                );
+                let fair = match t.no_less_fair {
+                    Some(true) => ", no less fair",
+                    Some(false) => ", less fair",
+                    None => "",
+                };
+                let held = held_out_max.map(|h| format!(", held out {h:.3e} {units}")).unwrap_or_default();
+                let used = if t.accepted { ": used" } else { "" };
+                format!("{what}{fair}{held}{used}")
+            })
+            .collect();
+        if self.tried.is_empty() {
+            return format!("{head}; kept: held on its surface already, no alternative tried");
+        }
+        let verdict = if self.tried.iter().any(|t| t.fit.accepted) {
+            "the closer alternative is used".to_string()
+        } else {
+            format!("no alternative sound, no less fair, within {:.3e} {units} and closer; kept", self.limit)
+        };
+        format!("{head}; {verdict} (tried: {})", tried.join("; "))
     }
 }

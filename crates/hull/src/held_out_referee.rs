@@ -16,9 +16,9 @@
 use std::time::Instant;
 
 use nurbs::fit::{Parameterization, SkinParameterization};
-use serde::Serialize;
 
 use crate::fairing::FairnessFigures;
+use crate::fit::{AlternativeTry, HeldOutReferee, RefereeTry};
 use crate::optimize::Control;
 use crate::{
     held_out_for_config_with, held_out_refit_config, pipeline::fit_surface_with, EnvelopeHold, Fairing, FitConfig,
@@ -39,121 +39,15 @@ use crate::{
 pub const HELD_OUT_ALTERNATIVES: [(SkinParameterization, HoldOn); 1] =
     [(SkinParameterization { u: Parameterization::ChordLength, v: Parameterization::ChordLength }, HoldOn::Surface)];
 
-/// What the referee found (`report.json` `held_out_referee`): the held-out max errors of the
-/// plain approximation and of the default fit, and the alternatives tried when the default
-/// fit was the farther.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct HeldOutReferee {
-    /// The folds of the cross-validations compared ([`HeldOutOptions::DEFAULT_FOLDS`]).
-    pub folds: usize,
-    /// The held-out max error of the plain approximation at the default fit's control points
-    /// (the default parameterization, no fairing, not held within the envelope).
-    pub plain_max: f64,
-    /// The default fit's held-out max error (before any alternative replaced it).
-    pub default_max: f64,
-    /// The largest max error at the offsets an alternative may have: the default fit's
-    /// fairing tolerance.
-    pub limit: f64,
-    /// The alternatives tried, in order (none where the default fit was no farther).
-    pub tried: Vec<RefereeTry>,
-    /// Seconds of the default fit and its cross-validation (the fit written when no
-    /// alternative is used).
-    pub default_seconds: f64,
-    /// Seconds of the referee itself: the plain approximation and its cross-validation, and
-    /// every alternative fitted and cross-validated.
-    pub seconds: f64,
-}
-
-/// One alternative the referee tried.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct RefereeTry {
-    /// Its parameterization, as `--param` takes it.
-    pub param: &'static str,
-    /// What its envelope hold holds: `net` or `surface`.
-    pub hold: HoldOn,
-    /// Its control-point counts `[NU, NV]`.
-    pub control_points: [usize; 2],
-    /// Its max error at the offsets and validity findings.
-    pub max: f64,
-    pub findings: usize,
-    /// Whether it is no less fair than the plain approximation (thin-plate energy, largest
-    /// |K|, inflections; measured of a sound fit within the limit only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub no_less_fair: Option<bool>,
-    /// Its held-out max error (measured of a sound, no less fair fit within the limit only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub held_out_max: Option<f64>,
-    /// The one used.
-    pub accepted: bool,
-}
-
-impl HeldOutReferee {
-    /// One line for the summary (`units`: the offsets' unit symbol).
-    pub fn summary(&self, units: &str) -> String {
-        let compared = |how: &str| {
-            format!(
-                "held-out referee ({} folds): {:.3e} {units}, {how} than the plain approximation's {:.3e} {units} (the \
-                 same control points, not held within the envelope)",
-                self.folds, self.default_max, self.plain_max
-            )
-        };
-        if self.default_max <= self.plain_max {
-            return compared("no farther");
-        }
-        let head = compared("farther");
-        let tried: Vec<String> = self
-            .tried
-            .iter()
-            .map(|t| {
-                let what = format!(
-                    "{} held on the {} at {}x{}: max error {:.3e} {units}, {} finding(s)",
-                    t.param,
-                    t.hold.name(),
-                    t.control_points[0],
-                    t.control_points[1],
-                    t.max,
-                    t.findings
-                );
-                let fair = match t.no_less_fair {
-                    Some(true) => ", no less fair",
-                    Some(false) => ", less fair",
-                    None => "",
-                };
-                let held = t.held_out_max.map(|h| format!(", held out {h:.3e} {units}")).unwrap_or_default();
-                let used = if t.accepted { ": used" } else { "" };
-                format!("{what}{fair}{held}{used}")
-            })
-            .collect();
-        if self.tried.is_empty() {
-            return format!("{head}; kept: held on its surface already, no alternative tried");
-        }
-        let verdict = if self.tried.iter().any(|t| t.accepted) {
-            "the closer alternative is used".to_string()
-        } else {
-            format!("no alternative sound, no less fair, within {:.3e} {units} and closer; kept", self.limit)
-        };
-        format!("{head}; {verdict} (tried: {})", tried.join("; "))
-    }
-}
-
-/// Whether `config` asks for the default fit the referee judges ([`referee_default_fit`]): the
-/// faired approximation (`--fair auto`) on the default parameterization and the default counts,
-/// held within the offsets' envelope on its net.
-pub fn refereed(config: &FitConfig) -> bool {
-    config.method == FitMethod::Approx
-        && matches!(config.fair, Fairing::Auto { .. })
-        && config.param == SkinParameterization::default()
-        && config.ctrl.is_none()
-        && config.hold_on == HoldOn::Net
-        && config.envelope == EnvelopeHold::Own
-}
-
-/// The default fit `outcome` of `requested` ([`refereed`]) refereed by its error between the
-/// offsets, as [`crate::fit_offsets_within`] makes it for [`crate::Goal::Count`]:
+/// Whether `config` asks for the default fit, which [`crate::fit_offsets_within`] referees by its
+/// error between the offsets for [`crate::Goal::Count`]: the faired approximation (`--fair auto`)
+/// on the default parameterization and the default counts, held within the offsets' envelope on
+/// its net (`hullskin fit` with no method, count, parameterization or hold asked for). The
+/// referee:
 ///
-/// 1. It is cross-validated with the default folds ([`held_out_for_config_with`] with
-///    [`held_out_refit_config`]; `outcome.error.held_out`). Where that fails (too few offsets to
-///    hold out any), it stays as it is, with no held-out error.
+/// 1. The default fit is cross-validated with the default folds ([`held_out_for_config_with`]
+///    with [`held_out_refit_config`]; the outcome's `error.held_out`). Where that fails (too few
+///    offsets to hold out any), it stays as it is, with no held-out error.
 /// 2. The plain approximation at the same control points (the default parameterization, no
 ///    fairing, not held within the envelope: issue 11's held-out floor) is cross-validated the
 ///    same way.
@@ -165,15 +59,23 @@ pub fn refereed(config: &FitConfig) -> bool {
 ///    (thin-plate energy, largest |K|, inflections) and closer to the held-out offsets than the
 ///    default fit (its own cross-validation, the same folds): the first that is.
 ///
-/// `outcome.held_out_referee` records what was compared and tried; its `seconds` are the
-/// referee's (the plain refits and every alternative, each cross-validated), its
-/// `default_seconds` the default fit's and its cross-validation's. Where an alternative is
-/// used, the outcome's `fit_seconds` include the default fit's. The referee costs the plain
+/// [`FitOutcome::held_out_referee`] records what was compared and tried ([`HeldOutReferee`]).
+/// Where an alternative is used, the outcome's `fit_seconds` include the default fit's. The referee costs the plain
 /// approximation's refits where the default fit is no farther, and an alternative's fit and
 /// refits where it is. The alternatives are not faired: a search over the smoothing weights
 /// held on the surface cost 80 ms on the Series 60 parents (30 times their plain fit), and
 /// their least squares already meet the fairness floor where they are used. With a stop
 /// raised the default fit stays.
+pub fn refereed(config: &FitConfig) -> bool {
+    config.method == FitMethod::Approx
+        && matches!(config.fair, Fairing::Auto { .. })
+        && config.param == SkinParameterization::default()
+        && config.ctrl.is_none()
+        && config.hold_on == HoldOn::Net
+        && config.envelope == EnvelopeHold::Own
+}
+
+/// The held-out referee of the default fit `outcome` of `requested`: see [`refereed`].
 pub(crate) fn referee_default_fit(
     offsets: &Offsets,
     outcome: &mut FitOutcome,
@@ -203,7 +105,8 @@ pub(crate) fn referee_default_fit(
         default_max: default_held.max,
         limit,
         tried: Vec::new(),
-        default_seconds: outcome.fit_seconds + outcome.error_seconds + default_held.seconds,
+        default_fit_seconds: outcome.fit_seconds + outcome.error_seconds,
+        default_held_out_seconds: default_held.seconds,
         seconds: 0.0,
     };
     let mut used: Option<FitOutcome> = None;
@@ -226,20 +129,20 @@ pub(crate) fn referee_default_fit(
             let config = FitConfig { param, hold_on, fair: Fairing::Off, ..at_count };
             let Ok(mut out) = crate::fit_offsets_with(offsets, &config, control) else { continue };
             let (max, findings) = (out.error.overall.max, out.validity.len());
-            let mut t = RefereeTry {
+            let fit = AlternativeTry {
                 param: param.name(),
                 hold: hold_on,
                 control_points: [out.surface.n_u(), out.surface.n_v()],
                 max,
                 findings,
                 no_less_fair: None,
-                held_out_max: None,
                 accepted: false,
             };
+            let mut t = RefereeTry { fit, held_out_max: None };
             if findings == 0 && max <= limit {
                 let plain = *figures.get_or_insert_with(plain_figures);
                 let fair = plain.and_then(|p| FairnessFigures::of_no_less_fair(&out.surface, &p));
-                t.no_less_fair = Some(fair.is_some());
+                t.fit.no_less_fair = Some(fair.is_some());
                 if let Some(fair) = fair {
                     out = out.with_fairness(fair);
                     out.error.held_out =
@@ -247,10 +150,10 @@ pub(crate) fn referee_default_fit(
                             .ok()
                             .flatten();
                     t.held_out_max = out.error.held_out.as_ref().map(|h| h.max);
-                    t.accepted = t.held_out_max.is_some_and(|h| h < default_held.max);
+                    t.fit.accepted = t.held_out_max.is_some_and(|h| h < default_held.max);
                 }
             }
-            let accepted = t.accepted;
+            let accepted = t.fit.accepted;
             referee.tried.push(t);
             if accepted {
                 used = Some(out);

@@ -181,7 +181,8 @@ pub use held_out::{
     held_out_wanted, overfitting_warning, HeldOutOptions,
 };
 // The default fit refereed by its held-out error against the plain approximation's.
-pub use held_out_referee::{refereed, HeldOutReferee, RefereeTry, HELD_OUT_ALTERNATIVES};
+pub use fit::{HeldOutReferee, RefereeTry};
+pub use held_out_referee::{refereed, HELD_OUT_ALTERNATIVES};
 // Hydrostatics of a surface, one draft or a table.
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, table_drafts, Hydrostatics,

@@ -56,6 +56,11 @@ pub struct SurfaceSummary {
 ///                   "parameter_correction": false, "settings": {..}, "seconds": ..},
 ///  "fairness": {"thin_plate": .., "gaussian": [min, max], "station_inflections": n,
 ///               "waterline_inflections": n},
+///  "held_out_referee": {"folds": 4, "plain_max": .., "default_max": .., "limit": ..,
+///                       "tried": [{"param": "chord", "hold": "surface", "control_points": [NU, NV],
+///                                  "max": .., "findings": 0, "no_less_fair": true,
+///                                  "held_out_max": .., "accepted": true}],
+///                       "default_fit_seconds": .., "default_held_out_seconds": .., "seconds": ..},
 ///  "folds": [{"x": [x0, x1], "v": [v0, v1], "samples": n, "of": n}],
 ///  "validity": [{"kind": "below_centre_plane", "place": {"x": .., "y": .., "z": .., "u": .., "v": ..},
 ///                "size": .., "limit": .., "reference": .., "x_band": [x0, x1], "flat": "bottom"}]}
@@ -69,7 +74,10 @@ pub struct SurfaceSummary {
 /// lists results not taken as the answer, and why; `overfitting` (from `hullskin fit` with an
 /// optimised method) says when its held-out error shows over-fitting. `tolerance_search` is
 /// present with `--tolerance` only ([`ToleranceSearch`]: `tolerance`, `control_points`,
-/// `interp_control_points`, `ratio`, `fits`, `complete`, `valid`, `tried`).
+/// `interp_control_points`, `ratio`, `fits`, `complete`, `valid`, `tried`). `held_out_referee`
+/// is present for the default fit ([`crate::HeldOutReferee`]: its held-out max error against the
+/// plain approximation's, and the alternatives tried where it was the farther), whatever
+/// `--held-out` says: it chose the surface written.
 ///
 /// A surface measured as it is (`hullskin fit SURFACE --offsets FILE`, [`Report::measured`])
 /// has `"method": "given"`, `"parameterization": "closest points"`, `fit_seconds` 0 and

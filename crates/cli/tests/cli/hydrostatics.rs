@@ -94,8 +94,12 @@ fn sample_at_its_draft_has_todds_block_coefficient_in_json_and_csv() {
     assert_eq!((doc["perpendiculars"]["aft"].as_f64(), doc["perpendiculars"]["fore"].as_f64()), (Some(0.0), Some(LPP)));
     let cb_pp = get("vol") / (LPP * B * T);
     assert!((cb_pp / 0.60 - 1.0).abs() < 0.01, "Cb {cb_pp}");
-    // The library's CB(Lpp) takes Bwl for B: the fitted 1.0 WL is within 0.1 % of B.
-    assert!((get("cb_lpp") / cb_pp - 1.0).abs() < 1e-3, "CB(Lpp) {} vs {cb_pp}", get("cb_lpp"));
+    // The library's CB(Lpp) takes Bwl for B: the fitted 1.0 WL is within 0.5 % of B (the
+    // default fit, chord-length parameters held on the surface by the held-out referee, is
+    // 16.211 m wide there against B = 16.26 m: 24.7 mm inside each side, within its max error
+    // of 94 mm at the offsets; the interpolation is 16.280 m wide, 0.12 % outside).
+    assert!((get("cb_lpp") / cb_pp - 1.0).abs() < 5e-3, "CB(Lpp) {} vs {cb_pp}", get("cb_lpp"));
+    assert!((get("bwl") / B - 1.0).abs() < 5e-3, "Bwl {}", get("bwl"));
     let lcb_pct = (get("lcb") - LPP / 2.0) / LPP * 100.0;
     assert!((lcb_pct + 1.5).abs() < 0.5, "LCB {lcb_pct} % Lpp");
     assert!((get("lcb_pct_lpp") - lcb_pct).abs() < 1e-12, "LCB {} % Lpp", get("lcb_pct_lpp"));

@@ -48,8 +48,8 @@ fn on_the_series_60_cb_060_the_referee_takes_a_fit_closer_between_the_offsets_th
     // The referee's record agrees with the comparator measured here.
     assert_eq!(r.plain_max, plain_max);
     assert!(r.default_max > r.plain_max, "{r:?}");
-    let used = r.tried.iter().find(|t| t.accepted).expect("an alternative is used");
-    assert_eq!((used.param, used.hold), ("chord", HoldOn::Surface));
+    let used = r.tried.iter().find(|t| t.fit.accepted).expect("an alternative is used");
+    assert_eq!((used.fit.param, used.fit.hold), ("chord", HoldOn::Surface));
     // The surface written is that alternative: its settings, sound, within the tolerance.
     assert_eq!(out.config.param.name(), "chord");
     assert_eq!(out.config.hold_on, HoldOn::Surface);
@@ -94,8 +94,8 @@ fn a_kept_default_fit_says_what_was_tried_and_why_not() {
     assert!(r.default_max > r.plain_max, "{r:?}");
     assert_eq!(r.tried.len(), 1);
     let t = &r.tried[0];
-    assert!(!t.accepted);
-    assert_eq!(t.no_less_fair, Some(false));
+    assert!(!t.fit.accepted);
+    assert_eq!(t.fit.no_less_fair, Some(false));
     assert_eq!(t.held_out_max, None);
     assert_eq!(out.config.param, default_config().param);
     assert_eq!(out.error.held_out.as_ref().map(|h| h.max), Some(r.default_max));
