@@ -10,8 +10,8 @@
 //! centre plane up to 5.6 m and 3.5 m off it at 9.4 m): centripetal parameters along such a
 //! section, held on its net, miss a held-out point there by 396 mm where the plain least
 //! squares misses it by 374 mm; chord-length parameters, held on the surface, by 333 mm
-//! (README, Held-out floor). The rest of the documentation is on [`cross_validate_with`],
-//! where the library's users read it.
+//! (README, Held-out floor). The rest of the documentation is on [`refereed`], where the
+//! library's users read it.
 
 use std::time::Instant;
 
@@ -26,16 +26,18 @@ use crate::{
 };
 
 /// The parameterizations and holds the referee tries, in order, at the default fit's control
-/// points, faired within its tolerance: chord length in both directions, held on the surface.
-/// Measured on the five Series 60 parents (6x19, 4 folds; the plain approximation's held-out
-/// max / the default fit's / this one's, mm): Cb 0.60 374 / 396 / 333, Cb 0.65 375 / 406 /
-/// 319 (both sound, no less fair than the plain least squares and closer to the offsets too:
-/// 94 and 81 mm against 144 and 141); Cb 0.70 and 0.75 closer between the offsets still (316
-/// and 356 mm) but with more inflections than the plain least squares (96 against 90, 108
-/// against 99), so not taken; Cb 0.80 not within the tolerance. Held on the net instead it was
-/// farther on all five (511 to 721 mm); universal or uniform along the sections, or
-/// centripetal in both directions, was farther than the plain approximation on all five
-/// (grid of 5 parameterizations x 2 holds x 5 smoothing weights, 2026-12-07).
+/// points, as least squares held within the envelope (not faired): chord length in both
+/// directions, held on the surface. Measured on the five Series 60 parents (6x19, 4 folds; the
+/// plain approximation's held-out max / the default fit's / this one's, mm): Cb 0.60 374 / 396
+/// / 333, Cb 0.65 375 / 406 / 319 (both sound, no less fair than the plain least squares and
+/// closer to the offsets too: 94 and 81 mm against 144 and 141); Cb 0.70 and 0.75 closer
+/// between the offsets still (316 and 356 mm) but with more inflections than the plain least
+/// squares (96 against 90, 108 against 99), so not taken; Cb 0.80's default fit holds its
+/// surface already (and this one is 452 mm off its offsets). Held on the net instead it was
+/// farther than the plain approximation on all five (512 to 722 mm unsmoothed); universal or
+/// uniform along the sections, or centripetal in both directions, was farther than it, or less
+/// fair, on Cb 0.60 to 0.75 at every hold and smoothing tried (grid of 5 parameterizations x 2
+/// holds x 5 smoothing weights, 2026-12-07).
 pub const HELD_OUT_ALTERNATIVES: [(SkinParameterization, HoldOn); 1] =
     [(SkinParameterization { u: Parameterization::ChordLength, v: Parameterization::ChordLength }, HoldOn::Surface)];
 
