@@ -655,6 +655,8 @@ pub struct HeldOutReferee {
 pub struct RefereeTry {
     #[serde(flatten)]
     pub fit: AlternativeTry,
+    /// The smoothing `ν` it was fitted with: the default fit's ([`FairReport::lambda`]).
+    pub smoothing: f64,
     /// Its held-out max error (measured of a sound, no less fair fit within the limit only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub held_out_max: Option<f64>,
@@ -677,9 +679,10 @@ impl HeldOutReferee {
         let tried: Vec<String> = self
             .tried
             .iter()
-            .map(|RefereeTry { fit: t, held_out_max }| {
+            .map(|RefereeTry { fit: t, smoothing, held_out_max }| {
+                let smoothed = if *smoothing > 0.0 { format!(", smoothing {smoothing:.0e}") } else { String::new() };
                 let what = format!(
-                    "{} held on the {} at {}x{}: max error {:.3e} {units}, {} finding(s)",
+                    "{} held on the {} at {}x{}{smoothed}: max error {:.3e} {units}, {} finding(s)",
                     t.param,
                     t.hold.name(),
                     t.control_points[0],

@@ -25,21 +25,46 @@ use crate::{
     FitMethod, FitOutcome, HeldOutOptions, HoldOn, Offsets,
 };
 
-/// The parameterizations and holds the referee tries, in order, at the default fit's control
-/// points, as least squares held within the envelope (not faired): chord length in both
-/// directions, held on the surface. Measured on the five Series 60 parents (6x19, 4 folds; the
-/// plain approximation's held-out max / the default fit's / this one's, mm): Cb 0.60 374 / 396
-/// / 333, Cb 0.65 375 / 406 / 319 (both sound, no less fair than the plain least squares and
-/// closer to the offsets too: 94 and 81 mm against 144 and 141); Cb 0.70 and 0.75 closer
-/// between the offsets still (316 and 356 mm) but with more inflections than the plain least
-/// squares (96 against 90, 108 against 99), so not taken; Cb 0.80's default fit holds its
-/// surface already (and this one is 452 mm off its offsets). Held on the net instead it was
-/// farther than the plain approximation on all five (512 to 722 mm unsmoothed); universal or
-/// uniform along the sections, or centripetal in both directions, was farther than it, or less
-/// fair, on Cb 0.60 to 0.75 at every hold and smoothing tried (grid of 5 parameterizations x 2
-/// holds x 5 smoothing weights, 2026-12-07).
-pub const HELD_OUT_ALTERNATIVES: [(SkinParameterization, HoldOn); 1] =
-    [(SkinParameterization { u: Parameterization::ChordLength, v: Parameterization::ChordLength }, HoldOn::Surface)];
+/// One alternative of [`HELD_OUT_ALTERNATIVES`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RefereeAlternative {
+    pub param: SkinParameterization,
+    pub hold_on: HoldOn,
+    /// Tried only where the default fit's smoothing was chosen for validity (its net-held least
+    /// squares had findings, [`crate::FairReport::plain_findings`]), which costs accuracy.
+    pub after_validity_smoothing: bool,
+}
+
+/// The alternatives the referee tries, in order, at the default fit's control points and
+/// smoothing (its fairing's `ν`, set as it is: not searched again), held within the envelope:
+///
+/// 1. Chord length in both directions, held on the surface. Measured on the five Series 60
+///    parents (6x19, 4 folds; the plain approximation's held-out max / the default fit's / this
+///    one's, mm): Cb 0.60 374 / 396 / 333 and Cb 0.65 375 / 406 / 290 (both sound, no less fair
+///    than the plain least squares and closer to the offsets too: 94 and 81 mm against 144 and
+///    141); Cb 0.70 and 0.75 closer between the offsets still (276 and 356 mm) but with more
+///    inflections than the plain least squares (94 against 90, 110 against 99), so not taken;
+///    Cb 0.80's default fit holds its surface already (and this one is 452 mm off its
+///    offsets). The 4 x 4 example: 167 against 219 mm (the plain fit's 105).
+/// 2. Chord length held on the net, where the default fit was smoothed for validity: the
+///    frigate's net-held least squares faces inwards and only `ν` = 0.3 made it sound, at 75.2
+///    mm and a held-out max of 472 mm; on chord lengths at that `ν` it is sound at 74.2 mm and
+///    424 mm held out (the plain fit's 291). Not tried after a smoothing for fairness: on the
+///    Series 60 Cb 0.70 it was farther than the default fit (577 against 484 mm), at the cost of a
+///    cross-validation (15 times the plain fit there).
+///
+/// Not in the list, measured on the Series 60 parents (a grid of 5 parameterizations x 2
+/// holds x 5 smoothing weights, 2026-12-07): universal or uniform along the sections, or
+/// centripetal in both directions, which were farther than the plain approximation, or less
+/// fair, on Cb 0.60 to 0.75 at every hold and smoothing tried.
+pub const HELD_OUT_ALTERNATIVES: [RefereeAlternative; 2] = [
+    RefereeAlternative { param: CHORD, hold_on: HoldOn::Surface, after_validity_smoothing: false },
+    RefereeAlternative { param: CHORD, hold_on: HoldOn::Net, after_validity_smoothing: true },
+];
+
+/// Chord length along the sections and across them.
+const CHORD: SkinParameterization =
+    SkinParameterization { u: Parameterization::ChordLength, v: Parameterization::ChordLength };
 
 /// Whether `config` asks for the default fit, which [`crate::fit_offsets_within`] referees by its
 /// error between the offsets for [`crate::Goal::Count`]: the faired approximation (`--fair auto`)
@@ -124,11 +149,17 @@ pub(crate) fn referee_default_fit(
     // or 452 mm off the offsets (the Series 60 Cb 0.80, against its 214.5 mm).
     if default_held.max > plain_held.max && outcome.config.hold_on == HoldOn::Net {
         let mut figures: Option<Option<FairnessFigures>> = None;
-        for &(param, hold_on) in &HELD_OUT_ALTERNATIVES {
+        // At the default fit's own smoothing (none where it kept its least squares), set
+        // directly: not [`Fairing::Lambda`], whose fit measures every fairness figure, where
+        // an alternative outside the limit needs none.
+        let smoothing = outcome.fairing.as_ref().map_or(0.0, |f| f.lambda);
+        let for_validity = outcome.fairing.as_ref().is_some_and(|f| f.plain_findings > 0 && f.lambda > 0.0);
+        for a in HELD_OUT_ALTERNATIVES.iter().filter(|a| for_validity || !a.after_validity_smoothing) {
             if control.stopped() {
                 break;
             }
-            let config = FitConfig { param, hold_on, fair: Fairing::Off, ..at_count };
+            let (param, hold_on) = (a.param, a.hold_on);
+            let config = FitConfig { param, hold_on, fair: Fairing::Off, smoothing, ..at_count };
             let Ok(mut out) = crate::fit_offsets_with(offsets, &config, control) else { continue };
             let (max, findings) = (out.error.overall.max, out.validity.len());
             let fit = AlternativeTry {
@@ -140,7 +171,7 @@ pub(crate) fn referee_default_fit(
                 no_less_fair: None,
                 accepted: false,
             };
-            let mut t = RefereeTry { fit, held_out_max: None };
+            let mut t = RefereeTry { fit, smoothing, held_out_max: None };
             if findings == 0 && max <= limit {
                 let plain = *figures.get_or_insert_with(plain_figures);
                 let fair = plain.and_then(|p| FairnessFigures::of_no_less_fair(&out.surface, &p));

@@ -182,7 +182,7 @@ pub use held_out::{
 };
 // The default fit refereed by its held-out error against the plain approximation's.
 pub use fit::{HeldOutReferee, RefereeTry};
-pub use held_out_referee::{refereed, HELD_OUT_ALTERNATIVES};
+pub use held_out_referee::{refereed, RefereeAlternative, HELD_OUT_ALTERNATIVES};
 // Hydrostatics of a surface, one draft or a table.
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, table_drafts, Hydrostatics,
