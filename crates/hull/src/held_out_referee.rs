@@ -79,20 +79,20 @@ const CHORD: SkinParameterization =
 ///    fairing, not held within the envelope: issue 11's held-out floor) is cross-validated the
 ///    same way.
 /// 3. Where the default fit's held-out max error is no larger, or where it holds its surface
-///    already ([`HoldOn::Surface`]), it stays. Else each of
-///    [`HELD_OUT_ALTERNATIVES`] is fitted at the same control points (its least squares, held
-///    within the envelope) and replaces the default fit when it is sound, within the default
-///    fit's fairing tolerance at the offsets, no less fair than the plain approximation
-///    (thin-plate energy, largest |K|, inflections) and closer to the held-out offsets than the
-///    default fit (its own cross-validation, the same folds): the first that is.
+///    already ([`HoldOn::Surface`]), it stays. Else each of [`HELD_OUT_ALTERNATIVES`] (the
+///    second only after a smoothing for validity) is fitted at the same control points and the
+///    default fit's smoothing `ν`, held within the envelope, and replaces the default fit when
+///    it is sound, within the default fit's fairing tolerance at the offsets, no less fair than
+///    the plain approximation (thin-plate energy, largest |K|, inflections) and closer to the
+///    held-out offsets than the default fit (its own cross-validation, the same folds): the
+///    first that is.
 ///
 /// [`FitOutcome::held_out_referee`] records what was compared and tried ([`HeldOutReferee`]).
-/// Where an alternative is used, the outcome's `fit_seconds` include the default fit's. The referee costs the plain
-/// approximation's refits where the default fit is no farther, and an alternative's fit and
-/// refits where it is. The alternatives are not faired: a search over the smoothing weights
-/// held on the surface cost 80 ms on the Series 60 parents (30 times their plain fit), and
-/// their least squares already meet the fairness floor where they are used. With a stop
-/// raised the default fit stays.
+/// Where an alternative is used, the outcome's `fit_seconds` include the default fit's. The
+/// referee costs the plain approximation's refits where the default fit is no farther, and an
+/// alternative's fit and refits where it is tried. The alternatives are not faired again: a
+/// search over the smoothing weights held on the surface cost 80 ms on the Series 60 parents
+/// (30 times their plain fit). With a stop raised the default fit stays.
 pub fn refereed(config: &FitConfig) -> bool {
     config.method == FitMethod::Approx
         && matches!(config.fair, Fairing::Auto { .. })
@@ -114,7 +114,7 @@ pub(crate) fn referee_default_fit(
     let held = held_out_for_config_with(offsets, &held_out_refit_config(outcome), options, control);
     let Ok(Some(default_held)) = held else { return };
     outcome.error.held_out = Some(default_held.clone());
-    if !refereed(requested) || control.stopped() {
+    if control.stopped() {
         return;
     }
     let start = Instant::now();
