@@ -52,11 +52,16 @@ def test_a_study_on_dask_equals_the_serial_run(client):
     ok = on_dask[on_dask["error"] == ""]
     assert len(ok) == len(vs) - 3
     # The transformed parents keep their form: Cb at the scaled design draft is the parent's
-    # to 0.05 % (an affine image of the offsets is not fitted as the affine image of the
-    # surface: the centripetal parameters and the fairing's choice change with the
-    # proportions; measured spread 0.02 %).
+    # to 0.05 % among the fits of one parameterization (an affine image of the offsets is not
+    # fitted as the affine image of the surface: the centripetal parameters and the fairing's
+    # choice change with the proportions; measured spread 0.02 %). The default fit's held-out
+    # referee takes chord lengths held on the surface for some proportions, whose waterline is
+    # narrower (the parent's Bwl 16.211 m against 16.26): CB(Lpp) 0.5999 against 0.5974.
     parents = ok[ok["name"].str.startswith("L/B")]
-    assert parents["cb"].max() - parents["cb"].min() < 5e-4 * parents["cb"].mean()
+    for param, group in parents.groupby("parameterization"):
+        assert group["cb"].max() - group["cb"].min() < 5e-4 * group["cb"].mean(), param
+    assert set(parents["parameterization"]) <= {"centripetal,chord", "chord"}
+    assert (parents["thin_plate"] > 0).all()
     # The proportions asked for, to rounding of the scale factors.
     np.testing.assert_allclose(parents["l_over_b"], np.repeat(np.linspace(5.5, 8.5, 14), 14), rtol=1e-12)
     np.testing.assert_allclose(parents["b_over_t"], np.tile(np.linspace(2.0, 3.5, 14), 14), rtol=1e-12)

@@ -17,9 +17,10 @@ A study is a list of variants, each a dict:
 
 :func:`run` fits every variant (serially, or on a ``dask.distributed`` client) and returns a
 :class:`pandas.DataFrame`, one row per variant in the given order: particulars (L, B, T, L/B,
-B/T), fit errors (max, RMS, held out), fairness (thin-plate energy and Gaussian curvature range
-of the fitted surface, where the fit was faired), validity findings, and hydrostatics at the
-draft. A variant whose fit fails is a row with its ``error`` message, never an exception.
+B/T), the method and parameterization of the surface written (the default fit's held-out
+referee may take chord lengths for some variants), fit errors (max, RMS, held out), fairness
+(thin-plate energy and Gaussian curvature range of the fitted surface), validity findings, and
+hydrostatics at the draft. A variant whose fit fails is a row with its ``error`` message, never an exception.
 Every figure comes from the library's deterministic computations, so a run on any cluster is
 bit-identical to a serial run (timings are left out of the table).
 
@@ -37,7 +38,7 @@ from typing import Any, Dict, Iterable, List, Optional
 import hullskin
 
 # Columns of the table, in order (the hydrostatics' names are those of `hullskin hydrostatics`).
-PARTICULARS = ["name", "source", "method", "lpp", "beam", "draft", "depth", "l_over_b", "b_over_t"]
+PARTICULARS = ["name", "source", "method", "parameterization", "lpp", "beam", "draft", "depth", "l_over_b", "b_over_t"]
 FIT = ["ctrl_u", "ctrl_v", "max_error", "rms_error", "held_out_rms", "findings", "thin_plate", "gaussian_min",
        "gaussian_max"]
 HYDROSTATICS = ["vol", "displ", "cb", "cm", "cp", "cw", "lcb", "vcb", "aw", "lcf", "s", "kmt", "kml"]
@@ -59,13 +60,14 @@ def fit_row(variant: Dict[str, Any], draft_share: float = 0.6) -> Dict[str, Any]
     any error (bad offsets, a fit the kernel refuses, bad arguments) the row carries the
     message in ``error`` and NaN elsewhere."""
     row: Dict[str, Any] = {c: math.nan for c in COLUMNS}
-    row.update(name=str(variant.get("name", "")), source="", method="", error="")
+    row.update(name=str(variant.get("name", "")), source="", method="", parameterization="", error="")
     try:
         o = _offsets(variant)
         row["source"] = o.source
         f = hullskin.fit(o, **variant.get("fit", {}))
         report = f.report
         row["method"] = report["method"]
+        row["parameterization"] = report["parameterization"]
         zs = [float(z) for s in o.sections for z in s[:, 2]]
         ys = [float(y) for s in o.sections for y in s[:, 1]]
         xs = [float(x) for s in o.sections for x in s[:, 0]]
@@ -79,11 +81,9 @@ def fit_row(variant: Dict[str, Any], draft_share: float = 0.6) -> Dict[str, Any]
         row.update(ctrl_u=report["surface"]["control_points"][0], ctrl_v=report["surface"]["control_points"][1],
                    max_error=e["max"], rms_error=e["rms"], held_out_rms=held.get("rms", math.nan),
                    findings=len(f.validity))
-        fairing = report.get("fairing")
-        if fairing:
-            after = fairing["after"]
-            row.update(thin_plate=after["thin_plate"], gaussian_min=after["gaussian"][0],
-                       gaussian_max=after["gaussian"][1])
+        fairness = report["fairness"]
+        row.update(thin_plate=fairness["thin_plate"], gaussian_min=fairness["gaussian"][0],
+                   gaussian_max=fairness["gaussian"][1])
         h = f.surface.hydrostatics(draft=draft)["rows"][0]
         row.update({k: h[k] for k in HYDROSTATICS})
     except Exception as e:  # noqa: BLE001 — a failed fit is a row with its message
