@@ -59,7 +59,7 @@ pub struct SurfaceSummary {
 ///  "held_out_referee": {"folds": 4, "plain_max": .., "default_max": .., "limit": ..,
 ///                       "tried": [{"param": "chord", "hold": "surface", "control_points": [NU, NV],
 ///                                  "max": .., "findings": 0, "no_less_fair": true,
-///                                  "held_out_max": .., "accepted": true}],
+///                                  "accepted": true, "smoothing": 0, "held_out_max": ..}],
 ///                       "default_fit_seconds": .., "default_held_out_seconds": .., "seconds": ..},
 ///  "folds": [{"x": [x0, x1], "v": [v0, v1], "samples": n, "of": n}],
 ///  "validity": [{"kind": "below_centre_plane", "place": {"x": .., "y": .., "z": .., "u": .., "v": ..},
@@ -133,7 +133,7 @@ pub struct Report {
     pub overfitting: Option<String>,
     /// The default fit's held-out error against the plain approximation's, and the
     /// alternatives tried where it was the farther ([`crate::HeldOutReferee`]; left out for any
-    /// other fit, or without cross-validation).
+    /// other fit, or where the default fit could not be cross-validated).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub held_out_referee: Option<crate::HeldOutReferee>,
     /// Every defect of the surface (always present; empty when valid).

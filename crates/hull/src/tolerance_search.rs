@@ -78,7 +78,8 @@ impl std::str::FromStr for Goal {
     }
 }
 
-/// Fit `offsets` with `config` as `goal` asks: with `config.ctrl` ([`Goal::Count`]), or with
+/// Fit `offsets` with `config` as `goal` asks: with `config.ctrl` ([`Goal::Count`]; the default
+/// fit, [`crate::refereed`], then cross-validated and refereed by its held-out error), or with
 /// the fewest control points whose max error is within a tolerance ([`fit_to_tolerance`] on
 /// the plain fits), then that count faired within the tolerance (an automatic fairing takes
 /// the tolerance as its bound), with the record of the search. The faired fit is kept when it
