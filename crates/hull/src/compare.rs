@@ -3,7 +3,9 @@
 //! LM, all at the same control points, with their true error, Gaussian curvature range, time
 //! and objective evaluations, and the floors of issue 3 checked on the result (on these rows,
 //! all with `--fair 0 --envelope free`, the plain objective); then the fair fits of the default
-//! `--fair auto --envelope hold` ([`FAIR_ROWS`]: `approx+fair`, `lm+fair`).
+//! `--fair auto --envelope hold` ([`FAIR_ROWS`]: `approx+fair`, `lm+fair`), as `hullskin fit`
+//! makes them (at the default count and parameterization `approx+fair` is the default fit, its
+//! held-out referee included).
 //!
 //! The rest of this module's documentation is on [`compare_offsets`], where the library's users read it.
 
@@ -569,8 +571,10 @@ pub fn compare_offsets_with(
             ..config.fit_config(method)
         };
         let mut saw_stop = false;
+        // As `hullskin fit` makes it: at the default count and parameterization the fair
+        // approximation is the default fit, refereed by its held-out error.
         let mut fit = |control: &Control<'_>| {
-            let mut r = fit_offsets_with(offsets, &cfg, control);
+            let mut r = crate::fit_offsets_within(offsets, &cfg, crate::Goal::Count, control).map(|(out, _)| out);
             if let Ok(out) = &mut r {
                 held_out(out, control);
             }
