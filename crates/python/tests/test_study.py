@@ -51,16 +51,20 @@ def test_a_study_on_dask_equals_the_serial_run(client):
     assert len(workers) == 2 and sum(workers.values()) == len(vs) and min(workers.values()) > 0, workers
     ok = on_dask[on_dask["error"] == ""]
     assert len(ok) == len(vs) - 3
-    # The transformed parents keep their form: Cb at the scaled design draft is the parent's
-    # to 0.05 % among the fits of one parameterization (an affine image of the offsets is not
-    # fitted as the affine image of the surface: the centripetal parameters and the fairing's
-    # choice change with the proportions; measured spread 0.02 %). The default fit's held-out
-    # referee takes chord lengths held on the surface for some proportions, whose waterline is
-    # narrower (the parent's Bwl 16.211 m against 16.26): CB(Lpp) 0.5999 against 0.5974.
+    # The transformed parents keep their form: Cb at the scaled design draft is Todd's 0.60 to
+    # 0.5 %, and among the fits of one parameterization the same to 0.05 % on centripetal
+    # parameters and 0.3 % on chord lengths (an affine image of the offsets is not fitted as
+    # the affine image of the surface: the parameters, the fairing's and the held-out referee's
+    # choices change with the proportions; measured spreads 0.02 % and 0.26 %, 2026-12-07). The
+    # referee takes chord lengths held on the surface for 126 of the 196 proportions, whose
+    # waterline is narrower (the parent's Bwl 16.211 m against 16.26): CB(Lpp) 0.5983 to 0.5999
+    # against 0.5974.
     parents = ok[ok["name"].str.startswith("L/B")]
+    assert ((parents["cb"] - 0.60).abs() < 0.005 * 0.60).all(), parents["cb"].describe()
+    spread = {"centripetal,chord": 5e-4, "chord": 3e-3}
+    assert set(parents["parameterization"]) <= set(spread), set(parents["parameterization"])
     for param, group in parents.groupby("parameterization"):
-        assert group["cb"].max() - group["cb"].min() < 5e-4 * group["cb"].mean(), param
-    assert set(parents["parameterization"]) <= {"centripetal,chord", "chord"}
+        assert group["cb"].max() - group["cb"].min() < spread[param] * group["cb"].mean(), param
     assert (parents["thin_plate"] > 0).all()
     # The proportions asked for, to rounding of the scale factors.
     np.testing.assert_allclose(parents["l_over_b"], np.repeat(np.linspace(5.5, 8.5, 14), 14), rtol=1e-12)
