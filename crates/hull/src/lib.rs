@@ -13,7 +13,8 @@
 //! // A file is read the same way: `hull::read_offsets(path, Units::Metre)?`.
 //! let offsets = series60_sample();
 //! // The library's default fit: the skinning approximation held within the offsets' envelope
-//! // (the command line also fairs it: `fair: Fairing::Auto { tolerance: None }`).
+//! // (the command line also fairs it, `fair: Fairing::Auto { tolerance: None }`, and referees
+//! // it by its held-out error: `fit_offsets_within(.., Goal::Count, ..)`, see `refereed`).
 //! let fit = fit_offsets(&offsets, &FitConfig::default())?;
 //! // Every offset's true (closest-point) distance to the surface, and the validity checks.
 //! assert!(fit.error.overall.max < 0.2, "max error {} m", fit.error.overall.max);
