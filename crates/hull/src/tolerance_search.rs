@@ -86,8 +86,8 @@ impl std::str::FromStr for Goal {
 /// stays within the tolerance and is no less sound than the searched fit; otherwise the
 /// searched fit is kept, the faired one noted in [`FitOutcome::rejected`]. The search fits
 /// plain least squares; the default fit of the default count ([`crate::default_ctrl`], as
-/// [`Goal::Count`] fits it: held on its surface where the net hold folds or is less fair,
-/// faired) is then taken instead where it is valid and within the tolerance and the count
+/// [`Goal::Count`] fits it before its held-out referee: held on its surface where the net hold
+/// folds or is less fair, faired) is then taken instead where it is valid and within the tolerance and the count
 /// found is not, or has more control points ([`Referee`]).
 /// [`Goal::DefaultTolerance`] searches with [`default_tolerance`] and takes the closest
 /// surface where none reaches it (offsets in one plane have no beam: they get
@@ -140,7 +140,8 @@ fn refereed(
     settings: &ToleranceSettings,
     control: &Control<'_>,
 ) -> Result<(FitOutcome, ToleranceSearch), HullError> {
-    // The default count as `Goal::Count` fits it, faired within the tolerance as the count
+    // The default count as `Goal::Count` fits it (without its held-out referee, which this
+    // search's own referee replaces), faired within the tolerance as the count
     // searched is ([`faired_within`]): the fairest surface of the default count within it, not
     // the fairest within the default fit's own error (the Series 60 Cb 0.80's default fit is
     // held on its surface and faired within its net hold's 214.5 mm, at 141.1 mm; within 93.8
@@ -451,7 +452,7 @@ pub struct ToleranceSearch {
     /// Whether the quick search ran ([`ToleranceSettings::diagonal`]).
     pub quick: bool,
     /// Whether `--tolerance default` found no valid count and kept the default count
-    /// ([`crate::default_ctrl`]) as `Goal::Count` fits it.
+    /// ([`crate::default_ctrl`]) as `Goal::Count` fits it before its held-out referee.
     pub kept_default_count: bool,
     /// The comparison of the count found with the default count ([`Referee`]; `None` when they
     /// are the same count, or when the default count could not be the answer: the count found
