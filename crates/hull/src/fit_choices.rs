@@ -60,10 +60,7 @@ impl FromStr for EnvelopeChoice {
 
     /// A [`EnvelopeChoice::name`], exactly.
     fn from_str(s: &str) -> Result<Self, String> {
-        Self::ALL
-            .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| format!("unknown `{s}` (expected hold, hold-surface or free)"))
+        by_name(s, &Self::ALL, Self::name)
     }
 }
 
@@ -117,11 +114,17 @@ impl FromStr for KnuckleChoice {
 
     /// A [`KnuckleChoice::name`], exactly.
     fn from_str(s: &str) -> Result<Self, String> {
-        Self::ALL
-            .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| format!("unknown `{s}` (expected auto, auto+flats or off)"))
+        by_name(s, &Self::ALL, Self::name)
     }
+}
+
+/// The choice of `all` named `s` exactly, or an error listing their names (`a, b or c`).
+fn by_name<T: Copy>(s: &str, all: &[T], name: fn(T) -> &'static str) -> Result<T, String> {
+    all.iter().copied().find(|&c| name(c) == s).ok_or_else(|| {
+        let names: Vec<&str> = all.iter().map(|&c| name(c)).collect();
+        let (last, rest) = names.split_last().expect("a choice at least");
+        format!("unknown `{s}` (expected {} or {last})", rest.join(", "))
+    })
 }
 
 #[cfg(test)]
