@@ -258,7 +258,7 @@ pub struct FitOutcome {
     /// smoothed fit is compared with; [`AlongParameters::LeastResidual`] where none was made
     /// (interpolation, an optimised surface).
     pub(crate) along: AlongParameters,
-    /// The default fit's held-out referee ([`crate::refereed`]; [`crate::fit_offsets_within`]
+    /// The default fit's held-out referee ([`crate::refereed_by_held_out`]; [`crate::fit_offsets_within`]
     /// with [`crate::Goal::Count`] sets it), `None` for any other fit.
     pub held_out_referee: Option<HeldOutReferee>,
 }

@@ -10,7 +10,7 @@
 //! centre plane up to 5.6 m and 3.5 m off it at 9.4 m): centripetal parameters along such a
 //! section, held on its net, miss a held-out point there by 396 mm where the plain least
 //! squares misses it by 374 mm; chord-length parameters, held on the surface, by 333 mm
-//! (README, Held-out floor). The rest of the documentation is on [`refereed`], where the
+//! (README, Held-out floor). The rest of the documentation is on [`refereed_by_held_out`], where the
 //! library's users read it.
 
 use std::time::Instant;
@@ -93,7 +93,7 @@ const CHORD: SkinParameterization =
 /// alternative's fit and refits where it is tried. The alternatives are not faired again: a
 /// search over the smoothing weights held on the surface cost 80 ms on the Series 60 parents
 /// (30 times their plain fit). With a stop raised the default fit stays.
-pub fn refereed(config: &FitConfig) -> bool {
+pub fn refereed_by_held_out(config: &FitConfig) -> bool {
     config.method == FitMethod::Approx
         && matches!(config.fair, Fairing::Auto { .. })
         && config.param == SkinParameterization::default()
@@ -102,7 +102,7 @@ pub fn refereed(config: &FitConfig) -> bool {
         && config.envelope == EnvelopeHold::Own
 }
 
-/// The held-out referee of the default fit `outcome` of `requested`: see [`refereed`].
+/// The held-out referee of the default fit `outcome` of `requested`: see [`refereed_by_held_out`].
 pub(crate) fn referee_default_fit(
     offsets: &Offsets,
     outcome: &mut FitOutcome,

@@ -14,7 +14,7 @@
 //! let offsets = series60_sample();
 //! // The library's default fit: the skinning approximation held within the offsets' envelope
 //! // (the command line also fairs it, `fair: Fairing::Auto { tolerance: None }`, and referees
-//! // it by its held-out error: `fit_offsets_within(.., Goal::Count, ..)`, see `refereed`).
+//! // it by its held-out error: `fit_offsets_within(.., Goal::Count, ..)`, see `refereed_by_held_out`).
 //! let fit = fit_offsets(&offsets, &FitConfig::default())?;
 //! // Every offset's true (closest-point) distance to the surface, and the validity checks.
 //! assert!(fit.error.overall.max < 0.2, "max error {} m", fit.error.overall.max);
@@ -183,7 +183,7 @@ pub use held_out::{
 };
 // The default fit refereed by its held-out error against the plain approximation's.
 pub use fit::{HeldOutReferee, RefereeTry};
-pub use held_out_referee::{refereed, RefereeAlternative, HELD_OUT_ALTERNATIVES};
+pub use held_out_referee::{refereed_by_held_out, RefereeAlternative, HELD_OUT_ALTERNATIVES};
 // Hydrostatics of a surface, one draft or a table.
 pub use hydrostatics::{
     density_per_cubic_unit, draft_range, hydrostatics, hydrostatics_range, table_drafts, Hydrostatics,

@@ -79,7 +79,7 @@ impl std::str::FromStr for Goal {
 }
 
 /// Fit `offsets` with `config` as `goal` asks: with `config.ctrl` ([`Goal::Count`]; the default
-/// fit, [`crate::refereed`], then cross-validated and refereed by its held-out error), or with
+/// fit, [`crate::refereed_by_held_out`], then cross-validated and refereed by its held-out error), or with
 /// the fewest control points whose max error is within a tolerance ([`fit_to_tolerance`] on
 /// the plain fits), then that count faired within the tolerance (an automatic fairing takes
 /// the tolerance as its bound), with the record of the search. The faired fit is kept when it
@@ -87,8 +87,8 @@ impl std::str::FromStr for Goal {
 /// searched fit is kept, the faired one noted in [`FitOutcome::rejected`]. The search fits
 /// plain least squares; the default fit of the default count ([`crate::default_ctrl`], as
 /// [`Goal::Count`] fits it before its held-out referee: held on its surface where the net hold
-/// folds or is less fair, faired) is then taken instead where it is valid and within the tolerance and the count
-/// found is not, or has more control points ([`Referee`]).
+/// folds or is less fair, faired) is then taken instead where it is valid and within the
+/// tolerance and the count found is not, or has more control points ([`Referee`]).
 /// [`Goal::DefaultTolerance`] searches with [`default_tolerance`] and takes the closest
 /// surface where none reaches it (offsets in one plane have no beam: they get
 /// [`crate::default_ctrl`]). What `hullskin fit` (and every caller that fits as the command
@@ -113,7 +113,7 @@ pub fn fit_offsets_within(
     };
     let Some(settings) = settings else {
         let mut outcome = fit_offsets_with(offsets, config, control)?;
-        if crate::refereed(config) {
+        if crate::refereed_by_held_out(config) {
             crate::held_out_referee::referee_default_fit(offsets, &mut outcome, config, control);
         }
         return Ok((outcome, None));

@@ -115,10 +115,10 @@ fn only_the_default_fit_is_refereed() {
         FitConfig { envelope: EnvelopeHold::Free, ..d },
     ];
     for config in asked {
-        assert!(!hull::refereed(&config), "{config:?}");
+        assert!(!hull::refereed_by_held_out(&config), "{config:?}");
         let out = quiet(|c| fit_offsets_within(&o, &config, Goal::Count, c)).expect("fits").0;
         assert!(out.held_out_referee.is_none(), "{config:?}");
         assert_eq!(out.config.param, config.param);
     }
-    assert!(hull::refereed(&d));
+    assert!(hull::refereed_by_held_out(&d));
 }
