@@ -109,8 +109,7 @@ pub(crate) fn referee_default_fit(
     requested: &FitConfig,
     control: &Control<'_>,
 ) {
-    let options = HeldOutOptions::default();
-    let options = &options;
+    let options = &HeldOutOptions::default();
     let held = held_out_for_config_with(offsets, &held_out_refit_config(outcome), options, control);
     let Ok(Some(default_held)) = held else { return };
     outcome.error.held_out = Some(default_held.clone());
