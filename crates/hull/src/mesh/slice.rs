@@ -271,7 +271,9 @@ pub fn station_positions(x_min: f64, x_max: f64, n: usize, spacing: Spacing) -> 
 /// 4. *Join.* Pieces are joined in order of the height of their start; the joins run along
 ///    the centre plane where, at the bow, a bulb and the stem above it are cut in two pieces,
 ///    or aft, a skeg below an aperture. The section thus starts at the **keel**, the lowest
-///    point of the cut on the centre plane.
+///    point of the cut on the centre plane: a cut that starts on the plane and first runs down
+///    it (a sliver at a pointed end, thinner than the plane's tolerance: the OpenFOAM Wigley
+///    mesh 1e-5 of its length from the stem) starts at the bottom of that run, on the plane.
 /// 5. *Deck off.* When the section ends on the centre plane (a closed mesh, cut through the
 ///    deck), the deck is cut off: walking back from that end, segments that go outward
 ///    (`y` growing) and rise or fall by at most `tan(deck_angle)` times their outward run are
@@ -524,6 +526,14 @@ fn section_at(
     let n_pieces = pieces.len();
     let mut pts: Vec<Vec3> = pieces.concat();
     pts.dedup_by(|b, a| b.distance(*a) <= MERGE_REL * size);
+    // The keel is the lowest point of the leading run on the centre plane: a cut that starts
+    // there and first runs down it (a sliver at a pointed end, thinner than the centre plane's
+    // tolerance) starts at the bottom of that run instead, on the plane.
+    let run = pts.iter().take_while(|&&p| on_centre(p)).count();
+    if let Some(k) = (0..run).min_by(|&i, &j| pts[i].z.total_cmp(&pts[j].z)).filter(|&k| k > 0) {
+        pts.drain(..k);
+        pts[0].y = 0.0;
+    }
 
     let ends_on_centre = pts.last().is_some_and(|&p| on_centre(p));
     let mut deck_removed = false;

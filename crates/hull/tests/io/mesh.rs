@@ -378,6 +378,13 @@ fn openfoam_wigley_mesh_against_the_closed_forms() {
         // Open at the top: no deck to cut; the sections end at the mesh's top edge, z = 0.1025.
         assert!(info.open_top && !info.deck_removed && info.pieces == 1, "{info:?}");
         assert_near!(s.points[s.points.len() - 1].z, t + 0.04, 1e-6);
+        // Keel to top, the end stations included: their cut (2 µm wide, 1e-5 of L from the
+        // stem) runs 3.3 mm down the centre plane before it turns up the side, and starts at
+        // the bottom of that run, on the keel (before, 3.5 mm above it: the fit then dipped
+        // below the keel at the stem and the envelope hold made a curvature spike there).
+        assert_eq!(s.points[0].y, 0.0, "{}", s.label);
+        assert!(s.points[0].z.abs() < 2e-4, "{}: keel at z = {}", s.label, s.points[0].z);
+        assert!(s.points.windows(2).all(|w| w[1].z > w[0].z), "{}: z rises keel to top", s.label);
         for p in s.points.iter().filter(|p| p.z <= t) {
             // The mesh's faceting: 1.57e-4 m at most from the formula below the waterline,
             // measured (0.3 % of B/2).
