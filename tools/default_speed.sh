@@ -33,10 +33,10 @@ for t in "${tables[@]}"; do
   name=$(basename "$t" .csv)
   a="" h="" d=""
   for r in 1 2 3; do
-    "$bin" fit "$t" --method approx --fair 0 --envelope free --held-out 0 -o "$out/a" >/dev/null 2>&1
+    "$bin" fit "$t" $(opts "$t") --method approx --fair 0 --envelope free --held-out 0 -o "$out/a" >/dev/null 2>&1
     a="$a $(secs "$out/a")"
     if [ "$r" -le 2 ]; then
-      "$bin" fit "$t" -o "$out/d" >/dev/null 2>&1
+      "$bin" fit "$t" $(opts "$t") -o "$out/d" >/dev/null 2>&1
       h="$h $(fitted "$out/d")"
       d="$d $(secs "$out/d")"
     fi

@@ -19,9 +19,9 @@ echo "| table | ctrl | plain energy | default energy | holds | plain max abs K |
 echo "|---|--:|--:|--:|:-:|--:|--:|:-:|--:|--:|:-:|---|"
 for t in "${tables[@]}"; do
   name=$(basename "$t" .csv)
-  "$bin" fit "$t" --held-out 0 -o "$out/d" >/dev/null 2>&1
+  "$bin" fit "$t" $(opts "$t") --held-out 0 -o "$out/d" >/dev/null 2>&1
   ctrl=$(fig "$out/d" '.surface.control_points | map(tostring) | join(",")')
-  "$bin" fit "$t" --fair 0 --envelope free --held-out 0 --ctrl "$ctrl" -o "$out/p" >/dev/null 2>&1
+  "$bin" fit "$t" $(opts "$t") --fair 0 --envelope free --held-out 0 --ctrl "$ctrl" -o "$out/p" >/dev/null 2>&1
   awk -v n="$name" -v c="${ctrl/,/x}" \
     -v pe="$(fig "$out/p" .fairness.thin_plate)" -v de="$(fig "$out/d" .fairness.thin_plate)" \
     -v pk="$(fig "$out/p" "$kmax")" -v dk="$(fig "$out/d" "$kmax")" \

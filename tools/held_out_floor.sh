@@ -17,9 +17,9 @@ echo "| table | ctrl | plain max | default max | plain held-out max | default he
 echo "|---|--:|--:|--:|--:|--:|:-:|---|"
 for t in "${tables[@]}"; do
   name=$(basename "$t" .csv)
-  "$bin" fit "$t" -o "$out/d" >/dev/null 2>&1
+  "$bin" fit "$t" $(opts "$t") -o "$out/d" >/dev/null 2>&1
   ctrl=$(fig "$out/d" '.surface.control_points | map(tostring) | join(",")')
-  "$bin" fit "$t" --fair 0 --envelope free --ctrl "$ctrl" -o "$out/p" >/dev/null 2>&1
+  "$bin" fit "$t" $(opts "$t") --fair 0 --envelope free --ctrl "$ctrl" -o "$out/p" >/dev/null 2>&1
   awk -v n="$name" -v c="${ctrl/,/x}" \
     -v pm="$(fig "$out/p" .error.max)" -v dm="$(fig "$out/d" .error.max)" \
     -v ph="$(fig "$out/p" .error.held_out.max)" -v dh="$(fig "$out/d" .error.held_out.max)" \

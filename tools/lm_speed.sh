@@ -35,13 +35,13 @@ for t in "${tables[@]}"; do
   a="" l="" z="" bl="" bz=""
   reps=${REPS:-2}
   for r in $(seq 1 $((reps + 1))); do
-    a="$a $("$bin" fit "$t" --fair 0 --held-out 0 -o "$out/a" | ms approx)"
+    a="$a $("$bin" fit "$t" $(opts "$t") --fair 0 --held-out 0 -o "$out/a" | ms approx)"
     if [ "$r" -le "$reps" ]; then
-      l="$l $("$bin" fit "$t" --method lm --held-out 0 -o "$out/l" | ms lm)"
-      z="$z $("$bin" fit "$t" --method lm --fair 0 --held-out 0 -o "$out/z" | ms lm)"
+      l="$l $("$bin" fit "$t" $(opts "$t") --method lm --held-out 0 -o "$out/l" | ms lm)"
+      z="$z $("$bin" fit "$t" $(opts "$t") --method lm --fair 0 --held-out 0 -o "$out/z" | ms lm)"
       if [ -n "${BEFORE:-}" ]; then
-        bl="$bl $("$BEFORE" fit "$t" --method lm --held-out 0 -o "$out/bl" | ms lm)"
-        bz="$bz $("$BEFORE" fit "$t" --method lm --fair 0 --held-out 0 -o "$out/bz" | ms lm)"
+        bl="$bl $("$BEFORE" fit "$t" $(opts "$t") --method lm --held-out 0 -o "$out/bl" | ms lm)"
+        bz="$bz $("$BEFORE" fit "$t" $(opts "$t") --method lm --fair 0 --held-out 0 -o "$out/bz" | ms lm)"
       fi
     fi
   done

@@ -16,11 +16,11 @@ echo "| table | draft | interp S | default S | diff % | within 2 % | LM S | diff
 echo "|---|--:|--:|--:|--:|:-:|--:|--:|:-:|"
 for t in "${tables[@]}"; do
   name=$(basename "$t" .csv)
-  "$bin" fit "$t" --method interp --held-out 0 -o "$out/i" >/dev/null 2>&1
+  "$bin" fit "$t" $(opts "$t") --method interp --held-out 0 -o "$out/i" >/dev/null 2>&1
   draft=$(jq '[.control_points[][2]] | (min + 0.6 * (max - min))' "$out/i/surface.json")
   si=$(wetted "$out/i/surface.json" "$draft")
-  sd=$(wetted "$t" "$draft")
-  "$bin" fit "$t" --method lm --held-out 0 -o "$out/l" >/dev/null 2>&1
+  sd=$(wetted "$t" "$draft" $(opts "$t"))
+  "$bin" fit "$t" $(opts "$t") --method lm --held-out 0 -o "$out/l" >/dev/null 2>&1
   sl=$(wetted "$out/l/surface.json" "$draft")
   awk -v n="$name" -v d="$draft" -v i="$si" -v a="$sd" -v l="$sl" \
     'function pct(x) { return 100 * (x - i) / i }
