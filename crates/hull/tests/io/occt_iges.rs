@@ -150,6 +150,13 @@ fn occt_finds_the_default_fit_within_the_offsets_envelope() {
     names.sort();
     assert!(names.len() >= 15, "the tables of testdata/: {names:?}");
     cases.extend(names.iter().map(|n| (n.trim_end_matches(".csv").to_string(), table(n), default, true)));
+    // And the meshes of testdata/mesh/, sliced as `hullskin fit MESH` slices them (issue 11
+    // names the DTC and DTMB 5415 meshes).
+    for mesh in ["DTC-scaled", "dtmb5415", "wigley"] {
+        let read = hull::read_mesh(&testdata(&format!("mesh/{mesh}.stl.gz")), &hull::MeshReadOptions::default());
+        let sliced = hull::slice_mesh(&read.expect("reads"), &hull::SliceOptions::default()).expect("slices");
+        cases.push((format!("{mesh}_mesh"), sliced.offsets, default, true));
+    }
     cases.push(("s60_sample_free".to_string(), hull::series60_sample(), free, false));
     for (name, offsets, cfg, within) in cases {
         // As `hullskin fit` fits: the default fit with its held-out referee.
