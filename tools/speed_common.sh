@@ -1,7 +1,8 @@
-# Sourced by the speed tables (tools/lm_speed.sh, tools/default_speed.sh) with the tables as
-# arguments: builds the release binary, sets `bin`, a scratch folder `out` removed on exit,
-# `tables` (the arguments, or every table in testdata/) and `best` (the least of the numbers
-# on its input) and `opts` (a table's own options). BIN=path measures another build of hullskin (an older commit, for a baseline).
+# Sourced by the speed tables (tools/lm_speed.sh, tools/default_speed.sh) and the floor tables
+# (tools/*_floor.sh) with the tables as arguments: builds the release binary, sets `bin`, a
+# scratch folder `out` removed on exit, `tables` (the arguments, or every table in testdata/),
+# `best` (the least of the numbers on its input) and `opts` (a table's own options). BIN=path
+# measures another build of hullskin (an older commit, for a baseline).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 cargo build --release -q -p hullskin
