@@ -9,7 +9,7 @@
 #   tools/fairness_floor.sh                    # every table; about 30 s
 #   tools/fairness_floor.sh testdata/matlab_trawler.csv ...
 #
-# Prints a Markdown table. Needs jq. Deterministic: no timing.
+# Prints a Markdown table, then how many tables hold. Needs jq. Deterministic: no timing.
 source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
 fig() { jq -r "$2" "$1/report.json"; }
 kmax='.fairness.gaussian | map(fabs) | max'
@@ -31,4 +31,5 @@ for t in "${tables[@]}"; do
     'function yes(d, p) { return d <= p ? "yes" : "**no**" }
      BEGIN { printf "| %s | %s | %.4g | %.4g | %s | %.4g | %.4g | %s | %d (%d st) | %d (%d st) | %s | %s |\n",
              n, c, pe, de, yes(de, pe), pk, dk, yes(dk, pk), pi, ps, di, ds, yes(di, pi), (pf == "" ? "none" : pf) }'
-done
+done > "$out/rows"
+tally "$out/rows"

@@ -9,7 +9,7 @@
 #   tools/held_out_floor.sh                    # every table; about 1 min
 #   tools/held_out_floor.sh testdata/matlab_trawler.csv ...
 #
-# Prints a Markdown table. Needs jq. Deterministic: no timing.
+# Prints a Markdown table, then how many tables hold. Needs jq. Deterministic: no timing.
 source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
 fig() { jq -r "$2" "$1/report.json"; }
 
@@ -27,4 +27,5 @@ for t in "${tables[@]}"; do
     'function yes(d, p) { return d <= p ? "yes" : "**no**" }
      BEGIN { printf "| %s | %s | %.1f | %.1f | %.1f | %.1f | %s | %d%s |\n",
              n, c, 1e3 * pm, 1e3 * dm, 1e3 * ph, 1e3 * dh, yes(dh, ph), f, (f > 0 ? " (" k ")" : "") }'
-done
+done > "$out/rows"
+tally "$out/rows"

@@ -18,3 +18,9 @@ if [ $# -gt 0 ]; then tables=("$@"); else tables=(testdata/*.csv testdata/mesh/*
 # its keel (hullskin's axes; the slice tests do the same).
 opts() { case "$(basename "$1")" in wigley.stl.gz) echo "--shift 0.5,0,0.0625" ;; esac; }
 best() { tr ' ' '\n' | grep -v '^$' | sort -g | head -1; }
+# The floor tables' last line: how many rows (tables) hold, i.e. have no `**no**` in any column.
+tally() {
+  cat "$1"
+  echo
+  echo "Holds on $(grep -vc '[*][*]no[*][*]' "$1" || true) of $(wc -l < "$1") tables."
+}

@@ -8,7 +8,7 @@
 #   tools/wetted_floor.sh testdata/matlab_trawler.csv ...
 #
 # Prints a Markdown table: S of interp, of the default fit and of LM, their differences from
-# interp's in %, `yes` when within 2 %. Needs jq. Deterministic: no timing.
+# interp's in %, `yes` when within 2 %; then how many tables hold (both). Needs jq. Deterministic: no timing.
 source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
 wetted() { "$bin" hydrostatics "$1" --draft "$2" --json "${@:3}" 2>/dev/null | jq '.rows[0].s'; }
 
@@ -26,4 +26,5 @@ for t in "${tables[@]}"; do
     'function pct(x) { return 100 * (x - i) / i }
      function ok(x) { return (pct(x) <= 2 && pct(x) >= -2) ? "yes" : "**no**" }
      BEGIN { printf "| %s | %.3f | %.2f | %.2f | %+.2f | %s | %.2f | %+.2f | %s |\n", n, d, i, a, pct(a), ok(a), l, pct(l), ok(l) }'
-done
+done > "$out/rows"
+tally "$out/rows"
