@@ -201,7 +201,7 @@ pub use mesh::{
     gunzip, looks_binary as looks_like_binary_stl, mesh_distance, mesh_hydrostatics, parse_mesh, parse_obj, parse_stl,
     read_mesh, slice_mesh, starts_with_solid, station_positions, weld, write_obj, write_stl_ascii, write_stl_binary,
     Axes, DroppedStation, MeshDistance, MeshFormat, MeshHydrostatics, MeshReadOptions, Resample, SliceOptions,
-    SliceOutcome, Spacing, StationInfo as KeptStation, Stations, TriangleSoup, VertexFilter, END_INSET,
+    SliceOutcome, Spacing, StationInfo as KeptStation, Stations, TriangleSoup, VertexFilter, END_INSET, END_SLIVER,
     MAX_DECOMPRESSED, MAX_STATIONS, STL_HEADER_LEN,
 };
 // The kernel's triangle mesh and tessellation, under the paths hull has always given them.

@@ -37,7 +37,7 @@ pub use hydrostatics::{mesh_hydrostatics, MeshHydrostatics};
 pub use obj::{parse_obj, write_obj};
 pub use slice::{
     slice_mesh, station_positions, DroppedStation, Resample, SliceOptions, SliceOutcome, Spacing, StationInfo,
-    Stations, END_INSET, MAX_STATIONS,
+    Stations, END_INSET, END_SLIVER, MAX_STATIONS,
 };
 pub use stl::{looks_binary, parse_stl, starts_with_solid, write_stl_ascii, write_stl_binary, STL_HEADER_LEN};
 
