@@ -146,7 +146,7 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         }
     };
     let (mut outcome, search) = args.fit.fit(&args.skin, &offsets)?;
-    if hull::held_out_wanted(&mut outcome, args.held_out) && !progress::stopped() {
+    if hull::held_out_wanted(&mut outcome, &hull::HeldOutOptions::with_folds(args.held_out)) && !progress::stopped() {
         outcome.error.held_out =
             held_out_with_progress(&offsets, &hull::held_out_refit_config(&outcome), args.held_out);
     }

@@ -504,12 +504,8 @@ pub fn compare_offsets_with(
     // `fit` reports it, not of a search made again in every refit.
     let held_out = |outcome: &mut FitOutcome, control: &Control<'_>| {
         if let Some(options) = &config.held_out {
-            // The default fit's held-out referee cross-validated it already with the default
-            // options (the degrees are the fit's either way): not again.
-            let refereed = outcome.held_out_referee.is_some()
-                && outcome.error.held_out.is_some()
-                && *options == HeldOutOptions { degree: options.degree, ..HeldOutOptions::default() };
-            if !refereed && !control.stopped() {
+            // Not again where the default fit's held-out referee cross-validated it already.
+            if crate::held_out_wanted(outcome, options) && !control.stopped() {
                 let refits = held_out_refit_config(outcome);
                 outcome.error.held_out = held_out_for_config_with(offsets, &refits, options, control).ok().flatten();
             }

@@ -290,17 +290,19 @@ fn worst_held(offsets: &Offsets, held: &Offsets, feet: &[nurbs::SurfaceProjectio
     Some(w)
 }
 
-/// Whether `outcome`'s held-out error must still be measured with `folds` folds (a caller
-/// fitting as the command line does then measures it with [`held_out_refit_config`]).
-/// `--tolerance default` ([`crate::Goal::DefaultTolerance`]) measured it with the default
-/// folds when it chose its count: that figure is kept for the default folds, and dropped for
-/// 0 folds (off), as any other.
-pub fn held_out_wanted(outcome: &mut crate::FitOutcome, folds: usize) -> bool {
-    if folds == 0 {
+/// Whether `outcome`'s held-out error must still be measured with `options` (a caller
+/// fitting as the command line does then measures it with [`held_out_refit_config`]). The
+/// default fit's held-out referee ([`crate::refereed_by_held_out`]) and `--tolerance default`
+/// ([`crate::Goal::DefaultTolerance`]) measured it with the default options (the degrees are
+/// the fit's either way): that figure is kept for the default options, and dropped for 0 folds
+/// (off), as any other.
+pub fn held_out_wanted(outcome: &mut crate::FitOutcome, options: &HeldOutOptions) -> bool {
+    if options.folds == 0 {
         outcome.error.held_out = None;
         return false;
     }
-    !(outcome.error.held_out.is_some() && folds == HeldOutOptions::DEFAULT_FOLDS)
+    let default = HeldOutOptions { degree: options.degree, ..HeldOutOptions::default() };
+    !(outcome.error.held_out.is_some() && *options == default)
 }
 
 /// The settings the held-out refits of `outcome` use: the fit's own, with the approximation's

@@ -43,8 +43,8 @@ fn run_fit(
     let o = &offsets.offsets;
     let (mut outcome, search) = hull::fit_offsets_within(o, config, goal, control)?;
     let mut warnings = Vec::new();
-    if hull::held_out_wanted(&mut outcome, folds) && !control.stopped() {
-        let options = hull::HeldOutOptions::with_folds(folds);
+    let options = hull::HeldOutOptions::with_folds(folds);
+    if hull::held_out_wanted(&mut outcome, &options) && !control.stopped() {
         outcome.error.held_out =
             match hull::held_out_for_config_with(o, &hull::held_out_refit_config(&outcome), &options, control) {
                 Ok(h) => h,
