@@ -374,17 +374,15 @@ pub fn slice_mesh(mesh: &TriMesh, options: &SliceOptions) -> Result<SliceOutcome
     };
     while sections.len() > 2 {
         let n = sections.len();
-        if let Some(reason) = sliver(&stations, 0, 1) {
-            sections.remove(0);
-            let info = stations.remove(0);
-            dropped.push(DroppedStation { label: info.label, x: info.x, reason });
-        } else if let Some(reason) = sliver(&stations, n - 1, n - 2) {
-            sections.pop();
-            let info = stations.pop().expect("as many as the sections");
-            dropped.push(DroppedStation { label: info.label, x: info.x, reason });
-        } else {
+        // The first end, then the last.
+        let ends = [(0, 1), (n - 1, n - 2)];
+        let Some((end, reason)) = ends.into_iter().find_map(|(end, next)| Some((end, sliver(&stations, end, next)?)))
+        else {
             break;
-        }
+        };
+        sections.remove(end);
+        let info = stations.remove(end);
+        dropped.push(DroppedStation { label: info.label, x: info.x, reason });
     }
     dropped.sort_by(|a, b| a.x.total_cmp(&b.x));
     if sections.len() < 2 {
