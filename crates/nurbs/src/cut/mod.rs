@@ -16,7 +16,11 @@
 //!    of the surface lies on.
 //! 3. **Refinement.** Each crossing is moved onto the plane by safeguarded Newton iteration
 //!    (bisection whenever a Newton step leaves the bracket or fails to halve `|f|`) along its
-//!    grid edge, `d f / d s = n . (S_u du + S_v dv)`, until `|f| <= tolerance * size / 100`.
+//!    grid edge, `d f / d s = n . (S_u du + S_v dv)`, until `|f| <= tolerance * size / 100`,
+//!    or until a point within the band has its Newton step leave the bracket: the bracket is
+//!    one of the nodes' classes, whose change within the band is at the band's edge, not at
+//!    `f = 0`, and bisecting towards it would only move away from the plane (the point of
+//!    least `|f|` is kept either way).
 //! 4. **Chaining.** Crossings joined through cells form branches: open ones from boundary to
 //!    boundary, closed loops (returned with their first point repeated at the end).
 //! 5. **Densification.** A segment is split, its new point put on the plane by Newton
@@ -313,6 +317,9 @@ impl<'a> Sampler<'a> {
         let mut edge_crossing: Vec<Option<usize>> = vec![None; n_edges];
         let mut crossings: Vec<Node> = Vec::new();
         let mut adj: Vec<Vec<usize>> = Vec::new();
+        // One cache of basis functions for the whole cut: consecutive root searches share a
+        // knot span or a grid line (a fresh cache per search was a tenth of a cut's cost).
+        let mut eval = FirstDerivativesCache::new(self.surface);
         let at = |i: usize, j: usize| class(f[i * nv + j]);
         let mut crossing_of = |edge: usize, crossings: &mut Vec<Node>, adj: &mut Vec<Vec<usize>>| -> usize {
             if let Some(k) = edge_crossing[edge] {
@@ -331,7 +338,7 @@ impl<'a> Sampler<'a> {
             let (lo, hi, flo, fhi) = if class(f[ia]) { (b, a, f[ib], f[ia]) } else { (a, b, f[ia], f[ib]) };
             let uv_lo = (self.us[lo.0], self.vs[lo.1]);
             let uv_hi = (self.us[hi.0], self.vs[hi.1]);
-            let node = self.root_on_segment(plane, uv_lo, uv_hi, flo, fhi, class);
+            let node = self.root_on_segment(plane, (uv_lo, uv_hi), (flo, fhi), class, &mut eval);
             crossings.push(node);
             adj.push(Vec::new());
             let k = crossings.len() - 1;
@@ -385,11 +392,10 @@ impl<'a> Sampler<'a> {
     fn root_on_segment(
         &self,
         plane: AxisPlane,
-        uv_lo: (f64, f64),
-        uv_hi: (f64, f64),
-        f_lo: f64,
-        f_hi: f64,
+        (uv_lo, uv_hi): ((f64, f64), (f64, f64)),
+        (f_lo, f_hi): (f64, f64),
         class: &dyn Fn(f64) -> bool,
+        eval: &mut FirstDerivativesCache<'_>,
     ) -> Node {
         let n = plane.normal();
         let (du, dv) = (uv_hi.0 - uv_lo.0, uv_hi.1 - uv_lo.1);
@@ -397,10 +403,9 @@ impl<'a> Sampler<'a> {
         let ftol = self.ftol();
         let (mut lo, mut hi) = (0.0f64, 1.0f64);
         let mut best = if f_lo.abs() <= f_hi.abs() { (0.0, f_lo.abs()) } else { (1.0, f_hi.abs()) };
-        // The evaluation at the best t so far (none at the segment's ends), and a cache of the
-        // basis functions along the segment (a grid edge: one of u and v fixed).
+        // The evaluation at the best t so far (none at the segment's ends); `eval` caches the
+        // basis functions (along a grid edge one of u and v is fixed).
         let mut best_d: Option<FirstDerivatives> = None;
-        let mut eval = FirstDerivativesCache::new(self.surface);
         let mut t = if f_hi != f_lo { (f_lo / (f_lo - f_hi)).clamp(0.0, 1.0) } else { 0.5 };
         if !(t > 0.0 && t < 1.0) {
             t = 0.5;
@@ -428,11 +433,15 @@ impl<'a> Sampler<'a> {
                 }
                 let slope = n.dot(d.su * du + d.sv * dv);
                 let newton = t - ft / slope;
-                t = if newton.is_finite() && newton > lo && newton < hi && ft.abs() <= 0.5 * prev_abs {
-                    newton
-                } else {
-                    0.5 * (lo + hi)
-                };
+                let inside = newton.is_finite() && newton > lo && newton < hi;
+                // Within the on-plane band a class need not be the sign of f: the bracket then
+                // closes on the band's edge, and a Newton step out of it means that f's zero is
+                // outside, every t inside the bracket farther from the plane than this one
+                // (step 3).
+                if !inside && class(ft) != (ft > 0.0) {
+                    break;
+                }
+                t = if inside && ft.abs() <= 0.5 * prev_abs { newton } else { 0.5 * (lo + hi) };
                 prev_abs = ft.abs();
             }
         }
@@ -499,7 +508,8 @@ impl<'a> Sampler<'a> {
                 if (inner.1 > 0.0) != (outer.1 > 0.0) {
                     let sign = |x: f64| x > 0.0;
                     let (lo, hi) = if inner.1 > 0.0 { (outer, inner) } else { (inner, outer) };
-                    let node = self.root_on_segment(plane, lo.0, hi.0, lo.1, hi.1, &sign);
+                    let mut eval = FirstDerivativesCache::new(self.surface);
+                    let node = self.root_on_segment(plane, (lo.0, hi.0), (lo.1, hi.1), &sign, &mut eval);
                     if plane.signed_distance(node.point).abs() <= self.band() {
                         return accept(node);
                     }
