@@ -572,6 +572,24 @@ impl Probe {
         }
     }
 
+    /// Whether the surface can pass the limit near grid node `k`, over the grid cells on either
+    /// side that [`refine`] searches: by the convex-hull property (positive weights), not where
+    /// every control point shaping those cells is within the limit. Lets [`Probe::check`] skip
+    /// refining a worst node that cannot be past the limit (most probes of a sound surface),
+    /// its verdict the same.
+    fn may_pass_near(&self, surface: &NurbsSurface, grid: &Grid, k: usize) -> bool {
+        let (ur, vr) = (near_range(&grid.us, k % grid.nu()), near_range(&grid.vs, k / grid.nu()));
+        let rows = |knots: &nurbs::KnotVector, (a, b): (f64, f64)| {
+            knots.find_span(a).saturating_sub(knots.degree())..=knots.find_span(b)
+        };
+        let (ru, rv) = (rows(surface.knots_u(), ur), rows(surface.knots_v(), vr));
+        ru.flat_map(|i| rv.clone().map(move |j| (i, j))).any(|(i, j)| {
+            let c = surface.control_point(i, j)[self.axis];
+            let past = if self.upper { c - self.reference } else { self.reference - c };
+            !(past <= self.limit)
+        })
+    }
+
     /// The worst of the connected regions of grid nodes past the limit (4-neighbours), each
     /// from its worst node refined, with the band of its region and the count of regions;
     /// without any such node, the worst node refined, if that is past the limit.
@@ -583,7 +601,7 @@ impl Probe {
         let mut regions = regions(grid, |k| excess[k] > self.limit);
         if regions.is_empty() {
             match excess.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)) {
-                Some((k, &e)) if e > f64::NEG_INFINITY => regions.push(vec![k]),
+                Some((k, &e)) if e > f64::NEG_INFINITY && self.may_pass_near(surface, grid, k) => regions.push(vec![k]),
                 _ => return None,
             }
         }
@@ -648,13 +666,18 @@ fn regions(grid: &Grid, inside: impl Fn(usize) -> bool) -> Vec<Vec<usize>> {
     out
 }
 
+/// The parameters of the grid lines either side of line `k` of `t` (the ends at the ends): the
+/// range [`refine`] searches.
+fn near_range(t: &[f64], k: usize) -> (f64, f64) {
+    (t[k.saturating_sub(1)], t[(k + 1).min(t.len() - 1)])
+}
+
 /// The largest `f(S(u, v))` near grid node `(i, j)`: golden-section searches, alternately in
 /// `u` and `v`, over the grid cells on either side, never worse than the node. Returns
 /// `(u, v, f)`.
 fn refine(surface: &NurbsSurface, grid: &Grid, i: usize, j: usize, f: impl Fn(Vec3) -> f64) -> (f64, f64, f64) {
-    let span = |t: &[f64], k: usize| (t[k.saturating_sub(1)], t[(k + 1).min(t.len() - 1)]);
-    let (ua, ub) = span(&grid.us, i);
-    let (va, vb) = span(&grid.vs, j);
+    let (ua, ub) = near_range(&grid.us, i);
+    let (va, vb) = near_range(&grid.vs, j);
     let (mut u, mut v) = (grid.us[i], grid.vs[j]);
     let mut best = f(surface.point(u, v));
     for _ in 0..REFINE_ROUNDS {
