@@ -12,7 +12,9 @@ use super::{Control, Objective, OptimResult, Progress, StopReason};
 
 mod model;
 
-use model::{forcing, stale_factor_pays, step_path, Dense, MatrixFree, Model, StaleFactor, StepPath};
+use model::{
+    continuation_factor, forcing, stale_factor_pays, step_path, Dense, MatrixFree, Model, StaleFactor, StepPath,
+};
 
 /// Settings of [`run`] (and of the polish and the parameter correction of [`super::optimize_weights`]).
 ///
@@ -342,7 +344,8 @@ pub fn run_best_of(
     let (mut result, mu) = runs.swap_remove(best);
     let left = opts.max_iterations.saturating_sub(result.iterations);
     if result.stop == StopReason::Iterations && left > 0 && !control.stopped() {
-        let go_on = LmOptions { max_iterations: left, initial_damping: mu, ..*opts };
+        let stale_factor = continuation_factor(problems[best], opts, &result.history);
+        let go_on = LmOptions { max_iterations: left, initial_damping: mu, stale_factor, ..*opts };
         let (more, _) = polish_from(problems[best], &result.x, &go_on, control, None);
         history.extend(more.history.iter().skip(1).map(|&v| {
             low = low.min(v);

@@ -411,6 +411,33 @@ pub(super) fn stale_factor_pays(problem: &WeightProblem, opts: &LmOptions) -> bo
     })
 }
 
+/// The gain of a probe's last 10 iterations, relative to its objective, above which
+/// [`continuation_factor`] goes on with the factored preconditioner: a run still descending
+/// that fast on Jacobi's is crawling towards a minimum it reaches only with the factor. On the
+/// fair objective (`tools/lm_speed.sh`'s tables), after the 20 iterations of `run_best_of`'s
+/// probe: Gunnerus 2.6e-2, WPB 5.4e-2, the frigate 7.9e-3, the DTMB 5415 mesh 9.2e-2, the Wigley
+/// mesh 1.8e-2, where Jacobi's runs end 8.7 % to 20 % of the way short of the factor's minimum
+/// (the frigate at 86 iterations, the three others at the 120-iteration cap; WPB at 60, 0.5 %
+/// short); the DTC mesh 2.7e-3 and the yacht 2.1e-3, which end at 28 and 33 iterations, where
+/// forming the factor (about 100 ms at 713 to 780 weights) would double LM's time.
+pub(super) const CRAWL_GAIN: f64 = 5e-3;
+
+/// The preconditioner of [`super::run_best_of`]'s continuation after its probe: as `opts` says
+/// where it says, or where the factor is used from the start ([`stale_factor_pays`]); else the
+/// factor, formed where the probe ended, on the fair objective's matrix-free step when the
+/// probe's last 10 iterations (`history`, the best value after each) gained more than
+/// [`CRAWL_GAIN`] of the objective.
+pub(super) fn continuation_factor(problem: &WeightProblem, opts: &LmOptions, history: &[f64]) -> Option<bool> {
+    if opts.stale_factor.is_some() || problem.options().fair <= 0.0 || stale_factor_pays(problem, opts) {
+        return opts.stale_factor;
+    }
+    let crawling = match history {
+        [.., a, _, _, _, _, _, _, _, _, _, b] => *b > 0.0 && (a - b) > CRAWL_GAIN * b,
+        _ => false,
+    };
+    crawling.then_some(true)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
