@@ -2,6 +2,8 @@
 //! formed without `J` ([`NormalEquations`]): the Levenberg-Marquardt hot loop, and the diagonal
 //! that sizes the evolutionary algorithms' search box.
 
+use rayon::prelude::*;
+
 use super::{dot, Scratch, WeightMode, WeightProblem};
 
 /// The Gauss-Newton normal equations `J^T J` and `J^T r` of the weight variables, with `J`
@@ -119,24 +121,31 @@ impl WeightProblem {
         let mut jtr = ate;
         if resolved {
             let (bw, stride) = (pat.bw, pat.stride);
-            for v in 0..d {
-                band_forward_from(&sc.band, n, bw, stride, &mut z[v * n..(v + 1) * n], start[v]);
-            }
+            // The d substitutions and the rows of W^T W (most of the cost, `d^2 n / 2` at full)
+            // on rayon's pool: each entry is one dot product whatever the thread count.
+            z.par_chunks_mut(n).zip(&start).for_each(|(zv, &sv)| band_forward_from(&sc.band, n, bw, stride, zv, sv));
             band_forward_from(&sc.band, n, bw, stride, &mut hte, 0);
             let t = hte.as_flattened();
-            for v in 0..d {
-                let wv = z[v * n..(v + 1) * n].as_flattened();
-                let sv = start[v].min(n);
-                // With the fairness term the least-squares optimality is A^T r = H^T e +
-                // λ' D^T D Y = 0, not H^T e = 0, and the projected part of the augmented
-                // gradient vanishes: J^T r = A^T e (as in `matvec::JacobianOp::gradient`).
-                if self.fair_g == 0.0 {
-                    jtr[v] -= dot(&wv[3 * sv..], &t[3 * sv..]);
+            let w_of = |v: usize| z[v * n..(v + 1) * n].as_flattened();
+            let from = |v: usize, w: usize| 3 * start[v].max(start[w]).min(n);
+            // With the fairness term the least-squares optimality is A^T r = H^T e +
+            // λ' D^T D Y = 0, not H^T e = 0, and the projected part of the augmented
+            // gradient vanishes: J^T r = A^T e (as in `matvec::JacobianOp::gradient`).
+            if self.fair_g == 0.0 {
+                for (v, g) in jtr.iter_mut().enumerate() {
+                    let s0 = 3 * start[v].min(n);
+                    *g -= dot(&w_of(v)[s0..], &t[s0..]);
                 }
-                for w in if full { 0 } else { v }..=v {
-                    let s0 = 3 * sv.max(start[w]).min(n);
-                    let ww = dot(&wv[s0..], &z[w * n..(w + 1) * n].as_flattened()[s0..]);
-                    jtj[if full { v * d + w } else { v }] -= ww;
+            }
+            if full {
+                jtj.par_chunks_mut(d).enumerate().for_each(|(v, row)| {
+                    for (w, a) in row[..=v].iter_mut().enumerate() {
+                        *a -= dot(&w_of(v)[from(v, w)..], &w_of(w)[from(v, w)..]);
+                    }
+                });
+            } else {
+                for (v, a) in jtj.iter_mut().enumerate() {
+                    *a -= dot(&w_of(v)[from(v, v)..], &w_of(v)[from(v, v)..]);
                 }
             }
         }
