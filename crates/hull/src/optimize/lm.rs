@@ -102,7 +102,7 @@ pub struct LmOptions {
     /// at the run's first point and factored (refactored as the damping moves), `Some(false)`
     /// with Jacobi's diagonal; `None`: the former on the fair objective where forming it costs
     /// at most 120 products of `J^T J` (the grids of up to 256 weights of `testdata/`; see
-    /// `lm/model.rs`), and in [`run_best_of`]'s continuation where its probe is still crawling
+    /// `lm/model.rs`), and in `run_best_of`'s continuation where its probe is still crawling
     /// on Jacobi's (formed where the probe ended; `lm/model.rs`, `continuation_factor`).
     pub stale_factor: Option<bool>,
 }
