@@ -146,9 +146,9 @@ pub fn run(args: &FitArgs) -> anyhow::Result<ExitCode> {
         }
     };
     let (mut outcome, search) = args.fit.fit(&args.skin, &offsets)?;
-    if hull::held_out_wanted(&mut outcome, &hull::HeldOutOptions::with_folds(args.held_out)) && !progress::stopped() {
-        outcome.error.held_out =
-            held_out_with_progress(&offsets, &hull::held_out_refit_config(&outcome), args.held_out);
+    let held_out = hull::HeldOutOptions::with_folds(args.held_out);
+    if hull::held_out_wanted(&mut outcome, &held_out) && !progress::stopped() {
+        outcome.error.held_out = held_out_with_progress(&offsets, &hull::held_out_refit_config(&outcome), &held_out);
     }
     let mut report = hull::Report::new(&offsets, &outcome);
     report.input.warnings = warnings;
@@ -281,13 +281,16 @@ pub(crate) fn fit_with_progress(
     }
 }
 
-/// The held-out error of the fit `config` with `folds` folds ([`hull::held_out_for_config`]),
+/// The held-out error of the fit `config` with `options` ([`hull::held_out_for_config`]),
 /// with a progress bar for the optimised methods (their refits take a while), stopped by
 /// SIGINT or SIGTERM like them. `None` after a stop, or when it cannot be computed (then a
 /// warning says why: the fit itself stands).
-pub(crate) fn held_out_with_progress(offsets: &Offsets, config: &FitConfig, folds: usize) -> Option<HeldOutError> {
-    let options = hull::HeldOutOptions::with_folds(folds);
-    let run = |control: &hull::Control<'_>| hull::held_out_for_config_with(offsets, config, &options, control);
+pub(crate) fn held_out_with_progress(
+    offsets: &Offsets,
+    config: &FitConfig,
+    options: &hull::HeldOutOptions,
+) -> Option<HeldOutError> {
+    let run = |control: &hull::Control<'_>| hull::held_out_for_config_with(offsets, config, options, control);
     let result = match config.method.algorithm() {
         Some(_) => progress::with_progress("held out", run),
         None => hull::quiet(run),
