@@ -55,9 +55,30 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     let Some(algorithm) = config.method.algorithm() else {
         return fit_skinned(offsets, config, Measure::Full, &memo);
     };
-    let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config }, Measure::Full, &memo)?;
+    let begun = Instant::now();
+    optimized(offsets, config, control, algorithm, &memo).map(|out| timed(out, begun))
+}
+
+/// `out`, the answer of an optimised fit begun at `begun`, with all the time spent on it since
+/// as its fit's (but its own error measurement's): the plain fit it started from, the
+/// optimisation, and where its surface gave way, the fits of the one kept instead.
+fn timed(mut out: FitOutcome, begun: Instant) -> FitOutcome {
+    out.fit_seconds = (begun.elapsed().as_secs_f64() - out.error_seconds).max(0.0);
+    out
+}
+
+/// The optimised fit of [`fit_offsets_with`] by `algorithm`: the weights of the plain
+/// approximation optimised on the fair objective, or a sound approximation where its surface
+/// has a validity finding.
+fn optimized(
+    offsets: &Offsets,
+    config: &FitConfig,
+    control: &Control<'_>,
+    algorithm: crate::optimize::Algorithm,
+    memo: &SkinMemo,
+) -> Result<FitOutcome, HullError> {
+    let plain = fit_skin(offsets, &FitConfig { method: FitMethod::Approx, ..*config }, Measure::Full, memo)?;
     crate::limits::check_optimization(&offsets.source, &config.optim, plain.surface.n_u(), plain.surface.n_v())?;
-    let start = Instant::now();
     let mut optim = config.optim;
     // The optimisers work on the fair objective: the net's second differences
     // ([`crate::fairing::NET_FAIR`], or the given weight) and smooth log-weights.
@@ -77,8 +98,8 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
         }
     }
     let opt = optimize_weights(offsets, &plain, algorithm, &optim, control)?;
-    let fit_seconds = plain.fit_seconds + start.elapsed().as_secs_f64();
-    let out = assembled(offsets, config, opt.surface, opt.params, fit_seconds, Some(opt.report))?;
+    // Its time is set at the end ([`timed`]).
+    let out = assembled(offsets, config, opt.surface, opt.params, 0.0, Some(opt.report))?;
     let out = within_envelope(offsets, config, &kernel_sections(offsets), out, None)?;
     let mut out = measured(offsets, config, out)?;
     if out.envelope_held > 0 && out.error.overall.rms > plain.error.overall.rms {
@@ -93,7 +114,7 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
             out.error.overall.max,
             plain.error.overall.rms
         );
-        let mut kept = give_way(config, plain.clone(), &out, why);
+        let mut kept = give_way(config, plain.clone(), why);
         kept.optimization = out.optimization.take();
         return Ok(kept);
     }
@@ -106,7 +127,7 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     // fair approximation (its choice, [`crate::fairing::fair`], removes a fold if it can) or the
     // plain one.
     let approx = FitConfig { method: FitMethod::Approx, ..*config };
-    let skin = |nu: f64, along| fit_skin(offsets, &FitConfig { smoothing: nu, along, ..approx }, Measure::Full, &memo);
+    let skin = |nu: f64, along| fit_skin(offsets, &FitConfig { smoothing: nu, along, ..approx }, Measure::Full, memo);
     let fair = if plain.flat_lines.is_empty() {
         crate::fairing::fair(&plain, None, config.fair, skin, |s| memo.fairness(s))?
     } else {
@@ -115,7 +136,7 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     let mut candidates: Vec<FitOutcome> = Vec::new();
     if let Some((mut f, report)) = fair {
         f.fairing = Some(report);
-        let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full, &memo);
+        let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full, memo);
         candidates.push(crate::alternatives::sounder_alternative(f, &approx, refit));
     }
     candidates.push(plain);
@@ -250,18 +271,17 @@ fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>
         out.validity.len(),
         names(&out)
     );
-    give_way(config, kept, &out, why)
+    give_way(config, kept, why)
 }
 
-/// `kept`, an approximation, written instead of the optimised fit `rejected` of `config`: named
-/// `approx`, with `why` in its `rejected` list and the time spent on both.
-fn give_way(config: &FitConfig, mut kept: FitOutcome, rejected: &FitOutcome, why: String) -> FitOutcome {
+/// `kept`, an approximation, written instead of an optimised fit of `config`: named `approx`,
+/// with `why` (the rejection) in its `rejected` list ([`timed`] gives it the time spent on both).
+fn give_way(config: &FitConfig, mut kept: FitOutcome, why: String) -> FitOutcome {
     kept.rejected.push(why);
     // Its own parameterization, counts and hold: the default fit may have chosen others for
     // validity.
     let FitConfig { param, ctrl, hold_on, .. } = kept.config;
     kept.config = FitConfig { method: FitMethod::Approx, param, ctrl, hold_on, ..*config };
-    kept.fit_seconds += rejected.fit_seconds;
     kept
 }
 
@@ -686,7 +706,6 @@ mod tests {
         assert_eq!(kept.config.param, other, "and the parameterization it was fitted on");
         assert_eq!(kept.rejected.len(), 1);
         assert!(kept.rejected[0].starts_with("the lm surface") && kept.rejected[0].contains("below_centre_plane"));
-        assert!(kept.fit_seconds >= out.fit_seconds);
         // No candidate with fewer defects: the optimised fit stands, with its findings.
         let worse_copy =
             |c: &FitOutcome| FitOutcome { validity: [c.validity.clone(), out.validity.clone()].concat(), ..c.clone() };
@@ -703,6 +722,39 @@ mod tests {
         // A sound optimised fit is never replaced.
         let sound_lm = FitOutcome { validity: Vec::new(), ..out.clone() };
         assert_eq!(prefer_sound(&lm, sound_lm, vec![sound]).surface, out.surface);
+    }
+
+    /// An optimised fit is timed whole: where its surface gives way, the approximation written
+    /// instead reports the time of the run (the plain fit, the optimisation and the fits of
+    /// the one kept), not of its own fit alone. On the 4 x 3 example LM's surface, held within
+    /// the envelope, is farther from the offsets than the approximation and gives way to it.
+    #[test]
+    fn an_optimised_fit_that_gives_way_is_timed_whole() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata/sections_example.csv");
+        let offsets = crate::read_offsets(&path, crate::Units::Metre).expect("readable");
+        // As `hullskin fit --method lm` fits it: three sections take degree 2 across.
+        let lm = FitConfig {
+            method: FitMethod::Optimized(Algorithm::Lm),
+            degree: (3, 2),
+            fair: Fairing::Auto { tolerance: None },
+            ..FitConfig::default()
+        };
+        // The reported time and the wall time are the same interval on the same clock but for
+        // the calls around it (microseconds). The best of three runs within 10 % of the wall
+        // time leaves room for a preemption there, whatever the machine's load. The kept fit
+        // timed alone reports 0.13 of it (measured with `timed` disabled).
+        let mut ratios = Vec::new();
+        for _ in 0..3 {
+            let start = Instant::now();
+            let out = fit_offsets(&offsets, &lm).expect("fits");
+            let wall = start.elapsed().as_secs_f64();
+            assert_eq!(out.config.method, FitMethod::Approx, "gave way: {:?}", out.rejected);
+            assert_eq!(out.rejected.len(), 1);
+            let reported = out.fit_seconds + out.error_seconds;
+            assert!(reported <= wall, "reported {reported} s of {wall} s");
+            ratios.push(reported / wall);
+        }
+        assert!(ratios.iter().any(|&r| r >= 0.9), "reported share of the wall time {ratios:?}");
     }
 
     /// The cross-validation's lean path measures less, never fits differently: the same
