@@ -6,7 +6,8 @@
 use std::collections::HashSet;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
+
+use tempfile::TempDir;
 
 use crate::common::*;
 use crate::page::{unbase64, urls};
@@ -29,14 +30,14 @@ const FILES: [&str; 10] = [
     "hydrostatics.json",
 ];
 
-/// A fresh directory under Cargo's temporary directory for integration tests, one per process
+/// A fresh directory under Cargo's temporary directory for integration tests, of its own
 /// (nextest runs each test in a process of its own: a directory shared between them was
-/// wiped by one while another wrote into it).
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("report-{}", std::process::id())).join(name);
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).expect("scratch dir");
-    dir
+/// wiped by one while another wrote into it), removed when the test drops it.
+fn scratch(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("report-{name}-"))
+        .tempdir_in(env!("CARGO_TARGET_TMPDIR"))
+        .expect("scratch dir")
 }
 
 /// Run `hullskin report` in `dir` and require success; returns stdout.
@@ -49,14 +50,24 @@ fn report_ok(dir: &Path, args: &[&str]) -> String {
     out
 }
 
-/// The built-in sample's report, run once for the tests of this binary: (its dir, stdout).
-fn sample() -> &'static (PathBuf, String) {
-    static RUN: OnceLock<(PathBuf, String)> = OnceLock::new();
-    RUN.get_or_init(|| {
-        let dir = scratch("sample");
-        let out = report_ok(&dir, &["-o", "R"]);
-        (dir.join("R"), out)
-    })
+/// The built-in sample's report (`hullskin report -o R`), in a scratch directory of its own.
+struct Sample {
+    /// Removed with the sample.
+    scratch: TempDir,
+    stdout: String,
+}
+
+impl Sample {
+    fn run() -> Self {
+        let scratch = scratch("sample");
+        let stdout = report_ok(scratch.path(), &["-o", "R"]);
+        Sample { scratch, stdout }
+    }
+
+    /// The report's directory.
+    fn dir(&self) -> PathBuf {
+        self.scratch.path().join("R")
+    }
 }
 
 fn read(dir: &Path, name: &str) -> Vec<u8> {
@@ -120,7 +131,8 @@ fn check_curvature_picture(name: &str, image: &Image) {
 
 #[test]
 fn the_sample_report_is_one_self_contained_page() {
-    let (dir, stdout) = sample();
+    let sample = Sample::run();
+    let (dir, stdout) = (&sample.dir(), &sample.stdout);
     for f in FILES {
         assert!(stdout.contains(f), "stdout names {f}:\n{stdout}");
     }
@@ -190,7 +202,8 @@ fn the_sample_report_is_one_self_contained_page() {
 
 #[test]
 fn the_hydrostatics_table_is_the_one_in_the_json_and_csv() {
-    let (dir, _) = sample();
+    let sample = Sample::run();
+    let dir = &sample.dir();
     let html = read_text(dir, "report.html");
     let doc = parse(&html);
     let table = by_id(&doc, "hydrostatics-table").expect("hydrostatics table");
@@ -222,18 +235,17 @@ fn the_hydrostatics_table_is_the_one_in_the_json_and_csv() {
 
 #[test]
 fn two_runs_give_the_same_bytes() {
-    let (first, _) = sample();
-    let dir = scratch("again");
-    report_ok(&dir, &["-o", "R"]);
+    let (first, second) = (Sample::run(), Sample::run());
     for f in FILES {
-        assert!(read(first, f) == read(&dir.join("R"), f), "{f} differs between two runs");
+        assert!(read(&first.dir(), f) == read(&second.dir(), f), "{f} differs between two runs");
     }
 }
 
 #[test]
 fn an_optimised_fit_adds_the_convergence_plot() {
-    let dir = scratch("ga");
-    let out = report_ok(&dir, &["-o", "R", "--method", "ga", "--iterations", "5", "--population", "10"]);
+    let scratch = scratch("ga");
+    let dir = scratch.path();
+    let out = report_ok(dir, &["-o", "R", "--method", "ga", "--iterations", "5", "--population", "10"]);
     assert!(out.contains("convergence.png"), "{out}");
     let r = dir.join("R");
     let html = read_text(&r, "report.html");
@@ -252,17 +264,18 @@ fn an_optimised_fit_adds_the_convergence_plot() {
 
 #[test]
 fn a_surface_json_is_reported_as_is() {
-    let dir = scratch("json");
-    let o = hullskin(&dir, &["fit", "-o", "F"]);
+    let scratch = scratch("json");
+    let dir = scratch.path();
+    let o = hullskin(dir, &["fit", "-o", "F"]);
     assert!(o.status.success(), "{:?}", text(&o));
     let fit_report = read_json(&dir.join("F/report.json"));
 
     // On a sheet given by name (any case): the lines plan is drawn on it.
-    report_ok(&dir, &["F/surface.json", "--sheet", "a3", "-o", "R"]);
+    report_ok(dir, &["F/surface.json", "--sheet", "a3", "-o", "R"]);
     let html = read_text(&dir.join("R"), "report.html");
     let svg = read_text(&dir.join("R"), "lines.svg");
     assert!(svg.contains(r#"width="420mm" height="297mm""#) && svg.contains(">Sheet A3<"), "sheet A3");
-    let o = hullskin(&dir, &["report", "F/surface.json", "--sheet", "A7", "-o", "R4"]);
+    let o = hullskin(dir, &["report", "F/surface.json", "--sheet", "A7", "-o", "R4"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).1.contains(r#"unknown sheet "A7" (expected auto or one of A4, A3,"#), "{:?}", text(&o));
     let doc = parse(&html);
@@ -274,14 +287,14 @@ fn a_surface_json_is_reported_as_is() {
     assert!(json["source"].as_str().is_some_and(|s| s.contains("surface.json")));
     assert_eq!(json["rows"].as_array().map(Vec::len), Some(10));
     // The comparison needs offsets.
-    let o = hullskin(&dir, &["report", "F/surface.json", "--compare", "-o", "R3"]);
+    let o = hullskin(dir, &["report", "F/surface.json", "--compare", "-o", "R3"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).1.contains("--compare needs offsets"), "{:?}", text(&o));
 
     // With the offsets and a design draft: the error is measured again, as the fit measured it.
     let offsets = testdata("series60_cb060_offsets.csv");
     let offsets = offsets.to_str().expect("utf-8 path");
-    report_ok(&dir, &["F/surface.json", "--offsets", offsets, "--draft", "6.5", "-o", "R2"]);
+    report_ok(dir, &["F/surface.json", "--offsets", offsets, "--draft", "6.5", "-o", "R2"]);
     let html = read_text(&dir.join("R2"), "report.html");
     let doc = parse(&html);
     let table = by_id(&doc, "error-sections").expect("per-section error table");
@@ -296,7 +309,7 @@ fn a_surface_json_is_reported_as_is() {
     assert!(html.contains("At the design draft T = 6.500 m."));
 
     // --json: the summary as JSON on standard output, with the figures of the files.
-    let o = hullskin(&dir, &["report", "F/surface.json", "--offsets", offsets, "--draft", "6.5", "--json", "-o", "R5"]);
+    let o = hullskin(dir, &["report", "F/surface.json", "--offsets", offsets, "--draft", "6.5", "--json", "-o", "R5"]);
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}\n{err}");
     let summary: serde_json::Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("not JSON ({e}): {out}"));
@@ -311,8 +324,9 @@ fn a_surface_json_is_reported_as_is() {
 
 #[test]
 fn compare_adds_the_table_of_every_method() {
-    let dir = scratch("compare");
-    report_ok(&dir, &["-o", "R", "--compare", "--iterations", "3", "--population", "6", "--draft", "6.5"]);
+    let scratch = scratch("compare");
+    let dir = scratch.path();
+    report_ok(dir, &["-o", "R", "--compare", "--iterations", "3", "--population", "6", "--draft", "6.5"]);
     let html = read_text(&dir.join("R"), "report.html");
     let doc = parse(&html);
     let table = by_id(&doc, "comparison-table").expect("comparison table");
@@ -339,7 +353,8 @@ fn compare_adds_the_table_of_every_method() {
 
 #[test]
 fn bad_inputs_exit_with_a_message_naming_the_file() {
-    let dir = scratch("bad");
+    let scratch = scratch("bad");
+    let dir = scratch.path();
     fs::write(dir.join("other.json"), "{\"format\": \"other\"}").expect("write");
     fs::write(dir.join("broken.csv"), "section,x,y,z\na,0,0,0\na,0,x1,1\n").expect("write");
     let cases: [(&[&str], &str); 7] = [
@@ -352,7 +367,7 @@ fn bad_inputs_exit_with_a_message_naming_the_file() {
         (&["report", "other.json", "--compare", "-o", "R"], "other.json"),
     ];
     for (args, needle) in cases {
-        let o = hullskin(&dir, args);
+        let o = hullskin(dir, args);
         let (out, err) = text(&o);
         assert_eq!(o.status.code(), Some(2), "{args:?}: stdout {out}\nstderr {err}");
         assert!(err.contains(needle) && err.starts_with("hullskin: error:"), "{args:?}: {err}");
@@ -366,14 +381,13 @@ fn bad_inputs_exit_with_a_message_naming_the_file() {
 /// and the sample's page, which does not fold, says nothing of the kind.
 #[test]
 fn a_folded_surface_is_flagged_on_the_page() {
-    let dir = scratch("folded");
+    let scratch = scratch("folded");
+    let dir = scratch.path();
     let input = testdata("gunnerus_offsets.csv");
     // The plain skin at the default count (`--method approx --fair 0`): the default
     // `--fair auto` smooths the fold away.
-    let o = hullskin(
-        &dir,
-        &["report", input.to_str().expect("utf-8 path"), "--method", "approx", "--fair", "0", "-o", "R"],
-    );
+    let o =
+        hullskin(dir, &["report", input.to_str().expect("utf-8 path"), "--method", "approx", "--fair", "0", "-o", "R"]);
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}\n{err}");
     // The terminal says it too, on standard error.
@@ -402,6 +416,6 @@ fn a_folded_surface_is_flagged_on_the_page() {
         .filter(|n| n.has_tag_name("p") && n.text().is_some_and(|t| t.starts_with("Warning: ")))
         .count();
     assert_eq!(notes, kinds.len(), "one warning under the title per finding: {kinds:?}");
-    let sample = read_text(&sample().0, "report.html");
+    let sample = read_text(&Sample::run().dir(), "report.html");
     assert!(!sample.contains("folds back"));
 }
