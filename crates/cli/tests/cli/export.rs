@@ -11,11 +11,12 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
 
 use hull::{polynomial_approximation, read_surface_json, write_surface_json, SurfaceFile};
 use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
 use serde_json::{json, Value};
+
+use tempfile::TempDir;
 
 use crate::common::*;
 use crate::python::{assert_tool_passed, run_tool, tools_python};
@@ -28,26 +29,29 @@ fn run_ok(dir: &Path, args: &[&str]) -> String {
     out
 }
 
-/// The sample fitted once by `hullskin fit` (its surface.json), and a rational version of it
-/// (weights 0.7 to 1.3) written as a surface JSON in feet.
-fn inputs() -> &'static (PathBuf, PathBuf) {
-    static DIR: OnceLock<(PathBuf, PathBuf)> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("export-inputs");
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).expect("dir");
-        run_ok(&dir, &["fit", "-o", "fit"]);
-        let plain = dir.join("fit/surface.json");
-        let (s, _) = surface(&plain);
-        let w: Vec<f64> = (0..s.n_u() * s.n_v()).map(|k| 1.0 + 0.3 * ((k * 7 % 13) as f64 / 6.0 - 1.0)).collect();
-        let r = NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &s.control_points(), Some(&w))
-            .expect("valid");
-        let rational = dir.join("rational_ft.json");
-        let mut out = Vec::new();
-        write_surface_json(&mut out, &r, hull::Units::Foot).expect("writes");
-        fs::write(&rational, out).expect("write");
-        (plain, rational)
-    })
+/// The sample fitted by `hullskin fit` (its surface.json), and a rational version of it
+/// (weights 0.7 to 1.3) written as a surface JSON in feet, in a temporary directory of the
+/// test's own (nextest runs each test in a process of its own: a directory shared between them
+/// was wiped by one while another read from it), removed when the test drops it.
+struct Inputs {
+    _dir: TempDir,
+    plain: PathBuf,
+    rational: PathBuf,
+}
+
+fn inputs() -> Inputs {
+    let dir = tempfile::Builder::new().prefix("export-inputs-").tempdir_in(env!("CARGO_TARGET_TMPDIR")).expect("dir");
+    run_ok(dir.path(), &["fit", "-o", "fit"]);
+    let plain = dir.path().join("fit/surface.json");
+    let (s, _) = surface(&plain);
+    let w: Vec<f64> = (0..s.n_u() * s.n_v()).map(|k| 1.0 + 0.3 * ((k * 7 % 13) as f64 / 6.0 - 1.0)).collect();
+    let r =
+        NurbsSurface::try_new(s.knots_u().clone(), s.knots_v().clone(), &s.control_points(), Some(&w)).expect("valid");
+    let rational = dir.path().join("rational_ft.json");
+    let mut out = Vec::new();
+    write_surface_json(&mut out, &r, hull::Units::Foot).expect("writes");
+    fs::write(&rational, out).expect("write");
+    Inputs { _dir: dir, plain, rational }
 }
 
 fn surface(path: &Path) -> (NurbsSurface, String) {
@@ -93,7 +97,8 @@ fn step_and_iges_exports_are_read_by_occt() {
     let python = tools_python("HULLSKIN_SKIP_OCCT", "Open CASCADE check of the exported STEP and IGES");
     let dir = temp_dir();
     let d = dir.path();
-    let (plain, rational) = inputs();
+    let inputs = inputs();
+    let (plain, rational) = (&inputs.plain, &inputs.rational);
     let (s, _) = surface(plain);
     let (r, _) = surface(rational);
     let plain = plain.to_str().expect("utf-8 path");
@@ -176,7 +181,8 @@ fn mirrored_and_converted_exports_are_read_by_occt() {
     let python = tools_python("HULLSKIN_SKIP_OCCT", "Open CASCADE check of the exported STEP and IGES");
     let dir = temp_dir();
     let d = dir.path();
-    let (plain, _) = inputs();
+    let inputs = inputs();
+    let plain = &inputs.plain;
     let (s, _) = surface(plain);
     let plain = plain.to_str().expect("utf-8 path");
     let full = hull::mirrored_full_hull(&s).expect("mirrors");
@@ -229,7 +235,8 @@ fn mesh_exports_are_read_by_trimesh_and_pygltflib() {
     let python = tools_python("HULLSKIN_SKIP_MESH", "trimesh/pygltflib check of the exported meshes");
     let dir = temp_dir();
     let d = dir.path();
-    let (_, rational) = inputs();
+    let inputs = inputs();
+    let rational = &inputs.rational;
     let (r, _) = surface(rational);
     let input = rational.to_str().expect("utf-8 path");
     let tol = 0.05; // feet, about 4e-4 of the hull's size
@@ -273,7 +280,8 @@ fn dxf_export_is_read_by_ezdxf() {
     let python = tools_python("HULLSKIN_SKIP_DXF", "ezdxf check of the exported DXF");
     let dir = temp_dir();
     let d = dir.path();
-    let (plain, _) = inputs();
+    let inputs = inputs();
+    let plain = &inputs.plain;
     let (s, _) = surface(plain);
     let input = plain.to_str().expect("utf-8 path");
     run_ok(d, &["export", input, "-o", "lines.dxf"]);
@@ -319,7 +327,8 @@ fn dxf_export_is_read_by_ezdxf() {
 fn same_command_same_bytes() {
     let dir = temp_dir();
     let d = dir.path();
-    let (plain, _) = inputs();
+    let inputs = inputs();
+    let plain = &inputs.plain;
     let input = plain.to_str().expect("utf-8 path");
     for out in ["a.stp", "a.igs", "a.glb"] {
         run_ok(d, &["export", input, "--timestamp", "86400", "-o", out]);
@@ -341,7 +350,8 @@ fn same_command_same_bytes() {
 fn json_summary_names_the_file_format_units_and_size() {
     let dir = temp_dir();
     let d = dir.path();
-    let (plain, rational) = inputs();
+    let inputs = inputs();
+    let (plain, rational) = (&inputs.plain, &inputs.rational);
     let (s, _) = surface(plain);
     let out = run_ok(d, &["export", plain.to_str().expect("utf-8 path"), "-o", "a.igs", "--json"]);
     let doc: Value = serde_json::from_str(&out).expect("stdout is one JSON object");
@@ -368,7 +378,8 @@ fn json_summary_names_the_file_format_units_and_size() {
 fn bad_requests_fail_with_a_message_and_write_nothing() {
     let dir = temp_dir();
     let d = dir.path();
-    let (plain, _) = inputs();
+    let inputs = inputs();
+    let plain = &inputs.plain;
     let input = plain.to_str().expect("utf-8 path");
     for (args, says) in [
         (vec!["export", input, "-o", "x.txt"], "--format"),
