@@ -5,6 +5,7 @@
 use rayon::prelude::*;
 
 use super::{dot, Scratch, WeightMode, WeightProblem};
+use crate::optimize::linalg::subtract_gram_below;
 
 /// The Gauss-Newton normal equations `J^T J` and `J^T r` of the weight variables, with `J`
 /// Kaufman's Jacobian ([`JacobianKind::Kaufman`](super::JacobianKind::Kaufman)) in `Resolved` mode, formed without `J`
@@ -121,8 +122,9 @@ impl WeightProblem {
         let mut jtr = ate;
         if resolved {
             let (bw, stride) = (pat.bw, pat.stride);
-            // The d substitutions and the rows of W^T W (most of the cost, `d^2 n / 2` at full)
-            // on rayon's pool: each entry is one dot product whatever the thread count.
+            // The d substitutions and `W^T W` (most of the cost, `d^2 n / 2` at full, by blocks:
+            // `subtract_gram_below`) on rayon's pool, each entry the same sum whatever the thread
+            // count.
             z.par_chunks_mut(n).zip(&start).for_each(|(zv, &sv)| band_forward_from(&sc.band, n, bw, stride, zv, sv));
             band_forward_from(&sc.band, n, bw, stride, &mut hte, 0);
             let t = hte.as_flattened();
@@ -138,15 +140,12 @@ impl WeightProblem {
                 }
             }
             if full {
-                jtj.par_chunks_mut(d).enumerate().for_each(|(v, row)| {
-                    for (w, a) in row[..=v].iter_mut().enumerate() {
-                        *a -= dot(&w_of(v)[from(v, w)..], &w_of(w)[from(v, w)..]);
-                    }
-                });
-            } else {
-                for (v, a) in jtj.iter_mut().enumerate() {
-                    *a -= dot(&w_of(v)[from(v, v)..], &w_of(v)[from(v, v)..]);
-                }
+                let rows: Vec<usize> = start.iter().map(|&s| 3 * s.min(n)).collect();
+                subtract_gram_below(&mut jtj, d, z.as_flattened(), 3 * n, &rows);
+            }
+            // The diagonal one dot product each, so that `jtj_diagonal` gives it bit for bit.
+            for v in 0..d {
+                jtj[if full { v * d + v } else { v }] -= dot(&w_of(v)[from(v, v)..], &w_of(v)[from(v, v)..]);
             }
         }
         if !full {
