@@ -250,6 +250,11 @@ pub struct FitOutcome {
     /// The fairness figures the fairing measured, with the surface they are of: reused by
     /// [`FitOutcome::fairness_figures`] for that very surface only.
     pub(crate) measured_fairness: Option<(NurbsSurface, FairnessFigures)>,
+    /// The offsets' closest points `(u, v)` found by the true error's measurement (in input
+    /// order, each projection started at the fit's parameters), with the surface and the
+    /// parameters they were found for: the optimisers' foot-point start reuses them for that
+    /// very surface and those parameters only ([`crate::optimize::FittedSurface::foot_points`]).
+    pub(crate) measured_feet: Option<std::sync::Arc<MeasuredFeet>>,
     /// The surface before the envelope hold refitted it (`envelope_held > 0`): the plain least
     /// squares whose fairness `--fair auto` keeps.
     pub(crate) unheld: Option<NurbsSurface>,
@@ -612,6 +617,14 @@ fn less_fair_by(figures: &FairnessFigures, plain: &FairnessFigures, units: &str)
     worse.join(", ")
 }
 
+/// [`FitOutcome::measured_feet`]: the feet of the offsets on `surface`, projected from `params`.
+#[derive(Debug, PartialEq)]
+pub(crate) struct MeasuredFeet {
+    pub(crate) surface: NurbsSurface,
+    pub(crate) params: Vec<Vec<(f64, f64)>>,
+    pub(crate) feet: Vec<(f64, f64)>,
+}
+
 impl crate::optimize::FittedSurface for FitOutcome {
     fn surface(&self) -> &NurbsSurface {
         &self.surface
@@ -619,6 +632,13 @@ impl crate::optimize::FittedSurface for FitOutcome {
 
     fn params(&self) -> &[Vec<(f64, f64)>] {
         &self.params
+    }
+
+    fn foot_points(&self) -> Option<&[(f64, f64)]> {
+        self.measured_feet
+            .as_deref()
+            .filter(|m| m.surface == self.surface && m.params == self.params)
+            .map(|m| m.feet.as_slice())
     }
 }
 

@@ -13,7 +13,7 @@ use nurbs::{NurbsError, NurbsSurface};
 use crate::analysis::Envelope;
 use crate::fairing::Fairing;
 use crate::fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, HoldOn, Knuckles};
-use crate::fit_error::{measure_fit_error, FitError};
+use crate::fit_error::{fit_error_of, project_offsets, FitError};
 use crate::flats::{find_flat_lines, refit_within_flats, FlatKind, FlatOptions};
 use crate::optimize::{optimize_weights, quiet, Control, OptimReport};
 use crate::skin_memo::{Skin, SkinMemo};
@@ -322,6 +322,7 @@ fn assembled(
         validity,
         envelope_held: 0,
         measured_fairness: None,
+        measured_feet: None,
         unheld: None,
         along: AlongParameters::LeastResidual,
         held_out_referee: None,
@@ -329,17 +330,24 @@ fn assembled(
 }
 
 /// `out` ([`assembled`]) measured in full ([`Measure::Full`]): the true error of every offset
-/// by closest-point projection, and every validity finding against the offsets' envelope.
+/// by closest-point projection (its feet kept, [`FitOutcome::measured_feet`]), and every
+/// validity finding against the offsets' envelope.
 fn measured(offsets: &Offsets, config: &FitConfig, out: FitOutcome) -> Result<FitOutcome, HullError> {
     let start = Instant::now();
-    let error = finite(config, measure_fit_error(&out.surface, offsets, Some(&out.params)))?;
+    let feet = project_offsets(&out.surface, offsets, Some(&out.params));
+    let error = finite(config, fit_error_of(offsets, &feet))?;
     let error_seconds = start.elapsed().as_secs_f64();
+    let measured_feet = Some(std::sync::Arc::new(crate::fit::MeasuredFeet {
+        surface: out.surface.clone(),
+        params: out.params.clone(),
+        feet: feet.iter().map(|f| (f.u, f.v)).collect(),
+    }));
     let (validity, folds) = if config.envelope == EnvelopeHold::Own {
         (out.validity, out.folds)
     } else {
         crate::analysis::fit_validity_and_folds(&out.surface, offsets)?
     };
-    Ok(FitOutcome { error, error_seconds, validity, folds, ..out })
+    Ok(FitOutcome { error, error_seconds, validity, folds, measured_feet, ..out })
 }
 
 /// `error`, or the fit's error when its max or RMS is not finite.

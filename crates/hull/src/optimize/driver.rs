@@ -331,8 +331,12 @@ fn lm_settings(o: &LmOptions) -> serde_json::Value {
 }
 
 /// Each offset's foot point on the plain approximation (its closest point, the fit's own
-/// parameters as a Newton seed).
+/// parameters as a Newton seed): those the plain fit's error measurement found, where `base`
+/// has them (the same projections), else projected now.
 fn foot_points(offsets: &Offsets, base: &impl FittedSurface) -> Vec<(f64, f64)> {
+    if let Some(feet) = base.foot_points() {
+        return feet.to_vec();
+    }
     let projector = SurfaceProjector::new(base.surface(), ProjectionOptions::default());
     let points: Vec<Vec3> = offsets.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
     let hints: Vec<(f64, f64)> = base.params().iter().flatten().copied().collect();
@@ -350,4 +354,31 @@ fn foot_points(offsets: &Offsets, base: &impl FittedSurface) -> Vec<(f64, f64)> 
 fn regroup(offsets: &Offsets, flat: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
     let mut it = flat.iter().copied();
     offsets.sections.iter().map(|s| it.by_ref().take(s.points.len()).collect()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{fit_offsets, series60_sample, FitConfig};
+
+    /// The plain fit's measured feet are the foot-point start: the same bits as projecting the
+    /// offsets again, and only for the surface and parameters they were found for.
+    #[test]
+    fn the_measured_feet_are_the_foot_points() {
+        let offsets = series60_sample();
+        let fit = fit_offsets(&offsets, &FitConfig::default()).expect("fits");
+        let reused = fit.foot_points().expect("measured").to_vec();
+        let mut fresh = fit.clone();
+        fresh.measured_feet = None;
+        assert!(fresh.foot_points().is_none());
+        assert_eq!(foot_points(&offsets, &fresh), reused);
+        assert_eq!(foot_points(&offsets, &fit), reused);
+        // Another surface or other parameters: projected again.
+        let mut moved = fit.clone();
+        moved.surface = moved.surface.scaled(1.01);
+        assert!(moved.foot_points().is_none());
+        let mut other = fit.clone();
+        other.params[0][0].0 += 1e-3;
+        assert!(other.foot_points().is_none());
+    }
 }

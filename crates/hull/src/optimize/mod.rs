@@ -35,6 +35,11 @@ pub trait FittedSurface {
     fn surface(&self) -> &NurbsSurface;
     /// The data parameters `(u, v)` of every offset, one list per section.
     fn params(&self) -> &[Vec<(f64, f64)>];
+    /// The offsets' closest points on the surface (in input order), each projection started
+    /// at its parameters, where they were found already; `None` to project them.
+    fn foot_points(&self) -> Option<&[(f64, f64)]> {
+        None
+    }
 }
 
 /// A function to minimise over a box: one objective for the Genetic Algorithm, Particle Swarm
