@@ -129,23 +129,22 @@ impl WeightProblem {
             band_forward_from(&sc.band, n, bw, stride, &mut hte, 0);
             let t = hte.as_flattened();
             let w_of = |v: usize| z[v * n..(v + 1) * n].as_flattened();
-            let from = |v: usize, w: usize| 3 * start[v].max(start[w]).min(n);
+            // The first non-zero of each `W_v` (flattened: 3 coordinates a row).
+            let first: Vec<usize> = start.iter().map(|&s| 3 * s.min(n)).collect();
             // With the fairness term the least-squares optimality is A^T r = H^T e +
             // λ' D^T D Y = 0, not H^T e = 0, and the projected part of the augmented
             // gradient vanishes: J^T r = A^T e (as in `matvec::JacobianOp::gradient`).
             if self.fair_g == 0.0 {
                 for (v, g) in jtr.iter_mut().enumerate() {
-                    let s0 = 3 * start[v].min(n);
-                    *g -= dot(&w_of(v)[s0..], &t[s0..]);
+                    *g -= dot(&w_of(v)[first[v]..], &t[first[v]..]);
                 }
             }
             if full {
-                let rows: Vec<usize> = start.iter().map(|&s| 3 * s.min(n)).collect();
-                subtract_gram_below(&mut jtj, d, z.as_flattened(), 3 * n, &rows);
+                subtract_gram_below(&mut jtj, d, z.as_flattened(), 3 * n, &first);
             }
             // The diagonal one dot product each, so that `jtj_diagonal` gives it bit for bit.
-            for v in 0..d {
-                jtj[if full { v * d + v } else { v }] -= dot(&w_of(v)[from(v, v)..], &w_of(v)[from(v, v)..]);
+            for (v, &s0) in first.iter().enumerate() {
+                jtj[if full { v * d + v } else { v }] -= dot(&w_of(v)[s0..], &w_of(v)[s0..]);
             }
         }
         if !full {
