@@ -91,10 +91,7 @@ fn blocked_cholesky(a: &mut [f64], n: usize) -> bool {
         for i in k0..k1 {
             let (done, rest) = a.split_at_mut(i * n);
             let row = &mut rest[..n];
-            for j in k0..i {
-                let rj = &done[j * n..(j + 1) * n];
-                row[j] = (row[j] - dot(&row[k0..j], &rj[k0..j])) / rj[j];
-            }
+            solve_against_block(row, &done[k0 * n..], n, k0, i);
             let d = row[i] - dot(&row[k0..i], &row[k0..i]);
             // As nurbs' pivot test, against the matrix's own diagonal entry; false for NaN.
             if !(d > nurbs::tolerance::PIVOT_REL * diag[i]) {
@@ -108,12 +105,7 @@ fn blocked_cholesky(a: &mut [f64], n: usize) -> bool {
         // The panel below it: each row solved against the block's factor.
         let (top, below) = a.split_at_mut(k1 * n);
         let block = &top[k0 * n..];
-        below.par_chunks_mut(n).for_each(|row| {
-            for j in k0..k1 {
-                let rj = &block[(j - k0) * n..(j - k0 + 1) * n];
-                row[j] = (row[j] - dot(&row[k0..j], &rj[k0..j])) / rj[j];
-            }
-        });
+        below.par_chunks_mut(n).for_each(|row| solve_against_block(row, block, n, k0, k1));
         // The trailing lower triangle less the panel's products, from a copy of the panel
         // (`m x w`, row-major), by blocks of rows in parallel.
         let (m, w) = (n - k1, k1 - k0);
@@ -137,6 +129,16 @@ fn blocked_cholesky(a: &mut [f64], n: usize) -> bool {
         });
     }
     true
+}
+
+/// Row `row`'s entries `k0..end` of [`blocked_cholesky`]'s factor, solved against the factor
+/// rows `k0..end` of the block column starting at `k0` (`block`, row-major with `n` columns,
+/// its first row the factor's row `k0`), the earlier blocks' share already taken off.
+fn solve_against_block(row: &mut [f64], block: &[f64], n: usize, k0: usize, end: usize) {
+    for j in k0..end {
+        let rj = &block[(j - k0) * n..(j - k0 + 1) * n];
+        row[j] = (row[j] - dot(&row[k0..j], &rj[k0..j])) / rj[j];
+    }
 }
 
 #[cfg(test)]
