@@ -41,8 +41,11 @@ pub const NET_FAIR: f64 = 1e-4;
 pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.0];
 
 /// Fair the plain approximation `plain` as `fairing` says, refitting with
-/// `skin(ν)` (the skinning approximation of the same settings with smoothing `ν`): the fair
-/// outcome and the report, or `None` for [`Fairing::Off`] (and `λ = 0`). `free` is the plain
+/// `skin(ν)` (the skinning approximation of the same settings with smoothing `ν`, with every
+/// validity finding but its true error not measured, which `true_error` measures): the fair
+/// outcome and the report, or `None` for [`Fairing::Off`] (and `λ = 0`). The true error is
+/// measured of the fits that could be taken only: sound ones when the plain fit is, else those
+/// with fewer defects than it (the others' `max` in the report is left out). `free` is the plain
 /// least squares before `plain` was held within the offsets' envelope, if it was: its fairness
 /// figures are the ones to keep (the report's `before`; else `plain`'s), as `figures` gives
 /// them ([`FairnessFigures::of`], or the same measured before).
@@ -65,6 +68,7 @@ pub fn fair(
     free: Option<&NurbsSurface>,
     fairing: Fairing,
     skin: impl Fn(f64, AlongParameters) -> Result<FitOutcome, HullError> + Sync,
+    true_error: impl Fn(FitOutcome) -> Result<FitOutcome, HullError> + Sync,
     figures: impl FnOnce(&NurbsSurface) -> FairnessFigures,
 ) -> Result<Option<(FitOutcome, FairReport)>, HullError> {
     let check = |name: &'static str, v: f64| {
@@ -103,7 +107,7 @@ pub fn fair(
     match fairing {
         Fairing::Off => Ok(None),
         Fairing::Lambda(l) => {
-            let out = skin(l, plain.config.along)?;
+            let out = true_error(skin(l, plain.config.along)?)?;
             let after = FairnessFigures::of(&out.surface);
             Ok(Some((out.with_fairness(after), report(l, None, Vec::new(), after))))
         }
@@ -116,14 +120,15 @@ pub fn fair(
                 if sound { AUTO_LAMBDAS.iter().rev().copied().collect() } else { AUTO_LAMBDAS.to_vec() };
             if sound {
                 // From the smoothest down, the first sound, accurate enough and fairer fit. The
-                // fits run in parallel (most tables try every weight: none qualifies, or a small
-                // one), the choice is made in their order, so it does not depend on the thread
-                // count.
-                let fits = smoothed_fits(&order, plain, &skin);
+                // fits, and the true errors of the sound ones, run in parallel (most tables try
+                // every weight: none qualifies, or a small one), the choice is made in their
+                // order, so it does not depend on the thread count.
+                let sound_fit = |out: &FitOutcome| out.validity.is_empty();
+                let fits = measured_fits(smoothed_fits(&order, plain, &skin), sound_fit, &true_error);
                 for (l, along, fit) in fits {
-                    let Ok(out) = fit else { continue };
-                    let (max, findings) = (out.error.overall.max, out.validity.len());
-                    let mut accepted = findings == 0 && max <= limit;
+                    let Ok((out, max)) = fit else { continue };
+                    let findings = out.validity.len();
+                    let mut accepted = max.is_some_and(|max| max <= limit);
                     let mut after = None;
                     if accepted {
                         after = FairnessFigures::of_no_less_fair(&out.surface, &before);
@@ -142,30 +147,32 @@ pub fn fair(
                 // The figures are kept of a fit no less fair only (the cuts of the others are
                 // skipped): the chosen fit's are measured at the end if missing.
                 let mut best: Option<(usize, FitOutcome, Option<FairnessFigures>, bool)> = None;
-                let candidate = |out: &FitOutcome| {
-                    out.defects() < plain.defects() && out.error.overall.max <= UNSOUND_SLACK * limit
-                };
-                // Every weight is tried here: the fits, and the figures of each candidate, run
-                // in parallel, the choice is made in their order, so it does not depend on the
-                // thread count.
-                let fits: Vec<Smoothed<(FitOutcome, Option<FairnessFigures>)>> = smoothed_fits(&order, plain, &skin)
-                    .into_par_iter()
-                    .map(|(l, along, fit)| {
-                        let fit = fit.map(|out| {
-                            let figures = if candidate(&out) {
-                                FairnessFigures::of_no_less_fair(&out.surface, &before)
-                            } else {
-                                None
-                            };
-                            (out, figures)
-                        });
-                        (l, along, fit)
-                    })
-                    .collect();
+                // The true error is measured of the fits with fewer defects only: a candidate is
+                // one of them within the slack.
+                let fewer = |out: &FitOutcome| out.defects() < plain.defects();
+                let candidate = |max: Option<f64>| max.is_some_and(|max| max <= UNSOUND_SLACK * limit);
+                // Every weight is tried here: the fits, their true errors and the figures of
+                // each candidate run in parallel, the choice is made in their order, so it does
+                // not depend on the thread count.
+                let fits: Vec<Smoothed<(FitOutcome, Option<f64>, Option<FairnessFigures>)>> =
+                    measured_fits(smoothed_fits(&order, plain, &skin), fewer, &true_error)
+                        .into_par_iter()
+                        .map(|(l, along, fit)| {
+                            let fit = fit.map(|(out, max)| {
+                                let figures = if candidate(max) {
+                                    FairnessFigures::of_no_less_fair(&out.surface, &before)
+                                } else {
+                                    None
+                                };
+                                (out, max, figures)
+                            });
+                            (l, along, fit)
+                        })
+                        .collect();
                 for (l, along, fit) in fits {
-                    let Ok((out, figures)) = fit else { continue };
-                    let (max, findings) = (out.error.overall.max, out.validity.len());
-                    if candidate(&out) {
+                    let Ok((out, max, figures)) = fit else { continue };
+                    let findings = out.validity.len();
+                    if candidate(max) {
                         let fairer = figures.is_some();
                         let rank = |d: (usize, usize), fairer: bool| (d, !fairer);
                         if best
@@ -196,6 +203,31 @@ pub fn fair(
 /// A fit of the search: its weight `ν`, the parameters along the sections imposed on it (if
 /// any, by name), and what it gave.
 type Smoothed<T> = (f64, Option<&'static str>, Result<T, HullError>);
+
+/// `fits` in their order, each with its true max error at the offsets (`true_error`, in
+/// parallel) where `wanted`, else as they are with no max: a fit the search cannot take is not
+/// measured. A measurement that fails (an error that is not finite) is the fit's result.
+fn measured_fits(
+    fits: Vec<Smoothed<FitOutcome>>,
+    wanted: impl Fn(&FitOutcome) -> bool + Sync,
+    true_error: &(impl Fn(FitOutcome) -> Result<FitOutcome, HullError> + Sync),
+) -> Vec<Smoothed<(FitOutcome, Option<f64>)>> {
+    fits.into_par_iter()
+        .map(|(l, along, fit)| {
+            let fit = fit.and_then(|out| {
+                if wanted(&out) {
+                    true_error(out).map(|out| {
+                        let max = out.error.overall.max;
+                        (out, Some(max))
+                    })
+                } else {
+                    Ok((out, None))
+                }
+            });
+            (l, along, fit)
+        })
+        .collect()
+}
 
 /// The smoothed fits of `weights`, in their order, run in parallel: at each weight the fit as
 /// the skin chooses its parameters along the sections ([`AlongParameters::LeastResidual`]), and
@@ -314,9 +346,12 @@ mod tests {
         assert_eq!(report.tried.iter().filter(|t| t.accepted).count(), 1);
         // The least smoothing with that few findings: no smaller weight tried had as few.
         let k = report.tried.iter().position(|t| t.accepted).expect("accepted");
-        assert!(report.tried[..k]
-            .iter()
-            .all(|t| t.findings > report.tried[k].findings || t.max > UNSOUND_SLACK * plain.error.overall.max));
+        assert!(report.tried[..k].iter().all(|t| t.findings > report.tried[k].findings
+            || t.max.is_none_or(|max| max > UNSOUND_SLACK * plain.error.overall.max)));
+        // The true error is measured where the fit could be taken: not of one with as many
+        // defects as the plain fit, so never of one with no finding left out.
+        assert!(report.tried.iter().all(|t| t.max.is_some() || t.findings > 0), "{:?}", report.tried);
+        assert!(report.tried[k].max.is_some());
         assert!(
             report.summary(Units::Metre).contains("validity finding(s) against the plain fit's"),
             "{}",

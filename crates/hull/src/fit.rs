@@ -341,8 +341,10 @@ impl Fairing {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct FairTry {
     pub lambda: f64,
-    /// True max error at the offsets.
-    pub max: f64,
+    /// True max error at the offsets; `None` (`null`) where it was not measured: a fit the
+    /// search could not take, with a validity finding where the plain fit has none, else with
+    /// at least as many defects as the plain fit ([`crate::fairing::fair`]).
+    pub max: Option<f64>,
     /// Validity findings ([`crate::analysis::check_fit_validity`]).
     pub findings: usize,
     /// The one taken: sound, within the tolerance and fairer; or, for a plain fit with
@@ -460,12 +462,12 @@ impl FairReport {
         ) + &format!(", inflections {} -> {}", self.before.inflections(), self.after.inflections());
         let limit = self.tolerance.map(|t| format!(" within max error {t:.3e} {units}")).unwrap_or_default();
         let chosen = self.tried.iter().find(|t| t.accepted);
-        if let (Some(c), Some(t)) = (chosen, self.tolerance) {
-            if c.max > t || self.plain_findings > 0 {
+        if let (Some(c), Some(t), Some(max)) = (chosen, self.tolerance, chosen.and_then(|c| c.max)) {
+            if max > t || self.plain_findings > 0 {
                 return format!(
                     "fairing ({}): smoothing {:.0e} leaves {} validity finding(s) against the plain fit's {}, at a \
-                     max error of {:.3e} {units} against {t:.3e} {units}; {figures}",
-                    self.setting, self.lambda, c.findings, self.plain_findings, c.max
+                     max error of {max:.3e} {units} against {t:.3e} {units}; {figures}",
+                    self.setting, self.lambda, c.findings, self.plain_findings
                 );
             }
         }

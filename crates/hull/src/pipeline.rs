@@ -133,9 +133,16 @@ fn optimized(
     // Else the fair approximation (its choice, [`crate::fairing::fair`], removes a fold if it
     // can; with a given `λ`, the fit at that weight) or the plain one.
     let approx = FitConfig { method: FitMethod::Approx, ..*config };
-    let skin = |nu: f64, along| fit_skin(offsets, &FitConfig { smoothing: nu, along, ..approx }, Measure::Full, memo);
+    let skin = |nu: f64, along| fit_skin(offsets, &FitConfig { smoothing: nu, along, ..approx }, Measure::Valid, memo);
     let fair = if plain.flat_lines.is_empty() {
-        crate::fairing::fair(&plain, None, config.fair, skin, |s| memo.fairness(s))?
+        crate::fairing::fair(
+            &plain,
+            None,
+            config.fair,
+            skin,
+            |out| with_true_error(offsets, out),
+            |s| memo.fairness(s),
+        )?
     } else {
         None
     };
@@ -172,11 +179,16 @@ pub(crate) fn fit_surface_with(
 }
 
 /// How much of a fitted surface is measured on the way to the answer: what [`assembled`]
-/// records of it (`Lean`), or that completed by [`measured`] (`Full`).
+/// records of it (`Lean`), that with every validity finding (`Valid`, [`validated`]), or that
+/// completed by [`measured`] (`Full`).
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Measure {
     /// The true error at the offsets and every validity finding: an outcome to report.
     Full,
+    /// Every validity finding; the error the parametric residual (as `Lean`): a fit of the
+    /// fairing search ([`crate::fairing::fair`]), which measures the true error
+    /// ([`with_true_error`]) of the fits it could take only.
+    Valid,
     /// Only what the fit's own decisions read ([`fit_surface_with`]): the findings against
     /// the offsets' envelope when the hold uses them ([`EnvelopeHold::Own`]); the error is the
     /// parametric residual `|S(u_k, v_k) - Q_k|` at the fit's parameters (an upper bound of
@@ -219,7 +231,7 @@ fn fit_skinned(
     if config.method == FitMethod::Interp || !plain.flat_lines.is_empty() {
         return Ok(plain);
     }
-    let skin = |nu: f64, along| smoothed(nu, along, Measure::Full);
+    let skin = |nu: f64, along| smoothed(nu, along, Measure::Valid);
     let start = Instant::now();
     // The plain least squares before the envelope hold, whose fairness `auto` is to keep
     // (issue 11's fairness floor compares with it).
@@ -227,7 +239,8 @@ fn fit_skinned(
         Fairing::Auto { .. } => plain.unheld.as_ref(),
         _ => None,
     };
-    let chosen = match crate::fairing::fair(&plain, free, config.fair, skin, |s| memo.fairness(s))? {
+    let true_error = |out| with_true_error(offsets, out);
+    let chosen = match crate::fairing::fair(&plain, free, config.fair, skin, true_error, |s| memo.fairness(s))? {
         Some((mut out, report)) => {
             // The time of the whole choice, the plain fit and every smoothed one measured.
             let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
@@ -335,25 +348,39 @@ fn assembled(
     })
 }
 
-/// `out` ([`assembled`]) measured in full ([`Measure::Full`]): the true error of every offset
-/// by closest-point projection (its feet kept, [`FitOutcome::measured_feet`]), and every
-/// validity finding against the offsets' envelope.
+/// `out` ([`assembled`]) measured in full ([`Measure::Full`]): every validity finding against
+/// the offsets' envelope ([`validated`]) and the true error of every offset
+/// ([`with_true_error`]).
 fn measured(offsets: &Offsets, config: &FitConfig, out: FitOutcome) -> Result<FitOutcome, HullError> {
+    with_true_error(offsets, validated(offsets, config, out)?)
+}
+
+/// `out` ([`assembled`]) with every validity finding against the offsets' envelope: those
+/// [`assembled`] found with [`EnvelopeHold::Own`], else found here ([`Measure::Valid`]).
+fn validated(offsets: &Offsets, config: &FitConfig, out: FitOutcome) -> Result<FitOutcome, HullError> {
+    if config.envelope == EnvelopeHold::Own {
+        return Ok(out);
+    }
+    let (validity, folds) = crate::analysis::fit_validity_and_folds(&out.surface, offsets)?;
+    Ok(FitOutcome { validity, folds, ..out })
+}
+
+/// `out` with the true error of every offset (in place of the parametric residual of
+/// [`assembled`]), by closest-point projection, its feet kept ([`FitOutcome::measured_feet`]).
+///
+/// # Errors
+/// [`HullError::Fit`] where the error is not finite.
+fn with_true_error(offsets: &Offsets, out: FitOutcome) -> Result<FitOutcome, HullError> {
     let start = Instant::now();
     let feet = project_offsets(&out.surface, offsets, Some(&out.params));
-    let error = finite(config, fit_error_of(offsets, &feet))?;
+    let error = finite(&out.config, fit_error_of(offsets, &feet))?;
     let error_seconds = start.elapsed().as_secs_f64();
     let measured_feet = Some(std::sync::Arc::new(crate::fit::MeasuredFeet {
         surface: out.surface.clone(),
         params: out.params.clone(),
         feet: feet.iter().map(|f| (f.u, f.v)).collect(),
     }));
-    let (validity, folds) = if config.envelope == EnvelopeHold::Own {
-        (out.validity, out.folds)
-    } else {
-        crate::analysis::fit_validity_and_folds(&out.surface, offsets)?
-    };
-    Ok(FitOutcome { error, error_seconds, validity, folds, measured_feet, ..out })
+    Ok(FitOutcome { error, error_seconds, measured_feet, ..out })
 }
 
 /// `error`, or the fit's error when its max or RMS is not finite.
@@ -390,9 +417,11 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure, memo: &Skin
     if config.method != FitMethod::Interp {
         out = within_envelope(offsets, config, &sections, out, Some(memo))?;
     }
-    if measure == Measure::Full {
-        out = measured(offsets, config, out)?;
-    }
+    out = match measure {
+        Measure::Full => measured(offsets, config, out)?,
+        Measure::Valid => validated(offsets, config, out)?,
+        Measure::Lean => out,
+    };
     out.knuckle_lines = lines;
     Ok(out)
 }
