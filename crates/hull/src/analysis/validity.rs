@@ -909,14 +909,15 @@ fn oriented(surface: &NurbsSurface, grid: &Grid) -> Option<Oriented> {
         edges.push(edge_key(1.0 - cos.abs(), k, m != k + 1, cos < 0.0));
     }
     let label = spanning_parities(nu * nv, nu, edges);
-    // Per component (root), the area of each orientation; the smaller is the inward one.
-    let mut sums: std::collections::BTreeMap<usize, [f64; 2]> = std::collections::BTreeMap::new();
+    // Per component (by its root, a node), the area of each orientation; the smaller is the
+    // inward one.
+    let mut sums = vec![[0.0f64; 2]; nu * nv];
     for k in (0..nu * nv).filter(|&k| valid[k]) {
-        sums.entry(label[k].0).or_insert([0.0; 2])[usize::from(label[k].1)] += area[k];
+        sums[label[k].0][usize::from(label[k].1)] += area[k];
     }
     let minority = (0..nu * nv)
         .map(|k| {
-            let s = sums.get(&label[k].0).copied().unwrap_or([0.0; 2]);
+            let s = sums[label[k].0];
             let inward = s[1] < s[0];
             valid[k] && label[k].1 == inward && s[usize::from(inward)] < s[usize::from(!inward)]
         })
