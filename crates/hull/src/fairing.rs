@@ -45,7 +45,7 @@ pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.
 /// validity finding but its true error not measured, which `true_error` measures): the fair
 /// outcome and the report, or `None` for [`Fairing::Off`] (and `λ = 0`). The true error is
 /// measured of the fits that could be taken only: sound ones when the plain fit is, else those
-/// with fewer defects than it (the others' `max` in the report is left out). `free` is the plain
+/// with fewer defects than it (the others' `max` in the report is `None`). `free` is the plain
 /// least squares before `plain` was held within the offsets' envelope, if it was: its fairness
 /// figures are the ones to keep (the report's `before`; else `plain`'s), as `figures` gives
 /// them ([`FairnessFigures::of`], or the same measured before).
