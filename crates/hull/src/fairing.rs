@@ -154,21 +154,20 @@ pub fn fair(
                 // Every weight is tried here: the fits, their true errors and the figures of
                 // each candidate run in parallel, the choice is made in their order, so it does
                 // not depend on the thread count.
-                let fits: Vec<Smoothed<(FitOutcome, Option<f64>, Option<FairnessFigures>)>> =
-                    measured_fits(smoothed_fits(&order, plain, &skin), fewer, &true_error)
-                        .into_par_iter()
-                        .map(|(l, along, fit)| {
-                            let fit = fit.map(|(out, max)| {
-                                let figures = if candidate(max) {
-                                    FairnessFigures::of_no_less_fair(&out.surface, &before)
-                                } else {
-                                    None
-                                };
-                                (out, max, figures)
-                            });
-                            (l, along, fit)
-                        })
-                        .collect();
+                let fits: Vec<Smoothed<_>> = measured_fits(smoothed_fits(&order, plain, &skin), fewer, &true_error)
+                    .into_par_iter()
+                    .map(|(l, along, fit)| {
+                        let fit = fit.map(|(out, max)| {
+                            let figures = if candidate(max) {
+                                FairnessFigures::of_no_less_fair(&out.surface, &before)
+                            } else {
+                                None
+                            };
+                            (out, max, figures)
+                        });
+                        (l, along, fit)
+                    })
+                    .collect();
                 for (l, along, fit) in fits {
                     let Ok((out, max, figures)) = fit else { continue };
                     let findings = out.validity.len();
