@@ -343,7 +343,7 @@ pub struct FairTry {
     pub lambda: f64,
     /// True max error at the offsets; `None` (`null`) where it was not measured: a fit the
     /// search could not take, with a validity finding where the plain fit has none, else with
-    /// at least as many defects as the plain fit ([`crate::fairing::fair`]).
+    /// at least as many defects as the plain fit (see [`Fairing::Auto`]).
     pub max: Option<f64>,
     /// Validity findings ([`crate::analysis::check_fit_validity`]).
     pub findings: usize,
