@@ -839,11 +839,11 @@ fn edge_of(key: u128, nu: usize) -> (usize, usize, bool) {
 /// The minimum spanning tree decides, equal weights in the grid's order (the nodes break ties),
 /// so the tree does not depend on the sort. Only the heavy part is sorted: the edges lighter
 /// than every flipping one (24 to 99.6 % of them in the checks of LM on the frigate, above
-/// 80 % in 15 of its 23) come first in the
-/// sorted order and flip nowhere, so every spanning forest of them gives each node the parity
-/// of the others of its component; joined in the grid's order, they leave the trees with the
-/// components and relative parities the sorted order leaves (a whole component flipped at
-/// most, which changes no minority in [`oriented`]). The rest are joined after them, sorted.
+/// 80 % in 15 of its 23) come first in the sorted order and flip nowhere, so every spanning
+/// forest of them gives each node the parity of the others of its component; joined in the
+/// grid's order, they leave the trees with the components and relative parities the sorted
+/// order leaves (a whole component flipped at most, which changes no minority in
+/// [`oriented`]). The rest are joined after them, sorted.
 fn spanning_parities(n: usize, nu: usize, mut edges: Vec<u128>) -> Vec<(usize, bool)> {
     let lightest_flip = edges.iter().filter(|&&e| e & 1 != 0).map(|&e| e >> 64).min().unwrap_or(u128::MAX);
     let light = |e: u128| e >> 64 < lightest_flip;
