@@ -759,6 +759,7 @@ fn fold_finding(surface: &NurbsSurface, grid: &Grid, fold: &Fold, sign: f64) -> 
 }
 
 /// Union-find with the parity of each node to its root (the orientation relative to it).
+#[derive(Clone)]
 struct Orientation {
     parent: Vec<usize>,
     parity: Vec<bool>,
@@ -783,14 +784,18 @@ impl Orientation {
 
     /// Join the trees of `edges` `(k, m, flip)` in their order, the parity across each its
     /// `flip`, passing over an edge within one tree (Kruskal's algorithm, on edges sorted by
-    /// weight).
-    fn join_edges(&mut self, edges: impl Iterator<Item = (usize, usize, bool)>) {
+    /// weight). With `even`, stop at the first such edge whose flip disagrees with the trees
+    /// (a cycle flipping an odd number of times) and return `false`; else `true`.
+    fn join_edges(&mut self, edges: impl Iterator<Item = (usize, usize, bool)>, even: bool) -> bool {
         for (a, b, flip) in edges {
             let ((ra, pa), (rb, pb)) = (self.find(a), self.find(b));
             if ra != rb {
                 self.join(ra, rb, pa ^ pb ^ flip);
+            } else if even && pa ^ pb != flip {
+                return false;
             }
         }
+        true
     }
 
     /// The root of `k` and the parity of `k` to it, compressing the path.
@@ -837,21 +842,29 @@ fn edge_of(key: u128, nu: usize) -> (usize, usize, bool) {
 /// algorithm, the parity across each edge its flip: the propagation of [`oriented`].
 ///
 /// The minimum spanning tree decides, equal weights in the grid's order (the nodes break ties),
-/// so the tree does not depend on the sort. Only the heavy part is sorted: the edges lighter
-/// than every flipping one (24 to 99.6 % of them in the checks of LM on the frigate, above
-/// 80 % in 15 of its 23) come first in the sorted order and flip nowhere, so every spanning
-/// forest of them gives each node the parity of the others of its component; joined in the
-/// grid's order, they leave the trees with the components and relative parities the sorted
-/// order leaves (a whole component flipped at most, which changes no minority in
-/// [`oriented`]). The rest are joined after them, sorted.
+/// so the tree does not depend on the sort. Where no cycle of the grid flips an odd number of
+/// times, every spanning forest gives each node the same parity to the others of its component
+/// (a whole component flipped at most, which changes no minority in [`oriented`]): the grid's
+/// order, no sort. Else only the heavy part is sorted: the edges lighter than every flipping
+/// one (24 to 99.6 % of them in the checks of LM on the frigate, above 80 % in 15 of its 23)
+/// come first in the sorted order and flip nowhere, so every spanning forest of them leaves
+/// the components and relative parities the sorted order leaves; they are joined in the grid's
+/// order, the rest after them, sorted. (The heavy edges are tried in the grid's order first:
+/// the light ones cannot close a cycle of odd flips, so if the heavy ones close none either,
+/// the grid has none.)
 fn spanning_parities(n: usize, nu: usize, mut edges: Vec<u128>) -> Vec<(usize, bool)> {
     let lightest_flip = edges.iter().filter(|&&e| e & 1 != 0).map(|&e| e >> 64).min().unwrap_or(u128::MAX);
     let light = |e: u128| e >> 64 < lightest_flip;
     let mut orient = Orientation::new(n);
-    orient.join_edges(edges.iter().filter(|&&e| light(e)).map(|&e| edge_of(e, nu)));
+    orient.join_edges(edges.iter().filter(|&&e| light(e)).map(|&e| edge_of(e, nu)), false);
     edges.retain(|&e| !light(e));
-    edges.sort_unstable();
-    orient.join_edges(edges.iter().map(|&e| edge_of(e, nu)));
+    let mut unsorted = orient.clone();
+    if unsorted.join_edges(edges.iter().map(|&e| edge_of(e, nu)), true) {
+        orient = unsorted;
+    } else {
+        edges.sort_unstable();
+        orient.join_edges(edges.iter().map(|&e| edge_of(e, nu)), false);
+    }
     (0..n).map(|k| orient.find(k)).collect()
 }
 
@@ -1167,7 +1180,7 @@ mod tests {
         };
         let joined = |n: usize, nu: usize, edges: &[u128]| {
             let mut o = Orientation::new(n);
-            o.join_edges(edges.iter().map(|&e| edge_of(e, nu)));
+            o.join_edges(edges.iter().map(|&e| edge_of(e, nu)), false);
             (0..n).map(|k| o.find(k)).collect::<Vec<_>>()
         };
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
