@@ -123,9 +123,11 @@ pub fn fair(
                 // fits, and the true errors of the sound ones, run in parallel (most tables try
                 // every weight: none qualifies, or a small one), the choice is made in their
                 // order, so it does not depend on the thread count.
-                let sound_fit = |out: &FitOutcome| out.validity.is_empty();
-                let fits = measured_fits(smoothed_fits(&order, plain, &skin), sound_fit, &true_error);
-                for (l, along, fit) in fits {
+                let finish = |out: FitOutcome| {
+                    let sound_fit = out.validity.is_empty();
+                    measured_if(out, sound_fit, &true_error)
+                };
+                for (l, along, fit) in smoothed_fits(&order, plain, &skin, &finish) {
                     let Ok((out, max)) = fit else { continue };
                     let findings = out.validity.len();
                     let mut accepted = max.is_some_and(|max| max <= limit);
@@ -149,26 +151,19 @@ pub fn fair(
                 let mut best: Option<(usize, FitOutcome, Option<FairnessFigures>, bool)> = None;
                 // The true error is measured of the fits with fewer defects only: a candidate is
                 // one of them within the slack.
-                let fewer = |out: &FitOutcome| out.defects() < plain.defects();
                 let candidate = |max: Option<f64>| max.is_some_and(|max| max <= UNSOUND_SLACK * limit);
                 // Every weight is tried here: the fits, their true errors and the figures of
-                // each candidate run in parallel, the choice is made in their order, so it does
-                // not depend on the thread count.
-                let fits: Vec<Smoothed<_>> = measured_fits(smoothed_fits(&order, plain, &skin), fewer, &true_error)
-                    .into_par_iter()
-                    .map(|(l, along, fit)| {
-                        let fit = fit.map(|(out, max)| {
-                            let figures = if candidate(max) {
-                                FairnessFigures::of_no_less_fair(&out.surface, &before)
-                            } else {
-                                None
-                            };
-                            (out, max, figures)
-                        });
-                        (l, along, fit)
+                // each candidate run in parallel (each fit's in one task), the choice is made in
+                // their order, so it does not depend on the thread count.
+                let finish = |out: FitOutcome| {
+                    let fewer = out.defects() < plain.defects();
+                    measured_if(out, fewer, &true_error).map(|(out, max)| {
+                        let figures =
+                            if candidate(max) { FairnessFigures::of_no_less_fair(&out.surface, &before) } else { None };
+                        (out, max, figures)
                     })
-                    .collect();
-                for (l, along, fit) in fits {
+                };
+                for (l, along, fit) in smoothed_fits(&order, plain, &skin, &finish) {
                     let Ok((out, max, figures)) = fit else { continue };
                     let findings = out.validity.len();
                     if candidate(max) {
@@ -203,32 +198,24 @@ pub fn fair(
 /// any, by name), and what it gave.
 type Smoothed<T> = (f64, Option<&'static str>, Result<T, HullError>);
 
-/// `fits` in their order, each with its true max error at the offsets (`true_error`, in
-/// parallel) where `wanted`, else as they are with no max: a fit the search cannot take is not
-/// measured. A measurement that fails (an error that is not finite) is the fit's result.
-fn measured_fits(
-    fits: Vec<Smoothed<FitOutcome>>,
-    wanted: impl Fn(&FitOutcome) -> bool + Sync,
+/// A fit of the search with its true max error at the offsets (`true_error`) where `wanted`,
+/// else as it is with no max: a fit the search cannot take is not measured. A measurement that
+/// fails (an error that is not finite) is the fit's result.
+fn measured_if(
+    out: FitOutcome,
+    wanted: bool,
     true_error: &(impl Fn(FitOutcome) -> Result<FitOutcome, HullError> + Sync),
-) -> Vec<Smoothed<(FitOutcome, Option<f64>)>> {
-    fits.into_par_iter()
-        .map(|(l, along, fit)| {
-            let fit = fit.and_then(|out| {
-                if wanted(&out) {
-                    true_error(out).map(|out| {
-                        let max = out.error.overall.max;
-                        (out, Some(max))
-                    })
-                } else {
-                    Ok((out, None))
-                }
-            });
-            (l, along, fit)
-        })
-        .collect()
+) -> Result<(FitOutcome, Option<f64>), HullError> {
+    if !wanted {
+        return Ok((out, None));
+    }
+    let out = true_error(out)?;
+    let max = out.error.overall.max;
+    Ok((out, Some(max)))
 }
 
-/// The smoothed fits of `weights`, in their order, run in parallel: at each weight the fit as
+/// The smoothed fits of `weights`, in their order, run in parallel, each finished by `finish`
+/// in its own task (its true error, the figures the choice reads): at each weight the fit as
 /// the skin chooses its parameters along the sections ([`AlongParameters::LeastResidual`]), and
 /// where that choice is not `plain`'s, the fit on `plain`'s too, after it, named by the choice
 /// imposed (`own` or `mean`). With smoothing the residuals of the two choices move differently
@@ -238,24 +225,25 @@ fn measured_fits(
 /// averaged ones smooth it within its max error (held on its surface at `ν` = 1e-2: 125 mm,
 /// thin-plate energy 10.18 against the plain least squares' 10.81). Where the other choice is
 /// the fairer one (the DTMB 5415 main hull), it stays first.
-fn smoothed_fits(
+fn smoothed_fits<T: Send>(
     weights: &[f64],
     plain: &FitOutcome,
     skin: &(impl Fn(f64, AlongParameters) -> Result<FitOutcome, HullError> + Sync),
-) -> Vec<Smoothed<FitOutcome>> {
+    finish: &(impl Fn(FitOutcome) -> Result<T, HullError> + Sync),
+) -> Vec<Smoothed<T>> {
     let imposed = match plain.along {
         AlongParameters::Own => Some("own"),
         AlongParameters::Mean => Some("mean"),
         AlongParameters::LeastResidual => None,
     };
-    let fits: Vec<Vec<Smoothed<FitOutcome>>> = weights
+    let fits: Vec<Vec<Smoothed<T>>> = weights
         .par_iter()
         .map(|&l| {
             let chosen = skin(l, AlongParameters::LeastResidual);
             let other = matches!(&chosen, Ok(out) if imposed.is_some() && out.along != plain.along);
-            let mut fits = vec![(l, None, chosen)];
+            let mut fits = vec![(l, None, chosen.and_then(finish))];
             if other {
-                fits.push((l, imposed, skin(l, plain.along)));
+                fits.push((l, imposed, skin(l, plain.along).and_then(finish)));
             }
             fits
         })
