@@ -6,8 +6,7 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
-use nurbs::{NurbsSurface, ProjectionOptions, SurfaceProjector, Vec3};
-use rayon::prelude::*;
+use nurbs::NurbsSurface;
 use serde::Serialize;
 
 use super::lm::{self, LmOptions};
@@ -332,22 +331,13 @@ fn lm_settings(o: &LmOptions) -> serde_json::Value {
 
 /// Each offset's foot point on the plain approximation (its closest point, the fit's own
 /// parameters as a Newton seed): those the plain fit's error measurement found, where `base`
-/// has them (the same projections), else projected now.
+/// has them, else projected now as that measurement projects them
+/// ([`crate::fit_error::project_offsets`]).
 fn foot_points(offsets: &Offsets, base: &impl FittedSurface) -> Vec<(f64, f64)> {
     if let Some(feet) = base.foot_points() {
         return feet.to_vec();
     }
-    let projector = SurfaceProjector::new(base.surface(), ProjectionOptions::default());
-    let points: Vec<Vec3> = offsets.sections.iter().flat_map(|s| s.points.iter().copied()).collect();
-    let hints: Vec<(f64, f64)> = base.params().iter().flatten().copied().collect();
-    points
-        .par_iter()
-        .zip(&hints)
-        .map(|(&q, &hint)| {
-            let foot = projector.project_near(q, hint);
-            (foot.u, foot.v)
-        })
-        .collect()
+    crate::fit_error::project_offsets(base.surface(), offsets, Some(base.params())).iter().map(|f| (f.u, f.v)).collect()
 }
 
 /// Flat parameters back into one list per section.
