@@ -54,9 +54,12 @@ pub fn gaussian_curvature_range(surface: &NurbsSurface, grid: usize) -> Option<C
     let (mut max, mut min) = (f64::NEG_INFINITY, f64::INFINITY);
     let (mut max_at, mut min_at) = ([0.0; 2], [0.0; 2]);
     let (mut samples, mut skipped) = (0, 0);
-    for &u in &us {
-        for &v in &vs {
-            let d = surface.derivatives(u, v);
+    // The grid evaluated at once (v-major, each node that of `surface.derivatives`), read
+    // u-major.
+    let grid = surface.derivatives_grid(&us, &vs);
+    for (i, &u) in us.iter().enumerate() {
+        for (j, &v) in vs.iter().enumerate() {
+            let d = grid[j * us.len() + i];
             let k = if d.su.cross(d.sv).norm() > area_tol { d.curvature().map(|c| c.gaussian) } else { None };
             match k.filter(|k| k.is_finite()) {
                 Some(k) => {

@@ -287,12 +287,11 @@ fn surface_bounds(surface: &NurbsSurface) -> (Vec3, Vec3) {
     let vs = surface.knots_v().param_grid(64, true, 2);
     let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let mut hi = -lo;
-    for &u in &us {
-        for &v in &vs {
-            let p = surface.point(u, v);
-            lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
-            hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
-        }
+    // The grid evaluated at once (each point that of `surface.point`, with the basis functions
+    // of each u made once).
+    for p in surface.points_grid(&us, &vs) {
+        lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+        hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
     }
     (lo, hi)
 }

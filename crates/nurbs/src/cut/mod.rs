@@ -296,7 +296,13 @@ impl<'a> Sampler<'a> {
         // On-plane nodes join the less populated side (ties: below).
         let zero_above = above < below;
         let class = move |x: f64| if zero_above { x >= -band } else { x > band };
-        let raw = self.march(plane, &f, &class);
+        // Each node's class, once: the marching reads each node up to four times. A plane with
+        // every node on one side has no crossing.
+        let side: Vec<bool> = f.iter().map(|&x| class(x)).collect();
+        if side.iter().all(|&c| c == side[0]) {
+            return Vec::new();
+        }
+        let raw = self.march(plane, &f, &side, &class);
         let mut curves: Vec<CutCurve> =
             raw.into_iter().filter_map(|(nodes, closed)| self.finish_branch(plane, nodes, closed)).collect();
         curves.sort_by(|a, b| {
@@ -307,23 +313,27 @@ impl<'a> Sampler<'a> {
     }
 
     /// Marching squares: the crossings of the grid edges, chained into branches.
-    fn march(&self, plane: AxisPlane, f: &[f64], class: &dyn Fn(f64) -> bool) -> Vec<(Vec<Node>, bool)> {
+    /// `side` is `class` of each node's `f`.
+    fn march(&self, plane: AxisPlane, f: &[f64], side: &[bool], class: &dyn Fn(f64) -> bool) -> Vec<(Vec<Node>, bool)> {
         let (nu, nv) = (self.us.len(), self.vs.len());
         if nu < 2 || nv < 2 {
             return Vec::new();
         }
+        // The crossing on each grid edge, `NONE` until found (4 bytes an edge: the table is
+        // cleared for every plane).
+        const NONE: u32 = u32::MAX;
         let n_h = (nu - 1) * nv; // edges along u: (i, j) - (i + 1, j), id i * nv + j
         let n_edges = n_h + nu * (nv - 1); // edges along v: (i, j) - (i, j + 1), id n_h + i * (nv - 1) + j
-        let mut edge_crossing: Vec<Option<usize>> = vec![None; n_edges];
+        let mut edge_crossing: Vec<u32> = vec![NONE; n_edges];
         let mut crossings: Vec<Node> = Vec::new();
         let mut adj: Vec<Vec<usize>> = Vec::new();
         // One cache of basis functions for the whole cut: consecutive root searches share a
         // knot span or a grid line (a fresh cache per search was a tenth of a cut's cost).
         let mut eval = FirstDerivativesCache::new(self.surface);
-        let at = |i: usize, j: usize| class(f[i * nv + j]);
+        let at = |i: usize, j: usize| side[i * nv + j];
         let mut crossing_of = |edge: usize, crossings: &mut Vec<Node>, adj: &mut Vec<Vec<usize>>| -> usize {
-            if let Some(k) = edge_crossing[edge] {
-                return k;
+            if edge_crossing[edge] != NONE {
+                return edge_crossing[edge] as usize;
             }
             let (a, b) = if edge < n_h {
                 let (i, j) = (edge / nv, edge % nv);
@@ -335,21 +345,29 @@ impl<'a> Sampler<'a> {
             };
             let (ia, ib) = (a.0 * nv + a.1, b.0 * nv + b.1);
             // Bracket from the "below" end to the "above" end.
-            let (lo, hi, flo, fhi) = if class(f[ia]) { (b, a, f[ib], f[ia]) } else { (a, b, f[ia], f[ib]) };
+            let (lo, hi, flo, fhi) = if side[ia] { (b, a, f[ib], f[ia]) } else { (a, b, f[ia], f[ib]) };
             let uv_lo = (self.us[lo.0], self.vs[lo.1]);
             let uv_hi = (self.us[hi.0], self.vs[hi.1]);
             let node = self.root_on_segment(plane, (uv_lo, uv_hi), (flo, fhi), class, &mut eval);
             crossings.push(node);
             adj.push(Vec::new());
             let k = crossings.len() - 1;
-            edge_crossing[edge] = Some(k);
+            edge_crossing[edge] = u32::try_from(k).expect("fewer crossings than grid edges");
             k
         };
         let h = |i: usize, j: usize| i * nv + j;
         let vedge = |i: usize, j: usize| n_h + i * (nv - 1) + j;
         for i in 0..nu - 1 {
+            // Two rows of nodes wholly on one side, the same for both, cross nothing.
+            let rows = &side[i * nv..(i + 2) * nv];
+            if rows.iter().all(|&c| c == rows[0]) {
+                continue;
+            }
             for j in 0..nv - 1 {
                 let (ca, cb, cc, cd) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                if ca == cb && cb == cc && cc == cd {
+                    continue;
+                }
                 // Edges in order: a-b, b-c, d-c, a-d.
                 let edges = [h(i, j), vedge(i + 1, j), h(i, j + 1), vedge(i, j)];
                 let crosses = [ca != cb, cb != cc, cd != cc, ca != cd];
@@ -577,6 +595,8 @@ impl<'a> Sampler<'a> {
                 let next = pts[(k + 1) % n].point;
                 angle(pts[k].point - prev, next - pts[k].point)
             };
+            // Each point's turn, once (each is read for the segments on both sides of it).
+            let turns: Vec<f64> = (0..n).map(turn_at).collect();
             let mut split = vec![false; segs];
             for (k, s) in split.iter_mut().enumerate() {
                 let (a, b) = (&pts[k], &pts[(k + 1) % n]);
@@ -587,7 +607,7 @@ impl<'a> Sampler<'a> {
                 if chord.norm() <= min_len {
                     continue;
                 }
-                let mut over = turn_at(k) > max_turn || turn_at((k + 1) % n) > max_turn;
+                let mut over = turns[k] > max_turn || turns[(k + 1) % n] > max_turn;
                 for t in [a.tangent, b.tangent].into_iter().flatten() {
                     over |= angle(t * sign, chord) > 0.5 * max_turn;
                 }
@@ -735,15 +755,14 @@ fn curvatures(surface: &NurbsSurface, plane: AxisPlane, pts: &[Node], closed: bo
         }
         None
     };
-    let discrete: Vec<Option<f64>> = (0..n)
-        .map(|k| {
-            let (i, j) = (far(k, -1)?, far(k, 1)?);
-            if i == j {
-                return None;
-            }
-            three_point_curvature(plane.coords(pts[i].point), plane.coords(pts[k].point), plane.coords(pts[j].point))
-        })
-        .collect();
+    // The discrete curvature, computed only where the analytic one is undefined.
+    let discrete = |k: usize| -> Option<f64> {
+        let (i, j) = (far(k, -1)?, far(k, 1)?);
+        if i == j {
+            return None;
+        }
+        three_point_curvature(plane.coords(pts[i].point), plane.coords(pts[k].point), plane.coords(pts[j].point))
+    };
     let analytic: Vec<Option<f64>> = (0..n)
         .map(|k| {
             let prev = neighbour(k, -1).unwrap_or(k);
@@ -756,11 +775,11 @@ fn curvatures(surface: &NurbsSurface, plane: AxisPlane, pts: &[Node], closed: bo
     (0..n)
         .map(|k| {
             let curvature = analytic[k]
-                .or(discrete[k])
+                .or_else(|| discrete(k))
                 .or_else(|| {
                     // An end point on a degenerate spot: its neighbour's value.
                     let j = if k == 0 { 1.min(n - 1) } else { k - 1 };
-                    analytic[j].or(discrete[j])
+                    analytic[j].or_else(|| discrete(j))
                 })
                 .unwrap_or(0.0);
             CutPoint { uv: pts[k].uv, point: pts[k].point, curvature }
