@@ -435,6 +435,8 @@ pub struct FairReport {
     /// The max error the auto choice allowed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<f64>,
+    /// The fits tried, in their order, up to the one taken where no later fit could displace
+    /// it (README, "Fairing"): the weights after it are not tried.
     pub tried: Vec<FairTry>,
     /// Validity findings of the plain approximation.
     pub plain_findings: usize,
