@@ -424,6 +424,42 @@ mod tests {
     }
 
     #[test]
+    fn the_search_makes_every_fit_before_the_first_taken_whatever_the_threads_and_none_after_on_one() {
+        // Stand-in fits: the 4 x 3 example's plain fit, its parameters along the sections
+        // averaged; at `ν` >= 3e-2 the skin's own choice is another (its own parameters), so the
+        // averaged ones are fitted after it. Taken: the averaged fit at 1e-1, the sixth fit in
+        // the order (1, 1 mean, 0.3, 0.3 mean, 0.1, 0.1 mean).
+        let mut plain = fit_offsets(&testdata("sections_example.csv"), &FitConfig::default()).expect("fits");
+        plain.along = AlongParameters::Mean;
+        let order: Vec<f64> = AUTO_LAMBDAS.iter().rev().copied().collect();
+        let expected =
+            vec![(1.0, None), (1.0, Some("mean")), (0.3, None), (0.3, Some("mean")), (0.1, None), (0.1, Some("mean"))];
+        for threads in [1, 2, 3, 8] {
+            let made = std::sync::atomic::AtomicUsize::new(0);
+            let skin = |nu: f64, along: AlongParameters| {
+                made.fetch_add(1, Ordering::Relaxed);
+                let chosen = if nu >= 3e-2 { AlongParameters::Own } else { AlongParameters::Mean };
+                let config = FitConfig { smoothing: nu, along, ..plain.config };
+                let along = if along == AlongParameters::LeastResidual { chosen } else { along };
+                Ok(FitOutcome { config, along, ..plain.clone() })
+            };
+            let finish = |out: FitOutcome| Ok((out.config.smoothing, out.config.along));
+            let taken = |&(nu, along): &(f64, AlongParameters)| nu == 0.1 && along == AlongParameters::Mean;
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a pool");
+            let fits = pool.install(|| smoothed_fits(&order, &plain, &skin, &finish, &taken));
+            let upto: Vec<(f64, Option<&str>)> =
+                fits.iter().take(expected.len()).map(|(l, along, _)| (*l, *along)).collect();
+            assert_eq!(upto, expected, "{threads} thread(s)");
+            assert!(fits[expected.len() - 1].2.as_ref().is_ok_and(taken));
+            if threads == 1 {
+                // In order on one thread: nothing after the fit taken is begun.
+                assert_eq!(fits.len(), expected.len());
+                assert_eq!(made.load(Ordering::Relaxed), expected.len());
+            }
+        }
+    }
+
+    #[test]
     fn auto_keeps_the_plain_fit_and_says_so_when_nothing_qualifies() {
         // The exact Wigley table: any smoothing costs accuracy at the offsets (see `Fairing`), so
         // within the plain fit's own max error nothing is accepted.
