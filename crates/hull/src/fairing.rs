@@ -124,9 +124,9 @@ pub fn fair(
                 // From the smoothest down, the first sound, accurate enough and fairer fit. The
                 // fits, the true errors of the sound ones and the figures of those within the
                 // limit run in parallel, each fit judged in its own task, the weights begun in
-                // their order; a weight begun after a fit was taken is not fitted (measured, two
-                // threads: the DTMB 5415 mesh's second search fits 4 of its 8 weights, the
-                // 4 x 3 example's 6; most tables take none, or a small weight, and fit all).
+                // their order; no weight is begun after a fit was taken (measured, two threads:
+                // the DTMB 5415 mesh's second search fits 4 of its 8 weights, the 4 x 3
+                // example's 6; most tables take none, or a small weight, and fit all).
                 // The choice is the first taken in their order, and every fit before it is
                 // made, so neither it nor the fits reported as tried depend on the thread
                 // count or the timing.
