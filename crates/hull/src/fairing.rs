@@ -60,7 +60,10 @@ pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.
 /// first, then findings of any kind), fewer than the plain fit's, that misses the offsets by at
 /// most [`UNSOUND_SLACK`] times the tolerance (its max error is reported against the
 /// tolerance), one no less fair than the plain least squares before one that is not among
-/// equally few. Neither found: the plain fit is kept, and the report says so.
+/// equally few. Neither found: the plain fit is kept, and the report says so. The report's
+/// `tried` lists the fits in the order the choice reads them, up to the one taken where no
+/// later fit could displace it (the first taken when the plain fit is sound; a sound fit no
+/// less fair when it is not): the weights after it are not tried.
 ///
 /// # Errors
 /// [`HullError::FitSetting`] for a negative or non-finite `λ` or tolerance; those of `skin` for
