@@ -160,7 +160,7 @@ pub fn fair(
                 // before one that is not.
                 // The figures are kept of a fit no less fair only (the cuts of the others are
                 // skipped): the chosen fit's are measured at the end if missing.
-                let mut best: Option<(usize, FitOutcome, Option<FairnessFigures>, bool)> = None;
+                let mut best: Option<(usize, FitOutcome, Option<FairnessFigures>)> = None;
                 // The true error is measured of the fits with fewer defects only: a candidate is
                 // one of them within the slack.
                 let candidate = |max: Option<f64>| max.is_some_and(|max| max <= UNSOUND_SLACK * limit);
@@ -189,13 +189,10 @@ pub fn fair(
                     let (out, max, figures) = fit;
                     let findings = out.validity.len();
                     if candidate(max) {
-                        let fairer = figures.is_some();
-                        let rank = |d: (usize, usize), fairer: bool| (d, !fairer);
-                        if best
-                            .as_ref()
-                            .is_none_or(|(_, b, _, bf)| rank(out.defects(), fairer) < rank(b.defects(), *bf))
-                        {
-                            best = Some((tried.len(), out, figures, fairer));
+                        // Fewest defects first, then no less fair (figures kept) before not.
+                        let rank = |o: &FitOutcome, f: &Option<FairnessFigures>| (o.defects(), f.is_none());
+                        if best.as_ref().is_none_or(|(_, b, bf)| rank(&out, &figures) < rank(b, bf)) {
+                            best = Some((tried.len(), out, figures));
                         }
                     }
                     tried.push(FairTry { lambda: l, max, findings, accepted: false, along });
@@ -203,7 +200,7 @@ pub fn fair(
                         break;
                     }
                 }
-                if let Some((k, out, after, _)) = best {
+                if let Some((k, out, after)) = best {
                     let after = after.unwrap_or_else(|| FairnessFigures::of(&out.surface));
                     tried[k].accepted = true;
                     return Ok(Some((out.with_fairness(after), report(tried[k].lambda, Some(limit), tried, after))));
