@@ -32,6 +32,11 @@ pub(crate) fn subtract_gram_below(g: &mut [f64], d: usize, w: &[f64], len: usize
     g.par_chunks_mut(GRAM_BLOCK * d).enumerate().for_each(|(bi, rows)| {
         let (i0, i1) = (bi * GRAM_BLOCK, ((bi + 1) * GRAM_BLOCK).min(d));
         let top_i = first(i0..i1);
+        // W[top_i.., I]^T copied column-major (`h x (len - top_i)`), so that the left factor's
+        // columns are contiguous: see `blocked_cholesky` (nalgebra's `gemm` reads a column with
+        // a row stride other than 1 past its end where a side is 5 or less).
+        let h = i1 - i0;
+        let wt: Vec<f64> = (top_i..len).flat_map(|t| (i0..i1).map(move |v| w[v * len + t])).collect();
         for j0 in (0..=i0).step_by(GRAM_BLOCK) {
             let j1 = (j0 + GRAM_BLOCK).min(d);
             let r = top_i.max(first(j0..j1));
@@ -39,10 +44,10 @@ pub(crate) fn subtract_gram_below(g: &mut [f64], d: usize, w: &[f64], len: usize
                 continue;
             }
             let k = len - r;
-            // W[r.., I]^T: rows of `I`'s columns (stride `len` between them).
-            let a = DMatrixView::<f64, Dyn, Dyn>::from_slice_with_strides(&w[i0 * len + r..], i1 - i0, k, len, 1);
+            // W[r.., I]^T: the copy's columns from `r`.
+            let a = DMatrixView::<f64, Dyn, Dyn>::from_slice_with_strides(&wt[(r - top_i) * h..], h, k, 1, h);
             let b = DMatrixView::<f64, Dyn, Dyn>::from_slice_with_strides(&w[j0 * len + r..], k, j1 - j0, 1, len);
-            let mut c = DMatrix::<f64>::zeros(i1 - i0, j1 - j0);
+            let mut c = DMatrix::<f64>::zeros(h, j1 - j0);
             c.gemm(1.0, &a, &b, 0.0);
             for v in i0..i1 {
                 let row = &mut rows[(v - i0) * d..(v - i0 + 1) * d];
@@ -107,16 +112,22 @@ fn blocked_cholesky(a: &mut [f64], n: usize) -> bool {
         let block = &top[k0 * n..];
         below.par_chunks_mut(n).for_each(|row| solve_against_block(row, block, n, k0, k1));
         // The trailing lower triangle less the panel's products, from a copy of the panel
-        // (`m x w`, row-major), by blocks of rows in parallel.
+        // (`m x w`, column-major), by blocks of rows in parallel. Column-major, so that the
+        // left factor's columns are contiguous: nalgebra 0.35's `gemm` multiplies blocks with
+        // a side of 5 or less column by column, and its `axcpy` then reads a column with a row
+        // stride other than 1 past its end (dimforge/nalgebra#1613). A row-major panel
+        // corrupted the heap where a trailing block had 5 rows or fewer (`--method lm --fair 0`
+        // on the DTMB 5415 bow of `testdata/`); the matrixmultiply kernels of the larger blocks
+        // give the same bits either way.
         let (m, w) = (n - k1, k1 - k0);
         panel.clear();
-        panel.extend(below.chunks(n).flat_map(|row| row[k0..k1].iter().copied()));
+        panel.extend((k0..k1).flat_map(|c| below.chunks(n).map(move |row| row[c])));
         below.par_chunks_mut(CHOLESKY_BLOCK * n).enumerate().for_each(|(bi, rows)| {
             let (i0, i1) = (bi * CHOLESKY_BLOCK, ((bi + 1) * CHOLESKY_BLOCK).min(m));
-            let pi = DMatrixView::<f64, Dyn, Dyn>::from_slice_with_strides(&panel[i0 * w..], i1 - i0, w, w, 1);
+            let pi = DMatrixView::<f64, Dyn, Dyn>::from_slice_with_strides(&panel[i0..], i1 - i0, w, 1, m);
             for j0 in (0..=i0).step_by(CHOLESKY_BLOCK) {
                 let j1 = (j0 + CHOLESKY_BLOCK).min(m);
-                let pj = DMatrixView::<f64, Dyn, Dyn>::from_slice_with_strides(&panel[j0 * w..], w, j1 - j0, 1, w);
+                let pj = DMatrixView::<f64, Dyn, Dyn>::from_slice_with_strides(&panel[j0..], w, j1 - j0, m, 1);
                 let mut c = DMatrixViewMut::<f64, Dyn, Dyn>::from_slice_with_strides_mut(
                     &mut rows[k1 + j0..],
                     i1 - i0,
@@ -251,5 +262,45 @@ mod tests {
         s[250 * n + 250] = a[10 * n + 10];
         assert!(!blocked_cholesky(&mut s.clone(), n));
         assert!(nurbs::dense_cholesky(&mut s, n).is_err());
+    }
+
+    /// Blocks with a side of 5 or less (a trailing block of rows, a short run of non-zero rows):
+    /// nalgebra 0.35's `gemm` multiplies those column by column and read a strided left factor
+    /// past its end, which corrupted the heap (`--method lm --fair 0` on the DTMB 5415 bow and the
+    /// cargo ship of `testdata/` aborted). A debug build checks the reads, so these orders failed
+    /// here before the left factors were laid out column-major. The same sums as above.
+    #[test]
+    fn blocks_with_a_short_side_are_multiplied_within_their_data() {
+        // d = 133: row blocks of 64, 64 and 5; columns 130 to 132 non-zero in their last 3 rows.
+        let (len, d) = (40, 133);
+        let from: Vec<usize> = (0..d).map(|v| if v >= 130 { len - 3 } else { v % 5 }).collect();
+        let w: Vec<f64> = (0..d * len).map(|i| if i % len >= from[i / len] { noise(i) } else { 0.0 }).collect();
+        let g0: Vec<f64> = (0..d * d).map(|i| noise(i + 3)).collect();
+        let mut g = g0.clone();
+        subtract_gram_below(&mut g, d, &w, len, &from);
+        for v in 0..d {
+            for u in 0..v {
+                let r = from[v].max(from[u]);
+                let want = g0[v * d + u] - dot(&w[v * len + r..(v + 1) * len], &w[u * len + r..(u + 1) * len]);
+                // Sums of up to 40 products of numbers in [-1, 1]: 1e-13 is a few hundred ulps.
+                assert!((g[v * d + u] - want).abs() < 1e-13, "({v}, {u})");
+            }
+        }
+        // Orders whose trailing blocks of the factor's update have 3, 5 and 1 rows (and columns).
+        for n in [131, 133, 193] {
+            let a = spd(n);
+            let mut blocked = a.clone();
+            assert!(blocked_cholesky(&mut blocked, n), "order {n}");
+            let mut plain = a.clone();
+            nurbs::dense_cholesky(&mut plain, n).expect("positive definite");
+            let scale = plain.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for i in 0..n {
+                for j in 0..=i {
+                    let (b, p) = (blocked[i * n + j], plain[i * n + j]);
+                    // As the test above: round-off of a well-conditioned factor.
+                    assert!((b - p).abs() <= 1e-12 * scale, "order {n}: L({i}, {j}): {b} against {p}");
+                }
+            }
+        }
     }
 }
