@@ -224,7 +224,7 @@ pub use optimize::{
 // Output directories written all or nothing.
 pub use output::{check_finite, discard_staged_outputs, write_atomic, OutputDir};
 // The fit itself.
-pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, HOLD_SHARE};
+pub use pipeline::{default_ctrl, fit_offsets, fit_offsets_with, HOLD_SHARE, HOLD_SLACK};
 // Offsets readers (every format, detected by content), their options and sense checks.
 pub use read::{
     decode, detect_format, is_header as is_freeship_header, is_offset_json, parse_as as parse_cad_surfaces_as,
