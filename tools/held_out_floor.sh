@@ -6,20 +6,26 @@
 # (`holds`). Also the max error at the offsets of both, and the validity findings (count and
 # kinds) of the default fit and of the plain one (which the envelope hold does not correct: the
 # comparator of every table where the floor fails has some). Errors in mm (the tables are in
-# metres).
+# metres). With METHOD=lm (or another `--method`), that method's fit in place of the default
+# fit (the floor names the default fit and `--method lm`); its refits are that method's too.
 #
 #   tools/held_out_floor.sh                    # every table; about 1 min
 #   tools/held_out_floor.sh testdata/matlab_trawler.csv ...
+#   METHOD=lm tools/held_out_floor.sh          # LM; about 2 min
 #
 # Prints a Markdown table, then how many tables hold. Needs jq. Deterministic: no timing.
 source "$(dirname "${BASH_SOURCE[0]}")/speed_common.sh"
 fig() { jq -r "$2" "$1/report.json"; }
+# The fit under test: the default fit, or METHOD's.
+label=${METHOD:-default}
+method=()
+[ -n "${METHOD:-}" ] && method=(--method "$METHOD")
 
-echo "| table | ctrl | plain max | default max | plain held-out max | default held-out max | holds | default findings | plain findings |"
+echo "| table | ctrl | plain max | $label max | plain held-out max | $label held-out max | holds | $label findings | plain findings |"
 echo "|---|--:|--:|--:|--:|--:|:-:|---|---|"
 for t in "${tables[@]}"; do
   name=$(basename "$t" .csv)
-  "$bin" fit "$t" $(opts "$t") -o "$out/d" >/dev/null 2>&1
+  "$bin" fit "$t" $(opts "$t") "${method[@]}" -o "$out/d" >/dev/null 2>&1
   ctrl=$(fig "$out/d" '.surface.control_points | map(tostring) | join(",")')
   "$bin" fit "$t" $(opts "$t") --fair 0 --envelope free --ctrl "$ctrl" -o "$out/p" >/dev/null 2>&1
   awk -v n="$name" -v c="${ctrl/,/x}" \
