@@ -5,7 +5,7 @@
 # `error.held_out.max`: the default fit's held-out max error no worse than the plain one's
 # (`holds`). Also the max error at the offsets of both, and the validity findings (count and
 # kinds) of the default fit and of the plain one (which the envelope hold does not correct: the
-# comparator of every table where the floor fails has some). Errors in mm (the tables are in
+# comparator of every table where the default fit fails the floor has some). Errors in mm (the tables are in
 # metres). With METHOD=lm (or another `--method`), that method's fit in place of the default
 # fit (the floor names the default fit and `--method lm`); its refits are that method's too.
 #
