@@ -115,9 +115,11 @@ fn optimized(
     let held = surface_held.as_ref().unwrap_or(&plain);
     if out.envelope_held > 0 && out.error.overall.rms > held.error.overall.rms {
         let on = if surface_held.is_some() { " held on its surface" } else { "" };
+        let answer = held.validity.is_empty() || config.fair == Fairing::Off;
+        let then = if answer { "which is kept" } else { "which has a validity finding itself" };
         let why = format!(
             "the {} surface held within the offsets' envelope (true RMS {:.3e}, max {:.3e}) is farther from the \
-             offsets than the approximation{on} (RMS {:.3e}), which is kept",
+             offsets than the approximation{on} (RMS {:.3e}), {then}",
             config.method.name(),
             out.error.overall.rms,
             out.error.overall.max,
@@ -125,7 +127,14 @@ fn optimized(
         );
         let mut kept = give_way(config, held.clone(), why);
         kept.optimization = out.optimization.take();
-        return Ok(kept);
+        if answer {
+            return Ok(kept);
+        }
+        // That approximation has a validity finding itself (R/V Gunnerus's net-held least
+        // squares folds at the forecastle step, where `--param-correction` ran LM's weights to
+        // their bounds): a sound one is searched for below, as for an optimised surface with a
+        // finding, and it is the answer where one is found.
+        out = kept;
     }
     out.knuckle_lines = plain.knuckle_lines.clone();
     out.flat_lines = plain.flat_lines.clone();
@@ -310,15 +319,19 @@ fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>
             names(&kept)
         )
     };
+    // `out` is the optimised surface, or the approximation it gave way to (which says why
+    // first).
     let why = format!(
         "the {} surface (true RMS {:.3e}, max {:.3e} at the offsets) has {} validity finding(s) ({}); {instead} \
          (expected fewer control points or a larger --fair)",
-        config.method.name(),
+        out.config.method.name(),
         out.error.overall.rms,
         out.error.overall.max,
         out.validity.len(),
         names(&out)
     );
+    let mut kept = kept;
+    kept.rejected.splice(0..0, out.rejected.iter().cloned());
     give_way(config, kept, why)
 }
 
@@ -885,6 +898,39 @@ mod tests {
         let surface_held = fit_skin(&cb080, &approx, Measure::Full, &SkinMemo::default()).expect("fits");
         let (at, near) = (kept.error.overall.rms, surface_held.error.overall.rms);
         assert!(near < at && at <= HOLD_SLACK * near, "LM {at} against {near}");
+    }
+
+    /// An optimised surface that gives way to an approximation with a validity finding of its
+    /// own does not end there: the sound approximation is searched for as for an optimised
+    /// surface with a finding. R/V Gunnerus with `--param-correction`, 3 LM iterations: the
+    /// weights (fairness off for the correction) leave the held surface farther from the
+    /// offsets than the net-held least squares, which folds at the forecastle step; before,
+    /// that folded surface was written.
+    #[test]
+    fn giving_way_to_an_unsound_approximation_goes_on_to_a_sound_one() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata/gunnerus_offsets.csv");
+        let offsets = crate::read_offsets(&path, crate::Units::Metre).expect("readable");
+        let optim = crate::OptimSettings { iterations: Some(3), parameter_correction: true, ..Default::default() };
+        let lm = FitConfig {
+            method: FitMethod::Optimized(Algorithm::Lm),
+            fair: Fairing::Auto { tolerance: None },
+            optim,
+            ..FitConfig::default()
+        };
+        let out = fit_offsets(&offsets, &lm).expect("fits");
+        assert!(out.validity.is_empty(), "{:?}", out.validity);
+        assert_eq!(out.config.method, FitMethod::Approx);
+        assert_eq!(out.rejected.len(), 2, "{:?}", out.rejected);
+        assert!(out.rejected[0].ends_with("which has a validity finding itself"), "{}", out.rejected[0]);
+        assert!(
+            out.rejected[1].starts_with("the approx surface") && out.rejected[1].contains("fold"),
+            "{}",
+            out.rejected[1]
+        );
+        // With fairing off the old answer stands: the approximation given way to, as it is.
+        let off = fit_offsets(&offsets, &FitConfig { fair: Fairing::Off, ..lm }).expect("fits");
+        assert_eq!((off.config.method, off.rejected.len()), (FitMethod::Approx, 1), "{:?}", off.rejected);
+        assert!(off.validity.iter().any(|f| f.kind == crate::FindingKind::Fold), "{:?}", off.validity);
     }
 
     /// The cross-validation's lean path measures less, never fits differently: the same
