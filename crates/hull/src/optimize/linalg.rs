@@ -198,17 +198,11 @@ mod tests {
         let mut g = g0.clone();
         subtract_gram_below(&mut g, d, &w, len, &from);
         for v in 0..d {
-            for u in 0..d {
-                let got = g[v * d + u];
-                if u >= v {
-                    assert_eq!(got, g0[v * d + u], "({v}, {u}) on or above the diagonal");
-                    continue;
-                }
-                let r = from[v].max(from[u]);
-                let want = g0[v * d + u] - dot(&w[v * len + r..(v + 1) * len], &w[u * len + r..(u + 1) * len]);
-                assert!((got - want).abs() < 1e-12, "({v}, {u}): {got} against {want}");
+            for u in v..d {
+                assert_eq!(g[v * d + u], g0[v * d + u], "({v}, {u}) on or above the diagonal");
             }
         }
+        assert_gram_is_the_dot_products(&g0, &g, d, &w, len, &from, 1e-12);
         let on = |threads| {
             in_pool(threads, || {
                 let mut g = g0.clone();
@@ -226,17 +220,7 @@ mod tests {
     fn the_blocked_cholesky_is_the_unblocked_one() {
         let n = 300;
         let a = spd(n);
-        let mut blocked = a.clone();
-        assert!(blocked_cholesky(&mut blocked, n));
-        let mut plain = a.clone();
-        nurbs::dense_cholesky(&mut plain, n).expect("positive definite");
-        let scale = plain.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        for i in 0..n {
-            for j in 0..=i {
-                let (b, p) = (blocked[i * n + j], plain[i * n + j]);
-                assert!((b - p).abs() <= 1e-12 * scale, "L({i}, {j}): {b} against {p}");
-            }
-        }
+        let blocked = blocked_factor_of(&a, n);
         // A x = b recovered: b = A 1.
         let mut x: Vec<f64> = (0..n).map(|i| a[i * n..(i + 1) * n].iter().sum()).collect();
         dense_solve(&blocked, n, &mut x);
@@ -278,28 +262,47 @@ mod tests {
         let g0: Vec<f64> = (0..d * d).map(|i| noise(i + 3)).collect();
         let mut g = g0.clone();
         subtract_gram_below(&mut g, d, &w, len, &from);
+        // Sums of up to 40 products of numbers in [-1, 1]: 1e-13 is a few hundred ulps.
+        assert_gram_is_the_dot_products(&g0, &g, d, &w, len, &from, 1e-13);
+        // Orders whose trailing blocks of the factor's update have 3, 5 and 1 rows (and columns).
+        for n in [131, 133, 193] {
+            blocked_factor_of(&spd(n), n);
+        }
+    }
+
+    /// The blocked factor of `a` (order `n`), checked against the unblocked one: equal to
+    /// round-off, 1e-12 of the largest entry (the well-conditioned matrices of [`spd`]).
+    fn blocked_factor_of(a: &[f64], n: usize) -> Vec<f64> {
+        let mut blocked = a.to_vec();
+        assert!(blocked_cholesky(&mut blocked, n), "order {n}");
+        let mut plain = a.to_vec();
+        nurbs::dense_cholesky(&mut plain, n).expect("positive definite");
+        let scale = plain.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for i in 0..n {
+            for j in 0..=i {
+                let (b, p) = (blocked[i * n + j], plain[i * n + j]);
+                assert!((b - p).abs() <= 1e-12 * scale, "order {n}: L({i}, {j}): {b} against {p}");
+            }
+        }
+        blocked
+    }
+
+    /// `g` (from `g0` by [`subtract_gram_below`] with `w`, `len`, `from`) below the diagonal
+    /// against one dot product per entry from `max(from[v], from[u])`, within `tol`.
+    fn assert_gram_is_the_dot_products(
+        g0: &[f64],
+        g: &[f64],
+        d: usize,
+        w: &[f64],
+        len: usize,
+        from: &[usize],
+        tol: f64,
+    ) {
         for v in 0..d {
             for u in 0..v {
                 let r = from[v].max(from[u]);
                 let want = g0[v * d + u] - dot(&w[v * len + r..(v + 1) * len], &w[u * len + r..(u + 1) * len]);
-                // Sums of up to 40 products of numbers in [-1, 1]: 1e-13 is a few hundred ulps.
-                assert!((g[v * d + u] - want).abs() < 1e-13, "({v}, {u})");
-            }
-        }
-        // Orders whose trailing blocks of the factor's update have 3, 5 and 1 rows (and columns).
-        for n in [131, 133, 193] {
-            let a = spd(n);
-            let mut blocked = a.clone();
-            assert!(blocked_cholesky(&mut blocked, n), "order {n}");
-            let mut plain = a.clone();
-            nurbs::dense_cholesky(&mut plain, n).expect("positive definite");
-            let scale = plain.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            for i in 0..n {
-                for j in 0..=i {
-                    let (b, p) = (blocked[i * n + j], plain[i * n + j]);
-                    // As the test above: round-off of a well-conditioned factor.
-                    assert!((b - p).abs() <= 1e-12 * scale, "order {n}: L({i}, {j}): {b} against {p}");
-                }
+                assert!((g[v * d + u] - want).abs() < tol, "({v}, {u}): {} against {want}", g[v * d + u]);
             }
         }
     }
