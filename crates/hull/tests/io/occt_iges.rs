@@ -185,7 +185,7 @@ fn check_envelope_with_occt(cases: Vec<(String, hull::Offsets, hull::FitConfig, 
     let python = occt_python();
     let dir = tempfile::tempdir().expect("temp dir");
     for (name, offsets, cfg, within) in cases {
-        // As `hullskin fit` fits: the default fit with its held-out referee.
+        // As `hullskin fit` fits (the default fit with its held-out referee, LM as it is).
         let fit = hull::quiet(|c| hull::fit_offsets_within(&offsets, &cfg, hull::Goal::Count, c)).expect("fits").0;
         let past: Vec<String> =
             fit.validity.iter().filter(|f| f.envelope_face().is_some()).map(|f| f.message("m")).collect();
