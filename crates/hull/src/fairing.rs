@@ -50,12 +50,18 @@ pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.
 /// with fewer defects than it (the others' `max` in the report is `None`). `free` is the plain
 /// least squares before `plain` was held within the offsets' envelope, if it was: its fairness
 /// figures are the ones to keep (the report's `before`; else `plain`'s), as `figures` gives
-/// them ([`FairnessFigures::of`], or the same measured before).
+/// them ([`FairnessFigures::of`], or the same measured before), unless `against` gives the
+/// figures to keep instead (those of another fit's plain least squares: an alternative to the
+/// default fit is to be no less fair than the default parameterization's, [`crate::alternatives`]).
 ///
 /// [`Fairing::Auto`] (see [`Fairing`]): when the plain fit is sound (no fold), the largest `ν` of
 /// [`AUTO_LAMBDAS`] whose fit is sound, within the tolerance, with no more thin-plate energy,
 /// no larger curvature extreme `max |K|` and no more inflections than the plain least squares
-/// ([`FairnessFigures::no_less_fair_than`]); when the plain fit has validity findings (a fold, the
+/// ([`FairnessFigures::no_less_fair_than`]); with `against`, the search goes up from the least
+/// `ν` to the first sound fit past the tolerance (or an unsound one at the least), then tries
+/// the [`BETWEEN_WEIGHTS`] between the largest within the tolerance and the next, and takes the
+/// largest `ν` so qualified of all it fitted; when the
+/// plain fit has validity findings (a fold, the
 /// surface leaving the offsets' envelope, ...), the smallest `ν` with the fewest defects (folds
 /// first, then findings of any kind), fewer than the plain fit's, that misses the offsets by at
 /// most [`UNSOUND_SLACK`] times the tolerance (its max error is reported against the
@@ -74,7 +80,8 @@ pub fn fair(
     fairing: Fairing,
     skin: impl Fn(f64, AlongParameters) -> Result<FitOutcome, HullError> + Sync,
     true_error: impl Fn(FitOutcome) -> Result<FitOutcome, HullError> + Sync,
-    figures: impl FnOnce(&NurbsSurface) -> FairnessFigures,
+    figures: impl Fn(&NurbsSurface) -> FairnessFigures,
+    against: Option<FairnessFigures>,
 ) -> Result<Option<(FitOutcome, FairReport)>, HullError> {
     let check = |name: &'static str, v: f64| {
         if v >= 0.0 && v.is_finite() {
@@ -98,7 +105,7 @@ pub fn fair(
             }
         }
     }
-    let before = figures(free.unwrap_or(&plain.surface));
+    let before = against.unwrap_or_else(|| figures(free.unwrap_or(&plain.surface)));
     let report = |lambda: f64, tolerance: Option<f64>, tried: Vec<FairTry>, after: FairnessFigures| FairReport {
         setting: fairing.name(),
         lambda,
@@ -144,14 +151,63 @@ pub fn fair(
                         (out, max, after)
                     })
                 };
-                let taken = |fit: &(FitOutcome, Option<f64>, Option<FairnessFigures>)| fit.2.is_some();
-                for (l, along, fit) in smoothed_fits(&order, plain, &skin, &finish, &taken) {
-                    let Ok((out, max, after)) = fit else { continue };
-                    let findings = out.validity.len();
-                    tried.push(FairTry { lambda: l, max, findings, accepted: after.is_some(), along });
-                    if let Some(after) = after {
-                        return Ok(Some((out.with_fairness(after), report(l, Some(limit), tried, after))));
+                type Judged = (FitOutcome, Option<f64>, Option<FairnessFigures>);
+                let taken = |fit: &Judged| fit.2.is_some();
+                // The first fit taken of `weights` (in their order), every fit read up to it in
+                // `tried` (its index there).
+                let descend = |weights: &[f64], tried: &mut Vec<FairTry>| {
+                    for (l, along, fit) in smoothed_fits(weights, true, plain, &skin, &finish, &taken) {
+                        let Ok((out, max, after)) = fit else { continue };
+                        let findings = out.validity.len();
+                        tried.push(FairTry { lambda: l, max, findings, accepted: after.is_some(), along });
+                        if let Some(after) = after {
+                            return Some((tried.len() - 1, out, after));
+                        }
                     }
+                    None
+                };
+                let chosen = if against.is_none() {
+                    descend(&order, &mut tried)
+                } else {
+                    // Against another fit's figures (an alternative to the default fit, judged
+                    // by the default's plain least squares): from the least smoothing up to the
+                    // first sound fit past the limit, the error growing with the weight (a
+                    // search for the weight nearest the limit, where the alternative is
+                    // fairest, that fits none of the weights past it); then the weights between
+                    // the largest within the limit and the next ([`between_weights`]), any taken
+                    // larger than those; else the largest within the limit no less fair. The
+                    // figures are measured in that order, as the choice reads them.
+                    let measure = |out: FitOutcome| {
+                        let sound_fit = out.validity.is_empty();
+                        measured_if(out, sound_fit, &true_error)
+                    };
+                    // Past the limit, or unsound at the least smoothing (an alternative not
+                    // worth a search).
+                    let past = |(out, max): &(FitOutcome, Option<f64>)| {
+                        max.is_some_and(|max| max > limit) || (max.is_none() && out.config.smoothing == AUTO_LAMBDAS[0])
+                    };
+                    let mut within = Vec::new();
+                    for (l, along, fit) in smoothed_fits(&AUTO_LAMBDAS, false, plain, &skin, &measure, &past) {
+                        let Ok(fit) = fit else { continue };
+                        let (max, findings) = (fit.1, fit.0.validity.len());
+                        tried.push(FairTry { lambda: l, max, findings, accepted: false, along });
+                        if past(&fit) {
+                            break;
+                        }
+                        if max.is_some() {
+                            within.push((tried.len() - 1, fit.0));
+                        }
+                    }
+                    descend(&between_weights(&tried, limit), &mut tried).or_else(|| {
+                        within.into_iter().rev().find_map(|(k, out)| {
+                            FairnessFigures::of_no_less_fair(&out.surface, &before).map(|after| (k, out, after))
+                        })
+                    })
+                };
+                if let Some((k, out, after)) = chosen {
+                    tried[k].accepted = true;
+                    let l = tried[k].lambda;
+                    return Ok(Some((out.with_fairness(after), report(l, Some(limit), tried, after))));
                 }
             } else {
                 // Validity first: the least smoothing with the fewest defects (folds first, then
@@ -183,7 +239,7 @@ pub fn fair(
                 let taken = |(out, max, figures): &(FitOutcome, Option<f64>, Option<FairnessFigures>)| {
                     out.defects() == (0, 0) && candidate(*max) && figures.is_some()
                 };
-                for (l, along, fit) in smoothed_fits(&order, plain, &skin, &finish, &taken) {
+                for (l, along, fit) in smoothed_fits(&order, true, plain, &skin, &finish, &taken) {
                     let Ok(fit) = fit else { continue };
                     let first_choice = taken(&fit);
                     let (out, max, figures) = fit;
@@ -207,13 +263,35 @@ pub fn fair(
                 }
             }
             // The plain fit's own figures: those of the plain least squares unless it was held.
-            let after = if free.is_some() { FairnessFigures::of(&plain.surface) } else { before };
+            let after = if free.is_some() || against.is_some() { figures(&plain.surface) } else { before };
             let kept = FitOutcome { fairing: Some(report(0.0, Some(limit), tried, after)), ..plain.clone() }
                 .with_fairness(after);
             let r = kept.fairing.clone().expect("set above");
             Ok(Some((kept, r)))
         }
     }
+}
+
+/// How many weights a search against another fit's figures (the default fit's alternatives for fairness) tries between two
+/// neighbours of [`AUTO_LAMBDAS`]: 3, evenly spaced in `log ν` (a factor of 1.35 between 3e-3
+/// and 1e-2).
+pub const BETWEEN_WEIGHTS: usize = 3;
+
+/// The weights a search against another fit's figures ([`fair`]'s `against`) tries after those
+/// of [`AUTO_LAMBDAS`]: [`BETWEEN_WEIGHTS`] between the largest weight with a sound fit within `limit` and the
+/// next larger one of the grid (largest first), where the fairest fit within the limit is, for
+/// smoothing trades accuracy for fairness; none where no fit was within the limit or the
+/// largest was. Measured: the trawler on universal parameters along its sections, its net held
+/// (the default fit's alternative for fairness, [`crate::alternatives`]), is 39.21 mm from the
+/// offsets at `ν` = 1e-2, past its limit of 39.19 mm, and at 3e-3 has 89 inflections against
+/// the plain least squares' 87; at 4e-3 to 7e-3 it is within the limit with 85 to 87, and
+/// fairer by energy and |K|.
+fn between_weights(tried: &[FairTry], limit: f64) -> Vec<f64> {
+    let within = tried.iter().filter(|t| t.max.is_some_and(|m| m <= limit)).map(|t| t.lambda);
+    let Some(lo) = within.reduce(f64::max) else { return Vec::new() };
+    let Some(&hi) = AUTO_LAMBDAS.iter().find(|&&l| l > lo) else { return Vec::new() };
+    let step = (hi / lo).ln() / (BETWEEN_WEIGHTS + 1) as f64;
+    (1..=BETWEEN_WEIGHTS).rev().map(|k| lo * (step * k as f64).exp()).collect()
 }
 
 /// A fit of the search: its weight `ν`, the parameters along the sections imposed on it (if
@@ -252,12 +330,14 @@ fn measured_if(
 /// the fairer one (the DTMB 5415 main hull), it stays first.
 fn smoothed_fits<T: Send>(
     weights: &[f64],
+    imposing: bool,
     plain: &FitOutcome,
     skin: &(impl Fn(f64, AlongParameters) -> Result<FitOutcome, HullError> + Sync),
     finish: &(impl Fn(FitOutcome) -> Result<T, HullError> + Sync),
     taken: &(impl Fn(&T) -> bool + Sync),
 ) -> Vec<Smoothed<T>> {
     let imposed = match plain.along {
+        _ if !imposing => None,
         AlongParameters::Own => Some("own"),
         AlongParameters::Mean => Some("mean"),
         AlongParameters::LeastResidual => None,
@@ -423,6 +503,24 @@ mod tests {
         assert!(out.error.overall.max <= held.error.overall.max);
     }
 
+    /// The weights between: evenly spaced in `log ν` between the largest weight within the limit
+    /// (a sound fit's max, an unsound one has none) and the next of the grid, largest first;
+    /// none where nothing was within the limit or the largest grid weight was.
+    #[test]
+    fn the_weights_between_lie_above_the_largest_within_the_limit() {
+        let t = |lambda: f64, max: Option<f64>| FairTry { lambda, max, findings: 0, accepted: false, along: None };
+        let tried = [t(1e-4, Some(1.0)), t(3e-3, Some(2.0)), t(1e-2, Some(3.5)), t(1e-3, None), t(1.0, None)];
+        let w = between_weights(&tried, 2.5);
+        assert_eq!(w.len(), BETWEEN_WEIGHTS);
+        assert!(w.windows(2).all(|p| p[0] > p[1]), "largest first: {w:?}");
+        assert!(w.iter().all(|&l| l > 3e-3 && l < 1e-2), "{w:?}");
+        // Evenly spaced in log: each a factor (1e-2 / 3e-3)^(1/4) from the next, to round-off.
+        let r = (1e-2f64 / 3e-3).powf(0.25);
+        assert!((w[2] / 3e-3 - r).abs() < 1e-12 && (w[0] / w[1] - r).abs() < 1e-12, "{w:?}");
+        assert!(between_weights(&tried, 0.5).is_empty(), "nothing within the limit");
+        assert!(between_weights(&[t(1.0, Some(1.0))], 2.5).is_empty(), "the largest weight was within");
+    }
+
     #[test]
     fn the_search_makes_every_fit_before_the_first_taken_whatever_the_threads_and_none_after_on_one() {
         // Stand-in fits: the 4 x 3 example's plain fit, its parameters along the sections
@@ -446,7 +544,7 @@ mod tests {
             let finish = |out: FitOutcome| Ok((out.config.smoothing, out.config.along));
             let taken = |&(nu, along): &(f64, AlongParameters)| nu == 0.1 && along == AlongParameters::Mean;
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a pool");
-            let fits = pool.install(|| smoothed_fits(&order, &plain, &skin, &finish, &taken));
+            let fits = pool.install(|| smoothed_fits(&order, true, &plain, &skin, &finish, &taken));
             let upto: Vec<(f64, Option<&str>)> =
                 fits.iter().take(expected.len()).map(|(l, along, _)| (*l, *along)).collect();
             assert_eq!(upto, expected, "{threads} thread(s)");

@@ -160,9 +160,11 @@ pub use export::{
 // Export formats chosen by name, and the timestamp written into exports.
 pub use export_format::{export_timestamp, ExportFormat};
 // Fairing: the control net's energy and the weights' smoothness traded against the error.
-pub use fairing::{FairReport, Fairing, NET_FAIR, UNSOUND_SLACK, WEIGHT_SMOOTHING};
+pub use fairing::{FairReport, Fairing, AUTO_LAMBDAS, BETWEEN_WEIGHTS, NET_FAIR, UNSOUND_SLACK, WEIGHT_SMOOTHING};
 // The default fit made again on another parameterization or count, for validity.
-pub use alternatives::{ALTERNATIVE_COUNTS_ACROSS, ALTERNATIVE_PARAMETERIZATIONS, SCREEN_SLACK};
+pub use alternatives::{
+    ALTERNATIVE_COUNTS_ACROSS, ALTERNATIVE_PARAMETERIZATIONS, FAIRNESS_PARAMETERIZATIONS, SCREEN_SLACK,
+};
 // The offsets -> surface pipeline: its settings and outcome.
 pub use fit::{
     AlternativeReason, AlternativeTry, Alternatives, EnvelopeHold, FairTry, FairnessFigures, FitConfig, FitMethod,

@@ -12,7 +12,7 @@ use nurbs::{NurbsError, NurbsSurface};
 
 use crate::analysis::Envelope;
 use crate::fairing::Fairing;
-use crate::fit::{EnvelopeHold, FitConfig, FitMethod, FitOutcome, HoldOn, Knuckles};
+use crate::fit::{EnvelopeHold, FairnessFigures, FitConfig, FitMethod, FitOutcome, HoldOn, Knuckles};
 use crate::fit_error::{fit_error_of, project_offsets, FitError};
 use crate::flats::{find_flat_lines, refit_within_flats, FlatKind, FlatOptions};
 use crate::optimize::{optimize_weights, quiet, Control, OptimReport};
@@ -53,7 +53,7 @@ pub fn fit_offsets_with(offsets: &Offsets, config: &FitConfig, control: &Control
     // The skins of this fit, for the alternative that holds them differently.
     let memo = SkinMemo::default();
     let Some(algorithm) = config.method.algorithm() else {
-        return fit_skinned(offsets, config, Measure::Full, &memo);
+        return fit_skinned(offsets, config, Measure::Full, &memo, None);
     };
     let begun = Instant::now();
     optimized(offsets, config, control, algorithm, &memo).map(|out| timed(out, begun))
@@ -99,8 +99,8 @@ fn optimized(
     }
     let opt = optimize_weights(offsets, &plain, algorithm, &optim, control)?;
     // Its time is set at the end ([`timed`]).
-    let out = assembled(offsets, config, opt.surface, opt.params, 0.0, Some(opt.report))?;
-    let out = within_envelope(offsets, config, &kernel_sections(offsets), out, None)?;
+    let out = assembled(offsets, config, opt.surface, opt.params, 0.0, Some(opt.report), Measure::Full)?;
+    let out = within_envelope(offsets, config, &kernel_sections(offsets), out, None, Measure::Full)?;
     let mut out = measured(offsets, config, out)?;
     // Held within the envelope, the optimised net (its weights kept, its control points
     // refitted) can end farther from the offsets than the held approximation it started from,
@@ -160,6 +160,7 @@ fn optimized(
             skin,
             |out| with_true_error(offsets, out),
             |s| memo.fairness(s),
+            None,
         )?
     } else {
         None
@@ -167,7 +168,7 @@ fn optimized(
     let mut candidates: Vec<FitOutcome> = Vec::new();
     if let Some((mut f, report)) = fair {
         f.fairing = Some(report);
-        let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full, memo);
+        let refit = |c: &FitConfig, against| fit_skinned(offsets, c, Measure::Full, memo, against);
         candidates.push(crate::alternatives::sounder_alternative(f, &approx, refit));
     }
     candidates.push(plain);
@@ -190,7 +191,7 @@ pub(crate) fn fit_surface_with(
 ) -> Result<NurbsSurface, HullError> {
     match (config.method.algorithm(), config.fair) {
         (None, Fairing::Off | Fairing::Lambda(_)) => {
-            Ok(fit_skinned(offsets, config, Measure::Lean, &SkinMemo::default())?.surface)
+            Ok(fit_skinned(offsets, config, Measure::Lean, &SkinMemo::default(), None)?.surface)
         }
         _ => Ok(fit_offsets_with(offsets, config, control)?.surface),
     }
@@ -217,12 +218,16 @@ enum Measure {
 /// Interpolation or approximation, faired as `config.fair` says ([`crate::fairing::fair`],
 /// which measures every fit it tries in full); with [`Measure::Lean`] and no search to make
 /// (fairing off or a given weight), only the fit whose surface is the answer. The skins are
-/// taken from `memo` where it has them, and kept there.
+/// taken from `memo` where it has them, and kept there. `against`: the fairness figures an
+/// automatic fairing is to be no less fair than, where they are not this fit's own plain least
+/// squares' (an alternative to the default fit is judged against the default parameterization's,
+/// [`crate::alternatives`]).
 fn fit_skinned(
     offsets: &Offsets,
     config: &FitConfig,
     measure: Measure,
     memo: &SkinMemo,
+    against: Option<FairnessFigures>,
 ) -> Result<FitOutcome, HullError> {
     let smoothed =
         |nu: f64, along, measure| fit_skin(offsets, &FitConfig { smoothing: nu, along, ..*config }, measure, memo);
@@ -258,7 +263,8 @@ fn fit_skinned(
         _ => None,
     };
     let true_error = |out| with_true_error(offsets, out);
-    let chosen = match crate::fairing::fair(&plain, free, config.fair, skin, true_error, |s| memo.fairness(s))? {
+    let figures = |s: &NurbsSurface| memo.fairness(s);
+    let chosen = match crate::fairing::fair(&plain, free, config.fair, skin, true_error, figures, against)? {
         Some((mut out, report)) => {
             // The time of the whole choice, the plain fit and every smoothed one measured.
             let total = plain.fit_seconds + plain.error_seconds + start.elapsed().as_secs_f64();
@@ -272,7 +278,7 @@ fn fit_skinned(
         None => plain,
     };
     // Still folded or facing inwards: another parameterization or count may be sound.
-    let refit = |c: &FitConfig| fit_skinned(offsets, c, Measure::Full, memo);
+    let refit = |c: &FitConfig, against| fit_skinned(offsets, c, Measure::Full, memo, against);
     Ok(crate::alternatives::sounder_alternative(chosen, config, refit))
 }
 
@@ -361,10 +367,20 @@ fn give_way(config: &FitConfig, mut kept: FitOutcome, why: String) -> FitOutcome
     kept
 }
 
+/// Whether a fit of `config` measured as `measure` looks for the validity findings against the
+/// envelope's faces only: a lean fit held on its net, whose hold reads no other
+/// ([`crate::analysis::Finding::envelope_face`]; [`assembled`], [`within_envelope`]).
+fn faces_only(config: &FitConfig, measure: Measure) -> bool {
+    measure == Measure::Lean && config.hold_on == HoldOn::Net
+}
+
 /// The outcome of a fitted surface with what the fit's own decisions read
 /// ([`Measure::Lean`]): the findings against the offsets' envelope when the hold uses them
 /// ([`EnvelopeHold::Own`]), and as its error the parametric residual at the fit's parameters.
-/// [`measured`] completes it.
+/// [`measured`] completes it. The findings are every validity finding, but for a lean fit
+/// (`measure`) held on its net, whose hold reads those against the envelope's faces only
+/// ([`crate::analysis::Finding::envelope_face`]): then those alone, the same surface found at a
+/// fraction of the cost (no fold or orientation search; the cross-validation's refits).
 fn assembled(
     offsets: &Offsets,
     config: &FitConfig,
@@ -372,15 +388,18 @@ fn assembled(
     params: Vec<Vec<(f64, f64)>>,
     fit_seconds: f64,
     optimization: Option<OptimReport>,
+    measure: Measure,
 ) -> Result<FitOutcome, HullError> {
     nurbs::fit::check_surface(&surface, "fitted surface").map_err(|e| fit_error(config, e))?;
     let start = Instant::now();
     let error = finite(config, crate::fit_error::parametric_fit_error(&surface, offsets, &params))?;
     let error_seconds = start.elapsed().as_secs_f64();
-    let (validity, folds) = if config.envelope == EnvelopeHold::Own {
-        crate::analysis::fit_validity_and_folds(&surface, offsets)?
-    } else {
-        (Vec::new(), Vec::new())
+    let (validity, folds) = match config.envelope {
+        EnvelopeHold::Own if faces_only(config, measure) => {
+            (crate::analysis::fit_face_findings(&surface, offsets)?, Vec::new())
+        }
+        EnvelopeHold::Own => crate::analysis::fit_validity_and_folds(&surface, offsets)?,
+        _ => (Vec::new(), Vec::new()),
     };
     Ok(FitOutcome {
         config: *config,
@@ -470,9 +489,9 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure, memo: &Skin
         (_, Some(ctrl)) => ctrl,
     };
     crate::limits::check_control_points(&offsets.source, nu, nv)?;
-    let (mut out, lines) = memo.skin(config, || skin(offsets, config, &sections))?;
+    let (mut out, lines) = memo.skin(config, || skin(offsets, config, &sections, measure))?;
     if config.method != FitMethod::Interp {
-        out = within_envelope(offsets, config, &sections, out, Some(memo))?;
+        out = within_envelope(offsets, config, &sections, out, Some(memo), measure)?;
     }
     out = match measure {
         Measure::Full => measured(offsets, config, out)?,
@@ -486,7 +505,12 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure, memo: &Skin
 /// The skin of [`fit_skin`], before any hold: the surface of `config` through or near the
 /// kernel's `sections` ([`assembled`]), with its flat lines (a fit refitted within its flats)
 /// and the knuckle lines it kept.
-fn skin(offsets: &Offsets, config: &FitConfig, sections: &[Vec<nurbs::Vec3>]) -> Result<Skin, HullError> {
+fn skin(
+    offsets: &Offsets,
+    config: &FitConfig,
+    sections: &[Vec<nurbs::Vec3>],
+    measure: Measure,
+) -> Result<Skin, HullError> {
     let (p, q) = config.degree;
     let opts =
         SkinOptions { degree_u: p, degree_v: q, param: config.param, smoothing: config.smoothing, along: config.along };
@@ -525,7 +549,7 @@ fn skin(offsets: &Offsets, config: &FitConfig, sections: &[Vec<nurbs::Vec3>]) ->
         }
     }
     let fit_seconds = start.elapsed().as_secs_f64();
-    let mut out = assembled(offsets, config, surface, result.params, fit_seconds, None)?;
+    let mut out = assembled(offsets, config, surface, result.params, fit_seconds, None, measure)?;
     out.flat_lines = flat_lines;
     out.along = result.along;
     Ok((out, lines))
@@ -563,6 +587,7 @@ fn within_envelope(
     sections: &[Vec<nurbs::Vec3>],
     out: FitOutcome,
     memo: Option<&SkinMemo>,
+    measure: Measure,
 ) -> Result<FitOutcome, HullError> {
     let (full, given) = match config.envelope {
         EnvelopeHold::Free => return Ok(out),
@@ -579,8 +604,11 @@ fn within_envelope(
             (b, Some(e))
         }
     };
+    // A lean fit held on its net reads the findings against the faces only ([`assembled`]).
+    let faces_only = faces_only(config, measure);
     let findings = |o: &FitOutcome| match &given {
         None => o.validity.clone(),
+        Some(e) if faces_only => crate::analysis::face_findings(&o.surface, e, &[]),
         Some(e) => crate::analysis::check_validity(&o.surface, e, &[]),
     };
     // The findings of `out`, measured once (against a given envelope, a validity check) for
@@ -588,7 +616,7 @@ fn within_envelope(
     let first = findings(&out);
     let net = |out: FitOutcome, first| {
         let seconds = out.fit_seconds;
-        let hold = || held_within(offsets, config, sections, out, first, full, &findings, HoldOn::Net);
+        let hold = || held_within(offsets, config, sections, out, first, full, &findings, HoldOn::Net, measure);
         match memo {
             Some(memo) => memo.net_held(config, seconds, hold),
             None => hold(),
@@ -601,7 +629,7 @@ fn within_envelope(
         return Ok(out);
     }
     let (held, left) =
-        held_within(offsets, config, sections, out.clone(), first.clone(), full, &findings, HoldOn::Surface)?;
+        held_within(offsets, config, sections, out.clone(), first.clone(), full, &findings, HoldOn::Surface, measure)?;
     let left = left.unwrap_or_else(|| findings(&held));
     if left.is_empty() {
         return Ok(held);
@@ -633,6 +661,7 @@ fn held_within(
     full: nurbs::fit::ControlBox,
     findings: &dyn Fn(&FitOutcome) -> Vec<crate::analysis::Finding>,
     hold: HoldOn,
+    measure: Measure,
 ) -> Result<(FitOutcome, Option<Vec<crate::analysis::Finding>>), HullError> {
     let unheld = out.surface.clone();
     // Each face crossed, with how far past it the surface (or net) may go: HOLD_SHARE of the
@@ -702,7 +731,7 @@ fn held_within(
         let seconds = out.fit_seconds + start.elapsed().as_secs_f64();
         // The refitted surface, with its findings; what the fit did before carries over.
         let prev = out;
-        out = assembled(offsets, config, surface, prev.params, seconds, None)?;
+        out = assembled(offsets, config, surface, prev.params, seconds, None, measure)?;
         out.envelope_held = prev.envelope_held + held;
         out.optimization = prev.optimization;
         out.knuckle_lines = prev.knuckle_lines;
@@ -981,9 +1010,9 @@ mod tests {
         let net = FitConfig { fair: Fairing::Auto { tolerance: None }, ..FitConfig::default() };
         let surface = FitConfig { hold_on: HoldOn::Surface, ..net };
         let memo = SkinMemo::default();
-        fit_skinned(&offsets, &net, Measure::Full, &memo).expect("fits");
-        let kept = fit_skinned(&offsets, &surface, Measure::Full, &memo).expect("fits");
-        let afresh = fit_skinned(&offsets, &surface, Measure::Full, &SkinMemo::default()).expect("fits");
+        fit_skinned(&offsets, &net, Measure::Full, &memo, None).expect("fits");
+        let kept = fit_skinned(&offsets, &surface, Measure::Full, &memo, None).expect("fits");
+        let afresh = fit_skinned(&offsets, &surface, Measure::Full, &SkinMemo::default(), None).expect("fits");
         let fair = afresh.fairing.clone().expect("auto reports");
         // (Some twice: with the parameters along the sections the plain fit chose imposed.)
         let weights: std::collections::BTreeSet<u64> = fair.tried.iter().map(|t| t.lambda.to_bits()).collect();
@@ -997,8 +1026,8 @@ mod tests {
         // Its least squares alone (fairing off, as the surface hold for fairness fits it
         // first) takes the search's plain skin, and is the fit made afresh too.
         let plain = FitConfig { fair: Fairing::Off, ..surface };
-        let kept = fit_skinned(&offsets, &plain, Measure::Full, &memo).expect("fits");
-        let afresh = fit_skinned(&offsets, &plain, Measure::Full, &SkinMemo::default()).expect("fits");
+        let kept = fit_skinned(&offsets, &plain, Measure::Full, &memo, None).expect("fits");
+        let afresh = fit_skinned(&offsets, &plain, Measure::Full, &SkinMemo::default(), None).expect("fits");
         assert_eq!((&kept.surface, kept.config, &kept.error), (&afresh.surface, afresh.config, &afresh.error));
         assert_eq!((&kept.validity, kept.envelope_held), (&afresh.validity, afresh.envelope_held));
     }

@@ -32,10 +32,10 @@ pub use fairness::{
 };
 pub use fold::{find_folds, Fold};
 pub use nurbs::{cut_surface, cut_surface_many, CutCurve, CutOptions, CutPoint};
-pub(crate) use validity::fit_validity_and_folds;
 pub use validity::{
     check_fit_validity, check_validity, Envelope, Finding, FindingKind, Flat, Place, ENVELOPE_REL, FOLD_RUN_REL,
 };
+pub(crate) use validity::{face_findings, fit_face_findings, fit_validity_and_folds};
 
 use nurbs::KnotVector;
 

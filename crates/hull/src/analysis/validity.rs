@@ -480,6 +480,17 @@ pub(crate) fn validity_and_folds(
             kept
         })
         .collect();
+    out.extend(probes(surface, envelope, flats).iter().filter_map(|p| p.check(surface, &grid)));
+    // A fold's own facets face inwards too: that region is the fold, reported once.
+    let folded = |k: usize| !folds.is_empty() && sign * grid.nodes[k].sv.x < 0.0;
+    if let Some(o) = &orientation {
+        out.extend(inward_facing(surface, &grid, o, folded));
+    }
+    (out, folds)
+}
+
+/// The probes of [`validity_and_folds`]: the envelope's six faces, then the flats' planes.
+fn probes(surface: &NurbsSurface, envelope: &Envelope, flats: &[FlatLine]) -> Vec<Probe> {
     let floor = surface.model_size().unwrap_or(1.0) * 1e-12;
     let allowance = |extent: f64, rel: f64| (rel * extent).max(floor);
     let (hb, depth, length) = (envelope.half_beam(), envelope.depth(), envelope.length());
@@ -500,13 +511,15 @@ pub(crate) fn validity_and_folds(
         };
         probes.push(Probe { band: Some(band), flat: Some(flat), ..probe });
     }
-    out.extend(probes.iter().filter_map(|p| p.check(surface, &grid)));
-    // A fold's own facets face inwards too: that region is the fold, reported once.
-    let folded = |k: usize| !folds.is_empty() && sign * grid.nodes[k].sv.x < 0.0;
-    if let Some(o) = &orientation {
-        out.extend(inward_facing(surface, &grid, o, folded));
-    }
-    (out, folds)
+    probes
+}
+
+/// The findings of [`validity_and_folds`] against the envelope's faces and the flats' planes
+/// only ([`Finding::envelope_face`]), the same findings it gives of them, without looking for
+/// folds or inward-facing facets: what an envelope hold on the control net reads.
+pub(crate) fn face_findings(surface: &NurbsSurface, envelope: &Envelope, flats: &[FlatLine]) -> Vec<Finding> {
+    let grid = Grid::sample(surface);
+    probes(surface, envelope, flats).iter().filter_map(|p| p.check(surface, &grid)).collect()
 }
 
 /// [`check_validity`] of a surface fitted to `offsets`, with the flats found in them
@@ -529,11 +542,28 @@ pub(crate) fn fit_validity_and_folds(
     surface: &NurbsSurface,
     offsets: &Offsets,
 ) -> Result<(Vec<Finding>, Vec<Fold>), crate::HullError> {
+    let (envelope, flats) = envelope_and_flats(offsets)?;
+    Ok(validity_and_folds(surface, &envelope, &flats))
+}
+
+/// [`fit_validity_and_folds`]'s findings against the envelope's faces and the flats' planes
+/// only ([`face_findings`]).
+///
+/// # Errors
+/// As [`check_fit_validity`].
+pub(crate) fn fit_face_findings(surface: &NurbsSurface, offsets: &Offsets) -> Result<Vec<Finding>, crate::HullError> {
+    let (envelope, flats) = envelope_and_flats(offsets)?;
+    Ok(face_findings(surface, &envelope, &flats))
+}
+
+/// The envelope of `offsets` (unbounded without a point) and the flats found in them, as
+/// [`check_fit_validity`] checks a surface against.
+fn envelope_and_flats(offsets: &Offsets) -> Result<(Envelope, Vec<FlatLine>), crate::HullError> {
     let envelope = Envelope::of_offsets(offsets).unwrap_or_else(Envelope::unbounded);
     let sections: Vec<Vec<Vec3>> = offsets.sections.iter().map(|s| s.points.clone()).collect();
     let flats = crate::flats::find_flat_lines(&sections, &crate::flats::FlatOptions::default())
         .map_err(|reason| crate::HullError::Fit { method: "validity", reason })?;
-    Ok(validity_and_folds(surface, &envelope, &flats))
+    Ok((envelope, flats))
 }
 
 /// One face of the envelope or one flat: `coordinate axis` past `reference` (above it if
