@@ -272,9 +272,9 @@ pub fn fair(
     }
 }
 
-/// How many weights a search against another fit's figures (the default fit's alternatives for fairness) tries between two
-/// neighbours of [`AUTO_LAMBDAS`]: 3, evenly spaced in `log ν` (a factor of 1.35 between 3e-3
-/// and 1e-2).
+/// How many weights a search against another fit's figures (the default fit's alternatives for
+/// fairness) tries between two neighbours of [`AUTO_LAMBDAS`]: 3, evenly spaced in `log ν` (a
+/// factor of 1.35 between 3e-3 and 1e-2).
 pub const BETWEEN_WEIGHTS: usize = 3;
 
 /// The weights a search against another fit's figures ([`fair`]'s `against`) tries after those
