@@ -99,8 +99,8 @@ fn optimized(
     }
     let opt = optimize_weights(offsets, &plain, algorithm, &optim, control)?;
     // Its time is set at the end ([`timed`]).
-    let out = assembled(offsets, config, opt.surface, opt.params, 0.0, Some(opt.report), Measure::Full)?;
-    let out = within_envelope(offsets, config, &kernel_sections(offsets), out, None, Measure::Full)?;
+    let out = assembled(offsets, config, opt.surface, opt.params, 0.0, Some(opt.report), Look::All)?;
+    let out = within_envelope(offsets, config, &kernel_sections(offsets), out, Look::All, None, Measure::Full)?;
     let mut out = measured(offsets, config, out)?;
     // Held within the envelope, the optimised net (its weights kept, its control points
     // refitted) can end farther from the offsets than the held approximation it started from,
@@ -374,13 +374,28 @@ fn faces_only(config: &FitConfig, measure: Measure) -> bool {
     measure == Measure::Lean && config.hold_on == HoldOn::Net
 }
 
+/// Which validity findings [`assembled`] looks for with [`EnvelopeHold::Own`].
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Look {
+    /// Every finding.
+    All,
+    /// Those against the envelope's faces and the flats' planes only
+    /// ([`crate::analysis::Finding::envelope_face`]): what an envelope hold reads of the surface
+    /// it holds (the refits of a lean fit held on its net, [`faces_only`]).
+    Faces,
+    /// Those against the faces and, where there is none (the surface will not be held), every
+    /// other, on the same grid: a skin, which the hold refits where it crosses a face
+    /// ([`within_envelope`] completes it where it is not refitted after all).
+    AllUnlessHeld,
+}
+
 /// The outcome of a fitted surface with what the fit's own decisions read
 /// ([`Measure::Lean`]): the findings against the offsets' envelope when the hold uses them
 /// ([`EnvelopeHold::Own`]), and as its error the parametric residual at the fit's parameters.
-/// [`measured`] completes it. The findings are every validity finding, but for a lean fit
-/// (`measure`) held on its net, whose hold reads those against the envelope's faces only
-/// ([`crate::analysis::Finding::envelope_face`]): then those alone, the same surface found at a
-/// fraction of the cost (no fold or orientation search; the cross-validation's refits).
+/// [`measured`] completes it. The findings are those `look` says: every validity finding, or
+/// those against the envelope's faces only, the same ones at a fraction of the cost (no fold or
+/// orientation search): for a skin, which the hold reads no more of, and for the refits of a
+/// lean fit held on its net (the cross-validation's, [`faces_only`]).
 fn assembled(
     offsets: &Offsets,
     config: &FitConfig,
@@ -388,15 +403,20 @@ fn assembled(
     params: Vec<Vec<(f64, f64)>>,
     fit_seconds: f64,
     optimization: Option<OptimReport>,
-    measure: Measure,
+    look: Look,
 ) -> Result<FitOutcome, HullError> {
     nurbs::fit::check_surface(&surface, "fitted surface").map_err(|e| fit_error(config, e))?;
     let start = Instant::now();
     let error = finite(config, crate::fit_error::parametric_fit_error(&surface, offsets, &params))?;
     let error_seconds = start.elapsed().as_secs_f64();
     let (validity, folds) = match config.envelope {
-        EnvelopeHold::Own if faces_only(config, measure) => {
-            (crate::analysis::fit_face_findings(&surface, offsets)?, Vec::new())
+        EnvelopeHold::Own if look != Look::All => {
+            let check = crate::analysis::fit_face_check(&surface, offsets)?;
+            if look == Look::AllUnlessHeld && check.faces.is_empty() {
+                check.complete(&surface)
+            } else {
+                (check.faces, Vec::new())
+            }
         }
         EnvelopeHold::Own => crate::analysis::fit_validity_and_folds(&surface, offsets)?,
         _ => (Vec::new(), Vec::new()),
@@ -489,9 +509,9 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure, memo: &Skin
         (_, Some(ctrl)) => ctrl,
     };
     crate::limits::check_control_points(&offsets.source, nu, nv)?;
-    let (mut out, lines) = memo.skin(config, || skin(offsets, config, &sections, measure))?;
+    let (mut out, lines) = memo.skin(config, || skin(offsets, config, &sections))?;
     if config.method != FitMethod::Interp {
-        out = within_envelope(offsets, config, &sections, out, Some(memo), measure)?;
+        out = within_envelope(offsets, config, &sections, out, Look::AllUnlessHeld, Some(memo), measure)?;
     }
     out = match measure {
         Measure::Full => measured(offsets, config, out)?,
@@ -505,12 +525,7 @@ fn fit_skin(offsets: &Offsets, config: &FitConfig, measure: Measure, memo: &Skin
 /// The skin of [`fit_skin`], before any hold: the surface of `config` through or near the
 /// kernel's `sections` ([`assembled`]), with its flat lines (a fit refitted within its flats)
 /// and the knuckle lines it kept.
-fn skin(
-    offsets: &Offsets,
-    config: &FitConfig,
-    sections: &[Vec<nurbs::Vec3>],
-    measure: Measure,
-) -> Result<Skin, HullError> {
+fn skin(offsets: &Offsets, config: &FitConfig, sections: &[Vec<nurbs::Vec3>]) -> Result<Skin, HullError> {
     let (p, q) = config.degree;
     let opts =
         SkinOptions { degree_u: p, degree_v: q, param: config.param, smoothing: config.smoothing, along: config.along };
@@ -549,7 +564,10 @@ fn skin(
         }
     }
     let fit_seconds = start.elapsed().as_secs_f64();
-    let mut out = assembled(offsets, config, surface, result.params, fit_seconds, None, measure)?;
+    // Every finding of an interpolation (never held); an approximation's against the faces
+    // only, what its hold reads ([`within_envelope`] completes them where it is not refitted).
+    let look = if config.method == FitMethod::Interp { Look::All } else { Look::AllUnlessHeld };
+    let mut out = assembled(offsets, config, surface, result.params, fit_seconds, None, look)?;
     out.flat_lines = flat_lines;
     out.along = result.along;
     Ok((out, lines))
@@ -586,14 +604,33 @@ fn within_envelope(
     config: &FitConfig,
     sections: &[Vec<nurbs::Vec3>],
     out: FitOutcome,
+    look: Look,
     memo: Option<&SkinMemo>,
     measure: Measure,
 ) -> Result<FitOutcome, HullError> {
+    // A lean fit held on its net reads the findings against the faces only ([`assembled`]).
+    let faces_only = faces_only(config, measure);
+    // `out` as the answer, not refitted (no refit sets `unheld`): with every finding, where it
+    // was assembled with those against the faces only (it crosses one: [`Look::AllUnlessHeld`])
+    // and the fit reads the others.
+    let complete = |o: FitOutcome| -> Result<FitOutcome, HullError> {
+        let faces = |o: &FitOutcome| o.validity.iter().any(|f| f.envelope_face().is_some());
+        if look == Look::AllUnlessHeld
+            && o.unheld.is_none()
+            && config.envelope == EnvelopeHold::Own
+            && !faces_only
+            && faces(&o)
+        {
+            let (validity, folds) = crate::analysis::fit_validity_and_folds(&o.surface, offsets)?;
+            return Ok(FitOutcome { validity, folds, ..o });
+        }
+        Ok(o)
+    };
     let (full, given) = match config.envelope {
         EnvelopeHold::Free => return Ok(out),
         EnvelopeHold::Own => match Envelope::of_offsets(offsets) {
             Some(e) => (e.bounds(), None),
-            None => return Ok(out),
+            None => return complete(out),
         },
         EnvelopeHold::Given(b) => {
             // The findings against the given box (that of the whole table), not against the
@@ -604,8 +641,6 @@ fn within_envelope(
             (b, Some(e))
         }
     };
-    // A lean fit held on its net reads the findings against the faces only ([`assembled`]).
-    let faces_only = faces_only(config, measure);
     let findings = |o: &FitOutcome| match &given {
         None => o.validity.clone(),
         Some(e) if faces_only => crate::analysis::face_findings(&o.surface, e, &[]),
@@ -623,19 +658,24 @@ fn within_envelope(
         }
     };
     if config.hold_on == HoldOn::Net {
-        return Ok(net(out, first)?.0);
+        return complete(net(out, first)?.0);
     }
     if first.iter().all(|f| f.envelope_face().is_none()) {
-        return Ok(out);
+        return complete(out);
     }
+    // Their own findings, completed where they were not refitted (a round's findings of the
+    // skin are against the faces only).
     let (held, left) =
         held_within(offsets, config, sections, out.clone(), first.clone(), full, &findings, HoldOn::Surface, measure)?;
-    let left = left.unwrap_or_else(|| findings(&held));
+    let held = complete(held)?;
+    let left = if given.is_none() { held.validity.clone() } else { left.unwrap_or_else(|| findings(&held)) };
     if left.is_empty() {
         return Ok(held);
     }
     let (netted, net_left) = net(out, first)?;
-    let net_left = net_left.unwrap_or_else(|| findings(&netted));
+    let netted = complete(netted)?;
+    let net_left =
+        if given.is_none() { netted.validity.clone() } else { net_left.unwrap_or_else(|| findings(&netted)) };
     let defects = |f: &[crate::analysis::Finding]| {
         (f.iter().filter(|f| f.kind == crate::analysis::FindingKind::Fold).count(), f.len())
     };
@@ -663,6 +703,8 @@ fn held_within(
     hold: HoldOn,
     measure: Measure,
 ) -> Result<(FitOutcome, Option<Vec<crate::analysis::Finding>>), HullError> {
+    // The refits' findings: every one, but for a lean fit held on its net ([`faces_only`]).
+    let look = if faces_only(config, measure) { Look::Faces } else { Look::All };
     let unheld = out.surface.clone();
     // Each face crossed, with how far past it the surface (or net) may go: HOLD_SHARE of the
     // allowance the surface exceeded (the least, where several findings cross one face).
@@ -731,7 +773,7 @@ fn held_within(
         let seconds = out.fit_seconds + start.elapsed().as_secs_f64();
         // The refitted surface, with its findings; what the fit did before carries over.
         let prev = out;
-        out = assembled(offsets, config, surface, prev.params, seconds, None, measure)?;
+        out = assembled(offsets, config, surface, prev.params, seconds, None, look)?;
         out.envelope_held = prev.envelope_held + held;
         out.optimization = prev.optimization;
         out.knuckle_lines = prev.knuckle_lines;

@@ -35,7 +35,7 @@ pub use nurbs::{cut_surface, cut_surface_many, CutCurve, CutOptions, CutPoint};
 pub use validity::{
     check_fit_validity, check_validity, Envelope, Finding, FindingKind, Flat, Place, ENVELOPE_REL, FOLD_RUN_REL,
 };
-pub(crate) use validity::{face_findings, fit_face_findings, fit_validity_and_folds};
+pub(crate) use validity::{face_findings, fit_face_check, fit_validity_and_folds};
 
 use nurbs::KnotVector;
 

@@ -448,45 +448,69 @@ pub(crate) fn validity_and_folds(
     envelope: &Envelope,
     flats: &[FlatLine],
 ) -> (Vec<Finding>, Vec<Fold>) {
-    let grid = Grid::sample(surface);
-    let rows: Vec<Vec<(f64, f64)>> =
-        grid.nodes.chunks(grid.nu()).map(|row| row.iter().map(|n| (n.p.x, n.sv.x)).collect()).collect();
-    let (folds, sign) = folds_on_grid(surface, &grid.vs, &rows);
-    let orientation = oriented(surface, &grid);
-    // A band where x_v turns is a fold where the surface turns over with it (some node
-    // running back there faces the other way), or where it runs back farther than
-    // FOLD_RUN_REL of its length (a hook, as behind a transom, even with the normal keeping
-    // its side). Along a steep profile (a stern or a stem whose sections' v lines run mostly
-    // up and down) x_v can change sign by a little while S_u x S_v keeps its side: the skin
-    // neither doubles back nor hooks there.
-    let turned = |f: &Fold| {
-        let Some(o) = &orientation else { return false };
-        let nu = grid.nu();
-        let rows = grid.vs.iter().enumerate().filter(|(_, &v)| v >= f.v.0 && v <= f.v.1).map(|(j, _)| j);
-        rows.flat_map(|j| j * nu..(j + 1) * nu).any(|k| o.minority[k] && sign * grid.nodes[k].sv.x < 0.0)
-    };
-    let (lo, hi) = surface.control_bounds();
-    let run_allowance = FOLD_RUN_REL * (hi.x - lo.x);
-    let mut out: Vec<Finding> = Vec::new();
-    let folds: Vec<Fold> = folds
-        .into_iter()
-        .filter(|f| {
-            let finding = fold_finding(surface, &grid, f, sign);
-            let limit = if turned(f) { 0.0 } else { run_allowance };
-            let kept = finding.size > limit;
-            if kept {
-                out.push(Finding { limit, ..finding });
-            }
-            kept
-        })
-        .collect();
-    out.extend(probes(surface, envelope, flats).iter().filter_map(|p| p.check(surface, &grid)));
-    // A fold's own facets face inwards too: that region is the fold, reported once.
-    let folded = |k: usize| !folds.is_empty() && sign * grid.nodes[k].sv.x < 0.0;
-    if let Some(o) = &orientation {
-        out.extend(inward_facing(surface, &grid, o, folded));
+    FaceCheck::of(surface, envelope, flats).complete(surface)
+}
+
+/// The findings of [`validity_and_folds`] against the envelope's faces and the flats' planes
+/// ([`Finding::envelope_face`]), with the grid they were found on: what an envelope hold reads,
+/// [`FaceCheck::complete`]d into every finding without sampling the surface again.
+pub(crate) struct FaceCheck {
+    grid: Grid,
+    /// The findings against the faces, in [`validity_and_folds`]'s order.
+    pub(crate) faces: Vec<Finding>,
+}
+
+impl FaceCheck {
+    /// The findings of `surface` against `envelope`'s faces and `flats`' planes.
+    pub(crate) fn of(surface: &NurbsSurface, envelope: &Envelope, flats: &[FlatLine]) -> FaceCheck {
+        let grid = Grid::sample(surface);
+        let faces = probes(surface, envelope, flats).iter().filter_map(|p| p.check(surface, &grid)).collect();
+        FaceCheck { grid, faces }
     }
-    (out, folds)
+
+    /// Every finding of [`validity_and_folds`] of the same `surface` (the same findings in its
+    /// order: folds, the faces', inward-facing facets) and its fold bands.
+    pub(crate) fn complete(self, surface: &NurbsSurface) -> (Vec<Finding>, Vec<Fold>) {
+        let FaceCheck { grid, faces } = self;
+        let rows: Vec<Vec<(f64, f64)>> =
+            grid.nodes.chunks(grid.nu()).map(|row| row.iter().map(|n| (n.p.x, n.sv.x)).collect()).collect();
+        let (folds, sign) = folds_on_grid(surface, &grid.vs, &rows);
+        let orientation = oriented(surface, &grid);
+        // A band where x_v turns is a fold where the surface turns over with it (some node
+        // running back there faces the other way), or where it runs back farther than
+        // FOLD_RUN_REL of its length (a hook, as behind a transom, even with the normal keeping
+        // its side). Along a steep profile (a stern or a stem whose sections' v lines run mostly
+        // up and down) x_v can change sign by a little while S_u x S_v keeps its side: the skin
+        // neither doubles back nor hooks there.
+        let turned = |f: &Fold| {
+            let Some(o) = &orientation else { return false };
+            let nu = grid.nu();
+            let rows = grid.vs.iter().enumerate().filter(|(_, &v)| v >= f.v.0 && v <= f.v.1).map(|(j, _)| j);
+            rows.flat_map(|j| j * nu..(j + 1) * nu).any(|k| o.minority[k] && sign * grid.nodes[k].sv.x < 0.0)
+        };
+        let (lo, hi) = surface.control_bounds();
+        let run_allowance = FOLD_RUN_REL * (hi.x - lo.x);
+        let mut out: Vec<Finding> = Vec::new();
+        let folds: Vec<Fold> = folds
+            .into_iter()
+            .filter(|f| {
+                let finding = fold_finding(surface, &grid, f, sign);
+                let limit = if turned(f) { 0.0 } else { run_allowance };
+                let kept = finding.size > limit;
+                if kept {
+                    out.push(Finding { limit, ..finding });
+                }
+                kept
+            })
+            .collect();
+        out.extend(faces);
+        // A fold's own facets face inwards too: that region is the fold, reported once.
+        let folded = |k: usize| !folds.is_empty() && sign * grid.nodes[k].sv.x < 0.0;
+        if let Some(o) = &orientation {
+            out.extend(inward_facing(surface, &grid, o, folded));
+        }
+        (out, folds)
+    }
 }
 
 /// The probes of [`validity_and_folds`]: the envelope's six faces, then the flats' planes.
@@ -515,11 +539,10 @@ fn probes(surface: &NurbsSurface, envelope: &Envelope, flats: &[FlatLine]) -> Ve
 }
 
 /// The findings of [`validity_and_folds`] against the envelope's faces and the flats' planes
-/// only ([`Finding::envelope_face`]), the same findings it gives of them, without looking for
-/// folds or inward-facing facets: what an envelope hold on the control net reads.
+/// only ([`FaceCheck`]), without looking for folds or inward-facing facets: what an envelope
+/// hold on the control net reads.
 pub(crate) fn face_findings(surface: &NurbsSurface, envelope: &Envelope, flats: &[FlatLine]) -> Vec<Finding> {
-    let grid = Grid::sample(surface);
-    probes(surface, envelope, flats).iter().filter_map(|p| p.check(surface, &grid)).collect()
+    FaceCheck::of(surface, envelope, flats).faces
 }
 
 /// [`check_validity`] of a surface fitted to `offsets`, with the flats found in them
@@ -547,13 +570,13 @@ pub(crate) fn fit_validity_and_folds(
 }
 
 /// [`fit_validity_and_folds`]'s findings against the envelope's faces and the flats' planes
-/// only ([`face_findings`]).
+/// ([`FaceCheck`]).
 ///
 /// # Errors
 /// As [`check_fit_validity`].
-pub(crate) fn fit_face_findings(surface: &NurbsSurface, offsets: &Offsets) -> Result<Vec<Finding>, crate::HullError> {
+pub(crate) fn fit_face_check(surface: &NurbsSurface, offsets: &Offsets) -> Result<FaceCheck, crate::HullError> {
     let (envelope, flats) = envelope_and_flats(offsets)?;
-    Ok(face_findings(surface, &envelope, &flats))
+    Ok(FaceCheck::of(surface, &envelope, &flats))
 }
 
 /// The envelope of `offsets` (unbounded without a point) and the flats found in them, as
