@@ -60,9 +60,8 @@ pub const AUTO_LAMBDAS: [f64; 8] = [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.
 /// ([`FairnessFigures::no_less_fair_than`]); with `against`, the search goes up from the least
 /// `ν` to the first sound fit past the tolerance (or an unsound one at the least), then tries
 /// the [`BETWEEN_WEIGHTS`] between the largest within the tolerance and the next, and takes the
-/// largest `ν` so qualified of all it fitted; when the
-/// plain fit has validity findings (a fold, the
-/// surface leaving the offsets' envelope, ...), the smallest `ν` with the fewest defects (folds
+/// largest `ν` so qualified of all it fitted; when the plain fit has validity findings (a fold,
+/// the surface leaving the offsets' envelope, ...), the smallest `ν` with the fewest defects (folds
 /// first, then findings of any kind), fewer than the plain fit's, that misses the offsets by at
 /// most [`UNSOUND_SLACK`] times the tolerance (its max error is reported against the
 /// tolerance), one no less fair than the plain least squares before one that is not among
@@ -278,10 +277,10 @@ pub fn fair(
 pub const BETWEEN_WEIGHTS: usize = 3;
 
 /// The weights a search against another fit's figures ([`fair`]'s `against`) tries after those
-/// of [`AUTO_LAMBDAS`]: [`BETWEEN_WEIGHTS`] between the largest weight with a sound fit within `limit` and the
-/// next larger one of the grid (largest first), where the fairest fit within the limit is, for
-/// smoothing trades accuracy for fairness; none where no fit was within the limit or the
-/// largest was. Measured: the trawler on universal parameters along its sections, its net held
+/// of [`AUTO_LAMBDAS`]: [`BETWEEN_WEIGHTS`] between the largest weight with a sound fit within
+/// `limit` and the next larger one of the grid (largest first), where the fairest fit within the
+/// limit is, for smoothing trades accuracy for fairness; none where no fit was within the limit
+/// or the largest was. Measured: the trawler on universal parameters along its sections, its net held
 /// (the default fit's alternative for fairness, [`crate::alternatives`]), is 39.21 mm from the
 /// offsets at `ν` = 1e-2, past its limit of 39.19 mm, and at 3e-3 has 89 inflections against
 /// the plain least squares' 87; at 4e-3 to 7e-3 it is within the limit with 85 to 87, and
@@ -327,7 +326,9 @@ fn measured_if(
 /// (145.3 mm held on its net), its smoothed fits on own ones (201 mm at `ν` = 1e-4), and only
 /// averaged ones smooth it within its max error (held on its surface at `ν` = 1e-2: 125 mm,
 /// thin-plate energy 10.18 against the plain least squares' 10.81). Where the other choice is
-/// the fairer one (the DTMB 5415 main hull), it stays first.
+/// the fairer one (the DTMB 5415 main hull), it stays first. Without `imposing`, the skin's own
+/// choice only: a search against another fit's figures (another parameterization, whose plain
+/// fit's choice is no reference; one fit fewer at 3e-3 on the trawler).
 fn smoothed_fits<T: Send>(
     weights: &[f64],
     imposing: bool,

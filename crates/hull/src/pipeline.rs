@@ -394,8 +394,9 @@ enum Look {
 /// ([`EnvelopeHold::Own`]), and as its error the parametric residual at the fit's parameters.
 /// [`measured`] completes it. The findings are those `look` says: every validity finding, or
 /// those against the envelope's faces only, the same ones at a fraction of the cost (no fold or
-/// orientation search): for a skin, which the hold reads no more of, and for the refits of a
-/// lean fit held on its net (the cross-validation's, [`faces_only`]).
+/// orientation search): for a skin that crosses a face, which the hold refits reading no more
+/// of them (one that crosses none gets every finding, on the same grid), and for the refits of
+/// a lean fit held on its net (the cross-validation's, [`faces_only`]).
 fn assembled(
     offsets: &Offsets,
     config: &FitConfig,
@@ -564,8 +565,9 @@ fn skin(offsets: &Offsets, config: &FitConfig, sections: &[Vec<nurbs::Vec3>]) ->
         }
     }
     let fit_seconds = start.elapsed().as_secs_f64();
-    // Every finding of an interpolation (never held); an approximation's against the faces
-    // only, what its hold reads ([`within_envelope`] completes them where it is not refitted).
+    // Every finding of an interpolation (never held); an approximation's against the faces,
+    // what its hold reads, and the others only where it crosses none ([`Look::AllUnlessHeld`];
+    // [`within_envelope`] completes them where it is not refitted after all).
     let look = if config.method == FitMethod::Interp { Look::All } else { Look::AllUnlessHeld };
     let mut out = assembled(offsets, config, surface, result.params, fit_seconds, None, look)?;
     out.flat_lines = flat_lines;
