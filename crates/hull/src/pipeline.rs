@@ -1021,6 +1021,34 @@ mod tests {
         assert!(off.validity.iter().any(|f| f.kind == crate::FindingKind::Fold), "{:?}", off.validity);
     }
 
+    /// A skin is looked at against the envelope's faces first: one that crosses none is not
+    /// held and gets every finding (on the grid its faces were looked for on), one that crosses
+    /// a face the faces only, which is all its hold reads. R/V Gunnerus's plain fit held on its
+    /// net is within the envelope and folds at the forecastle step; its least squares crosses
+    /// four faces.
+    #[test]
+    fn a_skin_crossing_no_face_gets_every_finding_and_one_crossing_a_face_the_faces_only() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata/gunnerus_offsets.csv");
+        let offsets = crate::read_offsets(&path, crate::Units::Metre).expect("readable");
+        let config = FitConfig::default();
+        let held = fit_offsets(&offsets, &config).expect("fits");
+        assert!(held.envelope_held > 0 && held.validity.iter().all(|f| f.envelope_face().is_none()));
+        assert!(held.validity.iter().any(|f| f.kind == crate::FindingKind::Fold), "{:?}", held.validity);
+        let skin = |out: &FitOutcome| {
+            assembled(&offsets, &config, out.surface.clone(), out.params.clone(), 0.0, None, Look::AllUnlessHeld)
+                .expect("assembles")
+        };
+        let within = skin(&held);
+        assert_eq!((&within.validity, &within.folds), (&held.validity, &held.folds));
+        let free = fit_offsets(&offsets, &FitConfig { envelope: EnvelopeHold::Free, ..config }).expect("fits");
+        let all = crate::check_fit_validity(&free.surface, &offsets).expect("checks");
+        let faces: Vec<_> = all.iter().filter(|f| f.envelope_face().is_some()).cloned().collect();
+        assert!(faces.len() >= 4 && faces.len() < all.len(), "{all:?}");
+        let crossing = skin(&free);
+        assert_eq!(crossing.validity, faces);
+        assert!(crossing.folds.is_empty());
+    }
+
     /// The cross-validation's lean path measures less, never fits differently: the same
     /// surface bit for bit as the full fit, for every hold, fairing and method it serves.
     #[test]

@@ -327,3 +327,46 @@ fn a_surface_hold_past_the_allowance_between_its_samples_is_held_nearer() {
     let past = past_envelope(&o, &surface.surface);
     assert!(past.iter().all(|&w| w <= 1.0), "{past:?}");
 }
+
+/// What a fit reports of its surface's validity is what an independent check of that surface
+/// finds (`check_fit_validity`, every finding afresh), whichever way the fit came to it: a skin
+/// that crosses a face of the envelope is looked at against the faces only before its hold
+/// refits it, and completed where it is not refitted after all. Tables whose least squares
+/// crosses faces and is held (the sample, the trawler, the cargo ship with its flats), one held
+/// on its surface (the 4 x 3 example), one within the envelope (the Wigley hull); the plain fit,
+/// the default fit and the surface hold; and two whose held plain fits keep a finding that is
+/// not against a face (R/V Gunnerus's fold, the frigate's inward-facing facets).
+#[test]
+fn every_fit_reports_the_findings_an_independent_check_of_its_surface_finds() {
+    let tables: Vec<(&str, Offsets)> = vec![
+        ("sample", series60_sample()),
+        ("trawler", read("matlab_trawler.csv")),
+        ("cargo ship", read("cargo116_offsets.csv")),
+        ("4 x 3", read("sections_example.csv")),
+        ("wigley", read("wigley_offsets.csv")),
+    ];
+    let auto = hull::Fairing::Auto { tolerance: None };
+    let configs = [
+        FitConfig::default(),
+        FitConfig { fair: auto, ..FitConfig::default() },
+        FitConfig { fair: auto, hold_on: HoldOn::Surface, ..FitConfig::default() },
+        FitConfig { knuckles: Knuckles::AutoFlats(CornerOptions::default()), ..FitConfig::default() },
+    ];
+    let mut held = 0;
+    for (name, o) in &tables {
+        for config in &configs {
+            let out = fit_offsets(o, config).expect("fits");
+            let afresh = hull::check_fit_validity(&out.surface, o).expect("checks");
+            assert_eq!(out.validity, afresh, "{name} {config:?}");
+            held += usize::from(out.envelope_held > 0);
+        }
+    }
+    for name in ["gunnerus_offsets.csv", "matlab_frigate.csv"] {
+        let o = read(name);
+        let out = fit_offsets(&o, &FitConfig::default()).expect("fits");
+        assert!(out.envelope_held > 0 && out.validity.iter().any(|f| f.envelope_face().is_none()), "{name}");
+        assert_eq!(out.validity, hull::check_fit_validity(&out.surface, &o).expect("checks"), "{name}");
+    }
+    // The holds were exercised, and not only them.
+    assert!(held >= 8 && held < tables.len() * configs.len(), "{held} held");
+}
