@@ -472,12 +472,19 @@ fn hold_surface_holds_the_sample_within_its_envelope_closer_to_its_offsets() {
 /// The default fit's choices are made from fits run in parallel (the smoothing weights, the
 /// surface hold for fairness, the cross-validation's refits, the held-out referee's) in a fixed
 /// order: the same bytes with one thread or three, on a table whose fairing takes a smoothed
-/// fit (Series 60 Cb 0.70, `ν` 0.003), on one made again held on its surface (Cb 0.80) and on
-/// one the held-out referee replaces (Cb 0.65).
+/// fit (Series 60 Cb 0.70, `ν` 0.003), on one made again held on its surface (Cb 0.80), on
+/// one the held-out referee replaces (Cb 0.65) and on one made again on universal parameters,
+/// its smoothing searched up from the least and between the grid's weights (the trawler).
 #[test]
 fn the_default_fit_is_the_same_whatever_the_thread_count() {
     let dir = temp_dir();
-    for table in ["series60_cb070_offsets.csv", "series60_cb080_offsets.csv", "series60_cb065_offsets.csv"] {
+    let tables = [
+        "series60_cb070_offsets.csv",
+        "series60_cb080_offsets.csv",
+        "series60_cb065_offsets.csv",
+        "matlab_trawler.csv",
+    ];
+    for table in tables {
         let path = testdata(table);
         let run = |out: &str, threads: &str| {
             let args = ["fit", path.to_str().expect("UTF-8 path"), "-o", out];
@@ -491,6 +498,8 @@ fn the_default_fit_is_the_same_whatever_the_thread_count() {
         let smoothed = one.1["fairing"]["lambda"].as_f64().is_some_and(|l| l > 0.0);
         assert!(smoothed != replaced, "{table}: a smoothed fit, or the referee's alternative");
         assert_eq!(replaced, table.contains("cb065"), "{table}");
+        let universal = one.1["parameterization"] == "universal,chord";
+        assert_eq!(universal, table.contains("trawler"), "{table}: {}", one.1["parameterization"]);
         assert!(one == three, "{table}: one thread and three differ");
     }
 }
