@@ -85,8 +85,9 @@ pub struct SkinArgs {
     /// within the allowance (the convex-hull property); an optimised surface that leaves it is
     /// held the same way (its weights kept), or gives way to the held approximation where that
     /// is closer to the offsets (with `--fair auto`, also to the approximation held on its
-    /// surface, where it is sound and the optimised surface more than twice as far). `hold-surface` holds the surface's points instead of its
-    /// net (sampled 8, then 16 per knot span; the end sections' planes on the net), which
+    /// surface, where it is sound and the optimised surface more than twice as far).
+    /// `hold-surface` holds the surface's points instead of its net (sampled 8, then 16 per
+    /// knot span; the end sections' planes on the net), which
     /// lets poles go past a face where the surface stays within it: closer to the offsets
     /// where a rounded section meets a face (the default fit takes it by itself when the
     /// net-held fit folds or faces inwards). `free` keeps the plain least squares and reports

@@ -651,9 +651,11 @@ fn within_envelope(
     // The findings of `out`, measured once (against a given envelope, a validity check) for
     // every hold below to start from.
     let first = findings(&out);
+    // The refits' findings: every one, but for a lean fit held on its net.
+    let refits = if faces_only { Look::Faces } else { Look::All };
     let net = |out: FitOutcome, first| {
         let seconds = out.fit_seconds;
-        let hold = || held_within(offsets, config, sections, out, first, full, &findings, HoldOn::Net, measure);
+        let hold = || held_within(offsets, config, sections, out, first, full, &findings, HoldOn::Net, refits);
         match memo {
             Some(memo) => memo.net_held(config, seconds, hold),
             None => hold(),
@@ -665,23 +667,36 @@ fn within_envelope(
     if first.iter().all(|f| f.envelope_face().is_none()) {
         return complete(out);
     }
-    // Their own findings, completed where they were not refitted (a round's findings of the
-    // skin are against the faces only).
-    let (held, left) =
-        held_within(offsets, config, sections, out.clone(), first.clone(), full, &findings, HoldOn::Surface, measure)?;
-    let held = complete(held)?;
-    let left = if given.is_none() { held.validity.clone() } else { left.unwrap_or_else(|| findings(&held)) };
-    if left.is_empty() {
+    // What is left of each hold's findings: against a given envelope those of its last round
+    // where one measured them; else its own, completed where it was not refitted (a round's
+    // findings of the skin are against the faces only).
+    let left = |(o, found): (FitOutcome, Option<Vec<crate::analysis::Finding>>)| {
+        let o = complete(o)?;
+        let left = match (&given, found) {
+            (Some(_), Some(found)) => found,
+            _ => findings(&o),
+        };
+        Ok::<_, HullError>((o, left))
+    };
+    let (held, held_left) = left(held_within(
+        offsets,
+        config,
+        sections,
+        out.clone(),
+        first.clone(),
+        full,
+        &findings,
+        HoldOn::Surface,
+        refits,
+    )?)?;
+    if held_left.is_empty() {
         return Ok(held);
     }
-    let (netted, net_left) = net(out, first)?;
-    let netted = complete(netted)?;
-    let net_left =
-        if given.is_none() { netted.validity.clone() } else { net_left.unwrap_or_else(|| findings(&netted)) };
+    let (netted, net_left) = left(net(out, first)?)?;
     let defects = |f: &[crate::analysis::Finding]| {
         (f.iter().filter(|f| f.kind == crate::analysis::FindingKind::Fold).count(), f.len())
     };
-    Ok(if defects(&net_left) < defects(&left) { netted } else { held })
+    Ok(if defects(&net_left) < defects(&held_left) { netted } else { held })
 }
 
 /// The rounds of [`within_envelope`] with one kind of hold: each face crossed is held
@@ -692,7 +707,8 @@ fn within_envelope(
 /// 10.12 mm below the baseline between samples held 5 mm below it, against an allowance of 10
 /// mm; held 2.5 mm below, it is sound).
 /// `first` are the findings of `out`; the outcome is returned with its own findings when a
-/// round measured them (not after a third refit, which no round looks at).
+/// round measured them (not after a third refit, which no round looks at). Its refits are
+/// assembled looking for the findings `look` says ([`assembled`]).
 #[allow(clippy::too_many_arguments)]
 fn held_within(
     offsets: &Offsets,
@@ -703,10 +719,8 @@ fn held_within(
     full: nurbs::fit::ControlBox,
     findings: &dyn Fn(&FitOutcome) -> Vec<crate::analysis::Finding>,
     hold: HoldOn,
-    measure: Measure,
+    look: Look,
 ) -> Result<(FitOutcome, Option<Vec<crate::analysis::Finding>>), HullError> {
-    // The refits' findings: every one, but for a lean fit held on its net ([`faces_only`]).
-    let look = if faces_only(config, measure) { Look::Faces } else { Look::All };
     let unheld = out.surface.clone();
     // Each face crossed, with how far past it the surface (or net) may go: HOLD_SHARE of the
     // allowance the surface exceeded (the least, where several findings cross one face).
