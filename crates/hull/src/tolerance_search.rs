@@ -148,6 +148,10 @@ fn refereed(
     // mm, `--tolerance default`, it is at 93.5 mm).
     let fair = faired_within(config.fair, settings.tolerance);
     let default_fit = || fit_offsets_with(offsets, &FitConfig { ctrl: None, fair, ..*config }, control);
+    // The default count faired as `hullskin fit` fairs it (within its own error, where `auto`
+    // has no tolerance): `None` where that is `default_fit` already.
+    let own_fit =
+        || (fair != config.fair).then(|| fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control));
     // `--tolerance default` replaces an unsound count found by the default count: no fairing for it.
     let (searched, mut search) =
         match searched_and_faired(offsets, config, settings, goal != Goal::DefaultTolerance, control)? {
@@ -163,11 +167,7 @@ fn refereed(
                     // (the 4 x 4 example within 1e-30 m: 186.0 mm, against its net hold's
                     // 276.5 mm faired within it and the search's 275.7 mm at 5x4). Where the
                     // fairing had a tolerance of its own, that is the same fit: not fitted again.
-                    let own = if fair == config.fair {
-                        None
-                    } else {
-                        Some(fit_offsets_with(offsets, &FitConfig { ctrl: None, ..*config }, control)?)
-                    };
+                    let own = own_fit().transpose()?;
                     let closer = std::iter::once(usual)
                         .chain(own)
                         .filter(|o| o.validity.is_empty())
@@ -187,9 +187,19 @@ fn refereed(
     }
     let default_goal = goal == Goal::DefaultTolerance;
     if default_goal && !search.valid {
-        // No valid count was found: the default count is kept, as `--method approx` fits it
-        // (so it is never less sound than that).
-        let kept = default_fit()?;
+        // No valid count was found: the default count is kept, as `hullskin fit` makes it (so
+        // it is never less sound than that): faired within the tolerance where that leaves no
+        // more findings, else within its own error. Measured on R/V Gunnerus: within 48.1 mm
+        // no smoothed fit of the default count is sound and its fold stays (163.3 mm); within
+        // its own error smoothing 3e-1 removes it (112.6 mm), as the default fit does.
+        let mut kept = default_fit()?;
+        if !kept.validity.is_empty() && !control.stopped() {
+            if let Some(own) = own_fit().transpose()? {
+                if own.validity.len() < kept.validity.len() {
+                    kept = own;
+                }
+            }
+        }
         search.keep(&kept);
         search.kept_default_count = true;
         return Ok((kept, search));
@@ -356,7 +366,12 @@ fn searched_and_faired(
         return Ok(Searched::Found(Box::new(r.outcome), r.search));
     }
     let [nu, nv] = r.search.control_points;
-    let faired = FitConfig { ctrl: Some((nu, nv)), fair, ..*config };
+    // The default count as the default fit makes it (`ctrl: None`), with its alternatives for
+    // validity and fairness: measured on the trawler, whose count found is the default 16x16,
+    // the fit on universal parameters faired against the plain least squares (thin-plate energy
+    // 124.5 against 346.2 for the default parameters' held net, both within 52.8 mm).
+    let ctrl = (crate::default_ctrl(offsets, config.degree) != (nu, nv)).then_some((nu, nv));
+    let faired = FitConfig { ctrl, fair, ..*config };
     let out = fit_offsets_with(offsets, &faired, control)?;
     // The faired fit must keep what the search found: within T, and valid if that was.
     let keeps = out.error.overall.max <= t && (out.validity.is_empty() || !r.outcome.validity.is_empty());

@@ -107,3 +107,49 @@ fn a_tolerance_no_plain_fit_reaches_is_met_by_the_default_fit_or_the_error_names
     }
     assert!(e.to_string().contains("at 8x22 control points"), "{e}");
 }
+
+/// `--tolerance default` on the table `name`: the offsets, the default tolerance, the fit and
+/// the search's record.
+fn within_the_default_tolerance(name: &str) -> (Offsets, f64, hull::FitOutcome, hull::ToleranceSearch) {
+    let o = read_offsets(&testdata(name), Units::Metre).expect("reads");
+    let t = hull::default_tolerance(&o).expect("a beam");
+    let (out, search) = quiet(|c| fit_offsets_within(&o, &default_config(), Goal::DefaultTolerance, c)).expect("fits");
+    (o, t, out, search.expect("searched"))
+}
+
+#[test]
+fn where_no_count_tried_is_valid_the_default_count_is_kept_as_the_default_fit_makes_it() {
+    // R/V Gunnerus: every plain fit of the quick search folds at the forecastle step. Faired
+    // within 0.5 % of the beam (48.1 mm) the default count 12x47 keeps its fold (at 163.3 mm,
+    // measured); the default fit fairs its surface hold within its own error and is valid (at
+    // 112.6 mm). `--tolerance default` must not write the folded one.
+    let (o, t, out, search) = within_the_default_tolerance("gunnerus_offsets.csv");
+    assert!(search.kept_default_count && !search.tried.iter().any(|c| c.valid), "{:?}", search.tried);
+    assert!(out.validity.is_empty(), "{:?}", out.validity);
+    // The same surface as the default fit's (`hullskin fit`).
+    let usual = hull::fit_offsets(&o, &default_config()).expect("fits");
+    assert!(usual.validity.is_empty(), "{:?}", usual.validity);
+    assert_eq!(out.surface, usual.surface);
+    // Not within the tolerance, and the summary says so.
+    assert!(out.error.overall.max > t && !search.reached, "{} {t}", out.error.overall.max);
+    let line = search.summary(Units::Metre);
+    assert!(line.contains("kept as the default fit makes it, valid, not within the tolerance"), "{line}");
+}
+
+#[test]
+fn a_count_found_that_is_the_default_count_is_made_as_the_default_fit_makes_it() {
+    // The trawler: the quick search's count is the default 16x16. Fitted at that count as the
+    // default fit fits it, its net-held fit is made again for fairness on universal parameters
+    // (thin-plate energy 125.0 against the plain least squares' 168.3, measured); fitted as a
+    // count given (`--ctrl 16,16`) it is not, and is less fair (346.2).
+    let (o, t, out, search) = within_the_default_tolerance("matlab_trawler.csv");
+    assert_eq!((search.control_points, search.reached, search.valid), ([16, 16], true, true));
+    assert!(out.validity.is_empty() && out.error.overall.max <= t, "{} {:?}", out.error.overall.max, out.validity);
+    let choice = out.fairing.as_ref().and_then(|f| f.alternatives.as_ref()).expect("made again");
+    assert_eq!(choice.reason, hull::AlternativeReason::Fairness);
+    // No less fair than the plain least squares at 16x16, measured independently.
+    let plain = FitConfig { ctrl: Some((16, 16)), envelope: hull::EnvelopeHold::Free, ..FitConfig::default() };
+    let plain = hull::FairnessFigures::of(&hull::fit_offsets(&o, &plain).expect("fits").surface);
+    let used = out.fairness_figures();
+    assert!(used.no_less_fair_than(&plain), "{used:?} against {plain:?}");
+}
