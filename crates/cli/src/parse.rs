@@ -3,9 +3,13 @@
 use hull::{Fairing, FitMethod, Units};
 use nurbs::fit::SkinParameterization;
 
-/// `NU,NV` or `P,Q`: two non-negative integers.
+/// `NU,NV` or `P,Q`: two non-negative integers, also as `NUxNV`, the way the summary prints a
+/// count (so a count read there can be given back as it is).
 pub(crate) fn parse_pair(s: &str) -> Result<(usize, usize), String> {
-    let (a, b) = s.split_once(',').ok_or_else(|| format!("expected two integers like 8,12, got `{s}`"))?;
+    let (a, b) = s
+        .split_once(',')
+        .or_else(|| s.split_once(['x', 'X']))
+        .ok_or_else(|| format!("expected two integers like 8,12 (or 8x12), got `{s}`"))?;
     let p = |t: &str| t.trim().parse::<usize>().map_err(|_| format!("`{t}` is not a non-negative integer (in `{s}`)"));
     Ok((p(a)?, p(b)?))
 }
@@ -44,5 +48,23 @@ pub(crate) fn parse_skin_method(s: &str) -> Result<FitMethod, String> {
             m.name(),
             m.name()
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_pair;
+
+    #[test]
+    fn a_pair_reads_with_a_comma_or_as_the_summary_prints_it() {
+        assert_eq!(parse_pair("8,12"), Ok((8, 12)));
+        assert_eq!(parse_pair(" 8 , 12 "), Ok((8, 12)));
+        assert_eq!(parse_pair("12x47"), Ok((12, 47)));
+        assert_eq!(parse_pair("12X47"), Ok((12, 47)));
+        let e = parse_pair("12;47").expect_err("no separator");
+        assert!(e.contains("expected two integers like 8,12 (or 8x12), got `12;47`"), "{e}");
+        let e = parse_pair("8x-1").expect_err("negative");
+        assert!(e.contains("`-1` is not a non-negative integer (in `8x-1`)"), "{e}");
+        assert!(parse_pair("8x12x3").is_err());
     }
 }

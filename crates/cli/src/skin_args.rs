@@ -21,9 +21,9 @@ pub struct SkinArgs {
     /// built-in Series 60 Cb 0.60 parent hull is used.
     pub input: Option<PathBuf>,
     /// Control points NU,NV of the approximation and of the weight-optimised methods (u along
-    /// each section, v across sections). Default: three quarters of the offsets in each
-    /// direction (of the largest section along u, of the sections along v). Interpolation has
-    /// its own count: one per offset.
+    /// each section, v across sections; also NUxNV, as the summary prints them). Default: three
+    /// quarters of the offsets in each direction (of the largest section along u, of the
+    /// sections along v). Interpolation has its own count: one per offset.
     #[arg(long, value_parser = parse_pair)]
     pub ctrl: Option<(usize, usize)>,
     /// Degrees P,Q in u (along sections) and v (across sections).
