@@ -19,6 +19,18 @@ use nurbs::{
     brent_max, brent_root, Axis, Direction, FirstDerivatives, GaussLegendre, IsoCurve, NurbsSurface, Vec3, MAX_DEGREE,
 };
 
+/// How far a level edge of a fitted surface may lie above the waterline and still be it, in
+/// ulps of the largest |z| of the control net: a cell whose control points lie no higher is
+/// wet whole, and a domain edge within it of the level is the waterline (the top of the
+/// offsets, where the design draft often is). A least-squares fit leaves a level edge level
+/// only to its own round-off: the Wigley table's approximation (9x16) has its top edge's
+/// control points within 10 ulps of z = 6.25 with one order of summation in the band Cholesky
+/// factor and within 17 with another, and the waterline's lift of 16 ulps ([`Integrator::eps`])
+/// alone lost the edge there (Lwl 78.3 for 100). 1024 ulps (1.4e-12 there) leaves a 60-fold
+/// margin; only the cells within it of the level are affected (by at most their waterplane
+/// area times it), not the cut cells of every other draft.
+pub(crate) const EDGE_ULPS: f64 = 1024.0;
+
 /// Subdivision levels of a cell where the level set is monotone in neither parameter.
 const MAX_DEPTH: usize = 6;
 /// Samples per cell edge when looking for the level set's crossings.
@@ -201,6 +213,8 @@ pub(crate) struct Integrator<'a> {
     pub x0: f64,
     /// Round-off of a z coordinate: 16 ulps of the largest |z| of the control net.
     pub eps: f64,
+    /// How far above the waterline a level edge may lie and still be it ([`EDGE_ULPS`]).
+    edge_slack: f64,
     /// Diagonal of the control net's bounding box.
     pub size: f64,
     /// Whether any knot span is a web ([`web_spans`]).
@@ -274,7 +288,8 @@ impl<'a> Integrator<'a> {
             }
         }
         let (lo, hi) = s.control_bounds();
-        let eps = 16.0 * f64::EPSILON * lo.z.abs().max(hi.z.abs()).max(f64::MIN_POSITIVE);
+        let ulp = f64::EPSILON * lo.z.abs().max(hi.z.abs()).max(f64::MIN_POSITIVE);
+        let (eps, edge_slack) = (16.0 * ulp, EDGE_ULPS * ulp);
         let size = (hi - lo).norm();
         // Sampled extent in z: 8 intervals per knot span and direction, span ends included.
         let samples = |k: &[f64], spans: &[usize]| -> Vec<f64> {
@@ -308,6 +323,7 @@ impl<'a> Integrator<'a> {
             bottom,
             x0: 0.5 * (lo.x + hi.x),
             eps,
+            edge_slack,
             size,
             has_web,
         }
@@ -340,18 +356,19 @@ impl<'a> Integrator<'a> {
     /// The wet part of the surface below the level `level` (`z <= level`): the surface
     /// integrals, the waterline integrals and the waterline's pieces. Edges of the domain
     /// whose control points all lie within `band` below `level` are the waterline (a hull
-    /// whose top edge is the waterline, like the Wigley hull at its draft).
+    /// whose top edge is the waterline, like the Wigley hull at its draft), both bounds
+    /// widened by the round-off of a fitted level edge ([`EDGE_ULPS`]).
     pub(crate) fn wet(&self, level: f64, band: f64) -> Wet {
         let mut wet = Wet::default();
         for cell in &self.cells {
-            if cell.hi.z <= level {
+            if cell.hi.z <= level + self.edge_slack {
                 self.full(cell.rect, cell.web, &mut wet.sums);
             } else if cell.lo.z <= level {
                 self.cut(cell.rect, cell.web, level, 0, &mut wet);
             }
         }
         for e in &self.edges {
-            if e.zlo >= level - band && e.zhi <= level {
+            if e.zlo >= level - band - self.edge_slack && e.zhi <= level + self.edge_slack {
                 self.edge_waterline(e, &mut wet);
             }
         }

@@ -645,16 +645,39 @@ mod tests {
     /// knot) at the bilge: u runs across the flat bottom from the centre plane to the bilge,
     /// then up the side to the deck edge; v runs along the length.
     fn barge() -> NurbsSurface {
+        barge_topped([0.0, 0.0])
+    }
+
+    /// The barge with the deck edge's ends at `D + dz` (aft, fore), as a fit leaves a level
+    /// edge: level to round-off.
+    fn barge_topped(dz: [f64; 2]) -> NurbsSurface {
         let ku = KnotVector::try_new(1, vec![0.0, 0.0, 0.5, 1.0, 1.0]).expect("valid");
         let kv = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).expect("valid");
         let section = [(0.0, 0.0), (HB, 0.0), (HB, D)];
         let mut pts = Vec::new();
-        for (y, z) in section {
-            for x in [0.0, LB] {
-                pts.push(Vec3::new(x, y, z));
+        for (k, (y, z)) in section.into_iter().enumerate() {
+            for (x, dz) in [0.0, LB].into_iter().zip(dz) {
+                pts.push(Vec3::new(x, y, if k == 2 { z + dz } else { z }));
             }
         }
         NurbsSurface::try_new(ku, kv, &pts, None).expect("valid barge")
+    }
+
+    #[test]
+    fn a_deck_edge_level_to_round_off_is_the_waterline_at_its_draft() {
+        // The Wigley table's approximation has its top edge within 17 ulps of its level on one
+        // build; 16 lost the waterline there (Lwl 78.3 for 100). 100 ulps either way, below the
+        // 1024 of `EDGE_ULPS`: the waterline is the deck edge, as on the exact barge.
+        let ulp = f64::EPSILON * D;
+        for dz in [[100.0 * ulp, -100.0 * ulp], [-100.0 * ulp, 100.0 * ulp], [100.0 * ulp, 100.0 * ulp]] {
+            let s = barge_topped(dz);
+            let h = Hydrostatics::new(&s, &HydrostaticsOptions::default()).expect("valid options");
+            let row = h.at(D).expect("a draft on the hull");
+            // The waterplane and its length exactly; the volume to the deck edge's tilt.
+            assert_near!(row.lwl, LB, 1e-12 * LB, "{dz:?}");
+            assert_near!(row.aw, 2.0 * HB * LB, 1e-12 * HB * LB, "{dz:?}");
+            assert_near!(row.vol, 2.0 * HB * LB * D, 1e-12 * HB * LB * D, "{dz:?}");
+        }
     }
 
     fn barge_truth(t: f64) -> HydrostaticsRow {
