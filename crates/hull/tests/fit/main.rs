@@ -16,5 +16,6 @@ mod held_out;
 mod held_out_referee;
 mod pipeline_props;
 mod real_hull_features;
+mod round_off;
 mod tolerance_referee;
 mod validity;

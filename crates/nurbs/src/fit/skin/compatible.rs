@@ -288,11 +288,11 @@ pub(super) fn fit_along(
 
 /// The candidate of least score (the first on a tie), or the first error when none succeeds;
 /// every candidate is tried. `what` names the candidates, which are never none.
-pub(super) fn least_score<T>(
-    candidates: impl IntoIterator<Item = Result<(f64, T), NurbsError>>,
+pub(super) fn least_score<S: PartialOrd, T>(
+    candidates: impl IntoIterator<Item = Result<(S, T), NurbsError>>,
     what: &str,
-) -> Result<(f64, T), NurbsError> {
-    let mut best: Option<(f64, T)> = None;
+) -> Result<(S, T), NurbsError> {
+    let mut best: Option<(S, T)> = None;
     let mut first_error = None;
     for candidate in candidates {
         match candidate {
