@@ -369,7 +369,7 @@ fn searched_and_faired(
     // The default count as the default fit makes it (`ctrl: None`), with its alternatives for
     // validity and fairness: measured on the trawler, whose count found is the default 16x16,
     // the fit on universal parameters faired against the plain least squares (thin-plate energy
-    // 124.5 against 346.2 for the default parameters' held net, both within 52.8 mm).
+    // 125.0 against 346.2 for the default parameters' held net, both within 52.8 mm).
     let ctrl = (crate::default_ctrl(offsets, config.degree) != (nu, nv)).then_some((nu, nv));
     let faired = FitConfig { ctrl, fair, ..*config };
     let out = fit_offsets_with(offsets, &faired, control)?;

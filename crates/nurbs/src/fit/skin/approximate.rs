@@ -64,7 +64,9 @@ use crate::{NurbsError, NurbsSurface, Vec3};
 ///    factorization per placement for all columns, the first and last sections interpolated,
 ///    and again the placement with the least `sum over columns of (residual + λ E)` is kept.
 /// 3. Of the two parameter choices of step 1 (equal counts only), the surface with the least
-///    `sum |S(u_k, v_k) - Q_k|^2` over all offsets is returned, or only the one
+///    `sum |S(u_k, v_k) - Q_k|^2` over all offsets is returned (residuals within round-off,
+///    as at the interpolation counts, tie, and the tie goes to the least penalized residual
+///    of step 1: the less bending along the sections), or only the one
 ///    [`SkinOptions::along`] imposes is fitted ([`SkinResult::along`] says which it is).
 ///
 /// Degrees: `p = min(degree_u, N - 1)` with `N` the largest non-degenerate section (shorter
@@ -108,8 +110,8 @@ pub fn skin_approximate(
 /// the diagonal of the points' bounding box. Below it a residual is round-off: at the
 /// interpolation counts every candidate passes through the points, and which residual came out
 /// smaller depended on the order of summation in the band Cholesky factor (the Series 60 Cb 0.65
-/// parent at 8x25: 1.5e-25 and 1.8e-25 swapped places, and the net, under-determined between
-/// the points by the choice, moved by 1.7 m). Far above that rounding and far below any
+/// parent at 8x25: 1.5e-25 and 1.8e-25 swapped places, and the net, which the choice decides
+/// between the points, moved by 1.7 m). Far above that rounding and far below any
 /// approximation's residual (1e-12 of a 122 m hull is 0.1 nm).
 fn residual_floor(sections: &[Vec<Vec3>]) -> f64 {
     let mut points = sections.iter().flatten();
