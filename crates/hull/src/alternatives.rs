@@ -153,9 +153,10 @@ pub(crate) fn sounder_alternative(
     let alternatives: Vec<FitConfig> = match reason {
         AlternativeReason::Validity => surface.chain(params).chain(counts).collect(),
         // Faired within the same tolerance as `chosen`, not within its own least squares' max
-        // error: the fairest surface within it is what is asked for (the 4 x 3 example's held
-        // on its surface is at 114.9 mm; within 145.3 mm, `chosen`'s, `ν` = 1e-2 makes it
-        // fairer than the plain least squares by every figure at 125 mm).
+        // error: the fairest surface within it is what is asked for (measured on the 4 x 3
+        // example while its plain fit was on averaged parameters: held on its surface at
+        // 114.9 mm; within 145.3 mm, `chosen`'s, `ν` = 1e-2 made it fairer than the plain least
+        // squares by every figure at 125 mm).
         AlternativeReason::Fairness => surface
             .chain(FAIRNESS_PARAMETERIZATIONS.iter().map(|&param| FitConfig { param, ..*config }))
             .map(|c| FitConfig { fair: Fairing::Auto { tolerance: Some(limit) }, ..c })

@@ -322,8 +322,9 @@ fn measured_if(
 /// where that choice is not `plain`'s, the fit on `plain`'s too, after it, named by the choice
 /// imposed (`own` or `mean`). With smoothing the residuals of the two choices move differently
 /// and the least one can flip between `ν = 0` and the smallest `ν`, so the smoothed fits would
-/// not be the plain fit smoothed: the 4 x 3 example's plain fit is on averaged parameters
-/// (145.3 mm held on its net), its smoothed fits on own ones (201 mm at `ν` = 1e-4), and only
+/// not be the plain fit smoothed: the 4 x 3 example's plain fit was on averaged parameters
+/// (145.3 mm held on its net; on its own since its interpolants' tie goes to the less bending,
+/// `nurbs::fit::skin_approximate`), its smoothed fits on own ones (201 mm at `ν` = 1e-4), and only
 /// averaged ones smooth it within its max error (held on its surface at `ν` = 1e-2: 125 mm,
 /// thin-plate energy 10.18 against the plain least squares' 10.81). Where the other choice is
 /// the fairer one (the DTMB 5415 main hull), it stays first. Without `imposing`, the skin's own

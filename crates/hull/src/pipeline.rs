@@ -411,15 +411,19 @@ fn assembled(
     let error = finite(config, crate::fit_error::parametric_fit_error(&surface, offsets, &params))?;
     let error_seconds = start.elapsed().as_secs_f64();
     let (validity, folds) = match config.envelope {
-        EnvelopeHold::Own if look != Look::All => {
+        EnvelopeHold::Own => {
             let check = crate::analysis::fit_face_check(&surface, offsets)?;
-            if look == Look::AllUnlessHeld && check.faces.is_empty() {
+            let every = match look {
+                Look::All => true,
+                Look::AllUnlessHeld => check.faces.is_empty(),
+                Look::Faces => false,
+            };
+            if every {
                 check.complete(&surface)
             } else {
                 (check.faces, Vec::new())
             }
         }
-        EnvelopeHold::Own => crate::analysis::fit_validity_and_folds(&surface, offsets)?,
         _ => (Vec::new(), Vec::new()),
     };
     Ok(FitOutcome {

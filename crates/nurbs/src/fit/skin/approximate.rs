@@ -6,8 +6,8 @@ use super::compatible::fit_along;
 use super::compatible::least_score;
 use super::sections::{classify, data_params, max_count, own_params, Section, UParams};
 use super::{checked, AlongParameters, SkinOptions, SkinResult};
-use crate::fit::common_parameters;
 use crate::fit::knots::check_ctrl_count;
+use crate::fit::{bounding_diagonal, common_parameters};
 use crate::{NurbsError, NurbsSurface, Vec3};
 
 /// Approximating skin: a surface with `nu x nv` control points, degrees `(p, q)`, fitted by
@@ -114,18 +114,8 @@ pub fn skin_approximate(
 /// between the points, moved by 1.7 m). Far above that rounding and far below any
 /// approximation's residual (1e-12 of a 122 m hull is 0.1 nm).
 fn residual_floor(sections: &[Vec<Vec3>]) -> f64 {
-    let mut points = sections.iter().flatten();
-    let Some(&first) = points.next() else { return 0.0 };
-    let (mut lo, mut hi, mut n) = (first.to_array(), first.to_array(), 1usize);
-    for p in points {
-        for (c, v) in p.to_array().into_iter().enumerate() {
-            lo[c] = lo[c].min(v);
-            hi[c] = hi[c].max(v);
-        }
-        n += 1;
-    }
-    let size = Vec3::from_array(hi).distance(Vec3::from_array(lo));
-    n as f64 * (1e-12 * size).powi(2)
+    let n = sections.iter().map(Vec::len).sum::<usize>();
+    n as f64 * (1e-12 * bounding_diagonal(sections.iter().flatten())).powi(2)
 }
 
 /// The parameter candidates along the sections, each with the choice it is, from each
