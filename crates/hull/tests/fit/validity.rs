@@ -332,9 +332,10 @@ fn a_surface_hold_past_the_allowance_between_its_samples_is_held_nearer() {
 /// finds (`check_fit_validity`, every finding afresh), whichever way the fit came to it: a skin
 /// that crosses a face of the envelope is looked at against the faces only before its hold
 /// refits it, and completed where it is not refitted after all. Tables whose least squares
-/// crosses faces and is held (the sample, the trawler, the cargo ship with its flats), one held
-/// on its surface (the 4 x 3 example), one within the envelope (the Wigley hull); the plain fit,
-/// the default fit and the surface hold; and two whose held plain fits keep a finding that is
+/// crosses faces and is held (the sample, the trawler, the cargo ship with its flats), an
+/// interpolation at its count that dips below the baseline (the 4 x 3 example), one within the
+/// envelope (the Wigley hull); the plain fit, the default fit, the surface hold and the flats
+/// kept sharp; and two whose held plain fits keep a finding that is
 /// not against a face (R/V Gunnerus's fold, the frigate's inward-facing facets).
 #[test]
 fn every_fit_reports_the_findings_an_independent_check_of_its_surface_finds() {
