@@ -72,7 +72,9 @@ pub use error::NurbsError;
 pub use grid::{FirstDerivatives, FirstDerivativesCache};
 pub use iso::{Direction, IsoCurve};
 pub use knots::{split_spans, KnotVector, MAX_DEGREE};
-pub use linalg::{band_cholesky, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu};
+pub use linalg::{
+    band_cholesky, band_forward, band_solve, dense_cholesky, dense_solve, dot, BadPivot, BandedCholesky, BandedLu,
+};
 pub use mesh::{EdgeCounts, TriMesh};
 // Planes normal to a coordinate axis, with their 2-D drawing coordinates.
 pub use plane::{Axis, AxisPlane};

@@ -236,15 +236,15 @@ fn checked_sqrt(i: usize, aii: f64, d: f64) -> Result<f64, BadPivot> {
     }
 }
 
-/// Overwrite `b` with `A^{-1} b` from the factor `l` of [`band_cholesky`]; each `[f64; D]` is
-/// one row of `D` right-hand sides.
-pub fn band_solve<const D: usize>(l: &[f64], n: usize, bw: usize, stride: usize, b: &mut [[f64; D]]) {
-    let w = bw + 1;
+/// Overwrite `b` with `L^{-1} b` (forward substitution, by rows) for the factor `l` of
+/// [`band_cholesky`], when `b` is zero before row `start` (so is the result there, and those
+/// rows are skipped); each `[f64; D]` is one row of `D` right-hand sides. [`band_solve`]'s
+/// first half, for `start` 0.
+pub fn band_forward<const D: usize>(l: &[f64], n: usize, bw: usize, stride: usize, b: &mut [[f64; D]], start: usize) {
     debug_assert_eq!(b.len(), n);
-    // Forward: L y = b, by rows.
-    for i in 0..n {
-        let row = &l[i * stride..i * stride + w];
-        let k0 = i.saturating_sub(bw);
+    for i in start..n {
+        let row = &l[i * stride..i * stride + bw + 1];
+        let k0 = i.saturating_sub(bw).max(start);
         let (done, rest) = b.split_at_mut(i);
         let mut s = rest[0];
         for (lk, bk) in row[k0 + bw - i..bw].iter().zip(&done[k0..]) {
@@ -256,6 +256,14 @@ pub fn band_solve<const D: usize>(l: &[f64], n: usize, bw: usize, stride: usize,
         s.iter_mut().for_each(|t| *t /= d);
         rest[0] = s;
     }
+}
+
+/// Overwrite `b` with `A^{-1} b` from the factor `l` of [`band_cholesky`]; each `[f64; D]` is
+/// one row of `D` right-hand sides.
+pub fn band_solve<const D: usize>(l: &[f64], n: usize, bw: usize, stride: usize, b: &mut [[f64; D]]) {
+    let w = bw + 1;
+    // Forward: L y = b, by rows.
+    band_forward(l, n, bw, stride, b, 0);
     // Backward: L^T x = y, by columns of L^T (rows of L, read contiguously): x_i is final
     // once every later x_k has been subtracted from it, then subtracted from the rows above.
     for i in (0..n).rev() {
@@ -482,6 +490,39 @@ mod tests {
                     assert!((b[i][c] - x_true[i][c]).abs() < 1e-12, "band n {n} i {i}");
                 }
                 assert!((bd[i] - x_true[i][1]).abs() < 1e-12, "dense n {n} i {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_forward_substitution_from_a_later_row_gives_the_full_ones_result() {
+        // A right-hand side zero before row `start` (a column of a sparse Jacobian): the
+        // forward pass begun there is the whole pass bit for bit (the skipped rows would only
+        // subtract zeros), and `L y` gives back the right-hand side.
+        let mut seed = 11;
+        let (n, bw) = (30, 5);
+        let a = spd(n, bw, &mut seed);
+        let stride = bw + 1;
+        let mut band = vec![0.0; n * stride];
+        for i in 0..n {
+            for j in i.saturating_sub(bw)..=i {
+                band[i * stride + j + bw - i] = a[i * n + j];
+            }
+        }
+        assert!(band_cholesky(&mut band, n, bw, stride).is_ok());
+        for start in [0, 1, 7, 29] {
+            let b: Vec<[f64; 2]> =
+                (0..n).map(|i| if i < start { [0.0; 2] } else { [pseudo_random(&mut seed), -1.0] }).collect();
+            let (mut from, mut whole) = (b.clone(), b.clone());
+            band_forward(&band, n, bw, stride, &mut from, start);
+            band_forward(&band, n, bw, stride, &mut whole, 0);
+            assert_eq!(from, whole, "start {start}");
+            for i in 0..n {
+                for c in 0..2 {
+                    let ly: f64 = (i.saturating_sub(bw)..=i).map(|k| band[i * stride + k + bw - i] * from[k][c]).sum();
+                    // |L| |y| is O(10) here: a few ulps of it.
+                    assert!((ly - b[i][c]).abs() < 1e-12, "start {start} row {i}");
+                }
             }
         }
     }

@@ -125,8 +125,8 @@ impl WeightProblem {
             // The d substitutions and `W^T W` (most of the cost, `d^2 n / 2` at full, by blocks:
             // `subtract_gram_below`) on rayon's pool, each entry the same sum whatever the thread
             // count.
-            z.par_chunks_mut(n).zip(&start).for_each(|(zv, &sv)| band_forward_from(&sc.band, n, bw, stride, zv, sv));
-            band_forward_from(&sc.band, n, bw, stride, &mut hte, 0);
+            z.par_chunks_mut(n).zip(&start).for_each(|(zv, &sv)| nurbs::band_forward(&sc.band, n, bw, stride, zv, sv));
+            nurbs::band_forward(&sc.band, n, bw, stride, &mut hte, 0);
             let t = hte.as_flattened();
             let w_of = |v: usize| z[v * n..(v + 1) * n].as_flattened();
             // The first non-zero of each `W_v` (flattened: 3 coordinates a row).
@@ -198,23 +198,5 @@ impl WeightProblem {
             return None;
         }
         Some((jtj, jtr))
-    }
-}
-
-/// Overwrite `b` with `L^{-1} b` (forward substitution) for the band Cholesky factor `l` of
-/// `band_cholesky`, when `b` is zero before row `start` (so is the result).
-fn band_forward_from(l: &[f64], n: usize, bw: usize, stride: usize, b: &mut [[f64; 3]], start: usize) {
-    for i in start..n {
-        let row = &l[i * stride..i * stride + bw + 1];
-        let k0 = i.saturating_sub(bw).max(start);
-        let (done, rest) = b.split_at_mut(i);
-        let mut s = rest[0];
-        for (lk, bk) in row[k0 + bw - i..bw].iter().zip(&done[k0..]) {
-            s[0] -= lk * bk[0];
-            s[1] -= lk * bk[1];
-            s[2] -= lk * bk[2];
-        }
-        let dg = row[bw];
-        rest[0] = [s[0] / dg, s[1] / dg, s[2] / dg];
     }
 }
