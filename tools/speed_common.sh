@@ -11,12 +11,18 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 # Every table of testdata/: the offset tables and sections, and the meshes (sliced at the default
 # stations as `hullskin fit MESH` slices them; issue 11's floors name the DTC and DTMB 5415
-# meshes).
-if [ $# -gt 0 ]; then tables=("$@"); else tables=(testdata/*.csv testdata/mesh/*.stl.gz); fi
+# meshes; the FastShip designs in VRML are in shared/data too).
+if [ $# -gt 0 ]; then tables=("$@"); else tables=(testdata/*.csv testdata/mesh/*.stl.gz testdata/mesh/*.wrl.gz); fi
 # The options a table needs besides its path, for every command that reads it: the OpenFOAM
 # Wigley mesh has x from -L/2 and z = 0 at the waterline, shifted to x from its aft end and z from
-# its keel (hullskin's axes; the slice tests do the same).
-opts() { case "$(basename "$1")" in wigley.stl.gz) echo "--shift 0.5,0,0.0625" ;; esac; }
+# its keel (hullskin's axes; the slice tests do the same); the FastShip container ship and
+# dragger have z down (deck at z < 0), turned up by --axes (shared/data/fastship_sample_hulls).
+opts() {
+  case "$(basename "$1")" in
+    wigley.stl.gz) echo "--shift 0.5,0,0.0625" ;;
+    fastship_cont.wrl.gz | fastship_50dragger.wrl.gz) echo "--axes x,y,-z" ;;
+  esac
+}
 best() { tr ' ' '\n' | grep -v '^$' | sort -g | head -1; }
 # The floor tables' last line: how many rows (tables) hold, i.e. have no `**no**` in any column.
 tally() {

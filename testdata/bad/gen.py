@@ -156,6 +156,12 @@ def box():
 # The same box as OBJ quads.
 OBJ_BOX = "v 0 -2 0\nv 10 -2 0\nv 10 2 0\nv 0 2 0\nv 0 -2 2\nv 10 -2 2\nv 10 2 2\nv 0 2 2\n" \
     "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n"
+# The same box as VRML 2.0 (a line per statement; corner indices from 0).
+WRL_BOX = "#VRML V2.0 utf8\n# the OBJ box\nShape {\n  geometry IndexedFaceSet {\n    coord Coordinate {\n" \
+    "      point [\n" + "".join(f"        {l[2:]},\n" for l in OBJ_BOX.split("\n") if l.startswith("v ")) + \
+    "      ]\n    }\n    coordIndex [\n" + \
+    "".join("      " + ", ".join(str(int(i) - 1) for i in l[2:].split()) + ", -1,\n"
+            for l in OBJ_BOX.split("\n") if l.startswith("f ")) + "    ]\n  }\n}\n"
 
 
 def gz(data):
@@ -409,6 +415,16 @@ def build():
         "99999999999999999999999", "a face index beyond any integer")
     bad("obj_nan_vertex.obj", obj.replace("v 10 2 2", "v 10 nan 2"), "fit", ":7", "finite", "a `nan` vertex")
     bad("obj_no_faces.obj", "\n".join(obj.split("\n")[:8]) + "\n", "slice", "", "triangle", "vertices, no face")
+    wrl = WRL_BOX
+    bad("vrml_index_out_of_range.wrl", wrl.replace("1, 5, 6, 2, -1", "1, 5, 6, 99, -1"), "fit", ":21", "99",
+        "a face corner 99 of 8 points (VRML counts from 0)")
+    bad("vrml_odd_point_list.wrl", wrl.replace("10 2 2,", "10 2,"), "slice", ":13", "not a multiple of 3",
+        "a point with two coordinates")
+    bad("vrml_transform.wrl", wrl.replace("Shape {", "Transform { translation 0 0 1.5 children [ Shape {").replace(
+        "  }\n}\n", "  }\n} ] }\n"), "fit", ":3", "does not apply transforms",
+        "the box moved by a Transform, which hullskin would not apply")
+    bad("vrml_no_header.wrl", wrl.replace("#VRML V2.0 utf8", "VRML V2.0 utf8"), "slice", ":1", "#VRML V1.0",
+        "the `#VRML` header line missing")
 
     # ----- drawings (digitize) -----
     dxf = DXF_HEAD + DXF_LINE + "0\nENDSEC\n0\nEOF\n"
@@ -490,6 +506,7 @@ def accepted():
     ACCEPTED.append(("box_bom_crlf.obj", "\ufeff" + OBJ_BOX.replace("\n", "\r\n"), "box_clean.obj",
                      "the OBJ box with a BOM and CRLF"))
     ACCEPTED.append(("box_clean.stl", stl_ascii(box()), "box_clean.stl", "the box as an ASCII STL"))
+    ACCEPTED.append(("box_clean.wrl", WRL_BOX, "box_clean.obj", "the OBJ box as VRML 2.0"))
     ACCEPTED.append(("box_bom.stl", "\ufeff" + stl_ascii(box()), "box_clean.stl",
                      "the ASCII STL box with a BOM"))
     ACCEPTED.append(("table_semicolon_quoted.csv", TABLE.replace(",", ";").replace("2.45", '"2,45"'),

@@ -18,7 +18,7 @@ use crate::stdout::{out, outln};
     .help("Offsets file: a sections CSV (header `section,x,y,z`) or an offset table CSV (first row station \
            positions, first column waterline heights, cells half-breadths), or any format of `hull::read_offsets` (Series 60 \
            table, long CSV, JSON table, point cloud, FREE!ship text), recognised by its content; or a hull mesh \
-           (`.stl`, `.stl.gz`, `.obj`), sliced at stations first (`--stations`, `--spacing`, `--at`, ...); or, with \
+           (`.stl`, `.obj`, `.wrl`, each optionally `.gz`), sliced at stations first (`--stations`, `--spacing`, `--at`, ...); or, with \
            --offsets FILE, a surface (surface.json, IGES, STEP) to measure against them. Without it the built-in \
            Series 60 Cb 0.60 parent hull is used")))]
 pub struct FitArgs {

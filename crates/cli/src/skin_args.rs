@@ -16,7 +16,7 @@ pub struct SkinArgs {
     /// Offsets file: a sections CSV (header `section,x,y,z`) or an offset table CSV (first row
     /// station positions, first column waterline heights, cells half-breadths), or any format
     /// of `hull::read_offsets` (Series 60 table, long CSV, JSON table, point cloud, FREE!ship text),
-    /// recognised by its content; or a hull mesh (`.stl`, `.stl.gz`, `.obj`), sliced at
+    /// recognised by its content; or a hull mesh (`.stl`, `.obj`, `.wrl`, each optionally `.gz`), sliced at
     /// stations first (`--stations`, `--spacing`, `--at`, ...). Without it the
     /// built-in Series 60 Cb 0.60 parent hull is used.
     pub input: Option<PathBuf>,
@@ -94,7 +94,7 @@ pub struct SkinArgs {
     /// where it leaves.
     #[arg(long, value_enum, default_value = "hold")]
     pub envelope: EnvelopeArg,
-    /// How a mesh input (`.stl`, `.stl.gz`, `.obj`) is sliced into sections first.
+    /// How a mesh input (`.stl`, `.obj`, `.wrl`, each optionally `.gz`) is sliced into sections first.
     #[command(flatten)]
     pub mesh: crate::slice::MeshArgs,
 }

@@ -127,7 +127,7 @@ pub fn mesh_offsets(path: &Path, args: &MeshArgs, units: Units) -> anyhow::Resul
 /// Arguments of `hullskin slice`.
 #[derive(Debug, Args)]
 pub struct SliceArgs {
-    /// The mesh: STL (ASCII or binary) or OBJ, optionally gzip-compressed (.stl.gz).
+    /// The mesh: STL (ASCII or binary), OBJ or VRML 1.0/2.0 (.wrl), optionally gzip-compressed (.stl.gz).
     pub input: PathBuf,
     #[command(flatten)]
     pub mesh: MeshArgs,

@@ -606,7 +606,7 @@ pub enum InputErrorKind {
         increasing: bool,
     },
 
-    // ----- meshes (STL, OBJ) -----
+    // ----- meshes (STL, OBJ, VRML) -----
     /// A mesh file that breaks its format, or a mesh that cannot be sliced: what was found
     /// (with the byte offset for binary files) and what was expected.
     #[error("{found} (expected {expected})")]

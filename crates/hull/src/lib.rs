@@ -37,7 +37,7 @@
 //!
 //! | feature | what it enables | dependencies |
 //! | --- | --- | --- |
-//! | `gzip` | gzip-compressed meshes (`.stl.gz`, `.obj.gz`) in [`read_mesh`], [`parse_mesh`], [`gunzip`] | flate2 |
+//! | `gzip` | gzip-compressed meshes (`.stl.gz`, `.obj.gz`, `.wrl.gz`) in [`read_mesh`], [`parse_mesh`], [`gunzip`] | flate2 |
 //! | `svg` | SVG drawings in [`read_drawing`], [`parse_drawing`], [`parse_svg`] (DXF needs nothing) | svgtypes, roxmltree |
 //!
 //! # Limits
@@ -198,13 +198,13 @@ pub use limits::{
     MAX_OPTIM_ITERATIONS, MAX_OPTIM_POPULATION, MAX_OPTIM_VARIABLES, MAX_POINTS, MAX_POINTS_PER_SECTION, MAX_SECTIONS,
     MAX_STEP_INSTANCES, MAX_SURFACE_JSON_BYTES,
 };
-// Triangle meshes: read (STL, OBJ, gzip), sliced into offsets, measured, written.
+// Triangle meshes: read (STL, OBJ, VRML, gzip), sliced into offsets, measured, written.
 pub use mesh::{
     gunzip, looks_binary as looks_like_binary_stl, mesh_distance, mesh_hydrostatics, parse_mesh, parse_obj, parse_stl,
-    read_mesh, slice_mesh, starts_with_solid, station_positions, weld, write_obj, write_stl_ascii, write_stl_binary,
-    Axes, DroppedStation, MeshDistance, MeshFormat, MeshHydrostatics, MeshReadOptions, Resample, SliceOptions,
-    SliceOutcome, Spacing, StationInfo as KeptStation, Stations, TriangleSoup, VertexFilter, END_INSET, END_SLIVER,
-    MAX_DECOMPRESSED, MAX_STATIONS, STL_HEADER_LEN,
+    parse_vrml, read_mesh, slice_mesh, starts_with_solid, station_positions, weld, write_obj, write_stl_ascii,
+    write_stl_binary, Axes, DroppedStation, MeshDistance, MeshFormat, MeshHydrostatics, MeshReadOptions, Resample,
+    SliceOptions, SliceOutcome, Spacing, StationInfo as KeptStation, Stations, TriangleSoup, VertexFilter, END_INSET,
+    END_SLIVER, MAX_DECOMPRESSED, MAX_STATIONS, STL_HEADER_LEN,
 };
 // The kernel's triangle mesh and tessellation, under the paths hull has always given them.
 pub use nurbs::{

@@ -16,7 +16,7 @@ use crate::HullError;
 /// 40 bytes a point, so [`MAX_POINTS`] is about 80 MB; 256 MiB leaves room for comments, wide
 /// number formats and JSON.
 pub const MAX_OFFSETS_FILE_BYTES: u64 = 256 << 20;
-/// Bytes of a mesh file (STL, OBJ, before gunzip; the decompressed size has the same cap,
+/// Bytes of a mesh file (STL, OBJ, VRML, before gunzip; the decompressed size has the same cap,
 /// [`crate::mesh::MAX_DECOMPRESSED`]). A binary STL of [`MAX_MESH_TRIANGLES`] is 1.0 GB.
 pub const MAX_MESH_FILE_BYTES: u64 = 1 << 30;
 /// Bytes of a drawing to digitise (DXF, SVG). A traced body plan is a few MB.

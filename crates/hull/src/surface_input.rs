@@ -23,8 +23,8 @@ pub enum SurfaceInput<'a> {
     Offsets,
 }
 
-/// True if `path` names a mesh: `.stl`, `.obj`, either optionally followed by `.gz`
-/// ([`MeshFormat::from_path`]).
+/// True if `path` names a mesh: `.stl`, `.obj`, `.wrl`, `.vrml`, each optionally followed by
+/// `.gz`, or `.wrz` ([`MeshFormat::from_path`]).
 pub fn is_mesh_path(path: &Path) -> bool {
     MeshFormat::from_path(path).is_some()
 }
@@ -90,7 +90,14 @@ mod tests {
 
     #[test]
     fn mesh_paths_by_extension() {
-        for (p, mesh) in [("a.stl", true), ("b/A.STL.GZ", true), ("c.obj", true), ("d.csv", false), ("e.json", false)] {
+        for (p, mesh) in [
+            ("a.stl", true),
+            ("b/A.STL.GZ", true),
+            ("c.obj", true),
+            ("h.WRL", true),
+            ("d.csv", false),
+            ("e.json", false),
+        ] {
             assert_eq!(is_mesh_path(Path::new(p)), mesh, "{p}");
         }
     }

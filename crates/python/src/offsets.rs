@@ -31,8 +31,7 @@ impl PyOffsets {
         let Some(path) = path else {
             return Ok(PyOffsets { offsets: hull::series60_sample(), notes: Vec::new(), warnings: Vec::new() });
         };
-        let name = path.display().to_string().to_ascii_lowercase();
-        if name.ends_with(".stl") || name.ends_with(".stl.gz") || name.ends_with(".obj") {
+        if hull::is_mesh_path(&path) {
             return Err(bad_arg(format!(
                 "{}: a mesh; hullskin.read_offsets reads offsets (slice a mesh with the command line: hullskin fit \
                  MESH --stations N)",

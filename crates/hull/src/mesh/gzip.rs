@@ -1,4 +1,4 @@
-//! Gzip-compressed meshes (`.stl.gz`, `.obj.gz`): recognised by the magic bytes, decompressed
+//! Gzip-compressed meshes (`.stl.gz`, `.obj.gz`, `.wrl.gz`): recognised by the magic bytes, decompressed
 //! by flate2 behind the cargo feature `gzip` (on by default). Without it a gzip stream is a
 //! [`HullError::FeatureDisabled`] error, never a panic.
 

@@ -1,9 +1,10 @@
-//! Triangle meshes of a hull (STL, OBJ): reading, slicing into sections for the fit, and
+//! Triangle meshes of a hull (STL, OBJ, VRML): reading, slicing into sections for the fit, and
 //! measuring a fitted surface against the mesh.
 //!
 //! - [`read_mesh`] / [`parse_mesh`]: ASCII and binary STL ([`stl`]), Wavefront OBJ ([`obj`]),
-//!   either gzip-compressed (recognised by the gzip magic bytes, whatever the file name), the
-//!   text forms with or without a UTF-8 byte-order mark; the triangles are welded into an
+//!   VRML 1.0 and 2.0 indexed face sets ([`vrml`]), each gzip-compressed or not (recognised
+//!   by the gzip magic bytes, whatever the file name), the text forms with or without a UTF-8
+//!   byte-order mark; the triangles are welded into an
 //!   indexed [`TriMesh`] (the kernel's one mesh type, which a tessellated surface is too,
 //!   written by [`stl::write_stl_ascii`], [`stl::write_stl_binary`] and [`obj::write_obj`]).
 //! - [`slice::slice_mesh`]: cuts at stations `x = const`, each chained into one polyline on
@@ -21,6 +22,7 @@ mod hydrostatics;
 mod obj;
 mod slice;
 mod stl;
+mod vrml;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -40,6 +42,7 @@ pub use slice::{
     Stations, END_INSET, END_SLIVER, MAX_STATIONS,
 };
 pub use stl::{looks_binary, parse_stl, starts_with_solid, write_stl_ascii, write_stl_binary, STL_HEADER_LEN};
+pub use vrml::parse_vrml;
 
 /// A signed permutation of the axes: which coordinate of the file (and with which sign) gives
 /// hullskin's x, y and z. Written `x,y,z` (the identity), `z,x,y`, `-x,-y,z`, ...; it must
@@ -127,11 +130,14 @@ pub enum MeshFormat {
     Stl,
     /// Wavefront OBJ.
     Obj,
+    /// VRML 1.0 or 2.0 (VRML97): its indexed face sets.
+    Vrml,
 }
 
 impl MeshFormat {
-    /// The format named by a file name's extension (`.stl`, `.obj`, either followed by `.gz`;
-    /// case-insensitive), `None` for another name.
+    /// The format named by a file name's extension (`.stl`, `.obj`, `.wrl`, `.vrml`, each
+    /// optionally followed by `.gz`, and `.wrz`, gzipped VRML; case-insensitive), `None` for
+    /// another name.
     pub fn from_path(path: &Path) -> Option<MeshFormat> {
         let name = path.file_name()?.to_string_lossy().to_ascii_lowercase();
         let name = name.strip_suffix(".gz").unwrap_or(&name);
@@ -139,15 +145,20 @@ impl MeshFormat {
             Some(MeshFormat::Stl)
         } else if name.ends_with(".obj") {
             Some(MeshFormat::Obj)
+        } else if [".wrl", ".vrml", ".wrz"].iter().any(|e| name.ends_with(e)) {
+            Some(MeshFormat::Vrml)
         } else {
             None
         }
     }
 
-    /// The format told from the content: STL if the text starts with `solid` or the size fits
-    /// a binary STL's triangle count, OBJ if the first statement is an OBJ keyword; `None`
-    /// otherwise.
+    /// The format told from the content: VRML if the text starts with `#VRML`, STL if it
+    /// starts with `solid` or the size fits a binary STL's triangle count, OBJ if the first
+    /// statement is an OBJ keyword; `None` otherwise.
     pub fn sniff(bytes: &[u8]) -> Option<MeshFormat> {
+        if bytes.starts_with(b"#VRML") {
+            return Some(MeshFormat::Vrml);
+        }
         if stl::looks_binary(bytes) || stl::starts_with_solid(bytes) {
             return Some(MeshFormat::Stl);
         }
@@ -203,8 +214,8 @@ impl Default for MeshReadOptions {
     }
 }
 
-/// Reads a mesh file: STL (ASCII or binary) or OBJ, optionally gzip-compressed. The format is
-/// taken from the extension (`.stl`, `.stl.gz`, `.obj`, `.obj.gz`), else from the content
+/// Reads a mesh file: STL (ASCII or binary), OBJ or VRML, optionally gzip-compressed. The
+/// format is taken from the extension ([`MeshFormat::from_path`]), else from the content
 /// ([`MeshFormat::sniff`]); a gzip stream is recognised by its magic bytes.
 ///
 /// # Errors
@@ -222,7 +233,8 @@ pub fn read_mesh(path: &Path, options: &MeshReadOptions) -> Result<TriMesh, Hull
 ///
 /// # Errors
 /// [`InputErrorKind::Mesh`] located at the line (text formats) or naming the byte offset
-/// (binary STL) of the first problem: see [`stl::parse_stl`] and [`obj::parse_obj`]; and for a
+/// (binary STL) of the first problem: see [`stl::parse_stl`], [`obj::parse_obj`] and
+/// [`vrml::parse_vrml`]; and for a
 /// mesh whose format cannot be told, or that has no triangle.
 pub fn parse_mesh(
     bytes: &[u8],
@@ -246,13 +258,15 @@ pub fn parse_mesh(
     let format = format.or_else(|| MeshFormat::sniff(bytes)).ok_or_else(|| {
         mesh_error(
             Location::file(source),
-            "a file that is neither STL nor OBJ".to_string(),
-            "an STL file (starting with \"solid\", or binary) or an OBJ file (v and f lines), optionally gzipped",
+            "a file that is neither STL, OBJ nor VRML".to_string(),
+            "an STL file (starting with \"solid\", or binary), an OBJ file (v and f lines) or a VRML file \
+             (starting with \"#VRML\"), optionally gzipped",
         )
     })?;
     let soup = match format {
         MeshFormat::Stl => stl::parse_stl(bytes, source)?,
         MeshFormat::Obj => obj::parse_obj(bytes, source)?,
+        MeshFormat::Vrml => vrml::parse_vrml(bytes, source)?,
     };
     if soup.triangles.is_empty() {
         return Err(mesh_error(Location::file(source), "no triangle".to_string(), "at least one facet"));
@@ -281,7 +295,7 @@ pub fn parse_mesh(
 }
 
 /// Triangles as read from a file, before welding: vertex positions and index triples (STL
-/// gives three new vertices per facet; OBJ its own vertex list).
+/// gives three new vertices per facet; OBJ and VRML their own vertex lists).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriangleSoup {
     /// Vertex positions in the file's axes.
@@ -390,7 +404,11 @@ mod tests {
     fn format_from_name_and_content() {
         assert_eq!(MeshFormat::from_path(Path::new("a/Hull.STL.gz")), Some(MeshFormat::Stl));
         assert_eq!(MeshFormat::from_path(Path::new("hull.obj")), Some(MeshFormat::Obj));
+        assert_eq!(MeshFormat::from_path(Path::new("cont.WRL")), Some(MeshFormat::Vrml));
+        assert_eq!(MeshFormat::from_path(Path::new("hull.wrl.gz")), Some(MeshFormat::Vrml));
+        assert_eq!(MeshFormat::from_path(Path::new("hull.wrz")), Some(MeshFormat::Vrml));
         assert_eq!(MeshFormat::from_path(Path::new("hull.csv")), None);
+        assert_eq!(MeshFormat::sniff(b"#VRML V2.0 utf8\n"), Some(MeshFormat::Vrml));
         assert_eq!(MeshFormat::sniff(b"  solid hull\nfacet"), Some(MeshFormat::Stl));
         assert_eq!(MeshFormat::sniff(b"# made by hand\n\nv 0 0 0\n"), Some(MeshFormat::Obj));
         assert_eq!(MeshFormat::sniff(b"section,x,y,z\n"), None);

@@ -201,6 +201,45 @@ fn ascii_and_binary_stl_obj_and_gzip_read_the_same_mesh() {
     }
 }
 
+/// The FastShip sample designs (`shared/data/fastship_sample_hulls/`, VRML 1.0 as FREE!ship
+/// Plus ships them) read as their `PROVENANCE.md` describes them, counted there apart from
+/// hullskin: one surface each, tessellated as 32 x 32 quads (2,048 triangles), bounding boxes
+/// as stored (printed there to the millimetre, or to 0.1 m for the tanker's breadth and depth:
+/// 0.05 m allows both). Written as OBJ and read back, each is the same welded mesh.
+#[test]
+fn the_fastship_vrml_hulls_read_as_their_provenance_describes() {
+    let opts = MeshReadOptions::default();
+    for (name, lo, hi) in [
+        ("fastship_50dragger.wrl.gz", [0.0, 0.001, -4.267], [15.24, 2.895, 0.0]),
+        ("fastship_70ktanker.wrl.gz", [-1.805, 0.0, 0.0], [235.082, 16.1, 18.7]),
+        ("fastship_cont.wrl.gz", [0.0, 0.0, -17.5], [145.0, 11.0, 0.0]),
+    ] {
+        let path = testdata(&format!("mesh/{name}"));
+        let bytes = hull::gunzip(&std::fs::read(&path).expect("reads"), name).expect("gunzips");
+        let soup = hull::parse_vrml(&bytes, name).expect("parses");
+        assert_eq!(soup.triangles.len(), 2048, "{name}");
+        for k in 0..3 {
+            let (min, max) =
+                soup.vertices.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p[k]), b.max(p[k])));
+            assert!((min - lo[k]).abs() < 0.05 && (max - hi[k]).abs() < 0.05, "{name} axis {k}: {min} .. {max}");
+        }
+        let mesh = read_mesh(&path, &opts).expect("reads");
+        let mut obj = Vec::new();
+        write_obj(&mut obj, &mesh, &[], None).expect("writes");
+        let back = parse_mesh(&obj, "back.obj", None, &opts).expect("reads back");
+        assert_eq!((&back.vertices, &back.triangles), (&mesh.vertices, &mesh.triangles), "{name}");
+    }
+    // The container ship with its vertical axis turned up (z = -17.5 at the deck as stored):
+    // its 41 cosine stations less the sliver at the stem's tip, keel at z = 0 amidships, up to
+    // the deck at 17.5 m.
+    let axes: Axes = "x,y,-z".parse().expect("axes");
+    let mesh = read_mesh(&testdata("mesh/fastship_cont.wrl.gz"), &MeshReadOptions { axes, ..opts }).expect("reads");
+    let out = slice(&mesh, Stations::Count { n: 41, spacing: Spacing::Cosine }, 30);
+    assert_eq!(out.offsets.sections.len(), 40, "{:?}", out.dropped);
+    let mid = &out.offsets.sections[20].points;
+    assert!(mid[0].z.abs() < 1e-3 && (mid[mid.len() - 1].z - 17.5).abs() < 0.05, "{:?}", (mid[0], mid[mid.len() - 1]));
+}
+
 #[test]
 fn the_axes_option_brings_a_mesh_in_other_axes_back() {
     // Written with y up and z to port (a graphics convention): file (x, y, z) = (x, z, -y).
