@@ -240,6 +240,33 @@ fn the_fastship_vrml_hulls_read_as_their_provenance_describes() {
     assert!(mid[0].z.abs() < 1e-3 && (mid[mid.len() - 1].z - 17.5).abs() < 0.05, "{:?}", (mid[0], mid[mid.len() - 1]));
 }
 
+/// The FastShip container ship's stem rises from z = 2.0 m at the station at x = 141.4 m to
+/// 14.6 m at the next, 1.5 m forward: the least squares across the sections rings there, and the
+/// default fit folds at its default 23x30 control points and at one fewer or one more across,
+/// whatever the hold, parameterization or smoothing. Two fewer across (23x28) it is sound, and
+/// that is the default fit ([`hull::ALTERNATIVE_COUNTS_ACROSS`]; before 2026-12-08 only one
+/// fewer and one more were tried, and a surface with two folds and 4.2 m² facing inwards at the
+/// stem's top was written).
+#[test]
+fn the_container_ships_default_fit_is_sound_two_control_points_fewer_across() {
+    let axes: Axes = "x,y,-z".parse().expect("axes");
+    let opts = MeshReadOptions { axes, ..MeshReadOptions::default() };
+    let mesh = read_mesh(&testdata("mesh/fastship_cont.wrl.gz"), &opts).expect("reads");
+    let offsets = slice(&mesh, Stations::Count { n: 41, spacing: Spacing::Cosine }, 30).offsets;
+    // As `hullskin fit` fits by default (the library's default leaves the fairing off).
+    let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
+    let out = fit_offsets(&offsets, &config).expect("fits");
+    assert!(out.validity.is_empty(), "{:?}", out.validity.iter().map(|f| f.kind).collect::<Vec<_>>());
+    assert_eq!((out.surface.n_u(), out.surface.n_v()), (23, 28));
+    let alternatives = out.fairing.as_ref().and_then(|f| f.alternatives.as_ref()).expect("alternatives tried");
+    assert_eq!(alternatives.control_points, [23, 30]);
+    assert!(alternatives.findings > 0);
+    for across in [29, 31] {
+        let t = alternatives.tried.iter().find(|t| t.control_points == [23, across]).expect("tried");
+        assert!(t.findings > 0 && !t.accepted, "23x{across}: {} findings", t.findings);
+    }
+}
+
 #[test]
 fn the_axes_option_brings_a_mesh_in_other_axes_back() {
     // Written with y up and z to port (a graphics convention): file (x, y, z) = (x, z, -y).
@@ -301,7 +328,7 @@ fn bad_files_are_errors_naming_the_file_and_the_place() {
             "face.obj:4: face corner refers to vertex 4".into(),
         ),
         ("empty.stl", b"solid e\nendsolid e\n".to_vec(), "empty.stl: no triangle (expected at least one facet)".into()),
-        ("data.bin", vec![7u8; 10], "data.bin: a file that is neither STL nor OBJ".into()),
+        ("data.bin", vec![7u8; 10], "data.bin: a file that is neither STL, OBJ nor VRML".into()),
     ];
     for (name, bytes, expected) in cases {
         let path = dir.path().join(name);
