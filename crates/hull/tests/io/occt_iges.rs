@@ -157,7 +157,9 @@ fn occt_finds_the_lm_fit_within_the_offsets_envelope() {
 }
 
 /// Every offset table of `testdata/` in name order, then its meshes sliced as `hullskin fit
-/// MESH` slices them (issue 11 names the DTC and DTMB 5415 meshes).
+/// MESH` slices them (issue 11 names the DTC and DTMB 5415 meshes; the FastShip designs of
+/// `shared/data` since 2026-12-08, the two stored with z down turned up as
+/// `tools/speed_common.sh` reads them).
 fn every_table() -> Vec<(String, hull::Offsets)> {
     let table = |name: &str| hull::read_offsets(&testdata(name), hull::Units::Metre).expect("reads");
     let mut names: Vec<String> = std::fs::read_dir(workspace_root().join("testdata"))
@@ -169,10 +171,21 @@ fn every_table() -> Vec<(String, hull::Offsets)> {
     assert!(names.len() >= 15, "the tables of testdata/: {names:?}");
     let mut tables: Vec<(String, hull::Offsets)> =
         names.iter().map(|n| (n.trim_end_matches(".csv").to_string(), table(n))).collect();
-    for mesh in ["DTC-scaled", "dtmb5415", "wigley"] {
-        let read = hull::read_mesh(&testdata(&format!("mesh/{mesh}.stl.gz")), &hull::MeshReadOptions::default());
+    let up: hull::Axes = "x,y,-z".parse().expect("axes");
+    let meshes = [
+        ("DTC-scaled.stl.gz", hull::Axes::default()),
+        ("dtmb5415.stl.gz", hull::Axes::default()),
+        ("wigley.stl.gz", hull::Axes::default()),
+        ("fastship_50dragger.wrl.gz", up),
+        ("fastship_70ktanker.wrl.gz", hull::Axes::default()),
+        ("fastship_cont.wrl.gz", up),
+    ];
+    for (mesh, axes) in meshes {
+        let options = hull::MeshReadOptions { axes, ..hull::MeshReadOptions::default() };
+        let read = hull::read_mesh(&testdata(&format!("mesh/{mesh}")), &options);
         let sliced = hull::slice_mesh(&read.expect("reads"), &hull::SliceOptions::default()).expect("slices");
-        tables.push((format!("{mesh}_mesh"), sliced.offsets));
+        let name = mesh.split('.').next().expect("a name");
+        tables.push((format!("{name}_mesh"), sliced.offsets));
     }
     tables
 }
