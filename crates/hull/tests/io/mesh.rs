@@ -267,6 +267,30 @@ fn the_container_ships_default_fit_is_sound_two_control_points_fewer_across() {
     }
 }
 
+/// A mesh stored with z down (FastShip's container ship and dragger) is sliced into sections
+/// that run down from the keel: the slicer's warnings say the mesh looks upside down and name
+/// the axes that turn it up (without it the container ship's fit fails on a self-crossing
+/// section with no hint why). Turned up, and on every upright mesh of `testdata/mesh/`, no
+/// such warning.
+#[test]
+fn a_mesh_stored_upside_down_is_warned_of() {
+    let up: Axes = "x,y,-z".parse().expect("axes");
+    let upside_down = |name: &str, axes: Axes| {
+        let options = MeshReadOptions { axes, ..MeshReadOptions::default() };
+        let mesh = read_mesh(&testdata(&format!("mesh/{name}")), &options).expect("reads");
+        let out = slice(&mesh, Stations::Count { n: 41, spacing: Spacing::Cosine }, 30);
+        out.warnings().into_iter().find(|w| w.contains("looks upside down"))
+    };
+    for name in ["fastship_cont.wrl.gz", "fastship_50dragger.wrl.gz"] {
+        let w = upside_down(name, Axes::default()).expect("warned");
+        assert!(w.contains("try --axes x,y,-z"), "{name}: {w}");
+        assert_eq!(upside_down(name, up), None, "{name} turned up");
+    }
+    for name in ["fastship_70ktanker.wrl.gz", "DTC-scaled.stl.gz", "dtmb5415.stl.gz", "wigley.stl.gz"] {
+        assert_eq!(upside_down(name, Axes::default()), None, "{name}");
+    }
+}
+
 #[test]
 fn the_axes_option_brings_a_mesh_in_other_axes_back() {
     // Written with y up and z to port (a graphics convention): file (x, y, z) = (x, z, -y).
