@@ -101,3 +101,11 @@ def test_a_bad_file_names_its_line(tmp_path):
 def test_bad_surface_arguments(surface, call, error, match):
     with pytest.raises(error, match=match):
         call(surface)
+
+
+def test_a_mesh_is_refused_as_offsets_whatever_its_format():
+    # hullskin.read_offsets reads offsets; a mesh (STL, OBJ, VRML, gzipped or not) is sliced by the
+    # command line, and the message says so rather than failing on its bytes as offsets.
+    for name in ("mesh/wigley.stl.gz", "mesh/fastship_cont.wrl.gz"):
+        with pytest.raises(ValueError, match="a mesh; hullskin.read_offsets reads offsets"):
+            hullskin.read_offsets(TESTDATA / name)
