@@ -20,6 +20,7 @@ dict_of() {
     read_step) echo step ;;
     mesh_stl | mesh_parse_slice) echo stl ;;
     mesh_obj) echo obj ;;
+    mesh_vrml) echo vrml ;;
     drawing_dxf | drawing_digitize) echo dxf ;;
     drawing_svg) echo svg ;;
     *) echo csv ;;

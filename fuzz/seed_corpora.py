@@ -117,6 +117,16 @@ def obj(verts, tris):
     return ("\n".join(out) + "\n").encode()
 
 
+def vrml(verts, tris):
+    out = ["#VRML V2.0 utf8", "# wigley", "Shape {", "  geometry IndexedFaceSet {", "    coord Coordinate {",
+           "      point ["]
+    out += ["        " + " ".join(num(c) for c in v) + "," for v in verts]
+    out += ["      ]", "    }", "    coordIndex ["]
+    out += ["      " + ", ".join(str(i) for i in t) + ", -1," for t in tris]
+    out += ["    ]", "  }", "}"]
+    return ("\n".join(out) + "\n").encode()
+
+
 def surface(p, q, nu, nv, rational):
     def knots(deg, n):
         inner = n - deg - 1
@@ -208,6 +218,7 @@ def write_seeds():
         "mesh/wigley_ascii.stl": stl_ascii(verts, tris),
         "mesh/wigley_binary.stl": stl_binary(verts, tris),
         "mesh/wigley.obj": obj(verts, tris),
+        "mesh/wigley.wrl": vrml(verts, tris),
         # mtime 0: the same bytes on every run.
         "mesh/wigley_ascii.stl.gz": gzip.compress(stl_ascii(verts, tris), mtime=0),
         "json_table/gunnerus_vessel_js.json": vessel_js(),
@@ -248,6 +259,7 @@ def main():
         "read_freeship_curves": offsets,
         "mesh_stl": [p for p in mesh if ".stl" in p.name and not p.name.endswith(".gz")],
         "mesh_obj": [p for p in mesh if p.suffix == ".obj"],
+        "mesh_vrml": [p for p in mesh if p.suffix == ".wrl"],
         "mesh_parse_slice": mesh,
         "drawing_dxf": [p for p in drawings if p.suffix == ".dxf"],
         "drawing_svg": [p for p in drawings if p.suffix == ".svg"],

@@ -15,10 +15,10 @@ use hull::{
     detect_format, digitize, is_freeship_header, is_offset_json, looks_like_binary_stl, mesh_hydrostatics,
     parse_drawing, parse_dxf, parse_freeship_curves, parse_freeship_offsets, parse_iges, parse_json_table,
     parse_long_csv, parse_mesh, parse_obj, parse_offset_table, parse_offsets_with, parse_point_cloud,
-    parse_sections_csv, parse_series60_table, parse_step, parse_stl, parse_svg, slice_mesh, starts_with_solid,
-    CadFormat, CadSurfaces, CurveOrder, DigitizeOptions, DrawingScale, HullError, InputFormat, MainDimensions,
-    MeshFormat, MeshReadOptions, Offsets, ReadOptions, Sketch, SliceOptions, Spacing, StationIds, StationX, Stations,
-    SuspiciousPolicy, Units,
+    parse_sections_csv, parse_series60_table, parse_step, parse_stl, parse_svg, parse_vrml, slice_mesh,
+    starts_with_solid, CadFormat, CadSurfaces, CurveOrder, DigitizeOptions, DrawingScale, HullError, InputFormat,
+    MainDimensions, MeshFormat, MeshReadOptions, Offsets, ReadOptions, Sketch, SliceOptions, Spacing, StationIds,
+    StationX, Stations, SuspiciousPolicy, Units,
 };
 use nurbs::{ProjectionOptions, SurfaceProjector, Vec3};
 
@@ -41,6 +41,7 @@ pub const TARGETS: &[(&str, Target)] = &[
     ("read_freeship_curves", read_freeship_curves),
     ("mesh_stl", mesh_stl),
     ("mesh_obj", mesh_obj),
+    ("mesh_vrml", mesh_vrml),
     ("mesh_parse_slice", mesh_parse_slice),
     ("drawing_dxf", drawing_dxf),
     ("drawing_svg", drawing_svg),
@@ -189,6 +190,11 @@ pub fn mesh_stl(data: &[u8], source: &str) -> Result<(), String> {
 /// `hull::parse_obj`.
 pub fn mesh_obj(data: &[u8], source: &str) -> Result<(), String> {
     parse_obj(data, source).map(|_| ()).map_err(|e| message(&e))
+}
+
+/// `hull::parse_vrml` (VRML 1.0 and 2.0).
+pub fn mesh_vrml(data: &[u8], source: &str) -> Result<(), String> {
+    parse_vrml(data, source).map(|_| ()).map_err(|e| message(&e))
 }
 
 /// `hull::parse_mesh` (format sniffed, gzip inflated), then what `hullskin slice` does

@@ -27,7 +27,7 @@ use crate::error::{HullError, Location};
 /// What the errors expect of a VRML file, where nothing more precise applies.
 const EXPECTED: &str = "a VRML 1.0 or 2.0 file of IndexedFaceSet nodes with their coordinates";
 
-/// A token of the VRML text and the line it starts on.
+/// A token of the VRML text.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Token<'a> {
     Open(char),
@@ -35,57 +35,132 @@ enum Token<'a> {
     Word(&'a str),
 }
 
-/// The tokens of `text` (braces and brackets, and words: names and numbers), with their
-/// 1-based lines; comments, strings and commas dropped.
-fn tokens(text: &str) -> Vec<(Token<'_>, usize)> {
-    let bytes = text.as_bytes();
-    let mut out = Vec::new();
-    let (mut i, mut line) = (0, 1);
-    while i < bytes.len() {
-        match bytes[i] {
-            b'\n' => {
-                line += 1;
-                i += 1;
-            }
-            b'#' => {
-                while i < bytes.len() && bytes[i] != b'\n' {
-                    i += 1;
+/// The tokens of a VRML text (braces and brackets, and words: names and numbers), each with
+/// its 1-based line, read one at a time (a file of up to `MAX_MESH_FILE_BYTES` is never held as
+/// tokens); comments, strings and commas are skipped.
+struct Lexer<'a> {
+    text: &'a str,
+    i: usize,
+    line: usize,
+    peeked: Option<Option<(Token<'a>, usize)>>,
+}
+
+impl<'a> Lexer<'a> {
+    fn new(text: &'a str) -> Self {
+        Lexer { text, i: 0, line: 1, peeked: None }
+    }
+
+    fn scan(&mut self) -> Option<(Token<'a>, usize)> {
+        let bytes = self.text.as_bytes();
+        while self.i < bytes.len() {
+            let b = bytes[self.i];
+            match b {
+                b'\n' => {
+                    self.line += 1;
+                    self.i += 1;
                 }
-            }
-            b'"' => {
-                i += 1;
-                while i < bytes.len() && bytes[i] != b'"' {
-                    match bytes[i] {
-                        b'\\' => i += 1,
-                        b'\n' => line += 1,
-                        _ => {}
+                b'#' => {
+                    while self.i < bytes.len() && bytes[self.i] != b'\n' {
+                        self.i += 1;
                     }
-                    i += 1;
                 }
-                i += 1;
-            }
-            b'{' | b'[' => {
-                out.push((Token::Open(bytes[i] as char), line));
-                i += 1;
-            }
-            b'}' | b']' => {
-                out.push((Token::Close(bytes[i] as char), line));
-                i += 1;
-            }
-            b if b.is_ascii_whitespace() || b == b',' => i += 1,
-            _ => {
-                let start = i;
-                while i < bytes.len()
-                    && !matches!(bytes[i], b'{' | b'}' | b'[' | b']' | b'#' | b'"' | b',')
-                    && !bytes[i].is_ascii_whitespace()
-                {
-                    i += 1;
+                b'"' => {
+                    self.i += 1;
+                    while self.i < bytes.len() && bytes[self.i] != b'"' {
+                        match bytes[self.i] {
+                            b'\\' => self.i += 1,
+                            b'\n' => self.line += 1,
+                            _ => {}
+                        }
+                        self.i += 1;
+                    }
+                    self.i += 1;
                 }
-                out.push((Token::Word(&text[start..i]), line));
+                b'{' | b'[' | b'}' | b']' => {
+                    self.i += 1;
+                    let c = b as char;
+                    let t = if matches!(b, b'{' | b'[') { Token::Open(c) } else { Token::Close(c) };
+                    return Some((t, self.line));
+                }
+                b if b.is_ascii_whitespace() || b == b',' => self.i += 1,
+                _ => {
+                    let start = self.i;
+                    while self.i < bytes.len()
+                        && !matches!(bytes[self.i], b'{' | b'}' | b'[' | b']' | b'#' | b'"' | b',')
+                        && !bytes[self.i].is_ascii_whitespace()
+                    {
+                        self.i += 1;
+                    }
+                    return Some((Token::Word(&self.text[start..self.i]), self.line));
+                }
+            }
+        }
+        None
+    }
+
+    fn next(&mut self) -> Option<(Token<'a>, usize)> {
+        match self.peeked.take() {
+            Some(t) => t,
+            None => self.scan(),
+        }
+    }
+
+    fn peek(&mut self) -> Option<(Token<'a>, usize)> {
+        if self.peeked.is_none() {
+            self.peeked = Some(self.scan());
+        }
+        self.peeked.flatten()
+    }
+
+    /// The word next, if the next token is one (not consumed).
+    fn peek_word(&mut self) -> Option<&'a str> {
+        match self.peek() {
+            Some((Token::Word(w), _)) => Some(w),
+            _ => None,
+        }
+    }
+
+    /// The numbers of a field's value: a bracketed list, or as many bare numbers as follow
+    /// (up to `most`), each with its line; `what` names the field in errors.
+    fn numbers(&mut self, most: usize, source: &str, what: &str) -> Result<Vec<(f64, usize)>, HullError> {
+        let at = |line: usize| Location::line(source, line);
+        let mut out = Vec::new();
+        let open = match self.peek() {
+            Some((Token::Open('['), line)) => {
+                self.next();
+                Some(line)
+            }
+            _ => None,
+        };
+        loop {
+            match self.peek() {
+                Some((Token::Close(']'), _)) if open.is_some() => {
+                    self.next();
+                    return Ok(out);
+                }
+                Some((Token::Word(w), line)) if open.is_some() || out.len() < most => match w.parse::<f64>() {
+                    Ok(v) if v.is_finite() => {
+                        self.next();
+                        out.push((v, line));
+                    }
+                    Ok(_) => return Err(mesh_error(at(line), format!("\"{w}\" is not a finite number"), what)),
+                    Err(_) if open.is_some() => {
+                        return Err(mesh_error(at(line), format!("\"{w}\" is not a number"), what))
+                    }
+                    Err(_) => return Ok(out),
+                },
+                None => match open {
+                    Some(line) => return Err(mesh_error(at(line), "a list not closed by \"]\"".to_string(), what)),
+                    None => return Ok(out),
+                },
+                Some(_) if open.is_some() => {
+                    let line = self.peek().map_or(1, |t| t.1);
+                    return Err(mesh_error(at(line), "a brace inside a list of numbers".to_string(), what));
+                }
+                Some(_) => return Ok(out),
             }
         }
     }
-    out
 }
 
 /// A block of coordinates read: where its points start in the soup, and how many.
@@ -145,60 +220,28 @@ pub fn parse_vrml(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError>
             "\"#VRML V1.0 ascii\" or \"#VRML V2.0 utf8\"",
         ));
     }
-    let toks = tokens(text);
+    let mut lexer = Lexer::new(text);
     let mut soup = TriangleSoup::default();
     let mut stack: Vec<Node<'_>> = Vec::new();
     // Brackets opened outside a list this reader reads (a `children [...]`, a material's
-    // colours): each with the depth of nodes it was opened at.
+    // colours), with their lines.
     let mut lists: Vec<usize> = Vec::new();
     // VRML 1.0's current coordinates.
     let mut current: Option<Coords> = None;
     let mut named: HashMap<&str, Coords> = HashMap::new();
-    let mut k = 0;
-    let word = |k: usize| match toks.get(k) {
-        Some((Token::Word(w), _)) => Some(*w),
-        _ => None,
-    };
-    // The numbers of a field's value from token `k`: a bracketed list, or as many bare numbers
-    // as follow (up to `most`); the index after them.
-    let numbers = |k: usize, most: usize, what: &str| -> Result<(Vec<(f64, usize)>, usize), HullError> {
-        let mut out = Vec::new();
-        let mut j = k;
-        let bracketed = matches!(toks.get(j), Some((Token::Open('['), _)));
-        if bracketed {
-            j += 1;
-        }
-        loop {
-            match toks.get(j) {
-                Some((Token::Close(']'), _)) if bracketed => return Ok((out, j + 1)),
-                Some((Token::Word(w), line)) if bracketed || out.len() < most => match w.parse::<f64>() {
-                    Ok(v) if v.is_finite() => out.push((v, *line)),
-                    Ok(_) => return Err(mesh_error(at(*line), format!("\"{w}\" is not a finite number"), what)),
-                    Err(_) if bracketed => return Err(mesh_error(at(*line), format!("\"{w}\" is not a number"), what)),
-                    Err(_) => return Ok((out, j)),
-                },
-                None if bracketed => {
-                    let line = toks.get(k).map_or(1, |t| t.1);
-                    return Err(mesh_error(at(line), "a list not closed by \"]\"".to_string(), what));
-                }
-                _ => return Ok((out, j)),
-            }
-            j += 1;
-        }
-    };
-    while k < toks.len() {
-        let (tok, line) = toks[k];
+    // The last three tokens the loop read, words only (`DEF name Type {`); a list of numbers
+    // read clears them.
+    let mut recent: [Option<&str>; 3] = [None; 3];
+    while let Some((tok, line)) = lexer.next() {
         match tok {
             Token::Open('{') => {
                 // `Type {` or `DEF name Type {`.
-                let kind = k
-                    .checked_sub(1)
-                    .and_then(word)
+                let kind = recent[2]
                     .ok_or_else(|| mesh_error(at(line), "\"{\" with no node type before it".to_string(), EXPECTED))?;
-                let name = (k >= 3 && word(k - 3) == Some("DEF")).then(|| word(k - 2)).flatten();
+                let name = (recent[0] == Some("DEF")).then_some(recent[1]).flatten();
                 let saved = matches!(kind, "Separator" | "TransformSeparator").then_some(current).flatten();
                 stack.push(Node { kind, line, saved, faces: Vec::new(), coord: None, name });
-                k += 1;
+                recent = [None; 3];
             }
             Token::Close('}') => {
                 let node = stack
@@ -206,34 +249,33 @@ pub fn parse_vrml(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError>
                     .ok_or_else(|| mesh_error(at(line), "a \"}\" with no node open".to_string(), EXPECTED))?;
                 match node.kind {
                     "Separator" | "TransformSeparator" => current = node.saved,
-                    "IndexedFaceSet" => {
-                        let coords = node.coord.or(current).filter(|_| !node.faces.is_empty());
-                        if let Some(c) = coords {
-                            add_faces(&mut soup, &node.faces, c, source)?;
-                        } else if !node.faces.is_empty() {
+                    "IndexedFaceSet" if !node.faces.is_empty() => match node.coord.or(current) {
+                        Some(c) => add_faces(&mut soup, &node.faces, c, source)?,
+                        None => {
                             return Err(mesh_error(
                                 at(node.line),
                                 "an IndexedFaceSet with no coordinates".to_string(),
                                 "a coord Coordinate (VRML 2.0) or a Coordinate3 before it (VRML 1.0)",
-                            ));
+                            ))
                         }
-                    }
+                    },
                     _ => {}
                 }
-                k += 1;
+                recent = [None; 3];
             }
             Token::Open(_) => {
-                lists.push(stack.len());
-                k += 1;
+                lists.push(line);
+                recent = [None; 3];
             }
             Token::Close(_) => {
                 if lists.pop().is_none() {
                     return Err(mesh_error(at(line), "a \"]\" with no list open".to_string(), EXPECTED));
                 }
-                k += 1;
+                recent = [None; 3];
             }
             Token::Word(w) => {
                 let kind = stack.last().map_or("", |n| n.kind);
+                recent = [recent[1], recent[2], Some(w)];
                 match (kind, w) {
                     (_, "PROTO" | "EXTERNPROTO") => {
                         return Err(mesh_error(
@@ -251,7 +293,8 @@ pub fn parse_vrml(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError>
                     }
                     ("Coordinate3" | "Coordinate", "point") => {
                         let what = "the point list: x y z triples";
-                        let (nums, next) = numbers(k + 1, 3, what)?;
+                        let nums = lexer.numbers(3, source, what)?;
+                        recent = [None; 3];
                         if nums.len() % 3 != 0 {
                             let place = odd_line(&nums).unwrap_or(line);
                             return Err(mesh_error(
@@ -271,11 +314,11 @@ pub fn parse_vrml(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError>
                         if n >= 2 && stack[n - 2].kind == "IndexedFaceSet" {
                             stack[n - 2].coord = Some(c);
                         }
-                        k = next;
                     }
                     ("IndexedFaceSet", "coordIndex") => {
                         let what = "corner indices from 0, each face ended by -1";
-                        let (nums, next) = numbers(k + 1, 1, what)?;
+                        let nums = lexer.numbers(1, source, what)?;
+                        recent = [None; 3];
                         let faces = &mut stack.last_mut().expect("inside a node").faces;
                         let mut face: Option<(usize, Vec<i64>)> = None;
                         for (v, l) in nums {
@@ -289,29 +332,34 @@ pub fn parse_vrml(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError>
                             }
                         }
                         faces.extend(face);
-                        k = next;
                     }
-                    ("IndexedFaceSet", "coord") if word(k + 1) == Some("USE") => {
-                        let name = word(k + 2).unwrap_or("");
+                    ("IndexedFaceSet", "coord") if lexer.peek_word() == Some("USE") => {
+                        lexer.next();
+                        let name = lexer.peek_word().unwrap_or("");
+                        lexer.next();
                         let c = *named.get(name).ok_or_else(|| {
                             mesh_error(at(line), format!("coord USE {name}"), "a Coordinate defined (DEF) before it")
                         })?;
                         stack.last_mut().expect("inside a node").coord = Some(c);
-                        k += 3;
+                        recent = [None; 3];
                     }
                     (_, "USE") => {
                         // VRML 1.0: a Coordinate3 used again becomes the current coordinates.
-                        if let Some(&c) = word(k + 1).and_then(|n| named.get(n)) {
+                        let name = lexer.peek_word();
+                        if let Some(&c) = name.and_then(|n| named.get(n)) {
                             current = Some(c);
                         }
-                        k += 2;
+                        if name.is_some() {
+                            lexer.next();
+                        }
+                        recent = [None; 3];
                     }
                     (t, f) if TRANSFORMS.contains(&t) && (f == "rotation" || identity_of(f).is_some()) => {
                         let what = "a transform that leaves the mesh where it is (hullskin does not apply transforms; \
                                     --axes and --shift bring a mesh into its axes)";
                         let most = if f == "rotation" { 4 } else { identity_of(f).map_or(0, <[f64]>::len) };
-                        let (nums, next) = numbers(k + 1, most, what)?;
-                        let values: Vec<f64> = nums.iter().map(|n| n.0).collect();
+                        let values: Vec<f64> = lexer.numbers(most, source, what)?.iter().map(|n| n.0).collect();
+                        recent = [None; 3];
                         let moves = if f == "rotation" {
                             values.get(3).is_some_and(|&a| a != 0.0)
                         } else {
@@ -321,17 +369,14 @@ pub fn parse_vrml(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError>
                             let shown: Vec<String> = values.iter().map(|v| v.to_string()).collect();
                             return Err(mesh_error(at(line), format!("{t} {f} {}", shown.join(" ")), what));
                         }
-                        k = next;
                     }
-                    _ => k += 1,
+                    _ => {}
                 }
             }
         }
     }
-    if let (Some(&depth), Some(open)) = (lists.last(), toks.iter().rev().find(|t| t.0 == Token::Open('['))) {
-        if stack.len() <= depth {
-            return Err(mesh_error(at(open.1), "a \"[\" list not closed by \"]\"".to_string(), EXPECTED));
-        }
+    if let Some(&line) = lists.last() {
+        return Err(mesh_error(at(line), "a \"[\" list not closed by \"]\"".to_string(), EXPECTED));
     }
     if let Some(open) = stack.last() {
         return Err(mesh_error(at(open.line), format!("a {} node not closed by \"}}\"", open.kind), EXPECTED));
@@ -454,7 +499,7 @@ mod tests {
 
     #[test]
     fn bad_files_are_refused_at_their_line() {
-        let cases: [(&str, &str); 10] = [
+        let cases: [(&str, &str); 12] = [
             ("solid x\n", "a.wrl:1: a first line \"solid x\""),
             (
                 "#VRML V1.0 ascii\nCoordinate3 { point [ 0 0 0, 1 0 ] }\n",
@@ -480,6 +525,8 @@ mod tests {
             ),
             ("#VRML V2.0 utf8\nInline { url \"hull.wrl\" }\n", "a.wrl:2: an Inline node"),
             ("#VRML V1.0 ascii\nSeparator {\n Coordinate3 { point [ 0 0 0 ] }\n", "a.wrl:2: a Separator node not closed"),
+            ("#VRML V2.0 utf8\nGroup { children [\n Shape { }\n", "a.wrl:2: a \"[\" list not closed"),
+            ("#VRML V1.0 ascii\nCoordinate3 { point [ 0 0 0\n } ]\n", "a.wrl:3: a brace inside a list of numbers"),
         ];
         for (text, message) in cases {
             let e = parse_vrml(text.as_bytes(), "a.wrl").expect_err(message).to_string();

@@ -118,6 +118,7 @@ fn seeds(name: &str) -> Vec<Vec<u8>> {
         "read_json_table" => [seed_dir("json_table"), vec![td("raw/cargo116/offsets_table.json")]].concat(),
         "mesh_stl" => seed_dir("mesh").into_iter().filter(|p| p.extension().is_some_and(|e| e == "stl")).collect(),
         "mesh_obj" => seed_dir("mesh").into_iter().filter(|p| p.extension().is_some_and(|e| e == "obj")).collect(),
+        "mesh_vrml" => seed_dir("mesh").into_iter().filter(|p| p.extension().is_some_and(|e| e == "wrl")).collect(),
         "mesh_parse_slice" => seed_dir("mesh"),
         "drawing_dxf" | "drawing_svg" | "drawing_digitize" => {
             let ext = match name {
@@ -168,7 +169,7 @@ fn the_committed_seeds_parse() {
 }
 
 #[test]
-fn the_seed_mesh_reads_the_same_from_each_of_its_four_forms() {
+fn the_seed_mesh_reads_the_same_from_each_of_its_five_forms() {
     let dir = root().join("fuzz/seeds/mesh");
     let mesh = |n: &str| {
         parse_mesh(&read(&dir.join(n)), n, None, &MeshReadOptions::default()).unwrap_or_else(|e| panic!("{n}: {e}"))
@@ -182,6 +183,7 @@ fn the_seed_mesh_reads_the_same_from_each_of_its_four_forms() {
     // The OBJ numbers its vertices in its own order: compare the triangles' corners.
     let corners = |m: &hull::TriMesh| (0..m.triangles.len()).map(|t| m.corners(t)).collect::<Vec<_>>();
     assert_eq!(corners(&mesh("wigley.obj")), corners(&ascii));
+    assert_eq!(corners(&mesh("wigley.wrl")), corners(&ascii));
     let binary = mesh("wigley_binary.stl");
     assert_eq!(binary.triangles, ascii.triangles);
     for (b, a) in corners(&binary).iter().flatten().zip(corners(&ascii).iter().flatten()) {
@@ -229,6 +231,7 @@ fn dictionary_of(name: &str) -> &'static str {
         "read_step" => "step.dict",
         "mesh_stl" | "mesh_parse_slice" => "stl.dict",
         "mesh_obj" => "obj.dict",
+        "mesh_vrml" => "vrml.dict",
         "drawing_dxf" | "drawing_digitize" => "dxf.dict",
         "drawing_svg" => "svg.dict",
         _ => "csv.dict",
