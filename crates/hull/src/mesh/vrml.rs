@@ -12,8 +12,8 @@
 //!
 //! Not read, and refused with the line where they appear rather than read wrongly: a transform
 //! other than the identity (`Transform`, `Translation`, `Rotation`, `Scale`, `MatrixTransform`
-//! with a `translation`, `rotation`, `scale`, `scaleFactor` or `matrix` that moves the mesh:
-//! hullskin does not apply them; `--axes` and `--shift` bring a mesh into its axes), `Inline`
+//! with a `translation`, `rotation`, `scale`, `scaleFactor` or `matrix` that moves the mesh,
+//! `RotationXYZ` with an `angle`: hullskin does not apply them; `--axes` and `--shift` bring a mesh into its axes), `Inline`
 //! and `WWWInline` (another file's geometry), and `PROTO` / `EXTERNPROTO` (node types the file
 //! defines itself).
 
@@ -68,7 +68,13 @@ impl<'a> Lexer<'a> {
                     self.i += 1;
                     while self.i < bytes.len() && bytes[self.i] != b'"' {
                         match bytes[self.i] {
-                            b'\\' => self.i += 1,
+                            // An escaped character, which may be a line end.
+                            b'\\' => {
+                                self.i += 1;
+                                if bytes.get(self.i) == Some(&b'\n') {
+                                    self.line += 1;
+                                }
+                            }
                             b'\n' => self.line += 1,
                             _ => {}
                         }
@@ -188,6 +194,8 @@ fn identity_of(field: &str) -> Option<&'static [f64]> {
     match field {
         "translation" => Some(&[0.0; 3]),
         "scale" | "scaleFactor" => Some(&[1.0; 3]),
+        // VRML 1.0's `RotationXYZ { axis X angle A }`.
+        "angle" => Some(&[0.0]),
         "matrix" => Some(&MATRIX),
         _ => None,
     }
@@ -499,7 +507,7 @@ mod tests {
 
     #[test]
     fn bad_files_are_refused_at_their_line() {
-        let cases: [(&str, &str); 12] = [
+        let cases: [(&str, &str); 13] = [
             ("solid x\n", "a.wrl:1: a first line \"solid x\""),
             (
                 "#VRML V1.0 ascii\nCoordinate3 { point [ 0 0 0, 1 0 ] }\n",
@@ -524,6 +532,10 @@ mod tests {
                 "a.wrl:3: Transform translation 0 0 1.5",
             ),
             ("#VRML V2.0 utf8\nInline { url \"hull.wrl\" }\n", "a.wrl:2: an Inline node"),
+            (
+                "#VRML V1.0 ascii\nInfo { string \"a\\\nb\" }\nRotationXYZ { axis Z angle 0.5 }\n",
+                "a.wrl:4: RotationXYZ angle 0.5",
+            ),
             ("#VRML V1.0 ascii\nSeparator {\n Coordinate3 { point [ 0 0 0 ] }\n", "a.wrl:2: a Separator node not closed"),
             ("#VRML V2.0 utf8\nGroup { children [\n Shape { }\n", "a.wrl:2: a \"[\" list not closed"),
             ("#VRML V1.0 ascii\nCoordinate3 { point [ 0 0 0\n } ]\n", "a.wrl:3: a brace inside a list of numbers"),
