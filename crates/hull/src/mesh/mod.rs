@@ -4,9 +4,9 @@
 //! - [`read_mesh`] / [`parse_mesh`]: ASCII and binary STL ([`stl`]), Wavefront OBJ ([`obj`]),
 //!   VRML 1.0 and 2.0 indexed face sets ([`vrml`]), each gzip-compressed or not (recognised
 //!   by the gzip magic bytes, whatever the file name), the text forms with or without a UTF-8
-//!   byte-order mark; the triangles are welded into an
-//!   indexed [`TriMesh`] (the kernel's one mesh type, which a tessellated surface is too,
-//!   written by [`stl::write_stl_ascii`], [`stl::write_stl_binary`] and [`obj::write_obj`]).
+//!   byte-order mark; the triangles are welded into an indexed [`TriMesh`] (the kernel's one
+//!   mesh type, which a tessellated surface is too, written by [`stl::write_stl_ascii`],
+//!   [`stl::write_stl_binary`] and [`obj::write_obj`]).
 //! - [`slice::slice_mesh`]: cuts at stations `x = const`, each chained into one polyline on
 //!   the starboard side from the keel to the deck edge, resampled, as [`crate::Offsets`].
 //! - [`hydrostatics::mesh_hydrostatics`]: volume, centres, wetted surface and waterplane of the
@@ -234,8 +234,7 @@ pub fn read_mesh(path: &Path, options: &MeshReadOptions) -> Result<TriMesh, Hull
 /// # Errors
 /// [`InputErrorKind::Mesh`] located at the line (text formats) or naming the byte offset
 /// (binary STL) of the first problem: see [`stl::parse_stl`], [`obj::parse_obj`] and
-/// [`vrml::parse_vrml`]; and for a
-/// mesh whose format cannot be told, or that has no triangle.
+/// [`vrml::parse_vrml`]; and for a mesh whose format cannot be told, or that has no triangle.
 pub fn parse_mesh(
     bytes: &[u8],
     source: &str,
