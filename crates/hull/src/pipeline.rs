@@ -320,8 +320,9 @@ fn held_on_surface(
 /// `out` (an optimised fit) unless it has validity findings and one of `candidates` has
 /// fewer defects ([`FitOutcome::defects`]: folds first, then findings of any kind, as
 /// [`crate::fairing::fair`] ranks them): then the first with the fewest, a sound one where
-/// there is one, named `approx`,
-/// with `out`'s rejection in `rejected` and the time spent on both.
+/// there is one, named `approx`, with `out`'s rejection in `rejected`, the record of the
+/// weight optimisation that was rejected (as where the envelope hold gives way, above) and
+/// the time spent on both.
 fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>) -> FitOutcome {
     if out.validity.is_empty() {
         return out;
@@ -353,6 +354,7 @@ fn prefer_sound(config: &FitConfig, out: FitOutcome, candidates: Vec<FitOutcome>
     );
     let mut kept = kept;
     kept.rejected.splice(0..0, out.rejected.iter().cloned());
+    kept.optimization = out.optimization;
     give_way(config, kept, why)
 }
 

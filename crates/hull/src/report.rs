@@ -66,8 +66,9 @@ pub struct SurfaceSummary {
 ///                "size": .., "limit": .., "reference": .., "x_band": [x0, x1], "flat": "bottom"}]}
 /// ```
 ///
-/// `optimization` is present for the weight-optimised methods only; its `history` is the best
-/// objective (parametric RMS of the offsets) after each iteration. `fairness` is the final
+/// `optimization` is present for the weight-optimised methods only (also where the optimised
+/// surface gave way to an approximation, which `rejected` says: the record of the run); its
+/// `history` is the best objective (parametric RMS of the offsets) after each iteration. `fairness` is the final
 /// surface's ([`crate::fairing::FairnessFigures`]), always present. `fairing` is present when the fit was faired ([`crate::FairReport`]: `setting`, `lambda`
 /// (0: the plain fit was kept), `tolerance`, `tried` (`lambda`, `max`, `folds`, `accepted`),
 /// `before` and `after`, each as `fairness`); `rejected`
@@ -461,12 +462,14 @@ fn worst_line(t: &mut String, e: &FitError, u: &str) {
 }
 
 /// The warnings of a fit, one sentence each, for standard error (the summary table has the
-/// figures): projections that stopped at their iteration limit, weights on their bounds,
-/// every validity finding.
+/// figures): projections that stopped at their iteration limit, weights on their bounds (of
+/// the optimised surface written: not of one that gave way to an approximation, whose
+/// optimisation the summary still reports), every validity finding.
 pub fn summary_warnings(offsets: &Offsets, outcome: &FitOutcome) -> Vec<String> {
     let u = offsets.units.symbol();
     let mut out = projection_warnings(&outcome.error);
-    if let Some(o) = outcome.optimization.as_ref().filter(|o| o.weights_at_bounds > 0) {
+    let written = outcome.config.method.algorithm().is_some();
+    if let Some(o) = outcome.optimization.as_ref().filter(|o| written && o.weights_at_bounds > 0) {
         out.push(format!(
             "{} weights ended on their bounds [{}, {}], a sign of over-fitting (expected fewer control points, or \
              wider bounds)",
@@ -619,6 +622,10 @@ mod tests {
         let w = summary_warnings(&offsets, &out);
         let line = format!("{count} weights ended on their bounds [0.99, 1.01]");
         assert!(w.iter().any(|l| l.starts_with(&line)), "{w:?}");
+        // Where that surface gave way to an approximation (named `approx`, the optimisation's
+        // record kept), the written surface's weights are not those: no such warning.
+        let gave_way = FitOutcome { config: FitConfig { method: crate::FitMethod::Approx, ..out.config }, ..out };
+        assert!(!summary_warnings(&offsets, &gave_way).iter().any(|l| l.contains("on their bounds")));
     }
 
     #[test]

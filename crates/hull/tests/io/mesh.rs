@@ -545,4 +545,8 @@ fn lm_on_the_dtmb5415_mesh_gives_way_to_the_sound_approximation_it_started_from(
     assert_eq!(out.config.method, FitMethod::Approx);
     assert_eq!(out.surface, plain.surface);
     assert!(out.validity.is_empty() && out.fairing.is_none());
+    // The rejected optimisation is still reported (the summary's `weights by lm` line), as
+    // where LM gives way for the envelope hold.
+    let o = out.optimization.as_ref().expect("the rejected optimisation's record");
+    assert_eq!(o.algorithm, "lm");
 }
