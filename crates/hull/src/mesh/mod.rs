@@ -356,6 +356,16 @@ pub fn weld(points: &[Vec3], tol: f64) -> (Vec<Vec3>, Vec<u32>) {
     (kept, remap)
 }
 
+/// The text of a text mesh format (OBJ, VRML), or an [`InputErrorKind::Mesh`] error at the
+/// line of the first byte that is not UTF-8; `expected` names the format.
+pub(crate) fn mesh_text<'a>(bytes: &'a [u8], source: &str, expected: &str) -> Result<&'a str, HullError> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let pos = e.valid_up_to();
+        let line = 1 + bytes[..pos].iter().filter(|&&b| b == b'\n').count();
+        mesh_error(Location::line(source, line), format!("invalid UTF-8 at byte offset {pos}"), expected)
+    })
+}
+
 /// An [`InputErrorKind::Mesh`] error at `at`.
 pub(crate) fn mesh_error(at: Location, found: String, expected: &str) -> HullError {
     HullError::input(at, InputErrorKind::Mesh { found, expected: expected.to_string() })

@@ -10,7 +10,7 @@
 
 use nurbs::Vec3;
 
-use super::{mesh_error, TriMesh, TriangleSoup};
+use super::{mesh_error, mesh_text, TriMesh, TriangleSoup};
 use crate::error::{HullError, Location};
 use crate::float::real;
 
@@ -23,11 +23,7 @@ use crate::float::real;
 /// against all the file's vertices, negative ones against those read so far); and for text
 /// that is not UTF-8.
 pub fn parse_obj(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError> {
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        let pos = e.valid_up_to();
-        let line = 1 + bytes[..pos].iter().filter(|&&b| b == b'\n').count();
-        mesh_error(Location::line(source, line), format!("invalid UTF-8 at byte offset {pos}"), "an OBJ text file")
-    })?;
+    let text = mesh_text(bytes, source, "an OBJ text file")?;
     let mut soup = TriangleSoup::default();
     // Faces as (line, first triangle index): positive indices are checked at the end, since
     // OBJ writers may put faces before some of their vertices.

@@ -21,7 +21,7 @@ use std::collections::HashMap;
 
 use nurbs::Vec3;
 
-use super::{mesh_error, TriangleSoup};
+use super::{mesh_error, mesh_text, TriangleSoup};
 use crate::error::{HullError, Location};
 
 /// What the errors expect of a VRML file, where nothing more precise applies.
@@ -159,8 +159,7 @@ impl<'a> Lexer<'a> {
                     Some(line) => return Err(mesh_error(at(line), "a list not closed by \"]\"".to_string(), what)),
                     None => return Ok(out),
                 },
-                Some(_) if open.is_some() => {
-                    let line = self.peek().map_or(1, |t| t.1);
+                Some((_, line)) if open.is_some() => {
                     return Err(mesh_error(at(line), "a brace inside a list of numbers".to_string(), what));
                 }
                 Some(_) => return Ok(out),
@@ -214,11 +213,7 @@ const TRANSFORMS: [&str; 6] = ["Transform", "Translation", "Rotation", "Scale", 
 /// `PROTO`; unbalanced braces or brackets; and for text that is not UTF-8.
 pub fn parse_vrml(bytes: &[u8], source: &str) -> Result<TriangleSoup, HullError> {
     let at = |line: usize| Location::line(source, line);
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        let pos = e.valid_up_to();
-        let line = 1 + bytes[..pos].iter().filter(|&&b| b == b'\n').count();
-        mesh_error(at(line), format!("invalid UTF-8 at byte offset {pos}"), "a VRML text file")
-    })?;
+    let text = mesh_text(bytes, source, "a VRML text file")?;
     let header = text.lines().next().unwrap_or("");
     if !(header.starts_with("#VRML V1.0") || header.starts_with("#VRML V2.0")) {
         let shown: String = header.chars().take(40).collect();
