@@ -91,6 +91,14 @@ fn slice(mesh: &TriMesh, stations: Stations, points: usize) -> SliceOutcome {
     slice_mesh(mesh, &SliceOptions { stations, points, ..SliceOptions::default() }).expect("slices")
 }
 
+/// The mesh `testdata/mesh/{name}` read in `axes` and sliced as `hullskin fit MESH` slices it:
+/// 41 cosine stations of 30 points.
+fn read_sliced(name: &str, axes: Axes) -> SliceOutcome {
+    let options = MeshReadOptions { axes, ..MeshReadOptions::default() };
+    let mesh = read_mesh(&testdata(&format!("mesh/{name}")), &options).expect("reads");
+    slice(&mesh, Stations::Count { n: 41, spacing: Spacing::Cosine }, 30)
+}
+
 #[test]
 fn a_tessellated_wigley_hull_is_closed_and_outward() {
     let mesh = Wigley { l: 100.0, b: 10.0, t: 6.25 }.mesh(40, 10);
@@ -232,9 +240,7 @@ fn the_fastship_vrml_hulls_read_as_their_provenance_describes() {
     // The container ship with its vertical axis turned up (z = -17.5 at the deck as stored):
     // its 41 cosine stations less the sliver at the stem's tip, keel at z = 0 amidships, up to
     // the deck at 17.5 m.
-    let axes: Axes = "x,y,-z".parse().expect("axes");
-    let mesh = read_mesh(&testdata("mesh/fastship_cont.wrl.gz"), &MeshReadOptions { axes, ..opts }).expect("reads");
-    let out = slice(&mesh, Stations::Count { n: 41, spacing: Spacing::Cosine }, 30);
+    let out = read_sliced("fastship_cont.wrl.gz", "x,y,-z".parse().expect("axes"));
     assert_eq!(out.offsets.sections.len(), 40, "{:?}", out.dropped);
     let mid = &out.offsets.sections[20].points;
     assert!(mid[0].z.abs() < 1e-3 && (mid[mid.len() - 1].z - 17.5).abs() < 0.05, "{:?}", (mid[0], mid[mid.len() - 1]));
@@ -249,10 +255,7 @@ fn the_fastship_vrml_hulls_read_as_their_provenance_describes() {
 /// stem's top was written).
 #[test]
 fn the_container_ships_default_fit_is_sound_two_control_points_fewer_across() {
-    let axes: Axes = "x,y,-z".parse().expect("axes");
-    let opts = MeshReadOptions { axes, ..MeshReadOptions::default() };
-    let mesh = read_mesh(&testdata("mesh/fastship_cont.wrl.gz"), &opts).expect("reads");
-    let offsets = slice(&mesh, Stations::Count { n: 41, spacing: Spacing::Cosine }, 30).offsets;
+    let offsets = read_sliced("fastship_cont.wrl.gz", "x,y,-z".parse().expect("axes")).offsets;
     // As `hullskin fit` fits by default (the library's default leaves the fairing off).
     let config = FitConfig { fair: hull::Fairing::Auto { tolerance: None }, ..FitConfig::default() };
     let out = fit_offsets(&offsets, &config).expect("fits");
@@ -276,10 +279,7 @@ fn the_container_ships_default_fit_is_sound_two_control_points_fewer_across() {
 fn a_mesh_stored_upside_down_is_warned_of() {
     let up: Axes = "x,y,-z".parse().expect("axes");
     let upside_down = |name: &str, axes: Axes| {
-        let options = MeshReadOptions { axes, ..MeshReadOptions::default() };
-        let mesh = read_mesh(&testdata(&format!("mesh/{name}")), &options).expect("reads");
-        let out = slice(&mesh, Stations::Count { n: 41, spacing: Spacing::Cosine }, 30);
-        out.warnings().into_iter().find(|w| w.contains("looks upside down"))
+        read_sliced(name, axes).warnings().into_iter().find(|w| w.contains("looks upside down"))
     };
     for name in ["fastship_cont.wrl.gz", "fastship_50dragger.wrl.gz"] {
         let w = upside_down(name, Axes::default()).expect("warned");
